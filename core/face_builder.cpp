@@ -1,0 +1,108 @@
+#include "core/face_builder.h"
+
+#include <algorithm>
+#include <unordered_set>
+
+#include "core/errors.h"
+
+namespace sublift {
+namespace {
+
+// Hash of a face's canonical vertex cycle (rotation to the smallest index, the direction with
+// the smaller second index), so a face and its reverse copy collide.
+struct CycleHash {
+  std::size_t operator()(const std::vector<std::uint32_t>& c) const {
+    std::size_t h = c.size();
+    for (std::uint32_t v : c) h = h * 1000003u ^ v;
+    return h;
+  }
+};
+
+std::vector<std::uint32_t> canonical_cycle(std::span<const std::uint32_t> f) {
+  const std::size_t n = f.size();
+  const std::size_t m = static_cast<std::size_t>(std::min_element(f.begin(), f.end()) - f.begin());
+  std::vector<std::uint32_t> fwd(n), bwd(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    fwd[i] = f[(m + i) % n];
+    bwd[i] = f[(m + n - i) % n];
+  }
+  return std::min(fwd, bwd);
+}
+
+}  // namespace
+
+void FaceBuilder::add(std::span<const std::int64_t> corners, std::size_t line) {
+  indices_.insert(indices_.end(), corners.begin(), corners.end());
+  offsets_.push_back(indices_.size());
+  lines_.push_back(line);
+}
+
+void FaceBuilder::add_unreadable(std::size_t line, ImportReport& report, const char* reason) {
+  report.add(std::string("face dropped: ") + reason, line);
+}
+
+void FaceBuilder::finish(SurfaceMesh& mesh, ImportReport& report) const {
+  const auto nv = static_cast<std::int64_t>(mesh.num_vertices());
+  std::unordered_set<std::vector<std::uint32_t>, CycleHash> seen;
+  std::vector<char> unusable(mesh.num_vertices(), 0);
+  for (std::size_t v : unusable_)
+    if (v < unusable.size()) unusable[v] = 1;
+  std::vector<std::uint32_t> face;
+  for (std::size_t f = 0; f < lines_.size(); ++f) {
+    const std::size_t line = lines_[f];
+    std::span<const std::int64_t> raw(indices_.data() + offsets_[f], offsets_[f + 1] - offsets_[f]);
+    if (raw.size() < 3) {
+      report.add("face dropped: fewer than 3 vertices", line);
+      continue;
+    }
+    if (std::any_of(raw.begin(), raw.end(), [&](std::int64_t i) { return i < 0 || i >= nv; })) {
+      report.add("face dropped: vertex index out of range", line);
+      continue;
+    }
+    if (std::any_of(raw.begin(), raw.end(), [&](std::int64_t i) { return unusable[i] != 0; })) {
+      report.add("face dropped: uses an unreadable vertex", line);
+      continue;
+    }
+    face.assign(raw.begin(), raw.end());
+    // A vertex written twice in a row (1 2 2 3) is a harmless export artefact: collapse it.
+    std::size_t before = face.size();
+    face.erase(std::unique(face.begin(), face.end()), face.end());
+    while (face.size() > 1 && face.front() == face.back()) face.pop_back();
+    if (face.size() < 3) {
+      report.add("face dropped: fewer than 3 distinct vertices", line);
+      continue;
+    }
+    std::vector<std::uint32_t> sorted = face;
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+      report.add("face dropped: a vertex occurs twice (non-simple polygon)", line);
+      continue;
+    }
+    if (face.size() != before) report.add("face repaired: repeated consecutive vertex removed", line);
+    if (!seen.insert(canonical_cycle(face)).second) {
+      report.add("face dropped: duplicate of an earlier face (same vertices, either orientation)",
+                 line);
+      continue;
+    }
+    mesh.add_face(face);
+  }
+}
+
+void check_imported_mesh(const std::string& file, const SurfaceMesh& mesh,
+                         std::span<const std::size_t> vertex_lines, ImportReport& report) {
+  if (mesh.num_faces() == 0) {
+    std::string why;
+    if (mesh.num_vertices() == 0) why = "no vertices and no faces";
+    else if (report.empty()) why = std::to_string(mesh.num_vertices()) + " vertices but no faces (a point cloud, not a surface)";
+    else why = "no usable face left after dropping bad elements:\n" + report.format(file);
+    throw InputError(file, 0, why);
+  }
+  std::vector<char> used(mesh.num_vertices(), 0);
+  for (std::uint32_t v : mesh.face_indices) used[v] = 1;
+  for (std::size_t v = 0; v < used.size(); ++v)
+    if (!used[v])
+      report.add("vertex used by no face (kept; numbering unchanged)",
+                 v < vertex_lines.size() ? vertex_lines[v] : 0);
+}
+
+}  // namespace sublift

@@ -1,0 +1,49 @@
+#pragma once
+// SurfaceMesh: a polygon mesh as flat arrays, vertices and faces in file order.
+//
+// Layout: `positions[v]` for v in [0, num_vertices()); faces in CSR form, face f has the
+// corners face_indices[face_offsets[f] .. face_offsets[f+1]) in their file order (the
+// orientation the file gives). Invariants after import: face_offsets.front() == 0, offsets are
+// increasing by at least 3, every index < num_vertices(), no face repeats a vertex, positions
+// are finite. Non-manifold edges and vertices are allowed here (they are reported, not fixed).
+// `tags` keeps OpenSubdiv-style `t` lines (crease, corner, ...) with 0-based vertex indices.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace sublift {
+
+/// One OpenSubdiv-style tag line: `t name ni/nf/ns ints... floats... strings...`.
+struct MeshTag {
+  std::string name;
+  std::vector<std::int64_t> ints;
+  std::vector<double> floats;
+  std::vector<std::string> strings;
+  std::size_t line = 0;  // 1-based source line, 0 if made in code
+};
+
+struct SurfaceMesh {
+  std::vector<glm::dvec3> positions;
+  std::vector<std::uint32_t> face_offsets{0};
+  std::vector<std::uint32_t> face_indices;
+  std::vector<MeshTag> tags;
+
+  std::size_t num_vertices() const { return positions.size(); }
+  std::size_t num_faces() const { return face_offsets.size() - 1; }
+  std::size_t face_size(std::size_t f) const { return face_offsets[f + 1] - face_offsets[f]; }
+  /// Corners of face f, in file order.
+  std::span<const std::uint32_t> face(std::size_t f) const {
+    return {face_indices.data() + face_offsets[f], face_size(f)};
+  }
+  /// Appends a face; the caller guarantees the invariants above.
+  void add_face(std::span<const std::uint32_t> corners) {
+    face_indices.insert(face_indices.end(), corners.begin(), corners.end());
+    face_offsets.push_back(static_cast<std::uint32_t>(face_indices.size()));
+  }
+};
+
+}  // namespace sublift

@@ -1,0 +1,40 @@
+#pragma once
+// One-call offscreen rendering of a mesh to pixels, without any window system
+// (what `sublift-cli render` uses).
+#include <cstdint>
+#include <vector>
+
+#include "core/surface_mesh.h"
+#include "render/camera.h"
+#include "render/mesh_renderer.h"
+
+namespace sublift {
+
+/// Pixels as top-down rows of RGBA8, width * height * 4 bytes.
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgba;
+};
+
+struct HeadlessRenderSettings {
+  ViewPreset view = ViewPreset::ThreeQuarter;
+  bool orthographic = false;
+  DisplayOptions display;
+  int samples = 4;  // MSAA samples (0 = none)
+};
+
+/// Renders `mesh` shaded with wireframe from the default 3/4 view, framed to fit, on the
+/// viewport gradient. Creates its own EGL context; throws RenderError if headless GL is
+/// unavailable or the size is out of range.
+Image render_mesh_headless(const SurfaceMesh& mesh, int width, int height);
+
+/// The same with a chosen view, projection and display options.
+Image render_mesh_headless(const SurfaceMesh& mesh, int width, int height,
+                           const HeadlessRenderSettings& settings);
+
+/// The camera render_mesh_headless uses for these arguments (no GL needed).
+OrbitCamera headless_camera(const SurfaceMesh& mesh, int width, int height,
+                            const HeadlessRenderSettings& settings = {});
+
+}  // namespace sublift

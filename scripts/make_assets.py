@@ -1,0 +1,67 @@
+#!/usr/bin/env python3
+"""Writes the small base meshes in assets/. Run from the repository root; the outputs are
+committed, so the build never needs Python. Counts are documented in assets/README.md."""
+import math, os
+
+HERE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "assets")
+
+def fmt(x):
+    r = repr(float(x))
+    return r[:-2] if r.endswith(".0") else r
+
+def write(name, comment, verts, faces, extra=""):
+    with open(os.path.join(HERE, name), "w") as f:
+        f.write("# %s\n# Written by Sublift's scripts/make_assets.py (public domain, CC0).\n" % comment)
+        for v in verts:
+            f.write("v %s\n" % " ".join(fmt(c) for c in v))
+        for face in faces:
+            f.write("f %s\n" % " ".join(str(i + 1) for i in face))
+        f.write(extra)
+
+def torus(n, m, R=1.0, r=0.4):
+    verts = []
+    for i in range(n):
+        for j in range(m):
+            u, v = 2 * math.pi * i / n, 2 * math.pi * j / m
+            verts.append(((R + r * math.cos(v)) * math.cos(u), (R + r * math.cos(v)) * math.sin(u), r * math.sin(v)))
+    idx = lambda i, j: (i % n) * m + (j % m)
+    faces = [(idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)) for i in range(n) for j in range(m)]
+    return verts, faces
+
+cube_v = [(x, y, z) for z in (-1, 1) for y in (-1, 1) for x in (-1, 1)]
+cube_f = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+write("cube.obj", "Cube: 8 vertices of valence 3 (extraordinary for quads), 6 quads", cube_v, cube_f)
+
+v, f = torus(12, 8)
+write("torus_quad.obj", "Regular quad torus 12 x 8: every vertex valence 4, genus 1", v, f)
+
+v, f = torus(24, 12)
+write("sample.obj", "Sample opened by 'sublift' with no file: regular quad torus 24 x 12", v, f)
+
+pyr_v = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0), (0, 0, 1.4)]
+pyr_f = [(0, 3, 2, 1), (0, 1, 4), (1, 2, 4), (2, 3, 4), (3, 0, 4)]
+write("pyramid.obj", "Square pyramid: one quad, four triangles, apex of valence 4", pyr_v, pyr_f)
+
+# Pentagonal prism with a pentagonal pyramid on top: faces of 3, 4 and 5 sides; the apex has
+# valence 5 and the bottom pentagon's corners valence 3 (extraordinary for both schemes).
+mv = [(math.cos(2 * math.pi * k / 5), math.sin(2 * math.pi * k / 5), 0.0) for k in range(5)]
+mv += [(math.cos(2 * math.pi * k / 5), math.sin(2 * math.pi * k / 5), 1.0) for k in range(5)]
+mv += [(0.0, 0.0, 1.8)]
+mf = [tuple(reversed(range(5)))]
+mf += [(k, (k + 1) % 5, 5 + (k + 1) % 5, 5 + k) for k in range(5)]
+mf += [(5 + k, 5 + (k + 1) % 5, 10) for k in range(5)]
+write("mixed_polygons.obj", "Mixed triangles/quads/pentagon with extraordinary vertices (closed)", mv, mf)
+
+gv = [(x - 2.0, y - 2.0, 0.15 * math.sin(x) * math.cos(y)) for y in range(5) for x in range(5)]
+gf = [(y * 5 + x, y * 5 + x + 1, (y + 1) * 5 + x + 1, (y + 1) * 5 + x) for y in range(4) for x in range(4)]
+write("quad_grid_boundary.obj", "Open 4 x 4 quad grid: one boundary loop of 16 edges, 4 corners", gv, gf)
+
+# A box in four rings (z = 0, 1/3, 2/3, 1); the ring at z = 1/3 is tagged as a crease loop in
+# OpenSubdiv's syntax (0-based vertex indices, infinite-ish sharpness 10).
+zs = (0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0)
+corners = [(-1, -1), (1, -1), (1, 1), (-1, 1)]
+bv = [(x, y, z * 2 - 1) for z in zs for (x, y) in corners]
+bf = [(3, 2, 1, 0), (12, 13, 14, 15)]
+bf += [(r * 4 + k, r * 4 + (k + 1) % 4, (r + 1) * 4 + (k + 1) % 4, (r + 1) * 4 + k) for r in range(3) for k in range(4)]
+tags = "".join("t crease 2/1/0 %d %d 10\n" % (4 + k, 4 + (k + 1) % 4) for k in range(4))
+write("crease_loop.obj", "Box with a tagged crease loop (t crease) around the ring at z = -1/3", bv, bf, tags)

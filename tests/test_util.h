@@ -1,0 +1,33 @@
+#pragma once
+// Small helpers for tests that build files in code.
+#include <string>
+
+#include "core/errors.h"
+#include "core/mesh_import.h"
+
+namespace sublift::testing {
+
+/// Imports `bytes` as if read from `name`.
+inline LoadedMesh load(const std::string& name, const std::string& bytes) {
+  return import_surface_mesh_from_memory(name, bytes);
+}
+
+/// The warning whose text contains `needle`, or nullptr.
+inline const ImportWarning* find_warning(const ImportReport& r, const std::string& needle) {
+  for (const ImportWarning& w : r.warnings)
+    if (w.what.find(needle) != std::string::npos) return &w;
+  return nullptr;
+}
+
+/// The InputError message of importing `bytes`, or "" if it loads.
+inline std::string load_error(const std::string& name, const std::string& bytes, std::size_t* line = nullptr) {
+  try {
+    load(name, bytes);
+  } catch (const InputError& e) {
+    if (line) *line = e.line();
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace sublift::testing

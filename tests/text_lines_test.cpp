@@ -1,0 +1,64 @@
+#include <gtest/gtest.h>
+
+#include "core/errors.h"
+#include "core/text_lines.h"
+
+using namespace sublift;
+
+static std::vector<std::string> all_lines(std::string_view text) {
+  LineReader r(text, "t.txt", 100);
+  std::vector<std::string> out;
+  std::string_view l;
+  while (r.next(l)) out.emplace_back(l);
+  return out;
+}
+
+TEST(LineReader, AcceptsLfCrlfAndCrEndings) {
+  const std::vector<std::string> want{"a", "b", "", "c"};
+  EXPECT_EQ(all_lines("a\nb\n\nc\n"), want);
+  EXPECT_EQ(all_lines("a\r\nb\r\n\r\nc\r\n"), want);
+  EXPECT_EQ(all_lines("a\rb\r\rc"), want);
+}
+
+TEST(LineReader, StripsUtf8BomOnlyAtStart) {
+  EXPECT_EQ(all_lines("\xEF\xBB\xBFv 1\n"), std::vector<std::string>{"v 1"});
+}
+
+TEST(LineReader, CountsLinesAndRefusesBinaryAndLongLines) {
+  LineReader r("ok\nbad\x01here\n", "f.obj", 100);
+  std::string_view l;
+  ASSERT_TRUE(r.next(l));
+  EXPECT_EQ(r.line_number(), 1u);
+  try {
+    r.next(l);
+    FAIL() << "binary byte accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 2u);
+    EXPECT_NE(std::string(e.what()).find("f.obj:2"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("binary"), std::string::npos);
+  }
+  LineReader longer(std::string(200, 'x'), "g.obj", 100);
+  EXPECT_THROW(longer.next(l), InputError);
+}
+
+TEST(ParseNumbers, RejectsNonFiniteOverflowAndTrailingGarbage) {
+  EXPECT_EQ(parse_double("1.5"), 1.5);
+  EXPECT_EQ(parse_double("+2e3"), 2000.0);
+  EXPECT_EQ(parse_double("-0.25"), -0.25);
+  EXPECT_FALSE(parse_double("nan"));
+  EXPECT_FALSE(parse_double("inf"));
+  EXPECT_FALSE(parse_double("1e400"));
+  EXPECT_FALSE(parse_double("1.0x"));
+  EXPECT_FALSE(parse_double(""));
+  EXPECT_EQ(parse_int("-7"), -7);
+  EXPECT_FALSE(parse_int("7.0"));
+  EXPECT_FALSE(parse_int("99999999999999999999999"));
+}
+
+TEST(SplitTokens, SplitsOnAnyBlank) {
+  std::vector<std::string_view> t;
+  split_tokens("  f\t1  2\v3 ", t);
+  ASSERT_EQ(t.size(), 4u);
+  EXPECT_EQ(t[0], "f");
+  EXPECT_EQ(t[3], "3");
+}

@@ -1,0 +1,310 @@
+#include "core/lifting.h"
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+namespace sublift {
+namespace {
+
+int g_threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 8);
+
+// Runs fn(begin, end) over [0, n) split across the lifting threads when n is large enough to
+// pay for starting them. Each target is written by exactly one thread: no locks needed.
+template <class Fn>
+void parallel_for(std::uint32_t n, const Fn& fn) {
+  constexpr std::uint32_t kMinPerThread = 16384;
+  const int t = std::min<int>(g_threads, static_cast<int>(n / kMinPerThread));
+  if (t <= 1) {
+    fn(0u, n);
+    return;
+  }
+  std::vector<std::thread> pool;
+  pool.reserve(t - 1);
+  const std::uint32_t chunk = (n + t - 1) / t;
+  for (int i = 1; i < t; ++i) {
+    const std::uint32_t b = std::min(n, chunk * i), e = std::min(n, chunk * (i + 1));
+    pool.emplace_back([&fn, b, e] { fn(b, e); });
+  }
+  fn(0u, std::min(n, chunk));
+  for (auto& th : pool) th.join();
+}
+
+// Regular-grid neighbour count: a t-dim primitive inside an m-dim regular grid touches
+// C(m-t, k-t) 2^(k-t) primitives of dim k (000 eq. 3.16-3.17: 6/12/8, 4/4, 2).
+double grid_count(int m, int t, int k) {
+  if (k > m || t > m) return 0.0;
+  const int n = m - t, r = k - t;
+  double binom = 1;
+  for (int i = 0; i < r; ++i) binom = binom * (n - i) / (i + 1);
+  return binom * std::ldexp(1.0, r);
+}
+
+// One source group of a gather sub-step: rows of source indices (local to their class) with
+// the weight per feature dim m of the target (already multiplied by a^(k-t)).
+struct Group {
+  const std::uint32_t* offsets = nullptr;
+  const std::uint32_t* items = nullptr;
+  std::uint32_t stride = 0;     // rows of fixed size (edge_verts) when offsets == nullptr
+  std::uint32_t source_base = 0;
+  double weight[4] = {0, 0, 0, 0};
+};
+
+double inv(std::uint32_t n) {
+  static const auto table = [] {
+    std::vector<double> t(65);
+    for (std::size_t i = 1; i < t.size(); ++i) t[i] = 1.0 / double(i);
+    return t;
+  }();
+  return n < table.size() ? table[n] : 1.0 / double(n);
+}
+
+// x[target] += sign * sum_g weight_g(m) * centroid_g, for targets [0, n) of one class.
+template <int C>
+void gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* target_m, const Group* groups,
+            int num_groups, double* x, int channels, double sign, bool integer) {
+  const int ch = C > 0 ? C : channels;
+  parallel_for(n, [&](std::uint32_t begin, std::uint32_t end) {
+    double acc_buf[16];
+    std::vector<double> acc_heap(ch > 16 ? ch : 0);
+    double* acc = ch > 16 ? acc_heap.data() : acc_buf;
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const int m = target_m ? target_m[i] : 0;
+      for (int c = 0; c < ch; ++c) acc[c] = 0.0;
+      bool any = false;
+      for (int g = 0; g < num_groups; ++g) {
+        const Group& gr = groups[g];
+        const double wm = gr.weight[m];
+        if (wm == 0.0) continue;
+        std::uint32_t b, e;
+        if (gr.offsets) {
+          b = gr.offsets[i], e = gr.offsets[i + 1];
+        } else {
+          b = i * gr.stride, e = b + gr.stride;
+        }
+        if (b == e) continue;
+        const double w = wm * inv(e - b);
+        any = true;
+        for (std::uint32_t s = b; s < e; ++s) {
+          const double* src = x + std::size_t(gr.source_base + gr.items[s]) * ch;
+          for (int c = 0; c < ch; ++c) acc[c] += w * src[c];
+        }
+      }
+      if (!any) continue;
+      double* dst = x + std::size_t(target_base + i) * ch;
+      if (integer)
+        for (int c = 0; c < ch; ++c) dst[c] += sign * std::floor(acc[c] + 0.5);
+      else
+        for (int c = 0; c < ch; ++c) dst[c] += sign * acc[c];
+    }
+  });
+}
+
+void run_gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* target_m, const Group* groups,
+                int num_groups, double* x, int channels, double sign, bool integer) {
+  switch (channels) {
+    case 1: return gather<1>(n, target_base, target_m, groups, num_groups, x, channels, sign, integer);
+    case 3: return gather<3>(n, target_base, target_m, groups, num_groups, x, channels, sign, integer);
+    case 4: return gather<4>(n, target_base, target_m, groups, num_groups, x, channels, sign, integer);
+    default: return gather<0>(n, target_base, target_m, groups, num_groups, x, channels, sign, integer);
+  }
+}
+
+Group group_of(const Csr& rows, std::uint32_t source_base) {
+  Group g;
+  g.offsets = rows.offsets.data();
+  g.items = rows.items.data();
+  g.source_base = source_base;
+  return g;
+}
+
+// Weights of a source class k for a target class t: w-lift ignores features (topological
+// counts of the target primitive, 000 eq. 3.16); s-lift uses the target's feature dim m.
+void set_wlift_weight(Group& g, int t, int k, double a) {
+  // Number of k-faces of a regular t-cube: C(t, k) 2^(t-k).
+  double binom = 1;
+  for (int i = 0; i < t - k; ++i) binom = binom * (t - i) / (i + 1);
+  const double count = binom * std::ldexp(1.0, t - k);
+  const double v = count * std::pow(a, t - k);
+  for (double& x : g.weight) x = v;
+}
+
+void set_slift_weight(Group& g, int t, int k, double a) {
+  for (int m = 0; m < 4; ++m) g.weight[m] = grid_count(m, t, k) * std::pow(a, k - t);
+}
+
+struct Classes {
+  std::uint32_t nv, ne, nf, nc, E0, F0, C0;
+  explicit Classes(const Complex& p)
+      : nv(p.num_vertices), ne(p.num_edges()), nf(p.num_faces()), nc(p.num_cells()),
+        E0(nv), F0(nv + ne), C0(nv + ne + nf) {}
+};
+
+void wlift_cells(const Complex& p, const Classes& k, double a, double* x, int ch, double sign, bool integer) {
+  if (!k.nc) return;
+  Group g[3] = {group_of(p.cell_verts, 0), group_of(p.cell_edges, k.E0), group_of(p.cell_faces, k.F0)};
+  for (int s = 0; s < 3; ++s) set_wlift_weight(g[s], 3, s, a);
+  run_gather(k.nc, k.C0, nullptr, g, 3, x, ch, sign, integer);
+}
+
+void wlift_faces(const Complex& p, const Classes& k, double a, double* x, int ch, double sign, bool integer) {
+  if (!k.nf) return;
+  Group g[2] = {group_of(p.faces, 0), group_of(p.face_edges, k.E0)};
+  for (int s = 0; s < 2; ++s) set_wlift_weight(g[s], 2, s, a);
+  run_gather(k.nf, k.F0, nullptr, g, 2, x, ch, sign, integer);
+}
+
+void wlift_edges(const Complex& p, const Classes& k, double a, double* x, int ch, double sign, bool integer) {
+  if (!k.ne) return;
+  Group g;
+  g.items = p.edge_verts.data();
+  g.stride = 2;
+  g.source_base = 0;
+  set_wlift_weight(g, 1, 0, a);
+  run_gather(k.ne, k.E0, nullptr, &g, 1, x, ch, sign, integer);
+}
+
+const Csr& pick(bool own, const Csr& owned, const Csr& complex_rows) { return own ? owned : complex_rows; }
+
+void slift_vertices(const Complex& p, const LiftTables& t, const Classes& k, double a, double* x, int ch, double sign,
+                    bool integer) {
+  Group g[3] = {group_of(pick(t.own_v_from_e, t.v_from_e, p.vertex_edges), k.E0),
+                group_of(pick(t.own_v_from_f, t.v_from_f, p.vertex_faces), k.F0),
+                group_of(pick(t.own_v_from_c, t.v_from_c, p.vertex_cells), k.C0)};
+  for (int s = 0; s < 3; ++s) set_slift_weight(g[s], 0, s + 1, a);
+  run_gather(k.nv, 0, p.vertex_dim.data(), g, k.nc ? 3 : (k.nf ? 2 : 1), x, ch, sign, integer);
+}
+
+void slift_edges(const Complex& p, const LiftTables& t, const Classes& k, double a, double* x, int ch, double sign,
+                 bool integer) {
+  if (!k.nf) return;
+  Group g[2] = {group_of(pick(t.own_e_from_f, t.e_from_f, p.edge_faces), k.F0),
+                group_of(pick(t.own_e_from_c, t.e_from_c, p.edge_cells), k.C0)};
+  for (int s = 0; s < 2; ++s) set_slift_weight(g[s], 1, s + 2, a);
+  run_gather(k.ne, k.E0, p.edge_dim.data(), g, k.nc ? 2 : 1, x, ch, sign, integer);
+}
+
+void slift_faces(const Complex& p, const LiftTables& t, const Classes& k, double a, double* x, int ch, double sign,
+                 bool integer) {
+  if (!k.nc) return;
+  Group g = group_of(pick(t.own_f_from_c, t.f_from_c, p.face_cells), k.C0);
+  set_slift_weight(g, 2, 3, a);
+  run_gather(k.nf, k.F0, p.face_dim.data(), &g, 1, x, ch, sign, integer);
+}
+
+// s-scale: a class-t vertex of feature dim m is multiplied (or divided) by a^(m-t).
+void sscale(const Complex& p, const Classes& k, double a, double* x, int ch, bool inverse) {
+  auto scale_class = [&](std::uint32_t n, std::uint32_t base, const std::uint8_t* dims, int t) {
+    double factor[4];
+    for (int m = 0; m < 4; ++m) factor[m] = m >= t ? std::pow(a, m - t) : 1.0;
+    if (inverse)
+      for (double& f : factor) f = 1.0 / f;
+    parallel_for(n, [&](std::uint32_t b, std::uint32_t e) {
+      for (std::uint32_t i = b; i < e; ++i) {
+        const double f = factor[dims[i]];
+        if (f == 1.0) continue;
+        double* v = x + std::size_t(base + i) * ch;
+        for (int c = 0; c < ch; ++c) v[c] *= f;
+      }
+    });
+  };
+  scale_class(k.nv, 0, p.vertex_dim.data(), 0);
+  scale_class(k.ne, k.E0, p.edge_dim.data(), 1);
+  scale_class(k.nf, k.F0, p.face_dim.data(), 2);
+  // Cells have feature dim 3 = their topological dim: factor 1.
+}
+
+// Keeps the sources whose feature dim is <= the target's (DESIGN: s-lift stays inside a
+// feature); returns whether anything was dropped.
+bool filter_rows(const Csr& rows, const std::vector<std::uint8_t>& target_dim,
+                 const std::vector<std::uint8_t>* source_dim, std::uint8_t fixed_source_dim, Csr& out) {
+  bool dropped = false;
+  out.clear();
+  out.items.reserve(rows.items.size());
+  out.offsets.reserve(rows.offsets.size());
+  for (std::size_t r = 0; r < rows.rows(); ++r) {
+    for (std::uint32_t s : rows.row(r)) {
+      const std::uint8_t d = source_dim ? (*source_dim)[s] : fixed_source_dim;
+      if (d <= target_dim[r]) out.items.push_back(s);
+      else dropped = true;
+    }
+    out.offsets.push_back(static_cast<std::uint32_t>(out.items.size()));
+  }
+  if (!dropped) out.clear();
+  out.items.shrink_to_fit();
+  out.offsets.shrink_to_fit();
+  return dropped;
+}
+
+}  // namespace
+
+LiftProgram linear_program() { return {{LiftOp::SLift, -0.25}, {LiftOp::WLift, 0.5}}; }
+
+LiftProgram cubic_program() {
+  return {{LiftOp::SLift, -0.375}, {LiftOp::WLift, 0.5}, {LiftOp::SLift, 0.5}, {LiftOp::SScale, 0.5}};
+}
+
+void set_lift_threads(int n) { g_threads = std::clamp(n, 1, 8); }
+
+std::size_t LiftTables::bytes() const {
+  return v_from_e.bytes() + v_from_f.bytes() + v_from_c.bytes() + e_from_f.bytes() + e_from_c.bytes() +
+         f_from_c.bytes();
+}
+
+LiftTables build_lift_tables(const Complex& p) {
+  LiftTables t;
+  t.own_v_from_e = filter_rows(p.vertex_edges, p.vertex_dim, &p.edge_dim, 0, t.v_from_e);
+  t.own_v_from_f = filter_rows(p.vertex_faces, p.vertex_dim, &p.face_dim, 0, t.v_from_f);
+  t.own_v_from_c = filter_rows(p.vertex_cells, p.vertex_dim, nullptr, 3, t.v_from_c);
+  t.own_e_from_f = filter_rows(p.edge_faces, p.edge_dim, &p.face_dim, 0, t.e_from_f);
+  t.own_e_from_c = filter_rows(p.edge_cells, p.edge_dim, nullptr, 3, t.e_from_c);
+  t.own_f_from_c = filter_rows(p.face_cells, p.face_dim, nullptr, 3, t.f_from_c);
+  return t;
+}
+
+void lift_synthesize(const Complex& p, const LiftTables& t, const LiftProgram& program, double* x, int ch,
+                     bool integer) {
+  const Classes k(p);
+  for (const LiftStep& s : program) {
+    switch (s.op) {
+      case LiftOp::WLift:  // c, then f, then e: each reads only classes not yet updated
+        wlift_cells(p, k, s.a, x, ch, 1.0, integer);
+        wlift_faces(p, k, s.a, x, ch, 1.0, integer);
+        wlift_edges(p, k, s.a, x, ch, 1.0, integer);
+        break;
+      case LiftOp::SLift:  // v, then e, then f
+        slift_vertices(p, t, k, s.a, x, ch, 1.0, integer);
+        slift_edges(p, t, k, s.a, x, ch, 1.0, integer);
+        slift_faces(p, t, k, s.a, x, ch, 1.0, integer);
+        break;
+      case LiftOp::SScale:
+        if (!integer) sscale(p, k, s.a, x, ch, false);
+        break;
+    }
+  }
+}
+
+void lift_analyze(const Complex& p, const LiftTables& t, const LiftProgram& program, double* x, int ch,
+                  bool integer) {
+  const Classes k(p);
+  for (auto it = program.rbegin(); it != program.rend(); ++it) {
+    const LiftStep& s = *it;
+    switch (s.op) {
+      case LiftOp::WLift:
+        wlift_edges(p, k, s.a, x, ch, -1.0, integer);
+        wlift_faces(p, k, s.a, x, ch, -1.0, integer);
+        wlift_cells(p, k, s.a, x, ch, -1.0, integer);
+        break;
+      case LiftOp::SLift:
+        slift_faces(p, t, k, s.a, x, ch, -1.0, integer);
+        slift_edges(p, t, k, s.a, x, ch, -1.0, integer);
+        slift_vertices(p, t, k, s.a, x, ch, -1.0, integer);
+        break;
+      case LiftOp::SScale:
+        if (!integer) sscale(p, k, s.a, x, ch, true);
+        break;
+    }
+  }
+}
+
+}  // namespace sublift

@@ -1,6 +1,7 @@
 #include "core/lifting.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <thread>
 
@@ -50,24 +51,38 @@ struct Group {
   double weight[4] = {0, 0, 0, 0};
 };
 
-double inv(std::uint32_t n) {
-  static const auto table = [] {
-    std::vector<double> t(65);
-    for (std::size_t i = 1; i < t.size(); ++i) t[i] = 1.0 / double(i);
-    return t;
-  }();
-  return n < table.size() ? table[n] : 1.0 / double(n);
+// 1/n for small n without a division in the hot loop.
+constexpr int kInvTable = 64;
+const std::array<double, kInvTable> kInv = [] {
+  std::array<double, kInvTable> t{};
+  for (int i = 1; i < kInvTable; ++i) t[i] = 1.0 / double(i);
+  return t;
+}();
+
+inline double inv(std::uint32_t n) { return n < kInvTable ? kInv[n] : 1.0 / double(n); }
+
+// Sum of the rows' source values (C channels) into s.
+template <int C>
+inline void sum_sources(const double* x, const std::uint32_t* idx, std::uint32_t n, std::uint32_t base, int ch,
+                        double* s) {
+  const int cc = C > 0 ? C : ch;
+  for (int c = 0; c < cc; ++c) s[c] = 0.0;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const double* p = x + std::size_t(base + idx[k]) * cc;
+    for (int c = 0; c < cc; ++c) s[c] += p[c];
+  }
 }
 
 // x[target] += sign * sum_g weight_g(m) * centroid_g, for targets [0, n) of one class.
-template <int C>
+template <int C, bool Integer>
 void gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* target_m, const Group* groups,
-            int num_groups, double* x, int channels, double sign, bool integer) {
+            int num_groups, double* x, int channels, double sign) {
   const int ch = C > 0 ? C : channels;
   parallel_for(n, [&](std::uint32_t begin, std::uint32_t end) {
-    double acc_buf[16];
-    std::vector<double> acc_heap(ch > 16 ? ch : 0);
-    double* acc = ch > 16 ? acc_heap.data() : acc_buf;
+    std::vector<double> heap(C > 0 ? 0 : 2 * std::size_t(ch));
+    double stack[C > 0 ? 2 * C : 1];
+    double* acc = C > 0 ? stack : heap.data();
+    double* sum = C > 0 ? stack + C : heap.data() + ch;
     for (std::uint32_t i = begin; i < end; ++i) {
       const int m = target_m ? target_m[i] : 0;
       for (int c = 0; c < ch; ++c) acc[c] = 0.0;
@@ -76,38 +91,43 @@ void gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* targ
         const Group& gr = groups[g];
         const double wm = gr.weight[m];
         if (wm == 0.0) continue;
-        std::uint32_t b, e;
+        std::uint32_t b, len;
         if (gr.offsets) {
-          b = gr.offsets[i], e = gr.offsets[i + 1];
+          b = gr.offsets[i];
+          len = gr.offsets[i + 1] - b;
         } else {
-          b = i * gr.stride, e = b + gr.stride;
+          b = i * gr.stride;
+          len = gr.stride;
         }
-        if (b == e) continue;
-        const double w = wm * inv(e - b);
+        if (len == 0) continue;
         any = true;
-        for (std::uint32_t s = b; s < e; ++s) {
-          const double* src = x + std::size_t(gr.source_base + gr.items[s]) * ch;
-          for (int c = 0; c < ch; ++c) acc[c] += w * src[c];
-        }
+        sum_sources<C>(x, gr.items + b, len, gr.source_base, ch, sum);
+        const double w = sign * wm * inv(len);
+        for (int c = 0; c < ch; ++c) acc[c] += w * sum[c];
       }
       if (!any) continue;
       double* dst = x + std::size_t(target_base + i) * ch;
-      if (integer)
-        for (int c = 0; c < ch; ++c) dst[c] += sign * std::floor(acc[c] + 0.5);
-      else
-        for (int c = 0; c < ch; ++c) dst[c] += sign * acc[c];
+      if constexpr (Integer) {
+        for (int c = 0; c < ch; ++c) dst[c] += sign * std::floor(sign * acc[c] + 0.5);
+      } else {
+        for (int c = 0; c < ch; ++c) dst[c] += acc[c];
+      }
     }
   });
 }
 
 void run_gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* target_m, const Group* groups,
                 int num_groups, double* x, int channels, double sign, bool integer) {
+#define SUBLIFT_GATHER(C)                                                                   \
+  return integer ? gather<C, true>(n, target_base, target_m, groups, num_groups, x, channels, sign) \
+                 : gather<C, false>(n, target_base, target_m, groups, num_groups, x, channels, sign)
   switch (channels) {
-    case 1: return gather<1>(n, target_base, target_m, groups, num_groups, x, channels, sign, integer);
-    case 3: return gather<3>(n, target_base, target_m, groups, num_groups, x, channels, sign, integer);
-    case 4: return gather<4>(n, target_base, target_m, groups, num_groups, x, channels, sign, integer);
-    default: return gather<0>(n, target_base, target_m, groups, num_groups, x, channels, sign, integer);
+    case 1: SUBLIFT_GATHER(1);
+    case 3: SUBLIFT_GATHER(3);
+    case 4: SUBLIFT_GATHER(4);
+    default: SUBLIFT_GATHER(0);
   }
+#undef SUBLIFT_GATHER
 }
 
 Group group_of(const Csr& rows, std::uint32_t source_base) {
@@ -218,22 +238,21 @@ void sscale(const Complex& p, const Classes& k, double a, double* x, int ch, boo
 // feature); returns whether anything was dropped.
 bool filter_rows(const Csr& rows, const std::vector<std::uint8_t>& target_dim,
                  const std::vector<std::uint8_t>* source_dim, std::uint8_t fixed_source_dim, Csr& out) {
-  bool dropped = false;
   out.clear();
+  auto dim_of = [&](std::uint32_t s) { return source_dim ? (*source_dim)[s] : fixed_source_dim; };
+  bool dropped = false;
+  for (std::size_t r = 0; r < rows.rows() && !dropped; ++r)
+    for (std::uint32_t s : rows.row(r)) dropped |= dim_of(s) > target_dim[r];
+  if (!dropped) return false;
   out.items.reserve(rows.items.size());
   out.offsets.reserve(rows.offsets.size());
   for (std::size_t r = 0; r < rows.rows(); ++r) {
-    for (std::uint32_t s : rows.row(r)) {
-      const std::uint8_t d = source_dim ? (*source_dim)[s] : fixed_source_dim;
-      if (d <= target_dim[r]) out.items.push_back(s);
-      else dropped = true;
-    }
+    for (std::uint32_t s : rows.row(r))
+      if (dim_of(s) <= target_dim[r]) out.items.push_back(s);
     out.offsets.push_back(static_cast<std::uint32_t>(out.items.size()));
   }
-  if (!dropped) out.clear();
   out.items.shrink_to_fit();
-  out.offsets.shrink_to_fit();
-  return dropped;
+  return true;
 }
 
 }  // namespace

@@ -73,12 +73,19 @@ inline void sum_sources(const double* x, const std::uint32_t* idx, std::uint32_t
   }
 }
 
-// x[target] += sign * sum_g weight_g(m) * centroid_g, for targets [0, n) of one class.
-template <int C, bool Integer>
-void gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* target_m, const Group* groups,
-            int num_groups, double* x, int channels, double sign) {
+// x[target] += sign * sum_g weight_g(m) * centroid_g, for targets [0, n) of one class. The
+// group count G and channel count C are template parameters so the loops unroll; C == 0 means
+// "channels at run time".
+template <int C, int G, bool Integer>
+void gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* target_m, const Group* groups_in,
+            double* x, int channels, double sign) {
   const int ch = C > 0 ? C : channels;
-  parallel_for(n, [&](std::uint32_t begin, std::uint32_t end) {
+  std::array<Group, G> groups;
+  for (int g = 0; g < G; ++g) {
+    groups[g] = groups_in[g];
+    for (double& w : groups[g].weight) w *= sign;
+  }
+  parallel_for(n, [&, groups](std::uint32_t begin, std::uint32_t end) {
     std::vector<double> heap(C > 0 ? 0 : 2 * std::size_t(ch));
     double stack[C > 0 ? 2 * C : 1];
     double* acc = C > 0 ? stack : heap.data();
@@ -87,10 +94,9 @@ void gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* targ
       const int m = target_m ? target_m[i] : 0;
       for (int c = 0; c < ch; ++c) acc[c] = 0.0;
       bool any = false;
-      for (int g = 0; g < num_groups; ++g) {
+      for (int g = 0; g < G; ++g) {
         const Group& gr = groups[g];
         const double wm = gr.weight[m];
-        if (wm == 0.0) continue;
         std::uint32_t b, len;
         if (gr.offsets) {
           b = gr.offsets[i];
@@ -99,10 +105,10 @@ void gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* targ
           b = i * gr.stride;
           len = gr.stride;
         }
-        if (len == 0) continue;
+        if (len == 0 || wm == 0.0) continue;
         any = true;
         sum_sources<C>(x, gr.items + b, len, gr.source_base, ch, sum);
-        const double w = sign * wm * inv(len);
+        const double w = wm * inv(len);
         for (int c = 0; c < ch; ++c) acc[c] += w * sum[c];
       }
       if (!any) continue;
@@ -116,18 +122,31 @@ void gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* targ
   });
 }
 
+template <int C, int G>
+void gather_mode(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* target_m, const Group* groups,
+                 double* x, int channels, double sign, bool integer) {
+  if (integer) gather<C, G, true>(n, target_base, target_m, groups, x, channels, sign);
+  else gather<C, G, false>(n, target_base, target_m, groups, x, channels, sign);
+}
+
+template <int G>
+void gather_channels(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* target_m, const Group* groups,
+                     double* x, int channels, double sign, bool integer) {
+  switch (channels) {
+    case 1: return gather_mode<1, G>(n, target_base, target_m, groups, x, channels, sign, integer);
+    case 3: return gather_mode<3, G>(n, target_base, target_m, groups, x, channels, sign, integer);
+    case 4: return gather_mode<4, G>(n, target_base, target_m, groups, x, channels, sign, integer);
+    default: return gather_mode<0, G>(n, target_base, target_m, groups, x, channels, sign, integer);
+  }
+}
+
 void run_gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* target_m, const Group* groups,
                 int num_groups, double* x, int channels, double sign, bool integer) {
-#define SUBLIFT_GATHER(C)                                                                   \
-  return integer ? gather<C, true>(n, target_base, target_m, groups, num_groups, x, channels, sign) \
-                 : gather<C, false>(n, target_base, target_m, groups, num_groups, x, channels, sign)
-  switch (channels) {
-    case 1: SUBLIFT_GATHER(1);
-    case 3: SUBLIFT_GATHER(3);
-    case 4: SUBLIFT_GATHER(4);
-    default: SUBLIFT_GATHER(0);
+  switch (num_groups) {
+    case 1: return gather_channels<1>(n, target_base, target_m, groups, x, channels, sign, integer);
+    case 2: return gather_channels<2>(n, target_base, target_m, groups, x, channels, sign, integer);
+    default: return gather_channels<3>(n, target_base, target_m, groups, x, channels, sign, integer);
   }
-#undef SUBLIFT_GATHER
 }
 
 Group group_of(const Csr& rows, std::uint32_t source_base) {

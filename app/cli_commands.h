@@ -1,10 +1,20 @@
 #pragma once
 // The sublift-cli commands. Each returns the process exit code (0 ok); they throw
 // cli::UsageError for bad usage and sublift::Error for bad input.
+#include <string>
+
 namespace sublift::cli {
 
 int run_info(int argc, char** argv);
 int run_render(int argc, char** argv);
 int run_convert(int argc, char** argv);
+int run_subdivide(int argc, char** argv);
+int run_analyze(int argc, char** argv);
+int run_synthesize(int argc, char** argv);
+
+/// `info` on a .sublift project (levels, per-level wavelet statistics).
+int info_project(const std::string& file, bool json);
+/// `info` on a lattice (.lattice, .vtk): counts, cell sizes, feature dims, bounding box.
+int info_shape(const std::string& file, bool json);
 
 }  // namespace sublift::cli

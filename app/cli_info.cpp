@@ -7,6 +7,7 @@
 #include "app/cli_args.h"
 #include "app/cli_commands.h"
 #include "app/cli_json.h"
+#include "core/file_io.h"
 #include "core/mesh_export.h"
 #include "core/mesh_import.h"
 #include "core/mesh_stats.h"
@@ -17,10 +18,14 @@ namespace {
 
 constexpr const char* kHelp =
     "usage: sublift-cli info FILE [--json]\n"
-    "  Prints vertex/edge/face counts, the face-size and valence histograms, boundary loops,\n"
-    "  non-manifold edges and vertices, misoriented edges, components, Euler characteristic,\n"
-    "  tags and the bounding box of a surface mesh (.obj/.off/.ply). Repairs made on import\n"
-    "  are listed as warnings on stderr (and under \"warnings\" with --json).\n";
+    "  Meshes (.obj/.off/.ply): vertex/edge/face counts, polylines, the face-size and valence\n"
+    "  histograms, boundary loops, non-manifold edges and vertices, misoriented edges,\n"
+    "  components, Euler characteristic, tags and the bounding box.\n"
+    "  Lattices (.lattice/.vtk): counts of vertices, edges, faces, cells, faces per cell,\n"
+    "  feature dimensionalities and the bounding box.\n"
+    "  Projects (.sublift): scheme, integer flag, channels, dimension, base counts, 'levels' and\n"
+    "  'per_level' (level, vertices, wavelets, wavelet_max, wavelet_rms: Euclidean norms).\n"
+    "  Repairs made on import are listed as warnings on stderr (and under \"warnings\").\n";
 
 std::string histogram(const std::map<std::size_t, std::size_t>& h) {
   std::string s;
@@ -42,6 +47,9 @@ int run_info(int argc, char** argv) {
   }
   if (a.positional.size() != 1) throw UsageError("expected exactly one FILE");
   const std::string& file = a.positional[0];
+  const std::string ext = file_extension(file);
+  if (ext == "sublift") return info_project(file, a.has("--json"));
+  if (ext == "lattice" || ext == "vtk") return info_shape(file, a.has("--json"));
   const LoadedMesh loaded = import_surface_mesh(file);
   std::cerr << loaded.report.format(file);
   const MeshStats s = compute_mesh_stats(loaded.mesh);
@@ -60,7 +68,11 @@ int run_info(int argc, char** argv) {
             << "vertices:              " << s.vertices << " (" << s.used_vertices << " used, "
             << s.isolated_vertices << " isolated)\n"
             << "edges:                 " << s.edges << "\n"
-            << "faces:                 " << s.faces << "\n"
+            << "faces:                 " << s.faces << "\n";
+  if (s.polylines)
+    std::cout << "polylines:             " << s.polylines << " (" << s.closed_polylines << " closed, "
+              << s.polyline_segments << " segments)\n";
+  std::cout
             << "face sizes:            " << histogram(s.face_sizes) << "\n"
             << "valences:              " << histogram(s.valences) << "\n"
             << "boundary:              " << s.boundary_edges << " edges in " << s.boundary_loops

@@ -3,7 +3,7 @@
 namespace sublift::cli {
 
 std::optional<long long> genus(const MeshStats& s) {
-  if (s.non_manifold_edges || s.non_manifold_vertices || s.misoriented_edges) return std::nullopt;
+  if (s.faces == 0 || s.non_manifold_edges || s.non_manifold_vertices || s.misoriented_edges) return std::nullopt;
   const long long twice = 2 * static_cast<long long>(s.components) - s.euler_characteristic -
                           static_cast<long long>(s.boundary_loops);
   if (twice < 0 || twice % 2) return std::nullopt;
@@ -23,6 +23,9 @@ nlohmann::json mesh_stats_json(const MeshStats& s) {
   j["faces"] = s.faces;
   j["used_vertices"] = s.used_vertices;
   j["isolated_vertices"] = s.isolated_vertices;
+  j["polylines"] = s.polylines;
+  j["closed_polylines"] = s.closed_polylines;
+  j["polyline_segments"] = s.polyline_segments;
   j["face_sizes"] = histogram_json(s.face_sizes);
   j["valences"] = histogram_json(s.valences);
   j["boundary_edges"] = s.boundary_edges;

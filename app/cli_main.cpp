@@ -17,11 +17,22 @@ constexpr const char* kUsage =
     "\n"
     "commands:\n"
     "  info FILE [--json]                    counts, face sizes, boundary loops, non-manifold\n"
-    "                                        elements, valences and bounding box of a mesh\n"
+    "                                        elements, valences and bounding box of a mesh;\n"
+    "                                        counts and features of a lattice; levels and\n"
+    "                                        wavelet statistics of a .sublift project\n"
     "  render FILE -o PNG [--size WxH]       render the mesh headless (shaded + wireframe)\n"
     "  convert IN -o OUT [--json]            rewrite a mesh as .obj/.off/.ply (17 digits)\n"
+    "  subdivide IN --scheme linear|cubic --levels N [--integer] -o OUT\n"
+    "                                        subdivide a curve, surface or lattice N times\n"
+    "  analyze FINE --base BASE --scheme S --levels N [--integer] -o PROJECT.sublift\n"
+    "                                        wavelet coefficients of a finest-level shape\n"
+    "  synthesize PROJECT [--level L] [--keep F] -o OUT\n"
+    "                                        control net of level L, optionally keeping only\n"
+    "                                        the largest fraction F of the wavelets\n"
     "\n"
-    "Meshes: .obj (with OpenSubdiv 't' tags), .off, .ply (ascii and binary).\n"
+    "Meshes: .obj (with OpenSubdiv 't' tags; 'l' polylines are curves), .off, .ply (ascii and\n"
+    "binary). Lattices: .lattice (Sublift's text format), .vtk (legacy unstructured grid).\n"
+    "Projects: .sublift. Formats: docs/file_formats.md.\n"
     "Run 'sublift-cli COMMAND --help' for a command's options.\n";
 
 }  // namespace
@@ -38,6 +49,9 @@ int main(int argc, char** argv) {
     if (cmd == "info") return cli::run_info(argc, argv);
     if (cmd == "render") return cli::run_render(argc, argv);
     if (cmd == "convert") return cli::run_convert(argc, argv);
+    if (cmd == "subdivide") return cli::run_subdivide(argc, argv);
+    if (cmd == "analyze") return cli::run_analyze(argc, argv);
+    if (cmd == "synthesize") return cli::run_synthesize(argc, argv);
     std::cerr << "sublift-cli: unknown command '" << cmd << "'\n\n" << kUsage;
     return 2;
   } catch (const cli::UsageError& e) {

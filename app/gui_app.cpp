@@ -37,6 +37,7 @@ constexpr const char* kGlslVersion = "#version 330 core";
 constexpr const char* kDefaultScreenshot = "sublift-screenshot.png";
 constexpr int kDefaultScreenshotFrames = 3;  // ImGui settles its layout within two frames
 constexpr glm::vec3 kWindowClear{0.11f, 0.12f, 0.13f};
+constexpr double kAwakeSeconds = 1.5;  // keep redrawing this long after the last input
 
 struct LoadedModel {
   SurfaceMesh mesh;
@@ -50,20 +51,39 @@ LoadedModel load_model(const std::string& path) {
   model.info.file_path = path;
   model.info.file_name = std::filesystem::path(path).filename().string();
   model.info.stats = compute_mesh_stats(loaded.mesh);
-  model.info.warnings = loaded.report.empty() ? "" : loaded.report.format(path);
+  // Lines name the file's base name: the panel is narrow and shows the path in a tooltip.
+  model.info.warnings = loaded.report.empty() ? "" : loaded.report.format(model.info.file_name);
   model.mesh = std::move(loaded.mesh);
   return model;
 }
+
+// Time spent producing a frame (drawing and presenting, which includes waiting for vsync; not
+// the idle wait for input), smoothed so the status line is readable.
+class FrameClock {
+ public:
+  void begin() { start_ = std::chrono::steady_clock::now(); }
+  void end() {
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+    average_ms_ = average_ms_ == 0.0 ? ms : 0.9 * average_ms_ + 0.1 * ms;
+  }
+  double average_ms() const { return average_ms_; }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+  double average_ms_ = 0.0;
+};
 
 struct AppState {
   LoadedModel model;
   OrbitCamera camera;
   ViewToggles toggles;
   PanelLayout layout;
-  double frame_ms = 0.0;
+  FrameClock clock;
   bool framed = false;  // frame the model once the viewport size is known
 };
 
+// Applies one viewport or panel request to the camera and keeps it in step with the toggles.
 void apply_camera_action(AppState& state, const CameraAction& action, const Bounds& bounds) {
   OrbitCamera& camera = state.camera;
   switch (action.type) {
@@ -83,12 +103,17 @@ void apply_camera_action(AppState& state, const CameraAction& action, const Boun
       break;
   }
   camera.orthographic = state.toggles.orthographic;
+  const UpAxis up_axis = state.toggles.z_up ? UpAxis::Z : UpAxis::Y;
+  if (camera.up_axis != up_axis) {
+    // The same angles now look at the model from elsewhere: frame it again.
+    camera.up_axis = up_axis;
+    frame_bounds(camera, bounds);
+  }
 }
 
 // The one frame both the window and the headless path draw: panels, viewport, ImGui on top.
 // The caller has started the ImGui backend frame(s) and bound the target framebuffer.
 void draw_frame(AppState& state, ViewportRenderer& viewport, int fb_width, int fb_height) {
-  const auto start = std::chrono::steady_clock::now();
   const ImGuiIO& io = ImGui::GetIO();
   const float display_w = io.DisplaySize.x, display_h = io.DisplaySize.y;
 
@@ -96,8 +121,8 @@ void draw_frame(AppState& state, ViewportRenderer& viewport, int fb_width, int f
   const CameraAction panel_action =
       draw_side_panel(state.model.info, state.toggles, display_w, display_h, state.layout);
   const MeshStats& stats = state.model.info.stats;
-  draw_status_line({state.model.info.file_name, stats.vertices, stats.faces, state.frame_ms,
-                    state.toggles.orthographic},
+  draw_status_line({state.model.info.file_name, stats.vertices, stats.faces, stats.polylines,
+                    state.clock.average_ms(), state.toggles.orthographic},
                    display_w, display_h, state.layout);
   ImGui::Render();
 
@@ -121,8 +146,6 @@ void draw_frame(AppState& state, ViewportRenderer& viewport, int fb_width, int f
     viewport.draw(state.camera, rect, DisplayOptions{state.toggles.shaded, state.toggles.wireframe});
   }
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-  state.frame_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 // ImGui context for one run; IniFilename off: the panels are docked, nothing to remember.
@@ -169,6 +192,7 @@ struct WindowInput {
   bool dragging[3] = {false, false, false};  // left, right, middle: pressed over the viewport
   double last_x = 0.0, last_y = 0.0;
   std::optional<std::string> dropped_file;
+  double last_activity = 0.0;  // glfwGetTime() of the last input, to decide how long to sleep
 };
 
 Modifiers current_modifiers(GLFWwindow* window) {
@@ -196,13 +220,15 @@ WindowInput& input_of(GLFWwindow* window) {
 }
 
 void on_mouse_button(GLFWwindow* window, int button, int action, int /*mods*/) {
-  if (button < 0 || button > 2) return;
   WindowInput& input = input_of(window);
+  input.last_activity = glfwGetTime();
+  if (button < 0 || button > 2) return;
   if (action == GLFW_PRESS && !ImGui::GetIO().WantCaptureMouse) input.dragging[button] = true;
   if (action == GLFW_RELEASE) input.dragging[button] = false;
 }
 
 void on_scroll(GLFWwindow* window, double /*x*/, double y) {
+  input_of(window).last_activity = glfwGetTime();
   if (ImGui::GetIO().WantCaptureMouse) return;
   InputEvent event;
   event.type = InputEvent::Type::Wheel;
@@ -212,6 +238,7 @@ void on_scroll(GLFWwindow* window, double /*x*/, double y) {
 }
 
 void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int mods) {
+  input_of(window).last_activity = glfwGetTime();
   if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
   InputEvent event;
   event.type = InputEvent::Type::KeyPress;
@@ -222,7 +249,12 @@ void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int mods)
 }
 
 void on_drop(GLFWwindow* window, int count, const char** paths) {
+  input_of(window).last_activity = glfwGetTime();
   if (count > 0) input_of(window).dropped_file = paths[0];
+}
+
+void on_cursor_pos(GLFWwindow* window, double /*x*/, double /*y*/) {
+  input_of(window).last_activity = glfwGetTime();
 }
 
 // Turns this frame's cursor motion and queued events into camera changes.
@@ -262,7 +294,7 @@ void open_dropped_file(WindowInput& input, AppState& state, ViewportRenderer& vi
     viewport.set_mesh(model.mesh);
     state.model = std::move(model);
     state.framed = false;
-  } catch (const Error& e) {
+  } catch (const std::exception& e) {
     state.model.info.error = std::string("Cannot open dropped file: ") + e.what();
   }
 }
@@ -276,6 +308,7 @@ int run_window(WindowContext& window, AppState& state, const GuiOptions& options
   glfwSetScrollCallback(handle, on_scroll);
   glfwSetKeyCallback(handle, on_key);
   glfwSetDropCallback(handle, on_drop);
+  glfwSetCursorPosCallback(handle, on_cursor_pos);
 
   ImGuiContextGuard imgui;
   GlfwBackendGuard platform(handle);
@@ -287,7 +320,16 @@ int run_window(WindowContext& window, AppState& state, const GuiOptions& options
   const int frames = options.frames > 0 ? options.frames
                                         : (screenshot ? kDefaultScreenshotFrames : 0);
   for (int frame = 1; !window.should_close(); ++frame) {
-    glfwPollEvents();
+    if (frames > 0) {
+      glfwPollEvents();
+    } else if (glfwGetTime() - input.last_activity < kAwakeSeconds) {
+      // Shortly after input keep drawing a few frames a second: ImGui's hover effects and
+      // delayed tooltips need frames without new events.
+      glfwWaitEventsTimeout(0.1);
+    } else {
+      glfwWaitEvents();  // idle: draw nothing until something happens
+    }
+    state.clock.begin();
     open_dropped_file(input, state, viewport);
     process_input(handle, input, state, viewport.bounds());
     ImGui_ImplOpenGL3_NewFrame();
@@ -302,6 +344,7 @@ int run_window(WindowContext& window, AppState& state, const GuiOptions& options
       write_png(options.screenshot, width, height, rgba);
     }
     window.swap_buffers();
+    state.clock.end();
     if (last) break;
   }
   return 0;
@@ -323,9 +366,11 @@ int run_headless(AppState& state, const GuiOptions& options, const std::string& 
     // No platform backend: the app states the display size and clock itself.
     io.DisplaySize = ImVec2(static_cast<float>(options.width), static_cast<float>(options.height));
     io.DeltaTime = 1.0f / 60.0f;
+    state.clock.begin();
     ImGui_ImplOpenGL3_NewFrame();
     target.bind();
     draw_frame(state, viewport, options.width, options.height);
+    state.clock.end();
   }
   write_png(path, options.width, options.height, target.read_rgba());
   return 0;
@@ -340,8 +385,9 @@ int run_gui(const GuiOptions& options) {
   AppState state;
   try {
     state.model = load_model(file);
-  } catch (const Error& e) {
-    const std::string what = e.what();
+  } catch (const std::exception& e) {  // sublift::Error, or bad_alloc on a huge file
+    std::string what = e.what();
+    while (!what.empty() && (what.back() == '\n' || what.back() == ' ')) what.pop_back();
     // core's messages usually start with the file name; add it when they do not.
     if (what.find(file) == std::string::npos) {
       std::cerr << "sublift: " << file << ": " << what << '\n';
@@ -360,14 +406,14 @@ int run_gui(const GuiOptions& options) {
       settings.title = "Sublift - " + state.model.info.file_name;
       settings.vsync = options.screenshot.empty();
       window.emplace(settings);
-    } catch (const NoDisplayError& e) {
+    } catch (const NoDisplayError&) {
       const std::string path = options.screenshot.empty() ? kDefaultScreenshot : options.screenshot;
       std::cerr << "sublift: no display available; rendering the same view headless to " << path
                 << '\n';
       return run_headless(state, options, path);
     }
     return run_window(*window, state, options);
-  } catch (const Error& e) {
+  } catch (const std::exception& e) {
     std::cerr << "sublift: " << e.what() << '\n';
     return 1;
   }

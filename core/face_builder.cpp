@@ -88,21 +88,79 @@ void FaceBuilder::finish(SurfaceMesh& mesh, ImportReport& report) const {
   }
 }
 
+void PolylineBuilder::add(std::span<const std::int64_t> vertices, std::size_t line) {
+  indices_.insert(indices_.end(), vertices.begin(), vertices.end());
+  offsets_.push_back(indices_.size());
+  lines_.push_back(line);
+}
+
+void PolylineBuilder::finish(SurfaceMesh& mesh, std::span<const std::size_t> unusable_list,
+                             ImportReport& report) const {
+  const auto nv = static_cast<std::int64_t>(mesh.num_vertices());
+  std::vector<char> unusable(mesh.num_vertices(), 0);
+  for (std::size_t v : unusable_list)
+    if (v < unusable.size()) unusable[v] = 1;
+  std::unordered_set<std::uint64_t> segments;  // of the polylines kept so far
+  std::vector<std::uint32_t> poly;
+  std::vector<std::uint64_t> own;
+  for (std::size_t l = 0; l < lines_.size(); ++l) {
+    const std::size_t line = lines_[l];
+    std::span<const std::int64_t> raw(indices_.data() + offsets_[l], offsets_[l + 1] - offsets_[l]);
+    if (raw.size() < 2) {
+      report.add("polyline dropped: fewer than 2 vertices", line);
+      continue;
+    }
+    if (std::any_of(raw.begin(), raw.end(), [&](std::int64_t i) { return i < 0 || i >= nv; })) {
+      report.add("polyline dropped: vertex index out of range", line);
+      continue;
+    }
+    if (std::any_of(raw.begin(), raw.end(), [&](std::int64_t i) { return unusable[i] != 0; })) {
+      report.add("polyline dropped: uses an unreadable vertex", line);
+      continue;
+    }
+    poly.assign(raw.begin(), raw.end());
+    const std::size_t before = poly.size();
+    poly.erase(std::unique(poly.begin(), poly.end()), poly.end());
+    if (poly.size() < 2) {
+      report.add("polyline dropped: fewer than 2 distinct vertices", line);
+      continue;
+    }
+    own.clear();
+    bool repeated = false;
+    for (std::size_t i = 0; i + 1 < poly.size(); ++i) {
+      const std::uint64_t a = poly[i], b = poly[i + 1];
+      own.push_back(std::min(a, b) << 32 | std::max(a, b));
+      repeated = repeated || segments.count(own.back());
+    }
+    std::vector<std::uint64_t> sorted = own;
+    std::sort(sorted.begin(), sorted.end());
+    if (repeated || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+      report.add("polyline dropped: a segment occurs twice (in it or in an earlier polyline)", line);
+      continue;
+    }
+    if (poly.size() != before) report.add("polyline repaired: repeated consecutive vertex removed", line);
+    segments.insert(own.begin(), own.end());
+    mesh.add_polyline(poly);
+  }
+}
+
 void check_imported_mesh(const std::string& file, const SurfaceMesh& mesh,
                          std::span<const std::size_t> vertex_lines, ImportReport& report) {
-  if (mesh.num_faces() == 0) {
+  if (mesh.num_faces() == 0 && mesh.num_polylines() == 0) {
     std::string why;
     if (mesh.num_vertices() == 0) why = "no vertices and no faces";
-    else if (report.empty()) why = std::to_string(mesh.num_vertices()) + " vertices but no faces (a point cloud, not a surface)";
-    else why = "no usable face left after dropping bad elements:\n" + report.format(file);
+    else if (report.empty()) why = std::to_string(mesh.num_vertices()) + " vertices but no faces or polylines (a point cloud, not a surface or curve)";
+    else why = "no usable face or polyline left after dropping bad elements:\n" + report.format(file);
     throw InputError(file, 0, why);
   }
   std::vector<char> used(mesh.num_vertices(), 0);
   for (std::uint32_t v : mesh.face_indices) used[v] = 1;
+  for (std::uint32_t v : mesh.line_indices) used[v] = 1;
+  const char* what = mesh.num_polylines() == 0  ? "vertex used by no face (kept; numbering unchanged)"
+                     : mesh.num_faces() == 0    ? "vertex used by no polyline (kept; numbering unchanged)"
+                                                : "vertex used by no face or polyline (kept; numbering unchanged)";
   for (std::size_t v = 0; v < used.size(); ++v)
-    if (!used[v])
-      report.add("vertex used by no face (kept; numbering unchanged)",
-                 v < vertex_lines.size() ? vertex_lines[v] : 0);
+    if (!used[v]) report.add(what, v < vertex_lines.size() ? vertex_lines[v] : 0);
 }
 
 }  // namespace sublift

@@ -24,6 +24,8 @@ class FaceBuilder {
   /// out-of-range indices, fewer than 3 corners, repeated vertices and duplicate faces are
   /// dropped (consecutive repeats are collapsed first), each itemised in `report`.
   void finish(SurfaceMesh& mesh, ImportReport& report) const;
+  /// Vertices marked with mark_unusable_vertex().
+  std::span<const std::size_t> unusable() const { return unusable_; }
 
  private:
   std::vector<std::int64_t> indices_;
@@ -32,8 +34,25 @@ class FaceBuilder {
   std::vector<std::size_t> unusable_;
 };
 
-/// Post-import checks shared by all readers: refuses a mesh without faces (naming what was
-/// dropped) and reports vertices no face uses.
+/// Collects polylines (OBJ `l` lines) like FaceBuilder collects faces, validated at the end.
+class PolylineBuilder {
+ public:
+  /// Records one polyline; indices are 0-based (invalid ones are caught in finish()).
+  void add(std::span<const std::int64_t> vertices, std::size_t line);
+  std::size_t size() const { return lines_.size(); }
+  /// Appends the good polylines to `mesh`: out-of-range or unreadable-vertex indices, fewer
+  /// than 2 distinct vertices and segments used twice drop the polyline; consecutive repeats
+  /// are collapsed. Each case is itemised in `report`. `unusable` as in FaceBuilder.
+  void finish(SurfaceMesh& mesh, std::span<const std::size_t> unusable, ImportReport& report) const;
+
+ private:
+  std::vector<std::int64_t> indices_;
+  std::vector<std::size_t> offsets_{0};
+  std::vector<std::size_t> lines_;
+};
+
+/// Post-import checks shared by all readers: refuses a mesh without faces and polylines
+/// (naming what was dropped) and reports vertices no face or polyline uses.
 /// `vertex_lines[v]` is the source line of vertex v (may be empty when unknown).
 void check_imported_mesh(const std::string& file, const SurfaceMesh& mesh,
                          std::span<const std::size_t> vertex_lines, ImportReport& report);

@@ -32,6 +32,11 @@ void write_obj(std::ostream& out, const SurfaceMesh& m) {
     for (std::uint32_t v : m.face(f)) out << ' ' << v + 1;
     out << '\n';
   }
+  for (std::size_t l = 0; l < m.num_polylines(); ++l) {
+    out << 'l';
+    for (std::uint32_t v : m.polyline(l)) out << ' ' << v + 1;
+    out << '\n';
+  }
   for (const MeshTag& t : m.tags) {
     out << "t " << t.name << ' ' << t.ints.size() << '/' << t.floats.size() << '/' << t.strings.size();
     for (auto i : t.ints) out << ' ' << i;
@@ -78,6 +83,8 @@ void write_surface_mesh(const std::string& path, const SurfaceMesh& mesh) {
   else if (ext == "off") writer = write_off;
   else if (ext == "ply") writer = write_ply;
   else throw InputError(path, 0, "cannot write '." + ext + "' (expected .obj, .off or .ply)");
+  if (ext != "obj" && mesh.num_faces() == 0 && mesh.num_polylines() > 0)
+    throw InputError(path, 0, "." + ext + " cannot hold polylines (a curve); write .obj");
   write_file_atomic(path, [&](std::ostream& out) { writer(out, mesh); });
 }
 

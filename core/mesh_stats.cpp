@@ -100,12 +100,21 @@ MeshStats compute_mesh_stats(const SurfaceMesh& mesh) {
     if (fan_root[v] == UINT32_MAX) fan_root[v] = r;
     else if (fan_root[v] != r) nonmanifold_vertex[v] = 1;
   }
+  std::vector<char> on_line(nv, 0);
+  s.polylines = mesh.num_polylines();
+  for (std::size_t l = 0; l < mesh.num_polylines(); ++l) {
+    const auto p = mesh.polyline(l);
+    s.polyline_segments += p.size() - 1;
+    s.closed_polylines += p.front() == p.back();
+    for (std::uint32_t v : p) on_line[v] = 1;
+  }
   bool any_used = false;
   s.components = 0;
   s.boundary_loops = 0;
   for (std::uint32_t v = 0; v < nv; ++v) {
+    s.polyline_vertices += on_line[v];
     if (!used[v]) {
-      ++s.isolated_vertices;
+      s.isolated_vertices += !on_line[v];
       continue;
     }
     ++s.used_vertices;
@@ -118,6 +127,14 @@ MeshStats compute_mesh_stats(const SurfaceMesh& mesh) {
     s.bbox_max = any_used ? glm::max(s.bbox_max, p) : p;
     any_used = true;
   }
+  for (int pass = 0; pass < 2 && !any_used; ++pass)  // no face: the polylines', else all vertices
+    for (std::uint32_t v = 0; v < nv; ++v) {
+      if (pass == 0 && !on_line[v]) continue;
+      const glm::dvec3& p = mesh.positions[v];
+      s.bbox_min = any_used ? glm::min(s.bbox_min, p) : p;
+      s.bbox_max = any_used ? glm::max(s.bbox_max, p) : p;
+      any_used = true;
+    }
   s.euler_characteristic = static_cast<long long>(s.used_vertices) - static_cast<long long>(s.edges) +
                            static_cast<long long>(s.faces);
   return s;

@@ -21,10 +21,14 @@ struct MeshStats {
   std::size_t non_manifold_edges = 0;     // edges with more than two faces
   std::size_t non_manifold_vertices = 0;  // used vertices whose face fan is not one disc/half-disc
   std::size_t misoriented_edges = 0;      // edges used twice in the same direction
-  std::size_t isolated_vertices = 0;
+  std::size_t isolated_vertices = 0;  // used by no face and no polyline
+  std::size_t polylines = 0;         // OBJ `l` lines
+  std::size_t closed_polylines = 0;  // first vertex == last vertex
+  std::size_t polyline_segments = 0;
+  std::size_t polyline_vertices = 0;  // distinct vertices on polylines
   std::size_t components = 0;        // connected components of the faces
   long long euler_characteristic = 0;  // used_vertices - edges + faces
-  glm::dvec3 bbox_min{0.0}, bbox_max{0.0};  // over used vertices (all if none used)
+  glm::dvec3 bbox_min{0.0}, bbox_max{0.0};  // over used vertices (else polyline vertices, else all)
 };
 
 /// Computes the stats in O(corners log corners); never throws on a valid SurfaceMesh.

@@ -1,4 +1,5 @@
-// Wavefront OBJ: `v`, `f` (v, v/vt, v//vn, v/vt/vn; negative = relative), OpenSubdiv `t` tags.
+// Wavefront OBJ: `v`, `f` (v, v/vt, v//vn, v/vt/vn; negative = relative), `l` polylines (v, v/vt),
+// OpenSubdiv `t` tags.
 // Everything else that OBJ allows is skipped; unknown statements are reported.
 #include <algorithm>
 #include <cmath>
@@ -64,6 +65,7 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
   SurfaceMesh& mesh = out.mesh;
   ImportReport& report = out.report;
   FaceBuilder faces;
+  PolylineBuilder polylines;
   std::vector<std::size_t> vertex_lines;
   std::vector<std::string_view> tok;
   std::vector<std::int64_t> corners;
@@ -125,13 +127,29 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
         mesh.tags.push_back(std::move(tag));
       else
         report.add("tag dropped: malformed 't name ni/nf/ns values' line", ln);
-    } else if (key == "l" || key == "p") {
-      report.add("line/point element ignored (not a surface face)", ln);
+    } else if (key == "l") {
+      corners.clear();
+      bool ok = tok.size() <= limits.max_face_size + 1;
+      for (std::size_t k = 1; ok && k < tok.size(); ++k) {
+        const std::string_view t = tok[k];
+        auto idx = parse_int(t.substr(0, t.find('/')));
+        ok = idx && *idx != 0;
+        if (ok) corners.push_back(*idx > 0 ? *idx - 1 : static_cast<std::int64_t>(mesh.positions.size()) + *idx);
+      }
+      if (!ok)
+        report.add(tok.size() > limits.max_face_size + 1 ? "polyline dropped: more vertices than the size limit"
+                                                         : "polyline dropped: unreadable or zero vertex index",
+                   ln);
+      else
+        polylines.add(corners, ln);
+    } else if (key == "p") {
+      report.add("point element ignored (not a face or polyline)", ln);
     } else if (!ignorable_statement(key)) {
       report.add("unknown statement ignored ('" + std::string(key.substr(0, 16)) + "')", ln);
     }
   }
   faces.finish(mesh, report);
+  polylines.finish(mesh, faces.unusable(), report);
   // crease/corner tags name vertices (0-based, as OpenSubdiv writes them).
   std::erase_if(mesh.tags, [&](const MeshTag& t) {
     if (t.name != "crease" && t.name != "corner") return false;

@@ -6,6 +6,9 @@
 // orientation the file gives). Invariants after import: face_offsets.front() == 0, offsets are
 // increasing by at least 3, every index < num_vertices(), no face repeats a vertex, positions
 // are finite. Non-manifold edges and vertices are allowed here (they are reported, not fixed).
+// Polylines (OBJ `l` lines, curves) use the same CSR form in line_offsets/line_indices: each
+// has at least 2 vertices, every index < num_vertices(), no vertex twice in a row and no segment
+// used twice (in this polyline or an earlier one); first == last closes it.
 // `tags` keeps OpenSubdiv-style `t` lines (crease, corner, ...) with 0-based vertex indices.
 #include <cstddef>
 #include <cstdint>
@@ -30,6 +33,8 @@ struct SurfaceMesh {
   std::vector<glm::dvec3> positions;
   std::vector<std::uint32_t> face_offsets{0};
   std::vector<std::uint32_t> face_indices;
+  std::vector<std::uint32_t> line_offsets{0};
+  std::vector<std::uint32_t> line_indices;
   std::vector<MeshTag> tags;
 
   std::size_t num_vertices() const { return positions.size(); }
@@ -43,6 +48,16 @@ struct SurfaceMesh {
   void add_face(std::span<const std::uint32_t> corners) {
     face_indices.insert(face_indices.end(), corners.begin(), corners.end());
     face_offsets.push_back(static_cast<std::uint32_t>(face_indices.size()));
+  }
+  std::size_t num_polylines() const { return line_offsets.size() - 1; }
+  /// Vertices of polyline l, in file order.
+  std::span<const std::uint32_t> polyline(std::size_t l) const {
+    return {line_indices.data() + line_offsets[l], line_offsets[l + 1] - line_offsets[l]};
+  }
+  /// Appends a polyline; the caller guarantees the invariants above.
+  void add_polyline(std::span<const std::uint32_t> vertices) {
+    line_indices.insert(line_indices.end(), vertices.begin(), vertices.end());
+    line_offsets.push_back(static_cast<std::uint32_t>(line_indices.size()));
   }
 };
 

@@ -1,7 +1,6 @@
 #include "render/camera.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -14,6 +13,11 @@ namespace {
 constexpr double kHalfPi = std::numbers::pi / 2.0;
 constexpr double kFrameMargin = 1.08;  // a little air around the framed box
 
+// Z-up worlds are the Y-up orbit frame turned +90 degrees about X: (x, y, z) -> (x, -z, y).
+glm::dvec3 to_world(UpAxis up_axis, const glm::dvec3& v) {
+  return up_axis == UpAxis::Z ? glm::dvec3(v.x, -v.z, v.y) : v;
+}
+
 }  // namespace
 
 double OrbitCamera::aspect() const {
@@ -25,12 +29,16 @@ void OrbitCamera::set_viewport(int width, int height) {
   viewport_height = std::max(height, 1);
 }
 
+glm::dvec3 OrbitCamera::world_up() const { return to_world(up_axis, {0.0, 1.0, 0.0}); }
+
 glm::dvec3 OrbitCamera::forward() const {
   const double cp = std::cos(pitch);
-  return -glm::dvec3(cp * std::sin(yaw), std::sin(pitch), cp * std::cos(yaw));
+  return to_world(up_axis, -glm::dvec3(cp * std::sin(yaw), std::sin(pitch), cp * std::cos(yaw)));
 }
 
-glm::dvec3 OrbitCamera::right() const { return {std::cos(yaw), 0.0, -std::sin(yaw)}; }
+glm::dvec3 OrbitCamera::right() const {
+  return to_world(up_axis, {std::cos(yaw), 0.0, -std::sin(yaw)});
+}
 
 // From yaw/pitch rather than from a world-up vector, so top and bottom views stay well defined.
 glm::dvec3 OrbitCamera::up() const { return glm::cross(right(), forward()); }

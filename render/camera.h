@@ -1,8 +1,11 @@
 #pragma once
-// Orbit camera: pure math, no GL. The world is Y-up (the OBJ/glTF convention). The eye sits at
+// Orbit camera: pure math, no GL. Angles live in an orbit frame that is Y-up; `up_axis` maps it
+// to the world, so Y-up models (the OBJ/glTF convention) and Z-up ones (Blender's) both stand
+// upright. In the orbit frame the eye sits at
 // `target + distance * (cos(pitch) sin(yaw), sin(pitch), cos(pitch) cos(yaw))`: yaw 0, pitch 0
-// looks down -Z (front view), yaw +90 degrees looks down -X (right view), pitch +90 degrees looks
-// down -Y with -Z up on screen (top view), as Blender's numpad 1/3/7 show a Z-up scene.
+// is the front view, yaw +90 degrees the right view, pitch +90 degrees the top view (screen-up
+// pointing to the back), as Blender's numpad 1/3/7 show them. With Z up the front view looks
+// along +Y, exactly as in Blender.
 // Mouse amounts are in viewport pixels, so the same drag feels the same at any zoom.
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -11,6 +14,8 @@ namespace sublift {
 
 enum class ViewPreset { Front, Back, Right, Left, Top, Bottom, ThreeQuarter };
 
+enum class UpAxis { Y, Z };
+
 struct OrbitCamera {
   glm::dvec3 target{0.0};
   double distance = 5.0;
@@ -18,6 +23,7 @@ struct OrbitCamera {
   double pitch = 0.4363323129985824;  // radians in [-pi/2, pi/2]; default 25 degrees
   double fov_y = 0.7853981633974483;  // radians (45 degrees), also sets the ortho scale
   bool orthographic = false;
+  UpAxis up_axis = UpAxis::Y;
   glm::dvec3 scene_center{0.0};     // bounding sphere of what is drawn, for near/far planes
   double scene_radius = 1.0;
   int viewport_width = 1;           // pixels
@@ -57,6 +63,8 @@ struct OrbitCamera {
   void set_view(ViewPreset preset);
   /// World units per viewport pixel at the target's depth.
   double world_per_pixel() const;
+  /// The world's up direction (+Y or +Z).
+  glm::dvec3 world_up() const;
 };
 
 }  // namespace sublift

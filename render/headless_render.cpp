@@ -15,6 +15,7 @@ OrbitCamera headless_camera(const SurfaceMesh& mesh, int width, int height,
   camera.set_viewport(width, height);
   camera.set_view(settings.view);
   camera.orthographic = settings.orthographic;
+  camera.up_axis = settings.up_axis;
   frame_bounds(camera, drawn_bounds(mesh));
   return camera;
 }

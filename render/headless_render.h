@@ -20,6 +20,7 @@ struct Image {
 struct HeadlessRenderSettings {
   ViewPreset view = ViewPreset::ThreeQuarter;
   bool orthographic = false;
+  UpAxis up_axis = UpAxis::Y;
   DisplayOptions display;
   int samples = 4;  // MSAA samples (0 = none)
 };

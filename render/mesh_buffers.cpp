@@ -20,6 +20,7 @@ Bounds drawn_bounds(const SurfaceMesh& mesh) {
     }
   };
   for (const std::uint32_t v : mesh.face_indices) include(mesh.positions[v]);
+  for (const std::uint32_t v : mesh.line_indices) include(mesh.positions[v]);
   if (bounds.empty) {
     for (const glm::dvec3& p : mesh.positions) include(p);
   }
@@ -72,6 +73,13 @@ MeshBuffers build_mesh_buffers(const SurfaceMesh& mesh) {
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   out.edges.reserve(2 * edges.size());
   for (const auto& [a, b] : edges) out.edges.insert(out.edges.end(), {a, b});
+
+  for (std::size_t l = 0; l < mesh.num_polylines(); ++l) {
+    const auto vertices = mesh.polyline(l);
+    for (std::size_t i = 0; i + 1 < vertices.size(); ++i) {
+      out.polyline_segments.insert(out.polyline_segments.end(), {vertices[i], vertices[i + 1]});
+    }
+  }
 
   out.vertex_positions.reserve(mesh.num_vertices());
   for (const glm::dvec3& p : mesh.positions) out.vertex_positions.push_back(local(p));

@@ -4,9 +4,11 @@
 //
 // Layout: fill geometry has one vertex per face corner (face order, then corner order) carrying
 // the face's Newell normal, so shading is flat; `triangles` fans each polygon from its first
-// corner. Line geometry has one vertex per mesh vertex and `edges` holds each undirected polygon
-// edge once (never a fan diagonal), sorted. Positions are floats relative to `center`, the
-// centre of the drawn bounds, so large coordinates keep their precision near the model.
+// corner. Line geometry has one vertex per mesh vertex; `edges` holds each undirected polygon
+// edge once (never a fan diagonal), sorted, and `polyline_segments` the segments of the mesh's
+// polylines (curves), which are drawn whatever the wireframe toggle says. Positions are floats
+// relative to `center`, the centre of the drawn bounds, so large coordinates keep their
+// precision near the model.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -33,9 +35,10 @@ struct MeshBuffers {
   std::vector<std::uint32_t> triangles;       // 3 indices into `corners` per triangle
   std::vector<glm::vec3> vertex_positions;    // one per mesh vertex
   std::vector<std::uint32_t> edges;           // 2 indices into `vertex_positions` per edge
+  std::vector<std::uint32_t> polyline_segments;  // 2 indices per segment, in polyline order
 };
 
-/// Bounds of the vertices used by faces; of all vertices when no face uses any.
+/// Bounds of the vertices used by faces or polylines; of all vertices when none is used.
 Bounds drawn_bounds(const SurfaceMesh& mesh);
 
 /// Newell's normal of polygon `corners` (not normalised; its length is twice the area of a

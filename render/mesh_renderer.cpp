@@ -2,9 +2,11 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <limits>
 
+#include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "render/render_errors.h"
@@ -17,6 +19,26 @@ namespace {
 constexpr glm::vec3 kClayColor{0.82f, 0.71f, 0.60f};
 constexpr glm::vec3 kBackColor{0.55f, 0.60f, 0.72f};
 constexpr glm::vec4 kWireColor{0.08f, 0.08f, 0.10f, 0.85f};
+constexpr glm::vec4 kCurveColor{0.05f, 0.22f, 0.55f, 1.0f};  // polylines: deep blue, opaque
+// Wire opacity ramps from kMinWireFade at kFadeStartPixels-long edges to 1 at kFadeEndPixels.
+constexpr double kFadeStartPixels = 1.5;
+constexpr double kFadeEndPixels = 12.0;
+constexpr double kMinWireFade = 0.12;
+
+double mean_edge_length(const MeshBuffers& buffers) {
+  if (buffers.edges.empty()) return 0.0;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < buffers.edges.size(); i += 2) {
+    sum += glm::distance(glm::dvec3(buffers.vertex_positions[buffers.edges[i]]),
+                         glm::dvec3(buffers.vertex_positions[buffers.edges[i + 1]]));
+  }
+  return sum / static_cast<double>(buffers.edges.size() / 2);
+}
+
+float wire_fade(double edge_pixels) {
+  const double t = (edge_pixels - kFadeStartPixels) / (kFadeEndPixels - kFadeStartPixels);
+  return static_cast<float>(std::clamp(t, kMinWireFade, 1.0));
+}
 
 template <typename T>
 void upload_buffer(GLenum target, GLuint buffer, const std::vector<T>& data) {
@@ -58,22 +80,32 @@ MeshRenderer::MeshRenderer()
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, line_ebo_);
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+
+  glGenVertexArrays(1, &curve_vao_);
+  glGenBuffers(1, &curve_ebo_);
+  glBindVertexArray(curve_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, line_vbo_);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, curve_ebo_);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
   glBindVertexArray(0);
 }
 
 MeshRenderer::~MeshRenderer() {
-  const GLuint vaos[] = {fill_vao_, line_vao_};
-  const GLuint buffers[] = {fill_vbo_, fill_ebo_, line_vbo_, line_ebo_};
-  glDeleteVertexArrays(2, vaos);
-  glDeleteBuffers(4, buffers);
+  const GLuint vaos[] = {fill_vao_, line_vao_, curve_vao_};
+  const GLuint buffers[] = {fill_vbo_, fill_ebo_, line_vbo_, line_ebo_, curve_ebo_};
+  glDeleteVertexArrays(3, vaos);
+  glDeleteBuffers(5, buffers);
 }
 
 void MeshRenderer::upload(const SurfaceMesh& mesh) {
   const MeshBuffers buffers = build_mesh_buffers(mesh);
   bounds_ = drawn_bounds(mesh);
   center_ = buffers.center;
+  mean_edge_length_ = mean_edge_length(buffers);
   triangle_index_count_ = checked_count(buffers.triangles.size(), "triangles");
   edge_index_count_ = checked_count(buffers.edges.size(), "edges");
+  curve_index_count_ = checked_count(buffers.polyline_segments.size(), "polyline segments");
   // The element buffer binding is VAO state: bind the VAO before touching it.
   glBindVertexArray(fill_vao_);
   upload_buffer(GL_ARRAY_BUFFER, fill_vbo_, buffers.corners);
@@ -81,6 +113,8 @@ void MeshRenderer::upload(const SurfaceMesh& mesh) {
   glBindVertexArray(line_vao_);
   upload_buffer(GL_ARRAY_BUFFER, line_vbo_, buffers.vertex_positions);
   upload_buffer(GL_ELEMENT_ARRAY_BUFFER, line_ebo_, buffers.edges);
+  glBindVertexArray(curve_vao_);
+  upload_buffer(GL_ELEMENT_ARRAY_BUFFER, curve_ebo_, buffers.polyline_segments);
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
@@ -115,11 +149,21 @@ void MeshRenderer::draw(const OrbitCamera& camera, const DisplayOptions& options
     line_program_->use();
     line_program_->set("u_model_view", model_view);
     line_program_->set("u_projection", projection);
-    line_program_->set("u_color", kWireColor);
+    const double edge_pixels = mean_edge_length_ / camera.world_per_pixel();
+    line_program_->set("u_color", glm::vec4(glm::vec3(kWireColor),
+                                            kWireColor.a * wire_fade(edge_pixels)));
     glBindVertexArray(line_vao_);
     glDrawElements(GL_LINES, edge_index_count_, GL_UNSIGNED_INT, nullptr);
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
+  }
+  if (curve_index_count_ > 0) {
+    line_program_->use();
+    line_program_->set("u_model_view", model_view);
+    line_program_->set("u_projection", projection);
+    line_program_->set("u_color", kCurveColor);
+    glBindVertexArray(curve_vao_);
+    glDrawElements(GL_LINES, curve_index_count_, GL_UNSIGNED_INT, nullptr);
   }
   glBindVertexArray(0);
   glUseProgram(0);

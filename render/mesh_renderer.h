@@ -10,7 +10,8 @@ namespace sublift {
 
 class ShaderProgram;
 
-/// What the viewport shows.
+/// What the viewport shows. The wireframe fades as edges get shorter than about ten pixels on
+/// screen, so a dense scan shows its shape rather than a black mesh of lines.
 struct DisplayOptions {
   bool shaded = true;
   bool wireframe = true;
@@ -36,8 +37,10 @@ class MeshRenderer {
   std::unique_ptr<ShaderProgram> fill_program_, line_program_;
   unsigned fill_vao_ = 0, fill_vbo_ = 0, fill_ebo_ = 0;
   unsigned line_vao_ = 0, line_vbo_ = 0, line_ebo_ = 0;
-  int triangle_index_count_ = 0, edge_index_count_ = 0;
+  unsigned curve_vao_ = 0, curve_ebo_ = 0;  // polylines; shares line_vbo_
+  int triangle_index_count_ = 0, edge_index_count_ = 0, curve_index_count_ = 0;
   glm::dvec3 center_{0.0};
+  double mean_edge_length_ = 0.0;  // world units, for fading dense wireframes
   Bounds bounds_;
 };
 

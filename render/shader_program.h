@@ -31,6 +31,7 @@ class ShaderProgram {
   void set(const char* name, const glm::mat3& value) const;
   void set(const char* name, const glm::mat4& value) const;
 
+  /// The GL program object name.
   unsigned id() const { return program_; }
 
  private:

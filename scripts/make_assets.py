@@ -65,3 +65,78 @@ bf = [(3, 2, 1, 0), (12, 13, 14, 15)]
 bf += [(r * 4 + k, r * 4 + (k + 1) % 4, (r + 1) * 4 + (k + 1) % 4, (r + 1) * 4 + k) for r in range(3) for k in range(4)]
 tags = "".join("t crease 2/1/0 %d %d 10\n" % (4 + k, 4 + (k + 1) % 4) for k in range(4))
 write("crease_loop.obj", "Box with a tagged crease loop (t crease) around the ring at z = -1/3", bv, bf, tags)
+
+# ---- Curves and lattices (formats: docs/file_formats.md) ----
+
+# Curves: an open polyline (a quarter helix) and a closed one (an octagon), OBJ 'l' lines.
+# Kept in assets/curves/: tools that iterate over assets/*.obj expect surfaces there.
+os.makedirs(os.path.join(HERE, "curves"), exist_ok=True)
+with open(os.path.join(HERE, "curves", "curve.obj"), "w") as f:
+    f.write("# Two polylines: an open helix arc (6 vertices) and a closed octagon (8 vertices).\n"
+            "# Written by Sublift's scripts/make_assets.py (public domain, CC0).\n")
+    for k in range(6):
+        t = 0.5 * math.pi * k / 5
+        f.write("v %s %s %s\n" % (fmt(2 * math.cos(t)), fmt(2 * math.sin(t)), fmt(0.3 * k)))
+    for k in range(8):
+        t = 2 * math.pi * k / 8
+        f.write("v %s %s 0\n" % (fmt(math.cos(t)), fmt(math.sin(t))))
+    f.write("l 1 2 3 4 5 6\n")
+    f.write("l %s 7\n" % " ".join(str(7 + k) for k in range(8)))
+
+def write_lattice(name, comment, verts, cells, extra=""):
+    """cells: ('hex'|'wedge'|'pyramid'|'tet', [ids]) in VTK vertex order (0-based)."""
+    with open(os.path.join(HERE, name), "w") as f:
+        f.write("sublift-lattice 1\n# %s\n# Written by Sublift's scripts/make_assets.py (public domain, CC0).\n" % comment)
+        for v in verts:
+            f.write("v %s\n" % " ".join(fmt(c) for c in v))
+        for kind, ids in cells:
+            f.write("%s %s\n" % (kind, " ".join(str(i) for i in ids)))
+        f.write(extra)
+
+def hex_block(nx, ny, nz, scale=1.0):
+    idx = lambda i, j, k: (k * (ny + 1) + j) * (nx + 1) + i
+    verts = [((i - nx / 2) * scale, (j - ny / 2) * scale, (k - nz / 2) * scale)
+             for k in range(nz + 1) for j in range(ny + 1) for i in range(nx + 1)]
+    cells = [("hex", [idx(i, j, k), idx(i + 1, j, k), idx(i + 1, j + 1, k), idx(i, j + 1, k),
+                      idx(i, j, k + 1), idx(i + 1, j, k + 1), idx(i + 1, j + 1, k + 1), idx(i, j + 1, k + 1)])
+             for k in range(nz) for j in range(ny) for i in range(nx)]
+    return verts, cells, idx
+
+v, c, _ = hex_block(1, 1, 1, 2.0)
+write_lattice("cube_cell.lattice", "A single hexahedral cell (the cube [-1, 1]^3)", v, c)
+
+v, c, _ = hex_block(4, 4, 4, 0.5)
+write_lattice("hex_block_4.lattice", "A 4 x 4 x 4 block of hexahedra (regular inside)", v, c)
+
+write_lattice("pyramid_cell.lattice", "A single square pyramid cell (4 triangles and a quad)",
+              [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0), (0, 0, 1.4)], [("pyramid", [0, 1, 2, 3, 4])])
+
+# Prism ring: 8 wedges around the z axis; the axis edge is shared by all 8 cells.
+pv = [(0.0, 0.0, 0.0), (0.0, 0.0, 1.0)]
+for z in (0.0, 1.0):
+    for k in range(8):
+        t = 2 * math.pi * k / 8
+        pv.append((math.cos(t), math.sin(t), z))
+pc = [("wedge", [0, 2 + k, 2 + (k + 1) % 8, 1, 10 + k, 10 + (k + 1) % 8]) for k in range(8)]
+write_lattice("prism_ring.lattice", "Prism ring: 8 wedge cells around the z axis (an edge of valence 8)", pv, pc)
+
+# Swept quad mesh: a quad annulus (12 around x 2 radial) swept along z in two layers of hexahedra.
+n_around, n_radial, n_layers = 12, 2, 2
+sid = lambda a, r, l: (l * (n_radial + 1) + r) * n_around + a % n_around
+sv = []
+for l in range(n_layers + 1):
+    for r in range(n_radial + 1):
+        for a in range(n_around):
+            t = 2 * math.pi * a / n_around
+            sv.append(((1 + 0.5 * r) * math.cos(t), (1 + 0.5 * r) * math.sin(t), 0.5 * l))
+sc = [("hex", [sid(a, r, l), sid(a, r + 1, l), sid(a + 1, r + 1, l), sid(a + 1, r, l),
+               sid(a, r, l + 1), sid(a, r + 1, l + 1), sid(a + 1, r + 1, l + 1), sid(a + 1, r, l + 1)])
+      for l in range(n_layers) for r in range(n_radial) for a in range(n_around)]
+write_lattice("swept_quads.lattice", "Quad annulus (12 x 2 quads) swept into two layers of hexahedra", sv, sc)
+
+# Inner feature surface: a 3 x 3 x 4 block whose middle layer z = 0 is tagged as a surface.
+v, c, idx = hex_block(3, 3, 4, 0.5)
+tags = "".join("feature_face %d %d %d %d\n" % (idx(i, j, 2), idx(i + 1, j, 2), idx(i + 1, j + 1, 2), idx(i, j + 1, 2))
+               for j in range(3) for i in range(3))
+write_lattice("feature_surface.lattice", "3 x 3 x 4 hexahedra with an inner feature surface (9 feature_face tags at z = 0)",
+              v, c, tags)

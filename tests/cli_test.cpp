@@ -61,7 +61,7 @@ TEST(Cli, UsageErrorsExitWithTwo) {
 }
 
 TEST(Cli, EveryCommandHasHelp) {
-  for (const char* cmd : {"info", "render", "convert"}) {
+  for (const char* cmd : {"info", "render", "convert", "subdivide", "analyze", "synthesize"}) {
     const ProcessResult r = run_process({kCli, cmd, "--help"});
     EXPECT_EQ(r.exit_code, 0) << cmd;
     EXPECT_NE(r.out.find(std::string("usage: sublift-cli ") + cmd), std::string::npos) << cmd;
@@ -112,7 +112,11 @@ TEST(Cli, InfoOnEveryAssetSucceedsWithoutWarnings) {
     EXPECT_EQ(r.exit_code, 0) << f << r.err;
     EXPECT_TRUE(r.err.empty()) << f << r.err;
     const auto j = nlohmann::json::parse(r.out);
-    EXPECT_GT(j["faces"].get<int>(), 0);
+    // Surfaces have faces; curve assets (OBJ `l` lines only) have polylines instead.
+    EXPECT_GT(j["faces"].get<int>() + j["polylines"].get<int>(), 0) << f;
+    if (j["faces"].get<int>() == 0) {
+      EXPECT_EQ(j["isolated_vertices"], 0) << f;
+    }
     EXPECT_EQ(j["non_manifold_vertices"], 0) << f;
   }
 }

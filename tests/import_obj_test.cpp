@@ -140,10 +140,23 @@ TEST(ImportObj, ReadsOpenSubdivTags) {
 }
 
 TEST(ImportObj, ReportsIgnoredStatements) {
-  const LoadedMesh m = load("a.obj", kSquare + "l 1 2\nfoo bar\ng grp\ns 1\nusemtl m\n");
-  EXPECT_EQ(find_warning(m.report, "line/point")->first_lines, std::vector<std::size_t>{6});
+  const LoadedMesh m = load("a.obj", kSquare + "p 1\nfoo bar\ng grp\ns 1\nusemtl m\nl 1 2\n");
+  EXPECT_EQ(find_warning(m.report, "point element ignored")->first_lines, std::vector<std::size_t>{6});
   EXPECT_EQ(find_warning(m.report, "unknown statement")->first_lines, std::vector<std::size_t>{7});
   EXPECT_EQ(m.report.warnings.size(), 2u);
+  EXPECT_EQ(m.mesh.num_faces(), 1u);
+  EXPECT_EQ(m.mesh.num_polylines(), 1u);  // `l` lines are kept as polylines (curves)
+}
+
+TEST(ImportObj, PolylinesWithoutFacesAreACurveNotAnError) {
+  const LoadedMesh m = load("c.obj", "v 0 0 0\nv 1 0 0\nv 2 1 0\nl 1 2 3\n");
+  EXPECT_EQ(m.mesh.num_faces(), 0u);
+  ASSERT_EQ(m.mesh.num_polylines(), 1u);
+  EXPECT_TRUE(m.report.empty());
+  // Every polyline dropped: refused, naming why.
+  const std::string e = load_error("d.obj", "v 0 0 0\nv 1 0 0\nl 1 5\n");
+  EXPECT_NE(e.find("no usable face or polyline"), std::string::npos) << e;
+  EXPECT_NE(e.find("out of range (line 3)"), std::string::npos) << e;
 }
 
 TEST(ImportObj, FileErrorsNameTheFile) {

@@ -14,7 +14,7 @@ namespace {
 
 constexpr int kN = 16;  // closed curve: fine position 2i is vertex i, 2i+1 is the edge (i, i+1)
 
-int fine_index(const Hierarchy& h, int k) {  // fine 1-D position -> level-1 vertex index
+int fine_index(int k) {  // fine 1-D position -> level-1 vertex index
   k = ((k % (2 * kN)) + 2 * kN) % (2 * kN);
   return k % 2 == 0 ? k / 2 : kN + (k - 1) / 2;
 }
@@ -32,7 +32,7 @@ std::map<int, double> synthesis_filter(Scheme s, int unit, int center) {
   h.coeffs[unit] = 1.0;
   const std::vector<double> x = synthesize(h, 1);
   std::map<int, double> f;
-  for (int d = -4; d <= 4; ++d) f[d] = x[fine_index(h, center + d)];
+  for (int d = -4; d <= 4; ++d) f[d] = x[fine_index(center + d)];
   return f;
 }
 
@@ -42,7 +42,7 @@ std::map<int, double> analysis_filter(Scheme s, int out, int center) {
   for (int d = -4; d <= 4; ++d) {
     Hierarchy h = curve(s);
     std::vector<double> fine(h.coeffs.size(), 0.0);
-    fine[fine_index(h, center + d)] = 1.0;
+    fine[fine_index(center + d)] = 1.0;
     analyze(h, fine);
     f[d] = h.coeffs[out];
   }

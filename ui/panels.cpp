@@ -94,12 +94,19 @@ void draw_mesh_section(const MeshStats& s) {
     count_row("Faces", s.faces);
     count_row("Components", s.components);
     table_row("Euler characteristic", std::to_string(s.euler_characteristic));
-    count_row("Boundary loops", s.boundary_loops);
-    count_row("Boundary edges", s.boundary_edges);
-    count_row("Non-manifold edges", s.non_manifold_edges, true);
-    count_row("Non-manifold vertices", s.non_manifold_vertices, true);
+    table_row("Boundary", with_thousands(s.boundary_loops) + " loops, " +
+                              with_thousands(s.boundary_edges) + " edges");
+    table_row("Non-manifold",
+              with_thousands(s.non_manifold_edges) + " edges, " +
+                  with_thousands(s.non_manifold_vertices) + " verts",
+              s.non_manifold_edges + s.non_manifold_vertices > 0);
     count_row("Misoriented edges", s.misoriented_edges, true);
     count_row("Isolated vertices", s.isolated_vertices, true);
+    if (s.polylines > 0) {
+      table_row("Polylines", with_thousands(s.polylines) + " (" +
+                                 with_thousands(s.closed_polylines) + " closed)");
+      count_row("  segments", s.polyline_segments);
+    }
     ImGui::EndTable();
   }
 
@@ -145,21 +152,25 @@ void draw_warnings_section(const std::string& warnings) {
   const bool open = section(title.c_str());
   ImGui::PopStyleColor();
   if (!open) return;
-  ImGui::PushTextWrapPos(0.0f);
   std::istringstream in(warnings);
   for (std::string line; std::getline(in, line);) {
-    if (!line.empty()) ImGui::BulletText("%s", line.c_str());
+    if (line.empty()) continue;
+    ImGui::Bullet();
+    ImGui::TextWrapped("%s", line.c_str());  // BulletText would not wrap
   }
-  ImGui::PopTextWrapPos();
 }
 
 void draw_display_section(ViewToggles& toggles) {
   if (!section("Display")) return;
+  // Two aligned columns of checkboxes.
+  const float column = ImGui::GetContentRegionAvail().x * 0.5f;
   ImGui::Checkbox("Shaded", &toggles.shaded);
-  ImGui::SameLine(0.0f, 18.0f);
+  ImGui::SameLine(column);
   ImGui::Checkbox("Wireframe", &toggles.wireframe);
-  ImGui::SameLine(0.0f, 18.0f);
-  ImGui::Checkbox("Ortho", &toggles.orthographic);
+  ImGui::Checkbox("Orthographic", &toggles.orthographic);
+  ImGui::SameLine(column);
+  ImGui::Checkbox("Z up", &toggles.z_up);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Z is up (Blender); off: Y is up (OBJ, glTF)");
 }
 
 CameraAction draw_view_section() {
@@ -190,13 +201,34 @@ CameraAction draw_view_section() {
 
 void draw_help_section() {
   if (!section("Mouse and keys")) return;
-  if (ImGui::BeginTable("bindings", 2, ImGuiTableFlags_SizingStretchProp)) {
-    ImGui::TableSetupColumn("input", ImGuiTableColumnFlags_WidthStretch, 1.4f);
-    ImGui::TableSetupColumn("action", ImGuiTableColumnFlags_WidthStretch, 1.0f);
-    for (const Binding& b : viewport_bindings()) {
+  if (ImGui::BeginTable("mouse", 3, ImGuiTableFlags_SizingStretchProp)) {
+    ImGui::TableSetupColumn("Drag", ImGuiTableColumnFlags_WidthStretch, 0.55f);
+    ImGui::TableSetupColumn("Blender", ImGuiTableColumnFlags_WidthStretch, 1.25f);
+    ImGui::TableSetupColumn("Maya", ImGuiTableColumnFlags_WidthStretch, 0.9f);
+    ImGui::TableNextRow();
+    for (int column = 0; column < 3; ++column) {
+      ImGui::TableSetColumnIndex(column);
+      ImGui::TextColored(kAccent, "%s", ImGui::TableGetColumnName(column));
+    }
+    for (const MouseBinding& b : mouse_bindings()) {
       ImGui::TableNextRow();
       ImGui::TableSetColumnIndex(0);
-      ImGui::TextColored(kMuted, "%.*s", static_cast<int>(b.input.size()), b.input.data());
+      ImGui::Text("%.*s", static_cast<int>(b.action.size()), b.action.data());
+      ImGui::TableSetColumnIndex(1);
+      ImGui::TextColored(kMuted, "%.*s", static_cast<int>(b.blender.size()), b.blender.data());
+      ImGui::TableSetColumnIndex(2);
+      ImGui::TextColored(kMuted, "%.*s", static_cast<int>(b.maya.size()), b.maya.data());
+    }
+    ImGui::EndTable();
+  }
+  ImGui::Spacing();
+  if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_SizingStretchProp)) {
+    ImGui::TableSetupColumn("keys", ImGuiTableColumnFlags_WidthStretch, 1.1f);
+    ImGui::TableSetupColumn("action", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+    for (const KeyBinding& b : key_bindings()) {
+      ImGui::TableNextRow();
+      ImGui::TableSetColumnIndex(0);
+      ImGui::TextColored(kMuted, "%.*s", static_cast<int>(b.keys.size()), b.keys.data());
       ImGui::TableSetColumnIndex(1);
       ImGui::Text("%.*s", static_cast<int>(b.action.size()), b.action.data());
     }
@@ -230,8 +262,8 @@ void apply_ui_theme(float font_size) {
   style.GrabRounding = 3.0f;
   style.WindowPadding = ImVec2(12.0f, 10.0f);
   style.FramePadding = ImVec2(8.0f, 4.0f);
-  style.ItemSpacing = ImVec2(8.0f, 5.0f);
-  style.CellPadding = ImVec2(4.0f, 2.0f);
+  style.ItemSpacing = ImVec2(8.0f, 4.0f);
+  style.CellPadding = ImVec2(4.0f, 1.0f);
   style.ScrollbarSize = 12.0f;
   ImVec4* c = style.Colors;
   c[ImGuiCol_WindowBg] = ImVec4(0.16f, 0.17f, 0.19f, 1.0f);
@@ -285,6 +317,11 @@ void draw_status_line(const StatusInfo& status, float display_width, float displ
     ImGui::SameLine(0.0f, 24.0f);
     ImGui::TextColored(kMuted, "%s vertices   %s faces", with_thousands(status.vertices).c_str(),
                        with_thousands(status.faces).c_str());
+    if (status.polylines > 0) {
+      ImGui::SameLine();
+      ImGui::TextColored(kMuted, "  %s %s", with_thousands(status.polylines).c_str(),
+                         status.polylines == 1 ? "polyline" : "polylines");
+    }
     ImGui::SameLine(0.0f, 24.0f);
     ImGui::TextColored(kMuted, "%s", status.orthographic ? "Orthographic" : "Perspective");
     char timing[48];

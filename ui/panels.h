@@ -36,6 +36,7 @@ struct ViewToggles {
   bool shaded = true;
   bool wireframe = true;
   bool orthographic = false;
+  bool z_up = false;  // Blender's convention; OBJ and glTF models are usually Y-up
 };
 
 /// What the status line shows.
@@ -43,7 +44,8 @@ struct StatusInfo {
   std::string file_name;
   std::size_t vertices = 0;
   std::size_t faces = 0;
-  double frame_ms = 0.0;
+  std::size_t polylines = 0;
+  double frame_ms = 0.0;  // time per frame, averaged over recent frames
   bool orthographic = false;
 };
 

@@ -65,19 +65,21 @@ CameraAction map_viewport_input(const InputEvent& event) {
   return {};
 }
 
-const std::vector<Binding>& viewport_bindings() {
-  static const std::vector<Binding> bindings = {
-      {"Middle drag", "Orbit"},
-      {"Shift + middle drag", "Pan"},
-      {"Ctrl + middle drag", "Zoom"},
-      {"Wheel", "Zoom"},
-      {"Alt + left drag", "Orbit (Maya)"},
-      {"Alt + middle drag", "Pan (Maya)"},
-      {"Alt + right drag", "Zoom (Maya)"},
+const std::vector<MouseBinding>& mouse_bindings() {
+  static const std::vector<MouseBinding> bindings = {
+      {"Orbit", "Middle", "Alt + left"},
+      {"Pan", "Shift + middle", "Alt + middle"},
+      {"Zoom", "Ctrl + middle, wheel", "Alt + right"},
+  };
+  return bindings;
+}
+
+const std::vector<KeyBinding>& key_bindings() {
+  static const std::vector<KeyBinding> bindings = {
       {"F, Home, Numpad .", "Frame the model"},
-      {"Numpad 1 / 3 / 7", "Front / right / top view"},
-      {"Ctrl + Numpad 1 / 3 / 7", "Back / left / bottom view"},
-      {"Numpad 5", "Perspective / orthographic"},
+      {"Numpad 1 / 3 / 7", "Front / right / top"},
+      {"Ctrl + Numpad 1/3/7", "Back / left / bottom"},
+      {"Numpad 5", "Perspective / ortho"},
   };
   return bindings;
 }

@@ -67,13 +67,23 @@ inline constexpr double kPixelsPerZoomStep = 20.0;
 /// The camera action an event asks for; None when the event means nothing to the viewport.
 CameraAction map_viewport_input(const InputEvent& event);
 
-/// One line of the help table: what to press and what it does.
-struct Binding {
-  std::string_view input;
+/// One row of the mouse help table: an action and its Blender and Maya drags.
+struct MouseBinding {
+  std::string_view action;
+  std::string_view blender;
+  std::string_view maya;
+};
+
+/// One row of the key help table.
+struct KeyBinding {
+  std::string_view keys;
   std::string_view action;
 };
 
-/// The bindings above, for the help panel.
-const std::vector<Binding>& viewport_bindings();
+/// The mouse bindings above, for the help panel.
+const std::vector<MouseBinding>& mouse_bindings();
+
+/// The key bindings above, for the help panel.
+const std::vector<KeyBinding>& key_bindings();
 
 }  // namespace sublift

@@ -1,0 +1,64 @@
+#include "app/cli_hierarchy.h"
+
+#include <charconv>
+#include <cstdio>
+
+#include "core/level_counts.h"
+#include "core/project_io.h"
+#include "core/shape_io.h"
+
+namespace sublift::cli {
+
+int levels_option(const Args& a) {
+  const auto v = a.value("--levels");
+  if (!v) throw UsageError("missing --levels N");
+  int n = -1;
+  auto [p, ec] = std::from_chars(v->data(), v->data() + v->size(), n);
+  if (ec != std::errc() || p != v->data() + v->size() || n < 0 || n > kMaxLevels)
+    throw UsageError("--levels must be an integer in 0.." + std::to_string(kMaxLevels) + ", got '" + *v + "'");
+  return n;
+}
+
+Scheme scheme_option(const Args& a) {
+  const auto v = a.value("--scheme");
+  if (!v) throw UsageError("missing --scheme linear|cubic");
+  if (*v == "linear") return Scheme::Linear;
+  if (*v == "cubic") return Scheme::Cubic;
+  throw UsageError("--scheme must be linear or cubic, got '" + *v + "'");
+}
+
+void check_refined_size(const Complex& base, int levels) {
+  const double n = predicted_vertex_counts(base, levels).back();
+  if (n > kMaxOutputVertices) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%d levels of this base make %.0f vertices, more than the limit of %.0f; use fewer levels",
+                  levels, n, kMaxOutputVertices);
+    throw UsageError(buf);
+  }
+}
+
+std::string output_option(const Args& a, int dim) {
+  const auto out = a.value("-o");
+  if (!out) throw UsageError("missing -o OUT");
+  if (dim > 0)
+    if (const std::string why = shape_output_problem(*out, dim); !why.empty()) throw UsageError(why);
+  return *out;
+}
+
+std::vector<double> xyz_of(std::span<const double> values, int channels) {
+  const std::size_t n = values.size() / static_cast<std::size_t>(channels);
+  std::vector<double> xyz(3 * n, 0.0);
+  for (std::size_t v = 0; v < n; ++v)
+    for (int k = 0; k < 3 && k < channels; ++k) xyz[3 * v + k] = values[v * channels + k];
+  return xyz;
+}
+
+nlohmann::json complex_counts_json(const Complex& c) {
+  return {{"dim", c.dim},
+          {"vertices", c.num_vertices},
+          {"edges", c.num_edges()},
+          {"faces", c.num_faces()},
+          {"cells", c.num_cells()}};
+}
+
+}  // namespace sublift::cli

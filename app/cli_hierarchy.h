@@ -1,0 +1,38 @@
+#pragma once
+// Shared pieces of the hierarchy commands (subdivide, analyze, synthesize, info on projects):
+// option parsing with range checks, the output-size guard and JSON forms of complexes.
+#include <span>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/cli_args.h"
+#include "core/complex.h"
+#include "core/hierarchy.h"
+
+namespace sublift::cli {
+
+/// Largest finest level a command builds (vertices); more is refused before allocating.
+inline constexpr double kMaxOutputVertices = 50e6;
+
+/// `--levels N`, required, 0..kMaxLevels. Throws UsageError.
+int levels_option(const Args& a);
+
+/// `--scheme linear|cubic`, required. Throws UsageError.
+Scheme scheme_option(const Args& a);
+
+/// Throws UsageError when `levels` refinements of `base` would exceed kMaxOutputVertices.
+void check_refined_size(const Complex& base, int levels);
+
+/// The output path `-o OUT`, required; UsageError when missing or when `dim` cannot be written
+/// to its extension (an empty `dim` check when dim is 0).
+std::string output_option(const Args& a, int dim);
+
+/// x, y, z of every vertex from values with `channels` per vertex (missing channels are 0).
+std::vector<double> xyz_of(std::span<const double> values, int channels);
+
+/// Counts of a complex: dim, vertices, edges, faces, cells.
+nlohmann::json complex_counts_json(const Complex& c);
+
+}  // namespace sublift::cli

@@ -1,0 +1,34 @@
+#include "core/level_counts.h"
+
+#include <algorithm>
+
+namespace sublift {
+
+std::vector<double> predicted_vertex_counts(const Complex& c, int levels) {
+  double V = c.num_vertices, E = c.num_edges(), F = c.num_faces(), C = c.num_cells();
+  double SF = static_cast<double>(c.faces.items.size()), CF = static_cast<double>(c.cell_faces.items.size());
+  double CE = 0, CV = 0;
+  std::vector<std::uint32_t> tmp;
+  for (std::uint32_t k = 0; k < c.num_cells(); ++k) {
+    for (int pass = 0; pass < 2; ++pass) {
+      tmp.clear();
+      for (std::uint32_t f : c.cell_faces.row(k)) {
+        const auto r = pass == 0 ? c.faces.row(f) : c.face_edges.row(f);
+        tmp.insert(tmp.end(), r.begin(), r.end());
+      }
+      std::sort(tmp.begin(), tmp.end());
+      const double n = static_cast<double>(std::unique(tmp.begin(), tmp.end()) - tmp.begin());
+      (pass == 0 ? CV : CE) += n;
+    }
+  }
+  std::vector<double> out{V};
+  for (int j = 0; j < levels; ++j) {
+    const double V2 = V + E + F + C, E2 = 2 * E + SF + CF, F2 = SF + CE, C2 = CV;
+    const double SF2 = 4 * F2, CF2 = 4 * CE, CE2 = 8 * CE, CV2 = 2 * CV + 4 * CE;
+    V = V2, E = E2, F = F2, C = C2, SF = SF2, CF = CF2, CE = CE2, CV = CV2;
+    out.push_back(V);
+  }
+  return out;
+}
+
+}  // namespace sublift

@@ -1,0 +1,94 @@
+#pragma once
+// Base meshes and lattices generated in code, shared by the peer tests and the benchmarks:
+// a regular quad torus, a cube and an n^3 hexahedral block. Positions are xyz doubles, three
+// per vertex, in vertex order.
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <vector>
+
+#include "core/csr.h"
+
+namespace sublift::fixtures {
+
+/// A polygon mesh as the engine's builders take it.
+struct Polygons {
+  std::uint32_t num_vertices = 0;
+  Csr faces;
+  std::vector<double> positions;
+};
+
+/// A lattice as complex_from_cells takes it: face loops and cells as lists of loops.
+struct Cells {
+  std::uint32_t num_vertices = 0;
+  Csr face_loops, cell_faces;
+  std::vector<double> positions;
+};
+
+inline void push_row(Csr& csr, std::initializer_list<std::uint32_t> items) {
+  csr.items.insert(csr.items.end(), items);
+  csr.offsets.push_back(static_cast<std::uint32_t>(csr.items.size()));
+}
+
+/// Regular quad torus of nu x nv quads (every vertex valence 4). Vertex (i, j) is j * nu + i;
+/// radii R = 2 and r = 0.7, with a small deterministic wobble so no coordinate is special.
+inline Polygons torus(std::uint32_t nu, std::uint32_t nv) {
+  Polygons m;
+  m.num_vertices = nu * nv;
+  m.positions.reserve(3 * std::size_t{m.num_vertices});
+  for (std::uint32_t j = 0; j < nv; ++j)
+    for (std::uint32_t i = 0; i < nu; ++i) {
+      const double u = 2 * std::numbers::pi * i / nu, v = 2 * std::numbers::pi * j / nv;
+      const double r = 0.7 + 0.05 * std::sin(3 * u + 2 * v);
+      m.positions.insert(m.positions.end(),
+                         {(2 + r * std::cos(v)) * std::cos(u), (2 + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
+    }
+  for (std::uint32_t j = 0; j < nv; ++j)
+    for (std::uint32_t i = 0; i < nu; ++i) {
+      const std::uint32_t i1 = (i + 1) % nu, j1 = (j + 1) % nv;
+      push_row(m.faces, {j * nu + i, j * nu + i1, j1 * nu + i1, j1 * nu + i});
+    }
+  return m;
+}
+
+/// Unit cube [0,1]^3, outward-oriented quads.
+inline Polygons cube() {
+  Polygons m;
+  m.num_vertices = 8;
+  for (std::uint32_t k = 0; k < 8; ++k)
+    m.positions.insert(m.positions.end(), {double(k & 1), double((k >> 1) & 1), double((k >> 2) & 1)});
+  const std::uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                     {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads) push_row(m.faces, {q[0], q[1], q[2], q[3]});
+  return m;
+}
+
+/// Block of n^3 unit hexahedra: (n+1)^3 vertices, vertex (x, y, z) = (z (n+1) + y) (n+1) + x;
+/// every cell lists its own 6 quads (shared faces appear twice and are merged by the builder).
+inline Cells hex_block(std::uint32_t n) {
+  Cells m;
+  const std::uint32_t s = n + 1;
+  m.num_vertices = s * s * s;
+  for (std::uint32_t z = 0; z < s; ++z)
+    for (std::uint32_t y = 0; y < s; ++y)
+      for (std::uint32_t x = 0; x < s; ++x) m.positions.insert(m.positions.end(), {double(x), double(y), double(z)});
+  auto id = [s](std::uint32_t x, std::uint32_t y, std::uint32_t z) { return (z * s + y) * s + x; };
+  for (std::uint32_t z = 0; z < n; ++z)
+    for (std::uint32_t y = 0; y < n; ++y)
+      for (std::uint32_t x = 0; x < n; ++x) {
+        const std::uint32_t c[8] = {id(x, y, z),         id(x + 1, y, z),         id(x, y + 1, z),
+                                    id(x + 1, y + 1, z), id(x, y, z + 1),         id(x + 1, y, z + 1),
+                                    id(x, y + 1, z + 1), id(x + 1, y + 1, z + 1)};
+        const std::uint32_t first = static_cast<std::uint32_t>(m.face_loops.rows());
+        push_row(m.face_loops, {c[0], c[2], c[3], c[1]});  // z-
+        push_row(m.face_loops, {c[4], c[5], c[7], c[6]});  // z+
+        push_row(m.face_loops, {c[0], c[1], c[5], c[4]});  // y-
+        push_row(m.face_loops, {c[2], c[6], c[7], c[3]});  // y+
+        push_row(m.face_loops, {c[0], c[4], c[6], c[2]});  // x-
+        push_row(m.face_loops, {c[1], c[3], c[7], c[5]});  // x+
+        push_row(m.cell_faces, {first, first + 1, first + 2, first + 3, first + 4, first + 5});
+      }
+  return m;
+}
+
+}  // namespace sublift::fixtures

@@ -1,0 +1,188 @@
+// .sublift projects: bit-exact round trips for curves, surfaces and lattices (any channels,
+// integer flag), and refusal of every kind of damaged file before anything is allocated.
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "core/complex_build.h"
+#include "core/file_io.h"
+#include "core/lattice_format.h"
+#include "core/project_io.h"
+#include "core/shapes.h"
+#include "tests/io_test_util.h"
+
+using namespace sublift;
+using sublift::testing::input_error;
+using sublift::testing::TempDir;
+
+namespace {
+
+// A hierarchy with random, awkward coefficients (subnormals, -0, huge and tiny values).
+Hierarchy random_hierarchy(Complex base, int levels, int channels, bool integer, std::uint64_t seed) {
+  Hierarchy h = make_hierarchy(std::move(base), levels, Scheme::Cubic, channels, integer);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (std::size_t i = 0; i < h.coeffs.size(); ++i) {
+    const double x = u(rng);
+    h.coeffs[i] = integer ? std::round(x * 1000) : x * std::pow(10.0, double(i % 40) - 20.0);
+  }
+  if (!integer && h.coeffs.size() > 3) {
+    h.coeffs[0] = -0.0;
+    h.coeffs[1] = std::numeric_limits<double>::denorm_min();
+    h.coeffs[2] = 1.0 / 3.0;
+  }
+  return h;
+}
+
+void expect_same(const Hierarchy& a, const Hierarchy& b) {
+  EXPECT_EQ(a.scheme, b.scheme);
+  EXPECT_EQ(a.integer, b.integer);
+  EXPECT_EQ(a.channels, b.channels);
+  ASSERT_EQ(a.levels.size(), b.levels.size());
+  ASSERT_EQ(a.coeffs.size(), b.coeffs.size());
+  EXPECT_EQ(std::memcmp(a.coeffs.data(), b.coeffs.data(), a.coeffs.size() * sizeof(double)), 0);  // bit-exact, -0 too
+  const Complex &x = a.levels[0], &y = b.levels[0];
+  EXPECT_EQ(x.dim, y.dim);
+  EXPECT_EQ(x.num_vertices, y.num_vertices);
+  EXPECT_EQ(x.edge_verts, y.edge_verts);
+  EXPECT_EQ(x.faces.offsets, y.faces.offsets);
+  EXPECT_EQ(x.faces.items, y.faces.items);
+  EXPECT_EQ(x.face_edges.items, y.face_edges.items);
+  EXPECT_EQ(x.cell_faces.offsets, y.cell_faces.offsets);
+  EXPECT_EQ(x.cell_faces.items, y.cell_faces.items);
+  EXPECT_EQ(x.vertex_dim, y.vertex_dim);
+  EXPECT_EQ(x.edge_dim, y.edge_dim);
+  EXPECT_EQ(x.face_dim, y.face_dim);
+  for (std::size_t j = 0; j < a.levels.size(); ++j) EXPECT_EQ(a.levels[j].num_vertices, b.levels[j].num_vertices);
+}
+
+Complex lattice_with_features() {
+  return read_lattice(
+             "sublift-lattice 1\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+             "v 0 0 2\nv 1 0 2\nv 1 1 2\nv 0 1 2\nv 0.5 0.5 3\n"
+             "hex 0 1 2 3 4 5 6 7\nhex 4 5 6 7 8 9 10 11\npyramid 8 9 10 11 12\nfeature_face 4 5 6 7\ncrease 0 1\ncorner 2\n",
+             "l.lattice")
+      .base;
+}
+
+std::string saved(const Hierarchy& h, const TempDir& dir) {
+  const std::string path = dir.file("p.sublift");
+  write_project(path, h);
+  return read_file_bytes(path);
+}
+
+std::string error_of(const std::string& bytes) {
+  return input_error([&] { read_project_from_memory("p.sublift", bytes); });
+}
+
+}  // namespace
+
+TEST(ProjectIo, RoundTripIsBitExactForEveryDimension) {
+  TempDir dir("sublift_project_rt");
+  std::vector<double> pos;
+  const Complex curve = make_curve_loop(7, pos);
+  const SurfaceMesh torus = make_quad_torus(6, 4);
+  Csr faces;
+  faces.offsets = torus.face_offsets;
+  faces.items = torus.face_indices;
+  const Complex surface = complex_from_polygons(static_cast<std::uint32_t>(torus.num_vertices()), faces, {{{0, 1}}, {5}, {}});
+  struct Case { Complex base; int levels, channels; bool integer; };
+  const Case cases[] = {{curve, 3, 1, false}, {surface, 2, 3, false}, {surface, 1, 4, true},
+                        {lattice_with_features(), 2, 3, false}, {lattice_with_features(), 0, 2, true}};
+  std::uint64_t seed = 1;
+  for (const Case& c : cases) {
+    SCOPED_TRACE("dim " + std::to_string(c.base.dim) + ", levels " + std::to_string(c.levels));
+    const Hierarchy h = random_hierarchy(c.base, c.levels, c.channels, c.integer, seed++);
+    const std::string path = dir.file("p.sublift");
+    write_project(path, h);
+    const Hierarchy back = read_project(path);
+    expect_same(h, back);
+    EXPECT_EQ(synthesize(h, c.levels), synthesize(back, c.levels));
+  }
+}
+
+TEST(ProjectIo, RefusesBadMagicVersionAndHeader) {
+  TempDir dir("sublift_project_bad");
+  const std::string good = saved(random_hierarchy(lattice_with_features(), 1, 3, false, 9), dir);
+  EXPECT_NE(error_of("").find("not a Sublift project"), std::string::npos);
+  EXPECT_NE(error_of("PK\x03\x04 zip").find("not a Sublift project"), std::string::npos);
+  std::string v2 = good;
+  v2[16] = '2';
+  EXPECT_NE(error_of(v2).find("unsupported project version '2'"), std::string::npos) << error_of(v2);
+  EXPECT_NE(error_of("sublift-project 1\n{not json}\n").find("p.sublift:2: malformed header"), std::string::npos);
+  EXPECT_NE(error_of("sublift-project 1\n{\"format\":\"sublift-project\"}\n").find("malformed header"), std::string::npos);
+  EXPECT_NE(error_of("sublift-project 1\n").find("header"), std::string::npos);
+  // Header fields out of range.
+  auto with = [&](const std::string& from, const std::string& to) {
+    std::string s = good;
+    const auto at = s.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return s.replace(at, from.size(), to);
+  };
+  EXPECT_NE(error_of(with("\"levels\":1", "\"levels\":13")).find("levels 13 outside"), std::string::npos);
+  EXPECT_NE(error_of(with("\"scheme\":\"cubic\"", "\"scheme\":\"loop\"")).find("unknown scheme 'loop'"), std::string::npos);
+  EXPECT_NE(error_of(with("\"channels\":3", "\"channels\":0")).find("channels 0"), std::string::npos);
+  EXPECT_NE(error_of(with("\"dim\":3", "\"dim\":4")).find("dim 4"), std::string::npos);
+}
+
+TEST(ProjectIo, RefusesTruncatedOrPaddedPayloadAndLyingCounts) {
+  TempDir dir("sublift_project_size");
+  const std::string good = saved(random_hierarchy(lattice_with_features(), 1, 3, false, 3), dir);
+  EXPECT_NO_THROW(read_project_from_memory("p.sublift", good));
+  EXPECT_NE(error_of(good.substr(0, good.size() - 1)).find("truncated payload"), std::string::npos);
+  EXPECT_NE(error_of(good + "x").find("but the header announces"), std::string::npos);
+  auto with = [&](const std::string& from, const std::string& to) {
+    std::string s = good;
+    return s.replace(s.find(from), from.size(), to);
+  };
+  // Counts that would need terabytes are refused by size before anything is read.
+  EXPECT_NE(error_of(with("\"coefficients\":", "\"coefficients\":99999999999")).find("truncated payload"), std::string::npos);
+  EXPECT_NE(error_of(with("\"vertices\":13", "\"vertices\":4000000000")).find("truncated payload"), std::string::npos);
+  // One more level than the coefficients cover (the payload size is unchanged: the check is
+  // against the refined base, before it is built).
+  const std::string e = error_of(with("\"levels\":1", "\"levels\":2"));
+  EXPECT_NE(e.find("levels of this base"), std::string::npos) << e;
+}
+
+TEST(ProjectIo, RefusesDamagedPayloads) {
+  TempDir dir("sublift_project_payload");
+  const Hierarchy h = random_hierarchy(lattice_with_features(), 1, 3, false, 5);
+  const std::string good = saved(h, dir);
+  const std::size_t payload = good.find('\n', good.find('\n') + 1) + 1;
+  // First u32 of edge_verts: a vertex that does not exist.
+  std::string dangling = good;
+  const std::uint32_t big = 1000;
+  std::memcpy(dangling.data() + payload, &big, 4);
+  EXPECT_NE(error_of(dangling).find("names vertex 1000"), std::string::npos) << error_of(dangling);
+  // A face-dim byte out of range (face_dim is just before the coefficients).
+  std::string bad_dim = good;
+  bad_dim[good.size() - h.coeffs.size() * 8 - 1] = 7;
+  EXPECT_NE(error_of(bad_dim).find("feature dim"), std::string::npos) << error_of(bad_dim);
+  // A NaN coefficient.
+  std::string nan = good;
+  const double q = std::numeric_limits<double>::quiet_NaN();
+  std::memcpy(nan.data() + good.size() - 8, &q, 8);
+  EXPECT_NE(error_of(nan).find("is not finite"), std::string::npos);
+  // Face offsets out of order (second offset made huge).
+  std::string offs = good;
+  const std::size_t face_offsets = payload + 4 * h.levels[0].edge_verts.size();
+  const std::uint32_t huge = 0x7fffffff;
+  std::memcpy(offs.data() + face_offsets + 4, &huge, 4);
+  EXPECT_NE(error_of(offs).find("offsets"), std::string::npos) << error_of(offs);
+}
+
+TEST(ProjectIo, FailedSaveKeepsThePreviousFile) {
+  TempDir dir("sublift_project_atomic");
+  const Hierarchy h = random_hierarchy(lattice_with_features(), 1, 3, false, 2);
+  EXPECT_THROW(write_project("/nonexistent_dir/p.sublift", h), IoError);
+  const std::string path = dir.file("p.sublift");
+  write_project(path, h);
+  const std::string before = read_file_bytes(path);
+  write_project(path, h);  // replaced atomically: same bytes, no temporary left behind
+  EXPECT_EQ(read_file_bytes(path), before);
+  std::size_t files = 0;
+  for (auto& e : std::filesystem::directory_iterator(dir.path())) files += e.is_regular_file();
+  EXPECT_EQ(files, 1u);
+}

@@ -5,31 +5,14 @@
 #include <cmath>
 #include <thread>
 
+#include "core/parallel.h"
+
 namespace sublift {
 namespace {
 
-int g_threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 8);
-
-// Runs fn(begin, end) over [0, n) split across the lifting threads when n is large enough to
-// pay for starting them. Each target is written by exactly one thread: no locks needed.
-template <class Fn>
-void parallel_for(std::uint32_t n, const Fn& fn) {
-  constexpr std::uint32_t kMinPerThread = 16384;
-  const int t = std::min<int>(g_threads, static_cast<int>(n / kMinPerThread));
-  if (t <= 1) {
-    fn(0u, n);
-    return;
-  }
-  std::vector<std::thread> pool;
-  pool.reserve(t - 1);
-  const std::uint32_t chunk = (n + t - 1) / t;
-  for (int i = 1; i < t; ++i) {
-    const std::uint32_t b = std::min(n, chunk * i), e = std::min(n, chunk * (i + 1));
-    pool.emplace_back([&fn, b, e] { fn(b, e); });
-  }
-  fn(0u, std::min(n, chunk));
-  for (auto& th : pool) th.join();
-}
+// Targets per chunk handed to a thread: large enough to amortise the hand-out, small enough
+// to balance two cores when one is busy with something else.
+constexpr std::uint32_t kGrain = 8192;
 
 // Regular-grid neighbour count: a t-dim primitive inside an m-dim regular grid touches
 // C(m-t, k-t) 2^(k-t) primitives of dim k (000 eq. 3.16-3.17: 6/12/8, 4/4, 2).
@@ -85,7 +68,7 @@ void gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* targ
     groups[g] = groups_in[g];
     for (double& w : groups[g].weight) w *= sign;
   }
-  parallel_for(n, [&, groups](std::uint32_t begin, std::uint32_t end) {
+  parallel_for(n, kGrain, [&, groups](std::uint32_t begin, std::uint32_t end) {
     std::vector<double> heap(C > 0 ? 0 : 2 * std::size_t(ch));
     double stack[C > 0 ? 2 * C : 1];
     double* acc = C > 0 ? stack : heap.data();
@@ -238,7 +221,7 @@ void sscale(const Complex& p, const Classes& k, double a, double* x, int ch, boo
     for (int m = 0; m < 4; ++m) factor[m] = m >= t ? std::pow(a, m - t) : 1.0;
     if (inverse)
       for (double& f : factor) f = 1.0 / f;
-    parallel_for(n, [&](std::uint32_t b, std::uint32_t e) {
+    parallel_for(n, kGrain, [&](std::uint32_t b, std::uint32_t e) {
       for (std::uint32_t i = b; i < e; ++i) {
         const double f = factor[dims[i]];
         if (f == 1.0) continue;
@@ -282,7 +265,7 @@ LiftProgram cubic_program() {
   return {{LiftOp::SLift, -0.375}, {LiftOp::WLift, 0.5}, {LiftOp::SLift, 0.5}, {LiftOp::SScale, 0.5}};
 }
 
-void set_lift_threads(int n) { g_threads = std::clamp(n, 1, 8); }
+void set_lift_threads(int n) { set_parallel_threads(n); }
 
 std::size_t LiftTables::bytes() const {
   return v_from_e.bytes() + v_from_f.bytes() + v_from_c.bytes() + e_from_f.bytes() + e_from_c.bytes() +

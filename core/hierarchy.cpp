@@ -71,7 +71,17 @@ std::vector<double> synthesize(const Hierarchy& h, int level) {
     throw Error("level " + std::to_string(level) + " is outside 0.." + std::to_string(h.finest_level()));
   std::vector<double> x(h.coeffs.begin(), h.coeffs.begin() + std::size_t(h.num_vertices(level)) * h.channels);
   const LiftProgram program = scheme_program(h.scheme);
-  for (int j = 0; j < level; ++j) lift_synthesize(h.levels[j], h.tables[j], program, x.data(), h.channels, h.integer);
+  // A leading s-lift only reads wavelet coefficients (e/f/c classes): when a level has none, it
+  // adds exactly zero and is skipped (000 sec. 4: "the first lifting operation does not have an
+  // impact"). Pure subdivision then costs what the subdivision rules cost.
+  LiftProgram without_first(program.begin() + (program.empty() || program.front().op != LiftOp::SLift ? 0 : 1),
+                            program.end());
+  for (int j = 0; j < level; ++j) {
+    const auto b = x.begin() + std::size_t(h.num_vertices(j)) * h.channels;
+    const auto e = x.begin() + std::size_t(h.num_vertices(j + 1)) * h.channels;
+    const bool zero = std::all_of(b, e, [](double v) { return v == 0.0; });
+    lift_synthesize(h.levels[j], h.tables[j], zero ? without_first : program, x.data(), h.channels, h.integer);
+  }
   return x;
 }
 

@@ -1,5 +1,7 @@
 #include "core/cell_shapes.h"
 
+#include "core/face_loop.h"
+
 #include <algorithm>
 #include <map>
 #include <set>
@@ -14,16 +16,6 @@ const std::vector<std::vector<int>> kHexFaces = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0,
 const std::vector<std::vector<int>> kWedgeFaces = {{0, 1, 2}, {3, 5, 4}, {0, 3, 4, 1}, {1, 4, 5, 2}, {2, 5, 3, 0}};
 const std::vector<std::vector<int>> kPyramidFaces = {{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
 
-std::vector<std::uint32_t> canonical(std::vector<std::uint32_t> f) {
-  const std::size_t n = f.size();
-  const std::size_t m = static_cast<std::size_t>(std::min_element(f.begin(), f.end()) - f.begin());
-  std::vector<std::uint32_t> fwd(n), bwd(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    fwd[i] = f[(m + i) % n];
-    bwd[i] = f[(m + n - i) % n];
-  }
-  return std::min(fwd, bwd);
-}
 
 }  // namespace
 
@@ -136,11 +128,11 @@ std::optional<std::array<std::uint32_t, 8>> hexahedron_vertices(const std::vecto
     h[4 + i] = up[0];
   }
   std::set<std::vector<std::uint32_t>> have;
-  for (const auto& l : loops) have.insert(canonical(l));
+  for (const auto& l : loops) have.insert(canonical_loop(l));
   for (const auto& f : kHexFaces) {
     std::vector<std::uint32_t> l;
     for (int i : f) l.push_back(h[static_cast<std::size_t>(i)]);
-    if (!have.count(canonical(l))) return std::nullopt;
+    if (!have.count(canonical_loop(l))) return std::nullopt;
   }
   return h;
 }

@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "core/errors.h"
+#include "core/face_loop.h"
 
 namespace sublift {
 namespace {
@@ -49,16 +50,6 @@ void add_face_loop(Complex& c, EdgeTable& edges, std::span<const std::uint32_t> 
   c.face_edges.offsets.push_back(static_cast<std::uint32_t>(c.face_edges.items.size()));
 }
 
-std::vector<std::uint32_t> canonical_loop(std::span<const std::uint32_t> f) {
-  const std::size_t n = f.size();
-  const std::size_t m = static_cast<std::size_t>(std::min_element(f.begin(), f.end()) - f.begin());
-  std::vector<std::uint32_t> fwd(n), bwd(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    fwd[i] = f[(m + i) % n];
-    bwd[i] = f[(m + n - i) % n];
-  }
-  return std::min(fwd, bwd);
-}
 
 }  // namespace
 

@@ -1,5 +1,7 @@
 #include "core/connectivity_match.h"
 
+#include "core/face_loop.h"
+
 #include <algorithm>
 #include <vector>
 
@@ -8,16 +10,6 @@ namespace {
 
 using Item = std::vector<std::uint32_t>;
 
-Item canonical(std::span<const std::uint32_t> f) {
-  const std::size_t n = f.size();
-  const std::size_t m = static_cast<std::size_t>(std::min_element(f.begin(), f.end()) - f.begin());
-  Item fwd(n), bwd(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    fwd[i] = f[(m + i) % n];
-    bwd[i] = f[(m + n - i) % n];
-  }
-  return std::min(fwd, bwd);
-}
 
 std::vector<Item> items(const Complex& c, int kind) {
   std::vector<Item> out;
@@ -25,7 +17,7 @@ std::vector<Item> items(const Complex& c, int kind) {
     for (std::uint32_t e = 0; e < c.num_edges(); ++e)
       out.push_back({std::min(c.edge_verts[2 * e], c.edge_verts[2 * e + 1]), std::max(c.edge_verts[2 * e], c.edge_verts[2 * e + 1])});
   } else if (kind == 2) {
-    for (std::uint32_t f = 0; f < c.num_faces(); ++f) out.push_back(canonical(c.faces.row(f)));
+    for (std::uint32_t f = 0; f < c.num_faces(); ++f) out.push_back(canonical_loop(c.faces.row(f)));
   } else {
     for (std::uint32_t k = 0; k < c.num_cells(); ++k) {
       Item v;

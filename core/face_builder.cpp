@@ -4,6 +4,7 @@
 #include <unordered_set>
 
 #include "core/errors.h"
+#include "core/face_loop.h"
 
 namespace sublift {
 namespace {
@@ -18,16 +19,6 @@ struct CycleHash {
   }
 };
 
-std::vector<std::uint32_t> canonical_cycle(std::span<const std::uint32_t> f) {
-  const std::size_t n = f.size();
-  const std::size_t m = static_cast<std::size_t>(std::min_element(f.begin(), f.end()) - f.begin());
-  std::vector<std::uint32_t> fwd(n), bwd(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    fwd[i] = f[(m + i) % n];
-    bwd[i] = f[(m + n - i) % n];
-  }
-  return std::min(fwd, bwd);
-}
 
 }  // namespace
 
@@ -79,7 +70,7 @@ void FaceBuilder::finish(SurfaceMesh& mesh, ImportReport& report) const {
       continue;
     }
     if (face.size() != before) report.add("face repaired: repeated consecutive vertex removed", line);
-    if (!seen.insert(canonical_cycle(face)).second) {
+    if (!seen.insert(canonical_loop(face)).second) {
       report.add("face dropped: duplicate of an earlier face (same vertices, either orientation)",
                  line);
       continue;

@@ -1,5 +1,7 @@
 #include "core/shape_builder.h"
 
+#include "core/face_loop.h"
+
 #include <algorithm>
 #include <map>
 #include <set>
@@ -13,16 +15,6 @@ namespace {
 
 std::uint64_t edge_key(std::uint64_t a, std::uint64_t b) { return std::min(a, b) << 32 | std::max(a, b); }
 
-std::vector<std::uint32_t> canonical(std::span<const std::int64_t> f) {
-  const std::size_t n = f.size();
-  const std::size_t m = static_cast<std::size_t>(std::min_element(f.begin(), f.end()) - f.begin());
-  std::vector<std::uint32_t> fwd(n), bwd(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    fwd[i] = static_cast<std::uint32_t>(f[(m + i) % n]);
-    bwd[i] = static_cast<std::uint32_t>(f[(m + n - i) % n]);
-  }
-  return std::min(fwd, bwd);
-}
 
 }  // namespace
 
@@ -107,7 +99,7 @@ void ShapeBuilder::build(const std::string& file, std::uint32_t nv, std::span<co
         const auto f = loop(i);
         const std::size_t line = loop_lines_[i] ? loop_lines_[i] : c.line;
         check_polygon(f, line, c.label + ", face " + std::to_string(i - c.first_loop));
-        if (!own.insert(canonical(f)).second)
+        if (!own.insert(canonical_loop(f)).second)
           throw InputError(file, line, c.label + " lists the same face twice (face " + std::to_string(i - c.first_loop) + ")");
         for (std::size_t k = 0; k < f.size(); ++k) ++uses[edge_key(f[k], f[(k + 1) % f.size()])];
         cells.items.push_back(static_cast<std::uint32_t>(loops.rows()));
@@ -129,7 +121,7 @@ void ShapeBuilder::build(const std::string& file, std::uint32_t nv, std::span<co
     for (const Element& p : polygons_) {
       const auto f = loop(p.first_loop);
       check_polygon(f, p.line, p.label);
-      if (!faces.insert(canonical(f)).second)
+      if (!faces.insert(canonical_loop(f)).second)
         throw InputError(file, p.line, p.label + " repeats an earlier polygon (same vertices, either orientation)");
       for (std::size_t k = 0; k < f.size(); ++k) edges.insert(edge_key(f[k], f[(k + 1) % f.size()]));
       loops.items.insert(loops.items.end(), f.begin(), f.end());
@@ -164,7 +156,7 @@ void ShapeBuilder::build(const std::string& file, std::uint32_t nv, std::span<co
   };
   auto add_face_tag = [&](std::span<const std::int64_t> f, std::size_t line, const char* what) {
     if (f.size() < 3 || !in_range(f)) return reject(line, std::string(what) + " names a vertex out of range or has fewer than 3 vertices");
-    if (!faces.count(canonical(f))) return reject(line, std::string(what) + " is no face of the shape");
+    if (!faces.count(canonical_loop(f))) return reject(line, std::string(what) + " is no face of the shape");
     tags.feature_faces.emplace_back(f.begin(), f.end());
   };
   auto add_crease_tag = [&](std::span<const std::int64_t> c, std::size_t line, const char* what) {

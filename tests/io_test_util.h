@@ -1,4 +1,5 @@
 #pragma once
+#include "core/face_loop.h"
 // Helpers for the file-format tests: temporary folders, error capture and comparisons of
 // complexes that do not depend on edge or face numbering.
 #include <algorithm>
@@ -48,16 +49,6 @@ struct DimsByVertices {
   bool operator==(const DimsByVertices&) const = default;
 };
 
-inline std::vector<std::uint32_t> canonical_loop(std::span<const std::uint32_t> f) {
-  const std::size_t n = f.size();
-  const std::size_t m = static_cast<std::size_t>(std::min_element(f.begin(), f.end()) - f.begin());
-  std::vector<std::uint32_t> fwd(n), bwd(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    fwd[i] = f[(m + i) % n];
-    bwd[i] = f[(m + n - i) % n];
-  }
-  return std::min(fwd, bwd);
-}
 
 inline DimsByVertices dims_by_vertices(const Complex& c) {
   DimsByVertices d;

@@ -1,37 +1,16 @@
-#include <cmath>
-#include <numbers>
 
 #include <gtest/gtest.h>
 
 #include "core/mesh_stats.h"
+#include "core/shapes.h"
 #include "tests/test_util.h"
 
 using namespace sublift;
 using sublift::testing::load;
 
-namespace {
-
-// A regular n x m quad torus built in code: V = nm, E = 2nm, F = nm, genus 1.
-SurfaceMesh quad_torus(int n, int m) {
-  SurfaceMesh t;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < m; ++j) {
-      const double u = 2 * std::numbers::pi * i / n, v = 2 * std::numbers::pi * j / m;
-      t.positions.emplace_back((2 + std::cos(v)) * std::cos(u), (2 + std::cos(v)) * std::sin(u), std::sin(v));
-    }
-  auto id = [&](int i, int j) { return static_cast<std::uint32_t>(((i + n) % n) * m + (j + m) % m); };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < m; ++j) {
-      const std::uint32_t f[4] = {id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)};
-      t.add_face(f);
-    }
-  return t;
-}
-
-}  // namespace
 
 TEST(MeshStats, ClosedQuadTorus) {
-  const MeshStats s = compute_mesh_stats(quad_torus(8, 8));
+  const MeshStats s = compute_mesh_stats(make_quad_torus(8, 8, 2.0, 1.0));  // V = E/2 = F = 64
   EXPECT_EQ(s.vertices, 64u);
   EXPECT_EQ(s.edges, 128u);
   EXPECT_EQ(s.faces, 64u);

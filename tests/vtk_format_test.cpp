@@ -42,7 +42,7 @@ void expect_error(const std::string& text, std::size_t line, const std::string& 
 // The faces of a complex as sets of vertex loops (canonical), sorted.
 std::vector<std::vector<std::uint32_t>> face_set(const Complex& c) {
   std::vector<std::vector<std::uint32_t>> f;
-  for (std::uint32_t i = 0; i < c.num_faces(); ++i) f.push_back(sublift::testing::canonical_loop(c.faces.row(i)));
+  for (std::uint32_t i = 0; i < c.num_faces(); ++i) f.push_back(sublift::canonical_loop(c.faces.row(i)));
   std::sort(f.begin(), f.end());
   return f;
 }
@@ -68,7 +68,7 @@ TEST(VtkFormat, HexahedronUsesVtkVertexOrder) {
   const std::vector<std::vector<std::uint32_t>> want = {{0, 1, 2, 3}, {0, 1, 5, 4}, {0, 3, 7, 4},
                                                         {1, 2, 6, 5}, {2, 3, 7, 6}, {4, 5, 6, 7}};
   std::vector<std::vector<std::uint32_t>> want_c;
-  for (const auto& f : want) want_c.push_back(sublift::testing::canonical_loop(f));
+  for (const auto& f : want) want_c.push_back(sublift::canonical_loop(f));
   std::sort(want_c.begin(), want_c.end());
   EXPECT_EQ(faces, want_c);
   EXPECT_TRUE(s.report.empty());

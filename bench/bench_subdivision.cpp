@@ -39,6 +39,7 @@
 #include "core/hierarchy.h"
 #include "core/lifting.h"
 #include "tests/mesh_fixtures.h"
+#include "tests/osd_refiner.h"
 
 namespace {
 
@@ -109,20 +110,7 @@ struct OsdVertex {
 };
 
 std::unique_ptr<Far::TopologyRefiner> osd_refine(const fixtures::Polygons& m, int levels) {
-  std::vector<int> sizes(m.faces.rows());
-  for (std::size_t f = 0; f < sizes.size(); ++f) sizes[f] = static_cast<int>(m.faces.size(f));
-  const std::vector<Far::Index> corners(m.faces.items.begin(), m.faces.items.end());
-  Far::TopologyDescriptor desc;
-  desc.numVertices = static_cast<int>(m.num_vertices);
-  desc.numFaces = static_cast<int>(sizes.size());
-  desc.numVertsPerFace = sizes.data();
-  desc.vertIndicesPerFace = corners.data();
-  Sdc::Options opts;
-  opts.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-  using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-  std::unique_ptr<Far::TopologyRefiner> r(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, opts)));
-  r->RefineUniform(Far::TopologyRefiner::UniformOptions(levels));
-  return r;
+  return fixtures::osd_refiner(m, Sdc::SCHEME_CATMARK, levels);
 }
 
 void BM_OsdTopology(benchmark::State& st, const Input* in) {

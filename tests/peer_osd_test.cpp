@@ -24,6 +24,7 @@
 #include "core/hierarchy.h"
 #include "core/mesh_import.h"
 #include "tests/mesh_fixtures.h"
+#include "tests/osd_refiner.h"
 
 namespace sublift {
 namespace {
@@ -46,23 +47,7 @@ struct OsdVertex {
   }
 };
 
-std::unique_ptr<Far::TopologyRefiner> osd_refiner(const Polygons& m, Sdc::SchemeType scheme, int levels) {
-  std::vector<int> sizes(m.faces.rows());
-  for (std::size_t f = 0; f < sizes.size(); ++f) sizes[f] = static_cast<int>(m.faces.size(f));
-  const std::vector<Far::Index> corners(m.faces.items.begin(), m.faces.items.end());
-  Far::TopologyDescriptor desc;
-  desc.numVertices = static_cast<int>(m.num_vertices);
-  desc.numFaces = static_cast<int>(sizes.size());
-  desc.numVertsPerFace = sizes.data();
-  desc.vertIndicesPerFace = corners.data();
-  Sdc::Options opts;
-  opts.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-  using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-  std::unique_ptr<Far::TopologyRefiner> r(Factory::Create(desc, Factory::Options(scheme, opts)));
-  if (!r) return r;
-  r->RefineUniform(Far::TopologyRefiner::UniformOptions(levels));
-  return r;
-}
+using fixtures::osd_refiner;
 
 /// Positions of every level of `r`, level by level, from the base positions.
 std::vector<std::vector<OsdVertex>> osd_positions(const Far::TopologyRefiner& r, const std::vector<double>& base) {

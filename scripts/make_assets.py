@@ -9,11 +9,17 @@ def fmt(x):
     r = repr(float(x))
     return r[:-2] if r.endswith(".0") else r
 
+def y_up(v):
+    """The shapes below are built Z-up; surface OBJ files are written Y-up, as OBJ viewers expect
+    (a rotation about x, so orientation is kept)."""
+    x, y, z = v
+    return (x, z, -y if y != 0 else 0.0)
+
 def write(name, comment, verts, faces, extra=""):
     with open(os.path.join(HERE, name), "w") as f:
         f.write("# %s\n# Written by Sublift's scripts/make_assets.py (public domain, CC0).\n" % comment)
         for v in verts:
-            f.write("v %s\n" % " ".join(fmt(c) for c in v))
+            f.write("v %s\n" % " ".join(fmt(c) for c in y_up(v)))
         for face in faces:
             f.write("f %s\n" % " ".join(str(i + 1) for i in face))
         f.write(extra)
@@ -64,7 +70,7 @@ bv = [(x, y, z * 2 - 1) for z in zs for (x, y) in corners]
 bf = [(3, 2, 1, 0), (12, 13, 14, 15)]
 bf += [(r * 4 + k, r * 4 + (k + 1) % 4, (r + 1) * 4 + (k + 1) % 4, (r + 1) * 4 + k) for r in range(3) for k in range(4)]
 tags = "".join("t crease 2/1/0 %d %d 10\n" % (4 + k, 4 + (k + 1) % 4) for k in range(4))
-write("crease_loop.obj", "Box with a tagged crease loop (t crease) around the ring at z = -1/3", bv, bf, tags)
+write("crease_loop.obj", "Box with a tagged crease loop (t crease) around the ring at height -1/3", bv, bf, tags)
 
 # ---- Curves and lattices (formats: docs/file_formats.md) ----
 

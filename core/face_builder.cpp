@@ -7,20 +7,6 @@
 #include "core/face_loop.h"
 
 namespace sublift {
-namespace {
-
-// Hash of a face's canonical vertex cycle (rotation to the smallest index, the direction with
-// the smaller second index), so a face and its reverse copy collide.
-struct CycleHash {
-  std::size_t operator()(const std::vector<std::uint32_t>& c) const {
-    std::size_t h = c.size();
-    for (std::uint32_t v : c) h = h * 1000003u ^ v;
-    return h;
-  }
-};
-
-
-}  // namespace
 
 void FaceBuilder::add(std::span<const std::int64_t> corners, std::size_t line) {
   indices_.insert(indices_.end(), corners.begin(), corners.end());
@@ -34,11 +20,14 @@ void FaceBuilder::add_unreadable(std::size_t line, ImportReport& report, const c
 
 void FaceBuilder::finish(SurfaceMesh& mesh, ImportReport& report) const {
   const auto nv = static_cast<std::int64_t>(mesh.num_vertices());
-  std::unordered_set<std::vector<std::uint32_t>, CycleHash> seen;
   std::vector<char> unusable(mesh.num_vertices(), 0);
   for (std::size_t v : unusable_)
     if (v < unusable.size()) unusable[v] = 1;
-  std::vector<std::uint32_t> face;
+  // Pass 1: validate and repair each face into flat arrays (no allocation per face: hostile
+  // files have hundreds of thousands of faces); remember each face's canonical loop.
+  std::vector<std::uint32_t> kept, canon;
+  std::vector<std::size_t> kept_offsets{0}, kept_lines;
+  std::vector<std::uint32_t> face, sorted;
   for (std::size_t f = 0; f < lines_.size(); ++f) {
     const std::size_t line = lines_[f];
     std::span<const std::int64_t> raw(indices_.data() + offsets_[f], offsets_[f + 1] - offsets_[f]);
@@ -56,26 +45,51 @@ void FaceBuilder::finish(SurfaceMesh& mesh, ImportReport& report) const {
     }
     face.assign(raw.begin(), raw.end());
     // A vertex written twice in a row (1 2 2 3) is a harmless export artefact: collapse it.
-    std::size_t before = face.size();
+    const std::size_t before = face.size();
     face.erase(std::unique(face.begin(), face.end()), face.end());
     while (face.size() > 1 && face.front() == face.back()) face.pop_back();
     if (face.size() < 3) {
       report.add("face dropped: fewer than 3 distinct vertices", line);
       continue;
     }
-    std::vector<std::uint32_t> sorted = face;
+    sorted.assign(face.begin(), face.end());
     std::sort(sorted.begin(), sorted.end());
     if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
       report.add("face dropped: a vertex occurs twice (non-simple polygon)", line);
       continue;
     }
     if (face.size() != before) report.add("face repaired: repeated consecutive vertex removed", line);
-    if (!seen.insert(canonical_loop(face)).second) {
-      report.add("face dropped: duplicate of an earlier face (same vertices, either orientation)",
-                 line);
+    kept.insert(kept.end(), face.begin(), face.end());
+    append_canonical_loop(face, canon);
+    kept_offsets.push_back(kept.size());
+    kept_lines.push_back(line);
+  }
+  // Pass 2: duplicates (same loop, either orientation) are adjacent once faces are sorted by
+  // their canonical loops; the first in file order is kept.
+  const std::size_t n = kept_lines.size();
+  auto key_of = [&](std::size_t i) {
+    return std::span<const std::uint32_t>(canon.data() + kept_offsets[i], kept_offsets[i + 1] - kept_offsets[i]);
+  };
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
+    const auto a = key_of(x), b = key_of(y);
+    if (a.size() != b.size()) return a.size() < b.size();
+    if (std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end())) return true;
+    if (std::lexicographical_compare(b.begin(), b.end(), a.begin(), a.end())) return false;
+    return x < y;
+  });
+  std::vector<char> duplicate(n, 0);
+  for (std::size_t k = 1; k < n; ++k) {
+    const auto a = key_of(order[k - 1]), b = key_of(order[k]);
+    duplicate[order[k]] = std::equal(a.begin(), a.end(), b.begin(), b.end());
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (duplicate[i]) {
+      report.add("face dropped: duplicate of an earlier face (same vertices, either orientation)", kept_lines[i]);
       continue;
     }
-    mesh.add_face(face);
+    mesh.add_face(std::span<const std::uint32_t>(kept.data() + kept_offsets[i], kept_offsets[i + 1] - kept_offsets[i]));
   }
 }
 

@@ -64,25 +64,39 @@ void FaceBuilder::finish(SurfaceMesh& mesh, ImportReport& report) const {
     kept_offsets.push_back(kept.size());
     kept_lines.push_back(line);
   }
-  // Pass 2: duplicates (same loop, either orientation) are adjacent once faces are sorted by
-  // their canonical loops; the first in file order is kept.
+  // Pass 2: duplicates (same loop, either orientation). Faces are sorted by a 64-bit hash of
+  // their canonical loop (integer compares only: fast even under sanitizers), then equal-hash
+  // runs are compared element by element; the first in file order is kept.
   const std::size_t n = kept_lines.size();
   auto key_of = [&](std::size_t i) {
     return std::span<const std::uint32_t>(canon.data() + kept_offsets[i], kept_offsets[i + 1] - kept_offsets[i]);
   };
-  std::vector<std::uint32_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
-    const auto a = key_of(x), b = key_of(y);
-    if (a.size() != b.size()) return a.size() < b.size();
-    if (std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end())) return true;
-    if (std::lexicographical_compare(b.begin(), b.end(), a.begin(), a.end())) return false;
-    return x < y;
-  });
+  struct Entry {
+    std::uint64_t hash;
+    std::uint32_t index;
+  };
+  std::vector<Entry> entries(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint64_t h = 1469598103934665603ull ^ (kept_offsets[i + 1] - kept_offsets[i]);
+    for (std::uint32_t v : key_of(i)) h = (h ^ v) * 1099511628211ull;  // FNV-1a over the loop
+    entries[i] = {h, static_cast<std::uint32_t>(i)};
+  }
+  std::sort(entries.begin(), entries.end(),
+            [](const Entry& x, const Entry& y) { return x.hash != y.hash ? x.hash < y.hash : x.index < y.index; });
   std::vector<char> duplicate(n, 0);
-  for (std::size_t k = 1; k < n; ++k) {
-    const auto a = key_of(order[k - 1]), b = key_of(order[k]);
-    duplicate[order[k]] = std::equal(a.begin(), a.end(), b.begin(), b.end());
+  for (std::size_t run = 0; run < n;) {
+    std::size_t end = run + 1;
+    while (end < n && entries[end].hash == entries[run].hash) ++end;
+    for (std::size_t k = run + 1; k < end; ++k)
+      for (std::size_t j = run; j < k; ++j) {
+        if (duplicate[entries[j].index]) continue;
+        const auto a = key_of(entries[j].index), b = key_of(entries[k].index);
+        if (std::equal(a.begin(), a.end(), b.begin(), b.end())) {
+          duplicate[entries[k].index] = 1;
+          break;
+        }
+      }
+    run = end;
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (duplicate[i]) {

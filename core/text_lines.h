@@ -13,7 +13,7 @@ namespace sublift {
 
 class LineReader {
  public:
-  /// `file` names the source in error messages.
+  /// `file` names the source in error messages. The reader views `text`: keep it alive.
   LineReader(std::string_view text, std::string file, std::size_t max_line_length);
   /// Next line without its ending; false at end of input. Throws InputError on NUL/binary bytes
   /// or a line longer than the limit.

@@ -144,6 +144,16 @@ TEST(Cli, ConvertRoundTripsExactly) {
   fs::remove_all(tmp);
 }
 
+// The product promise is one second per file; the Release run of this test enforces it. Under
+// AddressSanitizer (CI runs the suite a second time so) every access is instrumented and the
+// same work takes several times longer on a loaded 2-core machine, so there the bound only
+// separates "slow" from "hung".
+#if defined(__SANITIZE_ADDRESS__)
+constexpr double kSecondsPerFile = 5.0;
+#else
+constexpr double kSecondsPerFile = 1.0;
+#endif
+
 // The third-party corpus of broken files: controls load cleanly; every other file ends in a
 // clear error (exit 1, message naming the file) or loads with an itemised warning; never a
 // crash, hang or sanitizer report, always within a second.
@@ -176,7 +186,7 @@ TEST(Cli, BadInputCorpus) {
     SCOPED_TRACE(name);
     const ProcessResult r = info_json(f);
     expect_clean_exit(r, name);
-    EXPECT_LT(r.seconds, 1.0) << name << " took " << r.seconds << " s";
+    EXPECT_LT(r.seconds, kSecondsPerFile) << name << " took " << r.seconds << " s";
     ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 1) << "exit " << r.exit_code << "\n" << r.err;
     if (r.exit_code == 1) {
       EXPECT_NE(r.err.find(f.string()), std::string::npos) << "error must name the file:\n" << r.err;

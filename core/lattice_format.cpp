@@ -59,11 +59,8 @@ Shape read_lattice(std::string_view bytes, const std::string& file) {
       ids.push_back(*v);
     }
   };
-  while (lines.next(line)) {
+  while (next_tokens(lines, tok)) {
     const std::size_t ln = lines.line_number();
-    if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-    split_tokens(line, tok);
-    if (tok.empty()) continue;
     const std::string_view key = tok[0];
     CellShape cs;
     if (open_cell && key != "f" && key != "end")

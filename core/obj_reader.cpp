@@ -70,12 +70,8 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
   std::vector<std::string_view> tok;
   std::vector<std::int64_t> corners;
   LineReader lines(bytes, file, limits.max_line_length);
-  std::string_view line;
-  while (lines.next(line)) {
+  while (next_tokens(lines, tok)) {
     const std::size_t ln = lines.line_number();
-    if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-    split_tokens(line, tok);
-    if (tok.empty()) continue;
     const std::string_view key = tok[0];
     if (key == "v") {
       glm::dvec3 p(0.0);

@@ -82,17 +82,9 @@ LoadedMesh read_off_binary(std::string_view bytes, std::size_t offset, const std
 LoadedMesh read_off(std::string_view bytes, const std::string& file, const ImportLimits& limits) {
   LineReader lines(bytes, file, limits.max_line_length);
   std::vector<std::string_view> tok;
-  std::string_view line;
   // Next non-empty line with comments removed, split into `tok`; false at EOF.
-  auto next_tokens = [&]() {
-    while (lines.next(line)) {
-      if (const auto h = line.find('#'); h != std::string_view::npos) line = line.substr(0, h);
-      split_tokens(line, tok);
-      if (!tok.empty()) return true;
-    }
-    return false;
-  };
-  if (!next_tokens()) throw InputError(file, 0, "empty file: no OFF header");
+  auto next_line = [&]() { return next_tokens(lines, tok); };
+  if (!next_line()) throw InputError(file, 0, "empty file: no OFF header");
   std::string magic(tok[0]);
   std::string_view kind = magic;
   int dims = 3;
@@ -112,7 +104,7 @@ LoadedMesh read_off(std::string_view bytes, const std::string& file, const Impor
   }
   if (tok.size() > first) {
     tok.erase(tok.begin(), tok.begin() + first);  // counts on the header line: "OFF 8 6 0"
-  } else if (!next_tokens()) {
+  } else if (!next_line()) {
     throw InputError(file, lines.line_number(), "missing vertex/face counts");
   }
   if (tok.size() < 2) throw InputError(file, lines.line_number(), "expected 'vertices faces [edges]' counts");
@@ -126,7 +118,7 @@ LoadedMesh read_off(std::string_view bytes, const std::string& file, const Impor
   std::vector<std::size_t> vertex_lines;
   out.mesh.positions.reserve(static_cast<std::size_t>(c.vertices));
   for (std::int64_t v = 0; v < c.vertices; ++v) {
-    if (!next_tokens())
+    if (!next_line())
       throw InputError(file, lines.line_number(),
                        "file ends after " + std::to_string(v) + " of " + std::to_string(c.vertices) + " vertices");
     if (tok.size() < static_cast<std::size_t>(dims))
@@ -148,7 +140,7 @@ LoadedMesh read_off(std::string_view bytes, const std::string& file, const Impor
   FaceBuilder faces;
   std::vector<std::int64_t> corners;
   for (std::int64_t f = 0; f < c.faces; ++f) {
-    if (!next_tokens())
+    if (!next_line())
       throw InputError(file, lines.line_number(),
                        "file ends after " + std::to_string(f) + " of " + std::to_string(c.faces) + " faces");
     const std::size_t ln = lines.line_number();
@@ -170,7 +162,7 @@ LoadedMesh read_off(std::string_view bytes, const std::string& file, const Impor
     else
       faces.add(corners, ln);
   }
-  if (next_tokens())
+  if (next_line())
     out.report.add("trailing data after the last face ignored", lines.line_number());
   faces.finish(out.mesh, out.report);
   check_imported_mesh(file, out.mesh, vertex_lines, out.report);

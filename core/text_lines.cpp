@@ -51,6 +51,16 @@ void split_tokens(std::string_view line, std::vector<std::string_view>& out) {
   }
 }
 
+bool next_tokens(LineReader& lines, std::vector<std::string_view>& tokens) {
+  std::string_view line;
+  while (lines.next(line)) {
+    if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+    split_tokens(line, tokens);
+    if (!tokens.empty()) return true;
+  }
+  return false;
+}
+
 std::optional<double> parse_double(std::string_view t) {
   if (!t.empty() && t.front() == '+') t.remove_prefix(1);
   double v = 0.0;

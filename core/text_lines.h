@@ -31,6 +31,10 @@ class LineReader {
   std::size_t line_ = 0;
 };
 
+/// Reads the next line that holds anything besides blanks and a `#` comment, split into
+/// tokens; false at end of input. `lines.line_number()` is then that line's number.
+bool next_tokens(LineReader& lines, std::vector<std::string_view>& tokens);
+
 /// Splits on blanks (space, tab, vertical tab, form feed); never allocates strings.
 void split_tokens(std::string_view line, std::vector<std::string_view>& out);
 

@@ -26,10 +26,6 @@ class EdgeTable {
     }
     return it->second;
   }
-  const std::uint32_t* find(std::uint32_t a, std::uint32_t b) const {
-    auto it = map_.find(edge_key(a, b));
-    return it == map_.end() ? nullptr : &it->second;
-  }
 
  private:
   Complex& c_;
@@ -53,17 +49,45 @@ void add_face_loop(Complex& c, EdgeTable& edges, std::span<const std::uint32_t> 
 
 }  // namespace
 
+std::uint8_t untagged_face_dim(const Complex& c, std::uint32_t f) {
+  // In a volume, boundary and non-manifold faces (not between exactly two cells) are surfaces.
+  return c.dim == 3 && c.face_cells.size(f) == 2 ? 3 : 2;
+}
+
+std::uint8_t untagged_edge_dim(const Complex& c, std::uint32_t e) {
+  // Curve features where the surface an edge lies in ends or branches.
+  if (c.dim == 1) return 1;
+  if (c.dim == 2) return c.edge_faces.size(e) == 2 ? 2 : 1;
+  int surface_faces = 0;
+  for (std::uint32_t f : c.edge_faces.row(e)) surface_faces += c.face_dim[f] == 2;
+  return surface_faces == 0 ? 3 : surface_faces == 2 ? 2 : 1;
+}
+
+std::uint8_t untagged_vertex_dim(const Complex& c, std::uint32_t v) {
+  // Two curve edges put a vertex on the curve, three or more make a cusp, one alone is a dart
+  // (curve end inside a surface: the vertex stays smooth) or, with nothing else around, the end
+  // of an open curve (a cusp).
+  int curve_edges = 0;
+  std::uint8_t higher = 0;  // lowest dim >= 2 among incident edges (0 if none)
+  for (std::uint32_t e : c.vertex_edges.row(v)) {
+    if (c.edge_dim[e] == 1) ++curve_edges;
+    else if (higher == 0 || c.edge_dim[e] < higher) higher = c.edge_dim[e];
+  }
+  return curve_edges >= 3 ? 0 : curve_edges == 2 ? 1 : higher;
+}
+
 void assign_feature_dims(Complex& c, const FeatureTags& tags) {
   build_adjacency(c);
-  std::map<std::uint64_t, std::uint32_t> edge_of;
-  for (std::uint32_t e = 0; e < c.num_edges(); ++e) edge_of[edge_key(c.edge_verts[2 * e], c.edge_verts[2 * e + 1])] = e;
   std::vector<char> crease(c.num_edges(), 0);
   for (auto [a, b] : tags.crease_edges) {
-    auto it = edge_of.find(edge_key(a, b));
-    if (it == edge_of.end())
+    std::uint32_t found = UINT32_MAX;
+    if (a < c.num_vertices && b < c.num_vertices)
+      for (std::uint32_t e : c.vertex_edges.row(a))
+        if (c.edge_verts[2 * e] == b || c.edge_verts[2 * e + 1] == b) found = e;
+    if (found == UINT32_MAX)
       throw TopologyError("crease tag names vertices " + std::to_string(a) + " and " + std::to_string(b) +
                           ", which share no edge");
-    crease[it->second] = 1;
+    crease[found] = 1;
   }
   std::vector<char> feature_face(c.num_faces(), 0);
   if (!tags.feature_faces.empty()) {
@@ -75,46 +99,16 @@ void assign_feature_dims(Complex& c, const FeatureTags& tags) {
       feature_face[it->second] = 1;
     }
   }
-  // Faces: in a volume, boundary and non-manifold faces (not between exactly two cells) and
-  // tagged faces are surface features.
-  c.face_dim.assign(c.num_faces(), 2);
-  if (c.dim == 3)
-    for (std::uint32_t f = 0; f < c.num_faces(); ++f)
-      c.face_dim[f] = (c.face_cells.size(f) != 2 || feature_face[f]) ? 2 : 3;
-  // Edges: curve features where the surface they lie in ends or branches, and tagged creases.
-  c.edge_dim.assign(c.num_edges(), static_cast<std::uint8_t>(c.dim));
-  for (std::uint32_t e = 0; e < c.num_edges(); ++e) {
-    if (c.dim == 1 || crease[e]) {
-      c.edge_dim[e] = 1;
-    } else if (c.dim == 2) {
-      c.edge_dim[e] = c.edge_faces.size(e) == 2 ? 2 : 1;
-    } else {
-      int surface_faces = 0;
-      for (std::uint32_t f : c.edge_faces.row(e)) surface_faces += c.face_dim[f] == 2;
-      c.edge_dim[e] = surface_faces == 0 ? 3 : surface_faces == 2 ? 2 : 1;
-    }
-  }
-  // Vertices: two curve edges put a vertex on the curve, three or more (or a corner tag) make a
-  // cusp, one alone is a dart (curve end inside a surface: the vertex stays smooth) or, with
-  // nothing else around, the end of an open curve (a cusp).
-  c.vertex_dim.assign(c.num_vertices, 0);
-  std::vector<char> corner(c.num_vertices, 0);
+  // Each class from topology and the class below it, lowered by tags (docs/features.md).
+  c.face_dim.resize(c.num_faces());
+  for (std::uint32_t f = 0; f < c.num_faces(); ++f) c.face_dim[f] = feature_face[f] ? 2 : untagged_face_dim(c, f);
+  c.edge_dim.resize(c.num_edges());
+  for (std::uint32_t e = 0; e < c.num_edges(); ++e) c.edge_dim[e] = crease[e] ? 1 : untagged_edge_dim(c, e);
+  c.vertex_dim.resize(c.num_vertices);
+  for (std::uint32_t v = 0; v < c.num_vertices; ++v) c.vertex_dim[v] = untagged_vertex_dim(c, v);
   for (std::uint32_t v : tags.corner_vertices) {
     if (v >= c.num_vertices) throw TopologyError("corner tag names missing vertex " + std::to_string(v));
-    corner[v] = 1;
-  }
-  for (std::uint32_t v = 0; v < c.num_vertices; ++v) {
-    int curve_edges = 0;
-    std::uint8_t higher = 0;  // lowest dim >= 2 among incident edges (0 if none)
-    for (std::uint32_t e : c.vertex_edges.row(v)) {
-      if (c.edge_dim[e] == 1) ++curve_edges;
-      else if (higher == 0 || c.edge_dim[e] < higher) higher = c.edge_dim[e];
-    }
-    std::uint8_t d;
-    if (corner[v] || curve_edges >= 3) d = 0;
-    else if (curve_edges == 2) d = 1;
-    else d = higher;  // 0 curve edges, or a dart; an open curve's end has higher == 0
-    c.vertex_dim[v] = d;
+    c.vertex_dim[v] = 0;
   }
 }
 

@@ -43,6 +43,13 @@ Complex complex_from_polylines(std::uint32_t num_vertices, const Csr& polylines,
 Complex complex_from_cells(std::uint32_t num_vertices, const Csr& face_loops, const Csr& cell_faces,
                            const FeatureTags& tags = {});
 
+/// The feature dim a face, edge or vertex gets from topology alone, before tags lower it (faces
+/// need face_cells; edges need face dims set; vertices need edge dims set). Shared by
+/// assign_feature_dims and by writers that work out which tags reproduce a complex's dims.
+std::uint8_t untagged_face_dim(const Complex& c, std::uint32_t f);
+std::uint8_t untagged_edge_dim(const Complex& c, std::uint32_t e);
+std::uint8_t untagged_vertex_dim(const Complex& c, std::uint32_t v);
+
 /// Sets edge/face/vertex feature dims from topology and tags (see docs/features.md); called by
 /// the builders above, public for code that edits features.
 void assign_feature_dims(Complex& c, const FeatureTags& tags);

@@ -1,10 +1,10 @@
 #include "core/cell_shapes.h"
 
-#include "core/face_loop.h"
-
 #include <algorithm>
 #include <map>
 #include <set>
+
+#include "core/face_loop.h"
 
 namespace sublift {
 namespace {
@@ -15,7 +15,6 @@ const std::vector<std::vector<int>> kHexFaces = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0,
                                                  {3, 7, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 7}};
 const std::vector<std::vector<int>> kWedgeFaces = {{0, 1, 2}, {3, 5, 4}, {0, 3, 4, 1}, {1, 4, 5, 2}, {2, 5, 3, 0}};
 const std::vector<std::vector<int>> kPyramidFaces = {{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
-
 
 }  // namespace
 

@@ -1,5 +1,4 @@
 #include "core/connectivity_match.h"
-
 #include "core/face_loop.h"
 
 #include <algorithm>
@@ -9,7 +8,6 @@ namespace sublift {
 namespace {
 
 using Item = std::vector<std::uint32_t>;
-
 
 std::vector<Item> items(const Complex& c, int kind) {
   std::vector<Item> out;

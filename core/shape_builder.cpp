@@ -1,7 +1,5 @@
 #include "core/shape_builder.h"
 
-#include "core/face_loop.h"
-
 #include <algorithm>
 #include <map>
 #include <set>
@@ -9,12 +7,12 @@
 
 #include "core/complex_build.h"
 #include "core/errors.h"
+#include "core/face_loop.h"
 
 namespace sublift {
 namespace {
 
 std::uint64_t edge_key(std::uint64_t a, std::uint64_t b) { return std::min(a, b) << 32 | std::max(a, b); }
-
 
 }  // namespace
 

@@ -20,6 +20,17 @@ Csr transpose(const Csr& down, std::size_t num_lower) {
   return up;
 }
 
+Csr transpose_pairs(const std::vector<std::uint32_t>& pairs, std::size_t num_lower) {
+  Csr up;
+  up.offsets.assign(num_lower + 1, 0);
+  for (std::uint32_t x : pairs) ++up.offsets[x + 1];
+  for (std::size_t i = 0; i < num_lower; ++i) up.offsets[i + 1] += up.offsets[i];
+  up.items.resize(pairs.size());
+  std::vector<std::uint32_t> fill(up.offsets.begin(), up.offsets.end() - 1);
+  for (std::size_t k = 0; k < pairs.size(); ++k) up.items[fill[pairs[k]]++] = static_cast<std::uint32_t>(k / 2);
+  return up;
+}
+
 std::size_t Complex::bytes() const {
   std::size_t b = (edge_verts.capacity()) * 4 + vertex_dim.capacity() + edge_dim.capacity() + face_dim.capacity();
   for (const Csr* c : {&faces, &face_edges, &cell_faces, &vertex_edges, &vertex_faces, &vertex_cells, &edge_faces,
@@ -29,11 +40,7 @@ std::size_t Complex::bytes() const {
 }
 
 void build_adjacency(Complex& c) {
-  Csr edges;
-  edges.offsets.resize(c.num_edges() + 1);
-  for (std::uint32_t e = 0; e <= c.num_edges(); ++e) edges.offsets[e] = 2 * e;
-  edges.items = c.edge_verts;
-  c.vertex_edges = transpose(edges, c.num_vertices);
+  c.vertex_edges = transpose_pairs(c.edge_verts, c.num_vertices);
   c.vertex_faces = transpose(c.faces, c.num_vertices);
   c.edge_faces = transpose(c.face_edges, c.num_edges());
   c.face_cells = transpose(c.cell_faces, c.num_faces());

@@ -27,4 +27,8 @@ struct Csr {
 /// upward rows (lower -> higher), each row listing the higher primitives in increasing order.
 Csr transpose(const Csr& down, std::size_t num_lower);
 
+/// The same for rows of exactly two items stored flat (edges' end vertices), without building
+/// a Csr for them first.
+Csr transpose_pairs(const std::vector<std::uint32_t>& pairs, std::size_t num_lower);
+
 }  // namespace sublift

@@ -3,6 +3,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <ostream>
 
 #include <nlohmann/json.hpp>
@@ -47,10 +48,24 @@ std::vector<T> take(std::string_view bytes, std::size_t& pos, std::size_t n) {
   return v;
 }
 
+// The optional session keys of the header, checked against the number of levels J.
+void check_extras(const ProjectExtras& x, int levels, const std::function<void(const std::string&)>& fail) {
+  if (x.current_level < 0 || x.current_level > levels)
+    fail("current_level " + std::to_string(x.current_level) + " outside 0.." + std::to_string(levels));
+  if (!x.gains.empty() && x.gains.size() != static_cast<std::size_t>(levels))
+    fail(std::to_string(x.gains.size()) + " gains, but a project of " + std::to_string(levels) + " levels takes " +
+         std::to_string(levels) + " (one per level below the finest) or none");
+  for (std::size_t i = 0; i < x.gains.size(); ++i)
+    if (!std::isfinite(x.gains[i])) fail("gain of level " + std::to_string(i) + " is not finite");
+}
+
 }  // namespace
 
-void write_project(const std::string& path, const Hierarchy& h) {
+void write_project(const std::string& path, const Hierarchy& h) { write_project(path, h, ProjectExtras{}); }
+
+void write_project(const std::string& path, const Hierarchy& h, const ProjectExtras& extras) {
   const Complex& b = h.levels.at(0);
+  check_extras(extras, h.finest_level(), [&](const std::string& why) { throw Error(path + ": cannot save project: " + why); });
   nlohmann::json j;
   j["format"] = "sublift-project";
   j["version"] = 1;
@@ -63,6 +78,9 @@ void write_project(const std::string& path, const Hierarchy& h) {
                {"faces", b.num_faces()},               {"cells", b.num_cells()},
                {"face_corners", b.faces.items.size()}, {"cell_faces", b.cell_faces.items.size()}};
   j["coefficients"] = h.coeffs.size();
+  j["current_level"] = extras.current_level;
+  j["gains"] = extras.gains.empty() ? std::vector<double>(static_cast<std::size_t>(h.finest_level()), 1.0) : extras.gains;
+  j["local_frames"] = extras.local_frames;
   j["payload"] =
       "little-endian u32 edge_verts[2*edges] face_offsets[faces+1] face_verts[face_corners] "
       "face_edges[face_corners] cell_offsets[cells+1] cell_faces[cell_faces]; u8 vertex_dim[vertices] "
@@ -85,7 +103,11 @@ void write_project(const std::string& path, const Hierarchy& h) {
       true);
 }
 
-Hierarchy read_project_from_memory(const std::string& file, const std::string& bytes_in) {
+Hierarchy read_project_from_memory(const std::string& file, const std::string& bytes) {
+  return read_project_from_memory(file, bytes, nullptr);
+}
+
+Hierarchy read_project_from_memory(const std::string& file, const std::string& bytes_in, ProjectExtras* extras_out) {
   const std::string_view bytes(bytes_in);
   // Line 1: magic and version.
   const std::size_t nl1 = bytes.find('\n');
@@ -106,6 +128,8 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   int levels, channels, dim;
   bool integer;
   Scheme scheme;
+  ProjectExtras extras;
+  std::int64_t current_level = 0;
   try {
     j = nlohmann::json::parse(bytes.substr(nl1 + 1, nl2 - nl1 - 1));
     if (j.at("format").get<std::string>() != "sublift-project") throw InputError(file, 2, "header 'format' is not sublift-project");
@@ -127,6 +151,24 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
     SF = b.at("face_corners").get<std::uint64_t>();
     CF = b.at("cell_faces").get<std::uint64_t>();
     N = j.at("coefficients").get<std::uint64_t>();
+    // Optional session keys (absent in older version-1 files).
+    if (const auto it = j.find("current_level"); it != j.end()) {
+      if (!it->is_number_integer()) throw InputError(file, 2, "header 'current_level' is not an integer");
+      current_level = it->get<std::int64_t>();
+    }
+    if (const auto it = j.find("gains"); it != j.end()) {
+      if (!it->is_array()) throw InputError(file, 2, "header 'gains' is not an array");
+      if (it->size() > static_cast<std::size_t>(kMaxLevels))
+        throw InputError(file, 2, std::to_string(it->size()) + " gains, more than " + std::to_string(kMaxLevels) + " levels");
+      for (std::size_t i = 0; i < it->size(); ++i) {
+        if (!(*it)[i].is_number()) throw InputError(file, 2, "gain of level " + std::to_string(i) + " is not a number");
+        extras.gains.push_back((*it)[i].get<double>());
+      }
+    }
+    if (const auto it = j.find("local_frames"); it != j.end()) {
+      if (!it->is_boolean()) throw InputError(file, 2, "header 'local_frames' is not true or false");
+      extras.local_frames = it->get<bool>();
+    }
   } catch (const nlohmann::json::exception& e) {
     throw InputError(file, 2, std::string("malformed header: ") + e.what());
   }
@@ -188,6 +230,11 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
     throw InputError(file, 2, std::to_string(N) + " coefficients, but " + std::to_string(levels) + " levels of this base with " +
                                   std::to_string(channels) + " channels need " +
                                   std::to_string(static_cast<unsigned long long>(counts.back() * channels)));
+  // The session keys, once the levels are known to fit the payload.
+  if (current_level < 0 || current_level > levels)
+    throw InputError(file, 2, "current_level " + std::to_string(current_level) + " outside 0.." + std::to_string(levels));
+  extras.current_level = static_cast<int>(current_level);
+  check_extras(extras, levels, [&](const std::string& why) { throw InputError(file, 2, why); });
   std::vector<double> coeffs = take<double>(bytes, pos, N);
   for (std::size_t i = 0; i < coeffs.size(); ++i)
     if (!std::isfinite(coeffs[i])) throw InputError(file, 0, "coefficient " + std::to_string(i) + " is not finite");
@@ -195,11 +242,17 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   if (h.coeffs.size() != coeffs.size())
     throw InputError(file, 2, "coefficient count does not match the refined base");
   h.coeffs = std::move(coeffs);
+  if (extras_out) {
+    if (extras.gains.empty()) extras.gains.assign(static_cast<std::size_t>(levels), 1.0);
+    *extras_out = std::move(extras);
+  }
   return h;
 }
 
-Hierarchy read_project(const std::string& path) {
-  return read_project_from_memory(path, read_file_bytes(path));
+Hierarchy read_project(const std::string& path) { return read_project(path, nullptr); }
+
+Hierarchy read_project(const std::string& path, ProjectExtras* extras) {
+  return read_project_from_memory(path, read_file_bytes(path), extras);
 }
 
 }  // namespace sublift

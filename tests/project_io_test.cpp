@@ -186,3 +186,116 @@ TEST(ProjectIo, FailedSaveKeepsThePreviousFile) {
   for (auto& e : std::filesystem::directory_iterator(dir.path())) files += e.is_regular_file();
   EXPECT_EQ(files, 1u);
 }
+
+namespace {
+
+// Removes `"key":value,` from the one-line JSON header (values here are scalars or flat arrays).
+std::string without_key(std::string s, const std::string& key) {
+  const std::size_t at = s.find("\"" + key + "\":");
+  EXPECT_NE(at, std::string::npos) << key;
+  if (at == std::string::npos) return s;
+  std::size_t end = at + key.size() + 3;
+  if (s[end] == '[') end = s.find(']', end) + 1;
+  else end = s.find_first_of(",}", end);
+  if (s[end] == ',') ++end;
+  return s.erase(at, end - at);
+}
+
+// Replaces the value of `"key":` in the header by `value`.
+std::string with_value(const std::string& s, const std::string& key, const std::string& value) {
+  std::string t = without_key(s, key);
+  return t.insert(t.find('{') + 1, "\"" + key + "\":" + value + ",");
+}
+
+}  // namespace
+
+TEST(ProjectIo, ExtrasRoundTrip) {
+  TempDir dir("sublift_project_extras");
+  const Hierarchy h = random_hierarchy(lattice_with_features(), 2, 3, false, 11);
+  const ProjectExtras extras{1, {1.0 / 3.0, -2.5}, true};
+  const std::string path = dir.file("p.sublift");
+  write_project(path, h, extras);
+  ProjectExtras back;
+  expect_same(h, read_project(path, &back));
+  EXPECT_EQ(back.current_level, 1);
+  EXPECT_EQ(back.gains, extras.gains);  // exact: the JSON header prints round-trip digits
+  EXPECT_TRUE(back.local_frames);
+  // The other entry points read the same file; null extras are allowed.
+  expect_same(h, read_project(path));
+  expect_same(h, read_project(path, nullptr));
+  ProjectExtras mem;
+  expect_same(h, read_project_from_memory("p.sublift", read_file_bytes(path), &mem));
+  EXPECT_EQ(mem.gains, extras.gains);
+  // Empty gains mean all 1; the two-argument writer stores the defaults.
+  write_project(path, h, ProjectExtras{2, {}, false});
+  read_project(path, &back);
+  EXPECT_EQ(back.current_level, 2);
+  EXPECT_EQ(back.gains, std::vector<double>(2, 1.0));
+  EXPECT_FALSE(back.local_frames);
+  write_project(path, h);
+  back = ProjectExtras{1, {5.0}, true};
+  read_project(path, &back);
+  EXPECT_EQ(back.current_level, 0);
+  EXPECT_EQ(back.gains, std::vector<double>(2, 1.0));
+  EXPECT_FALSE(back.local_frames);
+  // Still version 1.
+  EXPECT_EQ(read_file_bytes(path).substr(0, 18), "sublift-project 1\n");
+}
+
+TEST(ProjectIo, VersionOneFilesWithoutExtrasLoadWithDefaults) {
+  TempDir dir("sublift_project_old");
+  const Hierarchy h = random_hierarchy(lattice_with_features(), 2, 3, false, 12);
+  std::string old = saved(h, dir);
+  for (const char* key : {"current_level", "gains", "local_frames"}) old = without_key(old, key);
+  ASSERT_EQ(old.find("current_level"), std::string::npos);
+  ASSERT_EQ(old.find("gains"), std::string::npos);
+  ASSERT_EQ(old.find("local_frames"), std::string::npos);
+  ProjectExtras x{2, {3.0, 4.0}, true};
+  expect_same(h, read_project_from_memory("old.sublift", old, &x));
+  EXPECT_EQ(x.current_level, 0);
+  EXPECT_EQ(x.gains, std::vector<double>(2, 1.0));
+  EXPECT_FALSE(x.local_frames);
+  expect_same(h, read_project_from_memory("old.sublift", old));
+  // An explicitly empty gain list is all 1 too.
+  x = {};
+  read_project_from_memory("p.sublift", with_value(saved(h, dir), "gains", "[]"), &x);
+  EXPECT_EQ(x.gains, std::vector<double>(2, 1.0));
+}
+
+TEST(ProjectIo, RefusesBadExtras) {
+  TempDir dir("sublift_project_bad_extras");
+  const Hierarchy h = random_hierarchy(lattice_with_features(), 2, 3, false, 13);
+  const std::string good = saved(h, dir);
+  ASSERT_NO_THROW(read_project_from_memory("p.sublift", good));
+  struct Case { const char* key; const char* value; const char* says; };
+  const Case cases[] = {
+      {"current_level", "-1", "current_level -1 outside 0..2"},
+      {"current_level", "3", "current_level 3 outside 0..2"},
+      {"current_level", "1.5", "'current_level' is not an integer"},
+      {"current_level", "\"1\"", "'current_level' is not an integer"},
+      {"gains", "[1.0]", "1 gains, but a project of 2 levels takes 2"},
+      {"gains", "[1.0,2.0,3.0]", "3 gains"},
+      {"gains", "[1.0,null]", "gain of level 1 is not a number"},
+      {"gains", "[1.0,\"x\"]", "gain of level 1 is not a number"},
+      {"gains", "[1e999,1.0]", "malformed header"},  // JSON has no infinity: overflow is a parse error
+      {"gains", "1.0", "'gains' is not an array"},
+      {"local_frames", "1", "'local_frames' is not true or false"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(std::string(c.key) + " = " + c.value);
+    std::size_t line = 0;
+    ProjectExtras x;
+    const std::string e = input_error([&] { read_project_from_memory("p.sublift", with_value(good, c.key, c.value), &x); }, &line);
+    EXPECT_NE(e.find(c.says), std::string::npos) << e;
+    EXPECT_NE(e.find("p.sublift"), std::string::npos) << e;
+    EXPECT_EQ(line, 2u) << e;
+    // The old entry point refuses the same file.
+    EXPECT_FALSE(input_error([&] { read_project_from_memory("p.sublift", with_value(good, c.key, c.value)); }).empty());
+  }
+  // The writer refuses bad extras and leaves no file behind.
+  const std::string path = dir.file("bad.sublift");
+  EXPECT_THROW(write_project(path, h, ProjectExtras{3, {}, false}), Error);
+  EXPECT_THROW(write_project(path, h, ProjectExtras{0, {1.0}, false}), Error);
+  EXPECT_THROW(write_project(path, h, ProjectExtras{0, {1.0, std::numeric_limits<double>::infinity()}, false}), Error);
+  EXPECT_FALSE(std::filesystem::exists(path));
+}

@@ -12,10 +12,19 @@ std::optional<std::string> Args::value(const std::string& key) const {
 
 Args parse_args(int argc, char** argv, int first, const std::set<std::string>& with_value,
                 const std::set<std::string>& flags) {
+  return parse_args(argc, argv, first, with_value, flags, {});
+}
+
+Args parse_args(int argc, char** argv, int first, const std::set<std::string>& with_value,
+                const std::set<std::string>& flags, const std::map<std::string, int>& multi) {
   Args a;
   for (int i = first; i < argc; ++i) {
     const std::string s = argv[i];
-    if (s == "-h") {
+    if (const auto m = multi.find(s); m != multi.end()) {
+      if (i + m->second >= argc)
+        throw UsageError("option " + s + " needs " + std::to_string(m->second) + (m->second == 1 ? " value" : " values"));
+      for (int k = 0; k < m->second; ++k) a.lists[s].push_back(argv[++i]);
+    } else if (s == "-h") {
       a.flags.insert("--help");
     } else if (with_value.count(s)) {
       if (i + 1 >= argc) throw UsageError("option " + s + " needs a value");

@@ -19,6 +19,7 @@ struct Args {
   std::vector<std::string> positional;
   std::map<std::string, std::string> values;  // "--size" -> "800x600", "-o" -> "out.png"
   std::set<std::string> flags;                // "--json", "--help"
+  std::map<std::string, std::vector<std::string>> lists;  // repeatable / multi-value options
   bool has(const std::string& flag) const { return flags.count(flag) != 0; }
   std::optional<std::string> value(const std::string& key) const;
 };
@@ -27,6 +28,11 @@ struct Args {
 /// anything else starting with '-' is a UsageError.
 Args parse_args(int argc, char** argv, int first, const std::set<std::string>& with_value,
                 const std::set<std::string>& flags);
+
+/// The same, plus options in `multi` that take the given number of values each (taken as they
+/// are, so "-0.5" is a value) and may be repeated; their values collect in Args::lists.
+Args parse_args(int argc, char** argv, int first, const std::set<std::string>& with_value,
+                const std::set<std::string>& flags, const std::map<std::string, int>& multi);
 
 /// Parses "WxH" (each 16..8192). Throws UsageError.
 void parse_size(const std::string& s, int& width, int& height);

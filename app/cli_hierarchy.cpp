@@ -1,3 +1,4 @@
+#include <cctype>
 #include "app/cli_hierarchy.h"
 
 #include <charconv>
@@ -43,6 +44,14 @@ std::string output_option(const Args& a, int dim) {
   if (dim > 0)
     if (const std::string why = shape_output_problem(*out, dim); !why.empty()) throw UsageError(why);
   return *out;
+}
+
+bool is_project_path(const std::string& path) {
+  const std::string ext = ".sublift";
+  if (path.size() < ext.size()) return false;
+  for (std::size_t i = 0; i < ext.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(path[path.size() - ext.size() + i])) != ext[i]) return false;
+  return true;
 }
 
 std::vector<double> xyz_of(std::span<const double> values, int channels) {

@@ -29,6 +29,9 @@ void check_refined_size(const Complex& base, int levels);
 /// to its extension (an empty `dim` check when dim is 0).
 std::string output_option(const Args& a, int dim);
 
+/// Whether `path` names a .sublift project (case-insensitive extension).
+bool is_project_path(const std::string& path);
+
 /// x, y, z of every vertex from values with `channels` per vertex (missing channels are 0).
 std::vector<double> xyz_of(std::span<const double> values, int channels);
 

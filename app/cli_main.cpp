@@ -29,6 +29,8 @@ constexpr const char* kUsage =
     "  synthesize PROJECT [--level L] [--keep F] -o OUT\n"
     "                                        control net of level L, optionally keeping only\n"
     "                                        the largest fraction F of the wavelets\n"
+    "  edit PROJECT --level L --vertex I [--falloff R] --delta DX DY DZ [--local-frames] -o OUT\n"
+    "                                        move control points of level L, fine detail kept\n"
     "\n"
     "Meshes: .obj (with OpenSubdiv 't' tags; 'l' polylines are curves), .off, .ply (ascii and\n"
     "binary). Lattices: .lattice (Sublift's text format), .vtk (legacy unstructured grid).\n"
@@ -52,6 +54,7 @@ int main(int argc, char** argv) {
     if (cmd == "subdivide") return cli::run_subdivide(argc, argv);
     if (cmd == "analyze") return cli::run_analyze(argc, argv);
     if (cmd == "synthesize") return cli::run_synthesize(argc, argv);
+    if (cmd == "edit") return cli::run_edit(argc, argv);
     std::cerr << "sublift-cli: unknown command '" << cmd << "'\n\n" << kUsage;
     return 2;
   } catch (const cli::UsageError& e) {

@@ -1,5 +1,6 @@
 // sublift-cli synthesize PROJECT [--level L] [--keep FRACTION] -o OUT [--json]
 #include <charconv>
+#include <chrono>
 #include <iostream>
 
 #include "app/cli_args.h"
@@ -53,11 +54,14 @@ int run_synthesize(int argc, char** argv) {
                      std::to_string(h.finest_level()));
   std::size_t kept = 0;
   if (keep) kept = keep_largest(h, *keep);
+  const auto t0 = std::chrono::steady_clock::now();
   const std::vector<double> x = synthesize(h, L);
+  const double synthesis_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const auto notes = write_shape(out, h.levels[static_cast<std::size_t>(L)], xyz_of(x, h.channels));
   for (const std::string& n : notes) std::cerr << out << ": warning: " << n << "\n";
   if (a.has("--json")) {
-    nlohmann::json j = {{"input", in}, {"output", out}, {"level", L}, {"vertices", h.num_vertices(L)}, {"notes", notes}};
+    nlohmann::json j = {{"input", in}, {"output", out}, {"level", L}, {"vertices", h.num_vertices(L)},
+                      {"synthesis_ms", synthesis_ms}, {"notes", notes}};
     if (keep) {
       j["keep"] = *keep;
       j["kept_wavelets"] = kept;

@@ -1,0 +1,136 @@
+// sublift-cli edit (issue 4): the command's result equals the session's reference path (analyse,
+// edit, synthesise everything), JSON fields, soft selection, outputs, usage and input errors.
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "core/complex_build.h"
+#include "core/hierarchy.h"
+#include "core/project_io.h"
+#include "core/session.h"
+#include "core/shape_io.h"
+#include "core/shapes.h"
+#include "tests/io_test_util.h"
+#include "tests/run_process.h"
+#include "tests/test_shapes.h"
+
+namespace sublift {
+namespace {
+
+using testing::ProcessResult;
+using testing::TempDir;
+
+ProcessResult cli(const std::vector<std::string>& args) {
+  std::vector<std::string> argv{SUBLIFT_CLI};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return testing::run_process(argv, 60.0);
+}
+
+double max_diff(std::span<const double> a, std::span<const double> b) {
+  EXPECT_EQ(a.size(), b.size());
+  double m = 0;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
+  return m;
+}
+
+// A torus project with detail at every level.
+Hierarchy project_hierarchy() {
+  const SurfaceMesh m = make_quad_torus(12, 8);
+  Hierarchy h = make_hierarchy(complex_from_surface_mesh(m), 3, Scheme::Cubic, 3);
+  set_base(h, flatten_positions(m));
+  std::vector<double> fine = synthesize(h, 3);
+  const std::vector<double> r = testing::random_values(fine.size(), 11, -0.01, 0.01);
+  for (std::size_t i = 0; i < fine.size(); ++i) fine[i] += r[i];
+  analyze(h, fine);
+  return h;
+}
+
+TEST(CliEdit, MatchesFullResynthesisAndReportsTiming) {
+  TempDir dir("sublift_cli_edit");
+  const Hierarchy h = project_hierarchy();
+  write_project(dir.file("in.sublift"), h);
+  for (const bool local : {false, true}) {
+    std::vector<std::string> args = {"edit", dir.file("in.sublift"), "--level", "1", "--vertex", "7", "--vertex", "50",
+                                     "--delta", "-0.1", "0.25", "-0.05", "-o", dir.file("out.sublift"), "--json"};
+    if (local) args.push_back("--local-frames");
+    const ProcessResult r = cli(args);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["level"], 1);
+    EXPECT_EQ(j["moved"], 2);
+    EXPECT_EQ(j["detail_frames"], local ? "local" : "world");
+    EXPECT_GE(j["resynthesis_ms"].get<double>(), 0.0);
+    EXPECT_GT(j["vertices_updated"].get<int>(), 2);
+    EXPECT_LT(j["vertices_updated"].get<int>(), int(h.num_vertices(3)));
+
+    Session ref(h);
+    if (local) ref.set_detail_frames(DetailFrames::Local);
+    const std::uint32_t v[2] = {7, 50};
+    const double d[3] = {-0.1, 0.25, -0.05};
+    ref.move_full(1, v, {}, d);
+    ProjectExtras extras;
+    const Hierarchy out = read_project(dir.file("out.sublift"), &extras);
+    EXPECT_LT(max_diff(out.coeffs, ref.hierarchy().coeffs), 1e-12);
+    EXPECT_EQ(extras.current_level, 1);
+    EXPECT_EQ(extras.local_frames, local);
+  }
+  // The finest level as a mesh, 17 digits: the same shape.
+  ASSERT_EQ(cli({"edit", dir.file("in.sublift"), "--level", "0", "--vertex", "3", "--delta", "0", "0", "0.3", "-o",
+                 dir.file("out.obj")})
+                .exit_code,
+            0);
+  Session ref(h);
+  const std::uint32_t v[1] = {3};
+  const double d[3] = {0, 0, 0.3};
+  ref.move_full(0, v, {}, d);
+  EXPECT_LT(max_diff(read_shape(dir.file("out.obj")).positions, ref.positions(3)), 1e-12);
+  // synthesize --json reports the full synthesis time to compare with.
+  const ProcessResult s = cli({"synthesize", dir.file("in.sublift"), "-o", dir.file("s.obj"), "--json"});
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  EXPECT_GE(nlohmann::json::parse(s.out)["synthesis_ms"].get<double>(), 0.0);
+}
+
+TEST(CliEdit, FalloffMovesANeighbourhood) {
+  TempDir dir("sublift_cli_edit_falloff");
+  write_project(dir.file("in.sublift"), project_hierarchy());
+  const ProcessResult r = cli({"edit", dir.file("in.sublift"), "--level", "0", "--vertex", "0", "--falloff", "1.2",
+                               "--delta", "0", "0.1", "0", "-o", dir.file("out.sublift"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_GT(j["moved"].get<int>(), 1);
+  EXPECT_LT(j["moved"].get<int>(), 96);
+}
+
+TEST(CliEdit, Errors) {
+  TempDir dir("sublift_cli_edit_errors");
+  write_project(dir.file("in.sublift"), project_hierarchy());
+  const std::string in = dir.file("in.sublift"), out = dir.file("o.sublift");
+  // Usage: exit 2 with the reason.
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"edit", in, "--level", "0", "--vertex", "1", "-o", out},                              // no delta
+           {"edit", in, "--level", "0", "--delta", "1", "0", "0", "-o", out},                    // no vertex
+           {"edit", in, "--level", "9", "--vertex", "1", "--delta", "1", "0", "0", "-o", out},   // level
+           {"edit", in, "--level", "0", "--vertex", "96", "--delta", "1", "0", "0", "-o", out},  // index
+           {"edit", in, "--level", "0", "--vertex", "1", "--delta", "1", "x", "0", "-o", out},   // number
+           {"edit", in, "--level", "0", "--vertex", "1", "--delta", "1", "0"},                     // short
+       }) {
+    const ProcessResult r = cli(args);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_FALSE(r.err.empty());
+  }
+  // Bad input: exit 1. Local frames on a lattice; a missing project.
+  const Shape lattice = read_shape(std::string(SUBLIFT_ASSETS_DIR) + "/prism_ring.lattice");
+  Hierarchy lh = make_hierarchy(lattice.base, 1, Scheme::Cubic, 3);
+  set_base(lh, lattice.positions);
+  write_project(dir.file("lattice.sublift"), lh);
+  ProcessResult r = cli({"edit", dir.file("lattice.sublift"), "--level", "0", "--vertex", "1", "--delta", "1", "0", "0",
+                         "--local-frames", "-o", out});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("local detail frames need a surface"), std::string::npos) << r.err;
+  r = cli({"edit", dir.file("missing.sublift"), "--level", "0", "--vertex", "1", "--delta", "1", "0", "0", "-o", out});
+  EXPECT_EQ(r.exit_code, 1);
+}
+
+}  // namespace
+}  // namespace sublift

@@ -4,11 +4,16 @@
 #include <cmath>
 
 #include "core/lifting_detail.h"
+#include "core/parallel.h"
 
 namespace sublift {
 namespace {
 
 using namespace lifting_detail;
+
+// Rows per chunk when the rows of one sub-step are spread over threads: small changes stay on
+// the calling thread.
+constexpr std::uint32_t kSparseGrain = 2048;
 
 // Reverse rows of one source group: source (local index) -> targets (local index).
 struct Reverse {
@@ -60,35 +65,39 @@ void sparse_gather(std::uint32_t num_targets, std::uint32_t target_base, const s
       }
     }
   }
-  for (const std::uint32_t i : d.candidates) {
-    const int m = target_m ? target_m[i] : 0;
-    double acc[3] = {0, 0, 0};
-    bool any = false;
-    for (int g = 0; g < G; ++g) {
-      const Group& gr = groups[g];
-      const double wm = gr.weight[m];
-      std::uint32_t b, len;
-      if (gr.offsets) {
-        b = gr.offsets[i];
-        len = gr.offsets[i + 1] - b;
-      } else {
-        b = i * gr.stride;
-        len = gr.stride;
+  // Rows are independent (each writes its own target, reads other classes): evaluate them on
+  // all threads, then list the new targets.
+  const std::uint32_t nc = static_cast<std::uint32_t>(d.candidates.size());
+  parallel_for(nc, kSparseGrain, [&](std::uint32_t begin, std::uint32_t end) {
+    for (std::uint32_t k = begin; k < end; ++k) {
+      const std::uint32_t i = d.candidates[k];
+      const int m = target_m ? target_m[i] : 0;
+      double acc[3] = {0, 0, 0};
+      for (int g = 0; g < G; ++g) {
+        const Group& gr = groups[g];
+        const double wm = gr.weight[m];
+        std::uint32_t b, len;
+        if (gr.offsets) {
+          b = gr.offsets[i];
+          len = gr.offsets[i + 1] - b;
+        } else {
+          b = i * gr.stride;
+          len = gr.stride;
+        }
+        if (len == 0 || wm == 0.0) continue;
+        double sum[3] = {0, 0, 0};
+        for (std::uint32_t j = 0; j < len; ++j) {
+          const double* p = d.x.data() + std::size_t(gr.source_base + gr.items[b + j]) * 3;
+          sum[0] += p[0], sum[1] += p[1], sum[2] += p[2];
+        }
+        const double w = wm * inv(len);
+        for (int c = 0; c < 3; ++c) acc[c] += w * sum[c];
       }
-      if (len == 0 || wm == 0.0) continue;
-      any = true;
-      double sum[3] = {0, 0, 0};
-      for (std::uint32_t k = 0; k < len; ++k) {
-        const double* p = d.x.data() + std::size_t(gr.source_base + gr.items[b + k]) * 3;
-        sum[0] += p[0], sum[1] += p[1], sum[2] += p[2];
-      }
-      const double w = wm * inv(len);
-      for (int c = 0; c < 3; ++c) acc[c] += w * sum[c];
+      double* dst = d.x.data() + std::size_t(target_base + i) * 3;
+      for (int c = 0; c < 3; ++c) dst[c] += acc[c];
     }
-    if (!any || (acc[0] == 0.0 && acc[1] == 0.0 && acc[2] == 0.0)) continue;
-    double* dst = d.at(target_base + i);
-    for (int c = 0; c < 3; ++c) dst[c] += acc[c];
-  }
+  });
+  for (const std::uint32_t i : d.candidates) d.at(target_base + i);
 }
 
 void wlift_cells(const Complex& p, const Classes& k, double a, double sign, SparseDelta& d) {
@@ -154,15 +163,18 @@ void slift_faces(const Complex& p, const LiftTables& t, const Classes& k, double
 }
 
 void sscale(const Complex& p, const Classes& k, double a, bool inverse, SparseDelta& d) {
+  double factor[3][4];  // [topological dim t][feature dim m]: a^(m-t), as lifting.cpp
+  for (int t = 0; t < 3; ++t)
+    for (int m = 0; m < 4; ++m) {
+      const double f = m >= t ? std::pow(a, m - t) : 1.0;
+      factor[t][m] = inverse ? 1.0 / f : f;
+    }
   for (const std::uint32_t v : d.list) {
-    int t, m;
-    if (v < k.E0) t = 0, m = p.vertex_dim[v];
-    else if (v < k.F0) t = 1, m = p.edge_dim[v - k.E0];
-    else if (v < k.C0) t = 2, m = p.face_dim[v - k.F0];
+    double f;
+    if (v < k.E0) f = factor[0][p.vertex_dim[v]];
+    else if (v < k.F0) f = factor[1][p.edge_dim[v - k.E0]];
+    else if (v < k.C0) f = factor[2][p.face_dim[v - k.F0]];
     else continue;  // cells: factor 1
-    if (m < t) continue;
-    double f = std::pow(a, m - t);
-    if (inverse) f = 1.0 / f;
     if (f == 1.0) continue;
     double* x = d.x.data() + std::size_t(v) * 3;
     for (int c = 0; c < 3; ++c) x[c] *= f;

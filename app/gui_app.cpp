@@ -5,26 +5,24 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
-#include <algorithm>
+#include <cfloat>
 #include <chrono>
-#include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "core/errors.h"
-#include "core/mesh_import.h"
-#include "core/mesh_stats.h"
+#include "app/modeler_controller.h"
+#include "app/modeler_view.h"
+#include "app/script_runner.h"
 #include "render/headless_context.h"
 #include "render/offscreen_target.h"
 #include "render/render_errors.h"
-#include "render/viewport_renderer.h"
 #include "render/window_context.h"
 #include "ui/panels.h"
-#include "ui/viewport_input.h"
 
 #ifndef SUBLIFT_ASSETS_DIR
 #define SUBLIFT_ASSETS_DIR "assets"
@@ -36,29 +34,10 @@ namespace {
 constexpr const char* kGlslVersion = "#version 330 core";
 constexpr const char* kDefaultScreenshot = "sublift-screenshot.png";
 constexpr int kDefaultScreenshotFrames = 3;  // ImGui settles its layout within two frames
-constexpr glm::vec3 kWindowClear{0.11f, 0.12f, 0.13f};
-constexpr double kAwakeSeconds = 1.5;  // keep redrawing this long after the last input
+constexpr int kSettleFrames = 2;             // frames drawn before a scripted screenshot
+constexpr double kAwakeSeconds = 1.5;        // keep redrawing this long after the last input
 
-struct LoadedModel {
-  SurfaceMesh mesh;
-  ModelInfo info;
-};
-
-/// Imports `path` and computes what the panel shows; throws sublift::Error.
-LoadedModel load_model(const std::string& path) {
-  LoadedMesh loaded = import_surface_mesh(path);
-  LoadedModel model;
-  model.info.file_path = path;
-  model.info.file_name = std::filesystem::path(path).filename().string();
-  model.info.stats = compute_mesh_stats(loaded.mesh);
-  // Lines name the file's base name: the panel is narrow and shows the path in a tooltip.
-  model.info.warnings = loaded.report.empty() ? "" : loaded.report.format(model.info.file_name);
-  model.mesh = std::move(loaded.mesh);
-  return model;
-}
-
-// Time spent producing a frame (drawing and presenting, which includes waiting for vsync; not
-// the idle wait for input), smoothed so the status line is readable.
+// Time spent producing a frame, smoothed so the status line is readable.
 class FrameClock {
  public:
   void begin() { start_ = std::chrono::steady_clock::now(); }
@@ -73,80 +52,6 @@ class FrameClock {
   std::chrono::steady_clock::time_point start_;
   double average_ms_ = 0.0;
 };
-
-struct AppState {
-  LoadedModel model;
-  OrbitCamera camera;
-  ViewToggles toggles;
-  PanelLayout layout;
-  FrameClock clock;
-  bool framed = false;  // frame the model once the viewport size is known
-};
-
-// Applies one viewport or panel request to the camera and keeps it in step with the toggles.
-void apply_camera_action(AppState& state, const CameraAction& action, const Bounds& bounds) {
-  OrbitCamera& camera = state.camera;
-  switch (action.type) {
-    case CameraActionType::None: break;
-    case CameraActionType::Orbit: camera.orbit(action.dx, action.dy); break;
-    case CameraActionType::Pan: camera.pan(action.dx, action.dy); break;
-    case CameraActionType::Zoom: camera.zoom(action.steps); break;
-    case CameraActionType::Frame: frame_bounds(camera, bounds); break;
-    case CameraActionType::ViewFront: camera.set_view(ViewPreset::Front); break;
-    case CameraActionType::ViewBack: camera.set_view(ViewPreset::Back); break;
-    case CameraActionType::ViewRight: camera.set_view(ViewPreset::Right); break;
-    case CameraActionType::ViewLeft: camera.set_view(ViewPreset::Left); break;
-    case CameraActionType::ViewTop: camera.set_view(ViewPreset::Top); break;
-    case CameraActionType::ViewBottom: camera.set_view(ViewPreset::Bottom); break;
-    case CameraActionType::ToggleOrthographic:
-      state.toggles.orthographic = !state.toggles.orthographic;
-      break;
-  }
-  camera.orthographic = state.toggles.orthographic;
-  const UpAxis up_axis = state.toggles.z_up ? UpAxis::Z : UpAxis::Y;
-  if (camera.up_axis != up_axis) {
-    // The same angles now look at the model from elsewhere: frame it again.
-    camera.up_axis = up_axis;
-    frame_bounds(camera, bounds);
-  }
-}
-
-// The one frame both the window and the headless path draw: panels, viewport, ImGui on top.
-// The caller has started the ImGui backend frame(s) and bound the target framebuffer.
-void draw_frame(AppState& state, ViewportRenderer& viewport, int fb_width, int fb_height) {
-  const ImGuiIO& io = ImGui::GetIO();
-  const float display_w = io.DisplaySize.x, display_h = io.DisplaySize.y;
-
-  ImGui::NewFrame();
-  const CameraAction panel_action =
-      draw_side_panel(state.model.info, state.toggles, display_w, display_h, state.layout);
-  const MeshStats& stats = state.model.info.stats;
-  draw_status_line({state.model.info.file_name, stats.vertices, stats.faces, stats.polylines,
-                    state.clock.average_ms(), state.toggles.orthographic},
-                   display_w, display_h, state.layout);
-  ImGui::Render();
-
-  // ImGui works in window coordinates, top-left origin; GL in framebuffer pixels, bottom-left.
-  const ScreenRect r = viewport_rect(display_w, display_h, state.layout);
-  const float sx = display_w > 0.0f ? static_cast<float>(fb_width) / display_w : 1.0f;
-  const float sy = display_h > 0.0f ? static_cast<float>(fb_height) / display_h : 1.0f;
-  const ViewportRect rect{static_cast<int>(std::lround(r.x * sx)),
-                         static_cast<int>(std::lround((display_h - r.y - r.height) * sy)),
-                         static_cast<int>(std::lround(r.width * sx)),
-                         static_cast<int>(std::lround(r.height * sy))};
-  state.camera.set_viewport(rect.width, rect.height);
-  if (!state.framed) {
-    frame_bounds(state.camera, viewport.bounds());
-    state.framed = true;
-  }
-  apply_camera_action(state, panel_action, viewport.bounds());
-
-  clear_framebuffer(fb_width, fb_height, kWindowClear);
-  if (rect.width > 0 && rect.height > 0) {
-    viewport.draw(state.camera, rect, DisplayOptions{state.toggles.shaded, state.toggles.wireframe});
-  }
-  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-}
 
 // ImGui context for one run; IniFilename off: the panels are docked, nothing to remember.
 struct ImGuiContextGuard {
@@ -163,9 +68,7 @@ struct ImGuiContextGuard {
 
 struct OpenGl3BackendGuard {
   OpenGl3BackendGuard() {
-    if (!ImGui_ImplOpenGL3_Init(kGlslVersion)) {
-      throw RenderError("Dear ImGui's OpenGL 3 backend failed to start");
-    }
+    if (!ImGui_ImplOpenGL3_Init(kGlslVersion)) throw RenderError("Dear ImGui's OpenGL 3 backend failed to start");
   }
   ~OpenGl3BackendGuard() { ImGui_ImplOpenGL3_Shutdown(); }
   OpenGl3BackendGuard(const OpenGl3BackendGuard&) = delete;
@@ -175,25 +78,98 @@ struct OpenGl3BackendGuard {
 struct GlfwBackendGuard {
   explicit GlfwBackendGuard(GLFWwindow* window) {
     // install_callbacks: ImGui chains to the callbacks the app installed before.
-    if (!ImGui_ImplGlfw_InitForOpenGL(window, true)) {
-      throw RenderError("Dear ImGui's GLFW backend failed to start");
-    }
+    if (!ImGui_ImplGlfw_InitForOpenGL(window, true)) throw RenderError("Dear ImGui's GLFW backend failed to start");
   }
   ~GlfwBackendGuard() { ImGui_ImplGlfw_Shutdown(); }
   GlfwBackendGuard(const GlfwBackendGuard&) = delete;
   GlfwBackendGuard& operator=(const GlfwBackendGuard&) = delete;
 };
 
+// What the frame loop does after drawing a frame: nothing, save it, or stop.
+struct FramePlan {
+  std::string screenshot;  // write this frame to this PNG
+  bool last = false;       // stop after this frame
+  int exit_code = 0;
+};
+
+// Decides, frame by frame, what a --script, --screenshot or interactive run does.
+class RunPlan {
+ public:
+  RunPlan(const GuiOptions& options, std::unique_ptr<ScriptRunner> script, bool headless)
+      : script_(std::move(script)) {
+    if (!script_) {
+      frames_ = options.frames > 0 ? options.frames
+                                   : (!options.screenshot.empty() || headless ? kDefaultScreenshotFrames : 0);
+      screenshot_ = options.screenshot.empty() && headless ? kDefaultScreenshot : options.screenshot;
+    }
+  }
+  bool scripted() const { return script_ != nullptr; }
+  bool bounded() const { return script_ != nullptr || frames_ > 0; }
+
+  /// Runs script commands before a frame is drawn; returns what to do after drawing it.
+  FramePlan before_frame(ModelerController& app) {
+    ++frame_;
+    FramePlan plan;
+    if (!script_) {
+      if (frames_ > 0 && frame_ >= frames_) {
+        plan.last = true;
+        plan.screenshot = screenshot_;
+      }
+      return plan;
+    }
+    if (settle_ > 0) {  // a screenshot is pending: let ImGui settle first
+      if (--settle_ == 0) plan.screenshot = std::exchange(pending_, {});
+      return plan;
+    }
+    const ScriptStep step = script_->next(app.model, &app.display);
+    if (step.reframe) app.framed = false;
+    if (!step.view.empty()) {
+      const ViewPreset preset = step.view == "front"   ? ViewPreset::Front
+                                : step.view == "back"  ? ViewPreset::Back
+                                : step.view == "right" ? ViewPreset::Right
+                                : step.view == "left"  ? ViewPreset::Left
+                                : step.view == "top"   ? ViewPreset::Top
+                                                       : ViewPreset::Bottom;
+      app.camera.set_view(preset);
+      app.framed = false;
+    }
+    switch (step.kind) {
+      case ScriptStep::Kind::Screenshot:
+        pending_ = step.path;
+        settle_ = kSettleFrames;  // this frame and kSettleFrames - 1 more, then capture
+        break;
+      case ScriptStep::Kind::Quit:
+      case ScriptStep::Kind::End:
+        plan.last = true;
+        break;
+      case ScriptStep::Kind::Error:
+        std::cerr << step.message << '\n';
+        plan.last = true;
+        plan.exit_code = 1;
+        break;
+    }
+    return plan;
+  }
+
+ private:
+  std::unique_ptr<ScriptRunner> script_;
+  int frames_ = 0, frame_ = 0, settle_ = 0;
+  std::string screenshot_, pending_;
+};
+
 // ---- window path ----------------------------------------------------------------------------
 
-// Input gathered by the GLFW callbacks between frames.
 struct WindowInput {
-  std::vector<InputEvent> events;
-  bool dragging[3] = {false, false, false};  // left, right, middle: pressed over the viewport
-  double last_x = 0.0, last_y = 0.0;
-  std::optional<std::string> dropped_file;
-  double last_activity = 0.0;  // glfwGetTime() of the last input, to decide how long to sleep
+  std::vector<WindowEvent> events;
+  std::vector<std::string> dropped;
+  double last_activity = 0.0;
 };
+
+WindowInput& input_of(GLFWwindow* window) { return *static_cast<WindowInput*>(glfwGetWindowUserPointer(window)); }
+
+Modifiers modifiers_of(int mods) {
+  return Modifiers{(mods & GLFW_MOD_SHIFT) != 0, (mods & GLFW_MOD_CONTROL) != 0, (mods & GLFW_MOD_ALT) != 0};
+}
 
 Modifiers current_modifiers(GLFWwindow* window) {
   auto down = [window](int key) { return glfwGetKey(window, key) == GLFW_PRESS; };
@@ -202,108 +178,96 @@ Modifiers current_modifiers(GLFWwindow* window) {
                    down(GLFW_KEY_LEFT_ALT) || down(GLFW_KEY_RIGHT_ALT)};
 }
 
-Key to_key(int glfw_key) {
-  switch (glfw_key) {
+Key to_key(int k) {
+  if (k >= GLFW_KEY_0 && k <= GLFW_KEY_9) return static_cast<Key>(static_cast<int>(Key::Digit0) + (k - GLFW_KEY_0));
+  if (k >= GLFW_KEY_KP_0 && k <= GLFW_KEY_KP_9) {
+    // Numpad 1/3/5/7 are views; the other numpad digits type distances.
+    switch (k) {
+      case GLFW_KEY_KP_1: return Key::Numpad1;
+      case GLFW_KEY_KP_3: return Key::Numpad3;
+      case GLFW_KEY_KP_5: return Key::Numpad5;
+      case GLFW_KEY_KP_7: return Key::Numpad7;
+      default: return static_cast<Key>(static_cast<int>(Key::Digit0) + (k - GLFW_KEY_KP_0));
+    }
+  }
+  switch (k) {
     case GLFW_KEY_F: return Key::F;
     case GLFW_KEY_HOME: return Key::Home;
     case GLFW_KEY_KP_DECIMAL: return Key::NumpadPeriod;
-    case GLFW_KEY_KP_1: return Key::Numpad1;
-    case GLFW_KEY_KP_3: return Key::Numpad3;
-    case GLFW_KEY_KP_5: return Key::Numpad5;
-    case GLFW_KEY_KP_7: return Key::Numpad7;
+    case GLFW_KEY_A: return Key::A;
+    case GLFW_KEY_D: return Key::D;
+    case GLFW_KEY_G: return Key::G;
+    case GLFW_KEY_X: return Key::X;
+    case GLFW_KEY_Y: return Key::Y;
+    case GLFW_KEY_Z: return Key::Z;
+    case GLFW_KEY_S: return Key::S;
+    case GLFW_KEY_O: return Key::O;
+    case GLFW_KEY_E: return Key::E;
+    case GLFW_KEY_PAGE_UP: return Key::PageUp;
+    case GLFW_KEY_PAGE_DOWN: return Key::PageDown;
+    case GLFW_KEY_ESCAPE: return Key::Escape;
+    case GLFW_KEY_ENTER:
+    case GLFW_KEY_KP_ENTER: return Key::Enter;
+    case GLFW_KEY_BACKSPACE: return Key::Backspace;
+    case GLFW_KEY_MINUS:
+    case GLFW_KEY_KP_SUBTRACT: return Key::Minus;
+    case GLFW_KEY_PERIOD: return Key::Period;
     default: return Key::None;
   }
 }
 
-WindowInput& input_of(GLFWwindow* window) {
-  return *static_cast<WindowInput*>(glfwGetWindowUserPointer(window));
+WindowEvent mouse_event(GLFWwindow* window, WindowEvent::Type type) {
+  WindowEvent e;
+  e.type = type;
+  glfwGetCursorPos(window, &e.x, &e.y);
+  e.mods = current_modifiers(window);
+  e.over_ui = ImGui::GetIO().WantCaptureMouse;
+  return e;
 }
 
-void on_mouse_button(GLFWwindow* window, int button, int action, int /*mods*/) {
+void on_mouse_button(GLFWwindow* window, int button, int action, int mods) {
   WindowInput& input = input_of(window);
   input.last_activity = glfwGetTime();
   if (button < 0 || button > 2) return;
-  if (action == GLFW_PRESS && !ImGui::GetIO().WantCaptureMouse) input.dragging[button] = true;
-  if (action == GLFW_RELEASE) input.dragging[button] = false;
+  WindowEvent e = mouse_event(window, action == GLFW_PRESS ? WindowEvent::Type::Press : WindowEvent::Type::Release);
+  // GLFW numbers left 0, right 1, middle 2, as WindowEvent does.
+  e.button = button;
+  e.mods = modifiers_of(mods);
+  input.events.push_back(e);
 }
 
 void on_scroll(GLFWwindow* window, double /*x*/, double y) {
   input_of(window).last_activity = glfwGetTime();
-  if (ImGui::GetIO().WantCaptureMouse) return;
-  InputEvent event;
-  event.type = InputEvent::Type::Wheel;
-  event.mods = current_modifiers(window);
-  event.wheel = y;
-  input_of(window).events.push_back(event);
+  WindowEvent e = mouse_event(window, WindowEvent::Type::Wheel);
+  e.wheel = y;
+  input_of(window).events.push_back(e);
 }
 
 void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int mods) {
   input_of(window).last_activity = glfwGetTime();
-  if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
-  InputEvent event;
-  event.type = InputEvent::Type::KeyPress;
-  event.key = to_key(key);
-  event.mods = Modifiers{(mods & GLFW_MOD_SHIFT) != 0, (mods & GLFW_MOD_CONTROL) != 0,
-                         (mods & GLFW_MOD_ALT) != 0};
-  if (event.key != Key::None) input_of(window).events.push_back(event);
+  if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+  WindowEvent e;
+  e.type = WindowEvent::Type::Key;
+  e.key = to_key(key);
+  e.mods = modifiers_of(mods);
+  e.over_ui = ImGui::GetIO().WantCaptureKeyboard;
+  if (e.key != Key::None) input_of(window).events.push_back(e);
 }
 
 void on_drop(GLFWwindow* window, int count, const char** paths) {
   input_of(window).last_activity = glfwGetTime();
-  if (count > 0) input_of(window).dropped_file = paths[0];
+  if (count > 0) input_of(window).dropped.emplace_back(paths[0]);
 }
 
 void on_cursor_pos(GLFWwindow* window, double /*x*/, double /*y*/) {
   input_of(window).last_activity = glfwGetTime();
+  input_of(window).events.push_back(mouse_event(window, WindowEvent::Type::Move));
 }
 
-// Turns this frame's cursor motion and queued events into camera changes.
-void process_input(GLFWwindow* window, WindowInput& input, AppState& state,
-                   const Bounds& bounds) {
-  double x = 0.0, y = 0.0;
-  glfwGetCursorPos(window, &x, &y);
-  int window_w = 1, window_h = 1, fb_w = 1, fb_h = 1;
-  glfwGetWindowSize(window, &window_w, &window_h);
-  glfwGetFramebufferSize(window, &fb_w, &fb_h);
-  const double scale = window_w > 0 ? static_cast<double>(fb_w) / window_w : 1.0;
-  InputEvent move;
-  move.type = InputEvent::Type::MouseMove;
-  move.mods = current_modifiers(window);
-  move.left = input.dragging[GLFW_MOUSE_BUTTON_LEFT];
-  move.right = input.dragging[GLFW_MOUSE_BUTTON_RIGHT];
-  move.middle = input.dragging[GLFW_MOUSE_BUTTON_MIDDLE];
-  move.dx = (x - input.last_x) * scale;
-  move.dy = (y - input.last_y) * scale;
-  input.last_x = x;
-  input.last_y = y;
-  if (move.left || move.right || move.middle) {
-    apply_camera_action(state, map_viewport_input(move), bounds);
-  }
-  for (const InputEvent& event : input.events) {
-    apply_camera_action(state, map_viewport_input(event), bounds);
-  }
-  input.events.clear();
-}
-
-// Replaces the model with a dropped file; a failure leaves the current one and is shown.
-void open_dropped_file(WindowInput& input, AppState& state, ViewportRenderer& viewport) {
-  if (!input.dropped_file) return;
-  const std::string path = *std::exchange(input.dropped_file, std::nullopt);
-  try {
-    LoadedModel model = load_model(path);
-    viewport.set_mesh(model.mesh);
-    state.model = std::move(model);
-    state.framed = false;
-  } catch (const std::exception& e) {
-    state.model.info.error = std::string("Cannot open dropped file: ") + e.what();
-  }
-}
-
-int run_window(WindowContext& window, AppState& state, const GuiOptions& options) {
+int run_window(WindowContext& window, ModelerController& app, RunPlan& plan) {
   GLFWwindow* handle = window.handle();
   WindowInput input;
   glfwSetWindowUserPointer(handle, &input);
-  glfwGetCursorPos(handle, &input.last_x, &input.last_y);
   glfwSetMouseButtonCallback(handle, on_mouse_button);
   glfwSetScrollCallback(handle, on_scroll);
   glfwSetKeyCallback(handle, on_key);
@@ -313,67 +277,82 @@ int run_window(WindowContext& window, AppState& state, const GuiOptions& options
   ImGuiContextGuard imgui;
   GlfwBackendGuard platform(handle);
   OpenGl3BackendGuard renderer;
-  ViewportRenderer viewport;
-  viewport.set_mesh(state.model.mesh);
-
-  const bool screenshot = !options.screenshot.empty();
-  const int frames = options.frames > 0 ? options.frames
-                                        : (screenshot ? kDefaultScreenshotFrames : 0);
-  for (int frame = 1; !window.should_close(); ++frame) {
-    if (frames > 0) {
+  ModelerView view;
+  FrameClock clock;
+  int exit_code = 0;
+  std::string shown_title;
+  while (true) {
+    if (plan.bounded()) {
       glfwPollEvents();
-    } else if (glfwGetTime() - input.last_activity < kAwakeSeconds) {
-      // Shortly after input keep drawing a few frames a second: ImGui's hover effects and
-      // delayed tooltips need frames without new events.
+    } else if (glfwGetTime() - input.last_activity < kAwakeSeconds || app.model.dragging()) {
       glfwWaitEventsTimeout(0.1);
     } else {
-      glfwWaitEvents();  // idle: draw nothing until something happens
+      glfwWaitEventsTimeout(5.0);  // idle; wake now and then for the autosave
     }
-    state.clock.begin();
-    open_dropped_file(input, state, viewport);
-    process_input(handle, input, state, viewport.bounds());
+    if (window.should_close()) {
+      if (app.request_quit()) break;
+      glfwSetWindowShouldClose(handle, GLFW_FALSE);
+    }
+    if (app.quit_confirmed()) break;
+    clock.begin();
+    for (const std::string& path : std::exchange(input.dropped, {})) app.open(path);
+    for (const WindowEvent& e : std::exchange(input.events, {})) app.handle(e);
+    const FramePlan frame = plan.before_frame(app);
+    app.frame_ms = clock.average_ms();
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     int fb_w = 0, fb_h = 0;
     window.framebuffer_size(fb_w, fb_h);
-    draw_frame(state, viewport, fb_w, fb_h);
-    const bool last = frames > 0 && frame >= frames;
-    if (last && screenshot) {
+    app.draw_frame(view, fb_w, fb_h);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (!frame.screenshot.empty()) {
       int width = 0, height = 0;
       const std::vector<std::uint8_t> rgba = window.read_back_buffer(width, height);
-      write_png(options.screenshot, width, height, rgba);
+      write_png(frame.screenshot, width, height, rgba);
     }
     window.swap_buffers();
-    state.clock.end();
-    if (last) break;
+    clock.end();
+    app.tick(glfwGetTime());
+    if (app.model.has_session()) {
+      std::string title = "Sublift - " + std::filesystem::path(app.model.file_path()).filename().string();
+      if (app.model.session().dirty()) title += " *";
+      if (title != shown_title) glfwSetWindowTitle(handle, (shown_title = title).c_str());
+    }
+    if (frame.last) {
+      exit_code = frame.exit_code;
+      break;
+    }
   }
-  return 0;
+  app.clean_exit();
+  return exit_code;
 }
 
 // ---- headless path --------------------------------------------------------------------------
 
-int run_headless(AppState& state, const GuiOptions& options, const std::string& path) {
+int run_headless(ModelerController& app, RunPlan& plan, const GuiOptions& options) {
   HeadlessContext context;
   OffscreenTarget target(options.width, options.height);
   ImGuiContextGuard imgui;
   OpenGl3BackendGuard renderer;
-  ViewportRenderer viewport;
-  viewport.set_mesh(state.model.mesh);
-
+  ModelerView view;
+  FrameClock clock;
   ImGuiIO& io = ImGui::GetIO();
-  const int frames = options.frames > 0 ? options.frames : kDefaultScreenshotFrames;
-  for (int frame = 0; frame < frames; ++frame) {
-    // No platform backend: the app states the display size and clock itself.
+  // Keep the mouse off the viewport so hover effects match a window nobody touches.
+  io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
+  for (;;) {
     io.DisplaySize = ImVec2(static_cast<float>(options.width), static_cast<float>(options.height));
     io.DeltaTime = 1.0f / 60.0f;
-    state.clock.begin();
+    clock.begin();
+    const FramePlan frame = plan.before_frame(app);
+    app.frame_ms = clock.average_ms();
     ImGui_ImplOpenGL3_NewFrame();
     target.bind();
-    draw_frame(state, viewport, options.width, options.height);
-    state.clock.end();
+    app.draw_frame(view, options.width, options.height);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (!frame.screenshot.empty()) write_png(frame.screenshot, options.width, options.height, target.read_rgba());
+    clock.end();
+    if (frame.last) return frame.exit_code;
   }
-  write_png(path, options.width, options.height, target.read_rgba());
-  return 0;
 }
 
 }  // namespace
@@ -381,38 +360,52 @@ int run_headless(AppState& state, const GuiOptions& options, const std::string& 
 std::string default_model_path() { return std::string(SUBLIFT_ASSETS_DIR) + "/sample.obj"; }
 
 int run_gui(const GuiOptions& options) {
-  const std::string file = options.file.empty() ? default_model_path() : options.file;
-  AppState state;
+  const bool interactive = options.script.empty() && options.screenshot.empty() && options.frames == 0;
+  ModelerController app(interactive);
+  std::unique_ptr<ScriptRunner> script;
   try {
-    state.model = load_model(file);
-  } catch (const std::exception& e) {  // sublift::Error, or bad_alloc on a huge file
-    std::string what = e.what();
-    while (!what.empty() && (what.back() == '\n' || what.back() == ' ')) what.pop_back();
-    // core's messages usually start with the file name; add it when they do not.
-    if (what.find(file) == std::string::npos) {
-      std::cerr << "sublift: " << file << ": " << what << '\n';
-    } else {
-      std::cerr << "sublift: " << what << '\n';
-    }
+    if (!options.script.empty()) script = std::make_unique<ScriptRunner>(options.script);
+  } catch (const std::exception& e) {
+    std::cerr << "sublift: " << e.what() << '\n';
     return 1;
   }
-
+  // A script opens its own model; without one, open FILE or the sample.
+  if (!script || !options.file.empty()) {
+    const std::string file = options.file.empty() ? default_model_path() : options.file;
+    try {
+      app.model.open(file);
+    } catch (const std::exception& e) {  // sublift::Error, or bad_alloc on a huge file
+      std::string what = e.what();
+      while (!what.empty() && (what.back() == '\n' || what.back() == ' ')) what.pop_back();
+      // core's messages usually start with the file name; add it when they do not.
+      std::cerr << "sublift: " << (what.find(file) == std::string::npos ? file + ": " : "") << what << '\n';
+      return 1;
+    }
+  }
   try {
     std::optional<WindowContext> window;
-    try {
-      WindowSettings settings;
-      settings.width = options.width;
-      settings.height = options.height;
-      settings.title = "Sublift - " + state.model.info.file_name;
-      settings.vsync = options.screenshot.empty();
-      window.emplace(settings);
-    } catch (const NoDisplayError&) {
-      const std::string path = options.screenshot.empty() ? kDefaultScreenshot : options.screenshot;
-      std::cerr << "sublift: no display available; rendering the same view headless to " << path
-                << '\n';
-      return run_headless(state, options, path);
+    bool headless = options.headless;
+    if (!headless) {
+      try {
+        WindowSettings settings;
+        settings.width = options.width;
+        settings.height = options.height;
+        settings.title = "Sublift";
+        settings.vsync = interactive;
+        window.emplace(settings);
+      } catch (const NoDisplayError&) {
+        headless = true;
+        if (!script) {
+          const std::string path = options.screenshot.empty() ? kDefaultScreenshot : options.screenshot;
+          std::cerr << "sublift: no display available; rendering the same view headless to " << path << '\n';
+        }
+      }
     }
-    return run_window(*window, state, options);
+    app.set_interactive(interactive && !headless);
+    app.check_recovery();
+    RunPlan plan(options, std::move(script), headless);
+    if (headless) return run_headless(app, plan, options);
+    return run_window(*window, app, plan);
   } catch (const std::exception& e) {
     std::cerr << "sublift: " << e.what() << '\n';
     return 1;

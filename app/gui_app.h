@@ -11,6 +11,8 @@ struct GuiOptions {
   int frames = 0;          // frames to run before exiting; 0 = until closed (3 with a screenshot)
   int width = 1280;        // window (or headless image) size in pixels
   int height = 800;
+  std::string script;      // `--script FILE`: run modeler commands, then exit (script_runner.h)
+  bool headless = false;   // `--headless`: render through EGL even when a display exists
 };
 
 /// The mesh opened when no file is given (assets/sample.obj of the source tree).

@@ -13,11 +13,18 @@ namespace {
 constexpr int kExitUsage = 2;
 
 void print_usage(std::ostream& out) {
-  out << "usage: sublift [FILE] [--screenshot PATH] [--frames N] [--size WxH] [--help]\n"
+  out << "usage: sublift [FILE] [--script FILE] [--headless] [--screenshot PATH] [--frames N]\n"
+         "               [--size WxH] [--help]\n"
          "\n"
-         "Opens FILE (OBJ, OFF or PLY) in the Sublift modeler; without FILE opens the bundled\n"
-         "sample (" << sublift::default_model_path() << ").\n"
+         "Opens FILE (OBJ, OFF, PLY, curve OBJ, .lattice, .vtk or a .sublift project) in the\n"
+         "Sublift modeler; without FILE opens the bundled sample\n"
+         "(" << sublift::default_model_path() << ").\n"
          "\n"
+         "  --script FILE      run modeler commands from FILE (one per line: open, scheme,\n"
+         "                     subdivide, level, select, soft, move, gain, frames, undo, redo,\n"
+         "                     save, export, screenshot, quit; see docs/modeler.md) and exit:\n"
+         "                     0, or 1 with 'script:LINE: message' on the first failure\n"
+         "  --headless         render through EGL without a window even if a display exists\n"
          "  --screenshot PATH  render the GUI, save it as a PNG and exit (default 3 frames)\n"
          "  --frames N         run N frames, then exit\n"
          "  --size WxH         window size in pixels (default 1280x800)\n"
@@ -57,6 +64,12 @@ int main(int argc, char** argv) {
     if (arg == "--help" || arg == "-h") {
       print_usage(std::cout);
       return 0;
+    } else if (arg == "--script") {
+      const auto path = value();
+      if (!path || path->empty()) return usage_error("--script needs a script file");
+      options.script = std::string(*path);
+    } else if (arg == "--headless") {
+      options.headless = true;
     } else if (arg == "--screenshot") {
       const auto path = value();
       if (!path || path->empty()) return usage_error("--screenshot needs a PNG path");

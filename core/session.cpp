@@ -151,6 +151,13 @@ void Session::end_edit() {
   if (changed) push_entry(std::move(*e));
 }
 
+void Session::cancel_edit() {
+  if (!open_) return;
+  std::unique_ptr<HistoryEntry> e = std::move(open_);
+  for (auto& b : e->blocks) b.after = b.before;  // apply_entry reads `before` when going back
+  apply_entry(*e, false);
+}
+
 void Session::push_entry(HistoryEntry e) {
   history_.resize(undo_pos_);
   if (saved_pos_ > undo_pos_) saved_invalid_ = true;

@@ -100,6 +100,9 @@ class Session {
   /// Ends the group; an edit that changed nothing leaves no entry.
   void end_edit();
   bool in_edit() const { return open_ != nullptr; }
+  /// Reverts everything since begin_edit() and forgets it (a cancelled grab): no history entry,
+  /// nothing to redo. Values come back bit for bit.
+  void cancel_edit();
 
   /// Per-level detail gain: wavelets of `level` (on level+1's e/f/c vertices) are multiplied by
   /// `factor` in synthesis. Undoable; recomputes the levels above `level`.

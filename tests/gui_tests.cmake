@@ -22,3 +22,30 @@ target_compile_definitions(gui_test PRIVATE
   SUBLIFT_ASSETS_DIR="${PROJECT_SOURCE_DIR}/assets")
 add_dependencies(gui_test sublift)
 gtest_discover_tests(gui_test DISCOVERY_MODE PRE_TEST PROPERTIES TIMEOUT 120 LABELS gui)
+
+# The modeler's limit surface and control net renderers (issue 4); PNGs go to the build folder.
+add_executable(modeler_render_test ${CMAKE_CURRENT_LIST_DIR}/modeler_render_test.cpp)
+target_link_libraries(modeler_render_test PRIVATE sublift_render GTest::gtest_main)
+target_compile_definitions(modeler_render_test PRIVATE
+  SUBLIFT_TEST_PNG_DIR="${CMAKE_CURRENT_BINARY_DIR}/modeler_render_png")
+gtest_discover_tests(modeler_render_test DISCOVERY_MODE PRE_TEST PROPERTIES TIMEOUT 60)
+
+# The modeler: key/mouse bindings as data, and `sublift --script` end to end (Xvfb and EGL).
+add_executable(modeler_keys_test ${CMAKE_CURRENT_LIST_DIR}/modeler_keys_test.cpp)
+target_link_libraries(modeler_keys_test PRIVATE sublift_ui GTest::gtest_main)
+gtest_discover_tests(modeler_keys_test DISCOVERY_MODE PRE_TEST)
+
+add_executable(modeler_gui_test ${CMAKE_CURRENT_LIST_DIR}/modeler_gui_test.cpp)
+target_link_libraries(modeler_gui_test PRIVATE PkgConfig::STB GTest::gtest_main)
+target_compile_definitions(modeler_gui_test PRIVATE
+  SUBLIFT_GUI_EXE="$<TARGET_FILE:sublift>"
+  SUBLIFT_ASSETS_DIR="${PROJECT_SOURCE_DIR}/assets"
+  SUBLIFT_TEST_OUT_DIR="${CMAKE_CURRENT_BINARY_DIR}/modeler_gui_test_out")
+add_dependencies(modeler_gui_test sublift)
+gtest_discover_tests(modeler_gui_test DISCOVERY_MODE PRE_TEST PROPERTIES TIMEOUT 120 LABELS gui)
+
+# The modeler's mouse and keys on the controller, without a window or GL context.
+add_executable(modeler_controller_test ${CMAKE_CURRENT_LIST_DIR}/modeler_controller_test.cpp)
+target_link_libraries(modeler_controller_test PRIVATE sublift_modeler GTest::gtest_main)
+target_compile_definitions(modeler_controller_test PRIVATE SUBLIFT_ASSETS_DIR="${PROJECT_SOURCE_DIR}/assets")
+gtest_discover_tests(modeler_controller_test DISCOVERY_MODE PRE_TEST)

@@ -186,6 +186,29 @@ TEST(Session, UndoRedoRestoreBitsAndOppositeEditIsIdentity) {
   }
 }
 
+TEST(Session, CancelledEditLeavesNoTrace) {
+  for (const DetailFrames mode : {DetailFrames::World, DetailFrames::Local}) {
+    Session s(torus_cubic());
+    s.set_detail_frames(mode);
+    const std::uint32_t v0[1] = {3};
+    const double d[3] = {0.1, 0.2, 0.3};
+    s.move(0, v0, {}, d);
+    const std::vector<double> c1 = s.hierarchy().coeffs;
+    const std::vector<double> f1(s.positions(3).begin(), s.positions(3).end());
+    s.begin_edit("Grab");
+    const std::uint32_t v[2] = {7, 30};
+    s.move(1, v, {}, d);
+    s.move(1, v, {}, d);
+    s.cancel_edit();
+    EXPECT_FALSE(s.in_edit());
+    EXPECT_TRUE(same_bits(s.hierarchy().coeffs, c1));
+    EXPECT_TRUE(same_bits(s.positions(3), f1));
+    EXPECT_EQ(s.history().size(), 1u);
+    EXPECT_FALSE(s.can_redo());
+    EXPECT_FALSE(s.changed(3).empty()) << "the viewport must redraw what the cancel restored";
+  }
+}
+
 TEST(Session, GainOneIsIdentityAndGainZeroIsPureSubdivision) {
   Session s(torus_cubic());
   const std::uint32_t v0[2] = {3, 17};

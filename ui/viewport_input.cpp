@@ -45,7 +45,7 @@ CameraAction map_key(const InputEvent& e) {
       return action(ctrl ? CameraActionType::ViewBottom : CameraActionType::ViewTop);
     case Key::Numpad5:
       return ctrl ? CameraAction{} : action(CameraActionType::ToggleOrthographic);
-    case Key::None:
+    default:
       break;
   }
   return {};

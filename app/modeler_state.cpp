@@ -1,0 +1,458 @@
+#include "app/modeler_state.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "core/boundary_surface.h"
+#include "core/errors.h"
+#include "core/project_io.h"
+#include "core/shape_io.h"
+#include "core/surface_export.h"
+
+namespace sublift {
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+double bbox_diagonal(const std::vector<double>& xyz) {
+  if (xyz.size() < 3) return 1.0;
+  double lo[3] = {xyz[0], xyz[1], xyz[2]}, hi[3] = {xyz[0], xyz[1], xyz[2]};
+  for (std::size_t i = 0; i + 2 < xyz.size(); i += 3) {
+    for (int c = 0; c < 3; ++c) {
+      lo[c] = std::min(lo[c], xyz[i + c]);
+      hi[c] = std::max(hi[c], xyz[i + c]);
+    }
+  }
+  const double d = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                             (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  return d > 0.0 ? d : 1.0;
+}
+
+}  // namespace
+
+bool is_project_file(const std::string& path) { return lower_extension(path) == ".sublift"; }
+
+void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
+  // Everything is built aside first: a failure leaves the current session as it was.
+  std::unique_ptr<Session> session;
+  std::vector<std::string> warnings;
+  int level = 0;
+  bool project = false;
+  if (is_project_file(path)) {
+    ProjectExtras extras;
+    Hierarchy h = read_project(path, &extras);
+    session = std::make_unique<Session>(std::move(h), extras.gains);
+    if (extras.local_frames) session->set_detail_frames(DetailFrames::Local);
+    level = extras.current_level;
+    project = true;
+  } else {
+    Shape shape = read_shape(path);
+    if (!shape.report.empty()) {
+      std::istringstream in(shape.report.format(std::filesystem::path(path).filename().string()));
+      for (std::string line; std::getline(in, line);) {
+        if (!line.empty()) warnings.push_back(line);
+      }
+    }
+    Hierarchy h = make_hierarchy(std::move(shape.base), levels, scheme, 3);
+    set_base(h, shape.positions);
+    session = std::make_unique<Session>(std::move(h));
+  }
+  file_path_ = path;
+  project_path_ = project ? path : std::string();
+  warnings_ = std::move(warnings);
+  install(std::move(session));
+  level_ = std::clamp(level, 0, session_->finest_level());
+  selection_.clear();
+  update_.topology = true;
+  refresh_state();
+}
+
+void ModelerState::install(std::unique_ptr<Session> session) {
+  session_ = std::move(session);
+  ++serial_;
+  dragging_ = false;
+  hover_ = -1;
+  seen_topology_ = session_->topology_version();
+  rebuild_limit();
+  model_size_ = bbox_diagonal(limit_);
+  if (colour_level_ >= session_->finest_level()) colour_level_ = -1;
+  refresh_colour();
+}
+
+void ModelerState::rebuild_limit() {
+  const Hierarchy& h = session_->hierarchy();
+  const int J = h.finest_level();
+  stencils_ = build_limit_stencils(h);
+  const std::size_t n = h.num_vertices(J);
+  limit_.assign(n * 3, 0.0);
+  normals_.assign(n * 3, 0.0);
+  eval_limit(stencils_, session_->positions(J).data(), limit_.data());
+  const Complex& finest = h.levels[static_cast<std::size_t>(J)];
+  faces_ = finest.dim >= 2 ? boundary_faces(finest, limit_) : Csr{};
+  vertex_faces_ = transpose(faces_, n);
+  if (faces_.rows() > 0) {
+    sublift::limit_normals(stencils_, faces_, session_->positions(J).data(), limit_.data(), normals_.data());
+    orient_tangents(stencils_, faces_, session_->positions(J).data(), limit_.data());
+  }
+  stamp_.assign(n, 0);
+  epoch_ = 0;
+}
+
+void ModelerState::after_operation() {
+  const Session& s = *session_;
+  if (s.topology_version() != seen_topology_) {
+    seen_topology_ = s.topology_version();
+    level_ = std::min(level_, s.finest_level());
+    rebuild_limit();
+    clamp_selection();
+    if (colour_level_ >= s.finest_level()) colour_level_ = -1;
+    update_.topology = true;
+    refresh_state();
+    refresh_colour();
+    return;
+  }
+  const int J = s.finest_level();
+  const auto changed_fine = s.changed(J);
+  if (!changed_fine.empty()) {
+    std::vector<std::uint32_t> moved;
+    eval_limit_subset(stencils_, s.positions(J).data(), changed_fine, limit_.data(), moved);
+    if (faces_.rows() > 0 && !moved.empty()) {
+      // Fallback (face) normals also depend on the neighbours: take the moved vertices' faces.
+      if (++epoch_ == 0) {
+        std::fill(stamp_.begin(), stamp_.end(), 0u);
+        epoch_ = 1;
+      }
+      std::vector<std::uint32_t> shade;
+      for (const std::uint32_t v : moved) {
+        if (stamp_[v] != epoch_) stamp_[v] = epoch_, shade.push_back(v);
+        for (const std::uint32_t f : vertex_faces_.row(v)) {
+          for (const std::uint32_t w : faces_.row(f)) {
+            if (stamp_[w] != epoch_) stamp_[w] = epoch_, shade.push_back(w);
+          }
+        }
+      }
+      limit_normals_subset(stencils_, faces_, vertex_faces_, s.positions(J).data(), limit_.data(), shade,
+                           normals_.data());
+      update_.surface.insert(update_.surface.end(), shade.begin(), shade.end());
+    } else {
+      update_.surface.insert(update_.surface.end(), moved.begin(), moved.end());
+    }
+  }
+  const auto changed_net = s.changed(level_);
+  update_.net.insert(update_.net.end(), changed_net.begin(), changed_net.end());
+  if (soft_radius_ > 0.0 && !changed_net.empty() && !dragging_) refresh_state();  // weights follow the shape
+  if (colour_level_ >= 0) refresh_colour();
+}
+
+void ModelerState::set_scheme(Scheme scheme) {
+  const Hierarchy& old = session_->hierarchy();
+  const auto base_positions = session_->positions(0);
+  Hierarchy h = make_hierarchy(old.levels.front(), old.finest_level(), scheme, 3);
+  set_base(h, base_positions);
+  const bool local = session_->detail_frames() == DetailFrames::Local;
+  auto session = std::make_unique<Session>(std::move(h));
+  if (local) session->set_detail_frames(DetailFrames::Local);
+  const int level = level_;
+  install(std::move(session));
+  level_ = level;
+  update_.topology = true;
+  refresh_state();
+}
+
+void ModelerState::set_level(int level) {
+  level = std::clamp(level, 0, session_->finest_level());
+  if (level == level_) return;
+  level_ = level;
+  selection_.clear();
+  hover_ = -1;
+  update_.topology = true;
+  refresh_state();
+}
+
+void ModelerState::subdivide() {
+  session_->subdivide();
+  after_operation();
+}
+
+bool ModelerState::undo() {
+  if (dragging_) return false;
+  const bool done = session_->undo();
+  if (done) after_operation();
+  return done;
+}
+
+bool ModelerState::redo() {
+  if (dragging_) return false;
+  const bool done = session_->redo();
+  if (done) after_operation();
+  return done;
+}
+
+void ModelerState::jump_to(std::size_t position) {
+  while (session_->undo_position() > position && undo()) {}
+  while (session_->undo_position() < position && redo()) {}
+}
+
+void ModelerState::begin_gain(int level) { session_->begin_edit("Gain " + std::to_string(level)); }
+
+void ModelerState::set_gain(int level, double factor) {
+  session_->set_gain(level, factor);
+  after_operation();
+}
+
+void ModelerState::end_gain() { session_->end_edit(); }
+
+void ModelerState::set_local_frames(bool local) {
+  session_->set_detail_frames(local ? DetailFrames::Local : DetailFrames::World);
+}
+
+void ModelerState::begin_drag(const std::string& label) {
+  if (dragging_) end_drag();
+  drag_undo_position_ = session_->undo_position();
+  drag_weights_ = soft_selection(session_->positions(level_), selection_, soft_radius_);
+  drag_total_[0] = drag_total_[1] = drag_total_[2] = 0.0;
+  session_->begin_edit(label);
+  dragging_ = true;
+}
+
+void ModelerState::drag_to(const double total[3]) {
+  if (!dragging_) return;
+  const double delta[3] = {total[0] - drag_total_[0], total[1] - drag_total_[1], total[2] - drag_total_[2]};
+  if (delta[0] == 0.0 && delta[1] == 0.0 && delta[2] == 0.0) return;
+  session_->move(level_, drag_weights_.vertices, drag_weights_.weights, delta);
+  for (int c = 0; c < 3; ++c) drag_total_[c] = total[c];
+  after_operation();
+}
+
+void ModelerState::end_drag() {
+  if (!dragging_) return;
+  session_->end_edit();
+  dragging_ = false;
+  if (soft_radius_ > 0.0) refresh_state();
+}
+
+void ModelerState::cancel_drag() {
+  if (!dragging_) return;
+  session_->cancel_edit();
+  dragging_ = false;
+  after_operation();
+  drag_total_[0] = drag_total_[1] = drag_total_[2] = 0.0;
+}
+
+void ModelerState::set_selection(std::vector<unsigned> selection) {
+  std::sort(selection.begin(), selection.end());
+  selection.erase(std::unique(selection.begin(), selection.end()), selection.end());
+  selection_ = std::move(selection);
+  clamp_selection();
+  refresh_state();
+}
+
+void ModelerState::select_all() {
+  std::vector<unsigned> all(session_->num_vertices(level_));
+  for (unsigned i = 0; i < all.size(); ++i) all[i] = i;
+  selection_ = std::move(all);
+  refresh_state();
+}
+
+void ModelerState::set_hover(long long vertex) {
+  if (vertex == hover_) return;
+  hover_ = vertex;
+  refresh_flags();
+}
+
+void ModelerState::set_soft_radius(double radius) {
+  soft_radius_ = std::max(radius, 0.0);
+  refresh_state();
+}
+
+double ModelerState::default_soft_radius() const { return 0.05 * model_size_; }
+
+void ModelerState::clamp_selection() {
+  const unsigned n = session_->num_vertices(level_);
+  selection_.erase(std::remove_if(selection_.begin(), selection_.end(), [n](unsigned v) { return v >= n; }),
+                   selection_.end());
+  if (hover_ >= static_cast<long long>(n)) hover_ = -1;
+}
+
+void ModelerState::refresh_state() {
+  const std::size_t n = session_->num_vertices(level_);
+  net_soft_.assign(n, 0.0f);
+  if (soft_radius_ > 0.0 && !selection_.empty()) {
+    const SoftWeights w = soft_selection(session_->positions(level_), selection_, soft_radius_);
+    for (std::size_t k = 0; k < w.vertices.size(); ++k) net_soft_[w.vertices[k]] = static_cast<float>(w.weights[k]);
+  }
+  net_state_.assign(n, 0);
+  flagged_.clear();
+  refresh_flags();
+}
+
+void ModelerState::refresh_flags() {
+  const std::size_t n = session_->num_vertices(level_);
+  if (net_state_.size() != n) net_state_.assign(n, 0);
+  for (const unsigned v : flagged_) {
+    if (v < n) net_state_[v] = 0;
+  }
+  flagged_.clear();
+  for (const unsigned v : selection_) net_state_[v] = 2, flagged_.push_back(v);
+  if (hover_ >= 0 && static_cast<std::size_t>(hover_) < n) {
+    net_state_[static_cast<std::size_t>(hover_)] = 1;
+    flagged_.push_back(static_cast<unsigned>(hover_));
+  }
+  update_.state = true;
+}
+
+void ModelerState::set_colour_level(int level) {
+  colour_level_ = level < 0 || level >= session_->finest_level() ? -1 : level;
+  refresh_colour();
+}
+
+void ModelerState::refresh_colour() {
+  update_.scalar = true;
+  colour_.clear();
+  if (colour_level_ < 0) return;
+  const Hierarchy& h = session_->hierarchy();
+  const int l = colour_level_;
+  const std::uint32_t lo = h.num_vertices(l), hi = h.num_vertices(l + 1);
+  const std::size_t n = h.num_vertices(h.finest_level());
+  colour_.assign(n, 0.0f);
+  float largest = 0.0f;
+  for (std::uint32_t v = lo; v < hi; ++v) {
+    const double* w = &h.coeffs[std::size_t(v) * 3];
+    const auto m = static_cast<float>(std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]) * session_->gain(l));
+    colour_[v] = m;
+    largest = std::max(largest, m);
+  }
+  // Carry the values to the finest level by linear refinement (children numbered [v|e|f|c]).
+  for (int k = l + 1; k < h.finest_level(); ++k) {
+    const Complex& c = h.levels[static_cast<std::size_t>(k)];
+    const std::uint32_t nv = c.num_vertices, ne = c.num_edges(), nf = c.num_faces();
+    for (std::uint32_t e = 0; e < ne; ++e) {
+      colour_[nv + e] = 0.5f * (colour_[c.edge_verts[2 * e]] + colour_[c.edge_verts[2 * e + 1]]);
+    }
+    for (std::uint32_t f = 0; f < nf; ++f) {
+      float sum = 0.0f;
+      for (const std::uint32_t v : c.faces.row(f)) sum += colour_[v];
+      colour_[nv + ne + f] = c.faces.size(f) > 0 ? sum / static_cast<float>(c.faces.size(f)) : 0.0f;
+    }
+    if (c.cell_verts.rows() == c.num_cells()) {
+      for (std::uint32_t cell = 0; cell < c.num_cells(); ++cell) {
+        float sum = 0.0f;
+        for (const std::uint32_t v : c.cell_verts.row(cell)) sum += colour_[v];
+        const auto count = c.cell_verts.size(cell);
+        colour_[nv + ne + nf + cell] = count > 0 ? sum / static_cast<float>(count) : 0.0f;
+      }
+    }
+  }
+  if (largest > 0.0f) {
+    for (float& v : colour_) v /= largest;
+  }
+}
+
+void ModelerState::save_project(const std::string& path) {
+  ProjectExtras extras;
+  extras.current_level = level_;
+  extras.gains.assign(session_->gains().begin(), session_->gains().end());
+  extras.local_frames = session_->detail_frames() == DetailFrames::Local;
+  write_project(path, session_->hierarchy(), extras);
+  session_->mark_saved();
+  project_path_ = path;
+}
+
+void ModelerState::write_recovery(const std::string& path) const {
+  ProjectExtras extras;
+  extras.current_level = level_;
+  extras.gains.assign(session_->gains().begin(), session_->gains().end());
+  extras.local_frames = session_->detail_frames() == DetailFrames::Local;
+  write_project(path, session_->hierarchy(), extras);
+}
+
+std::vector<std::string> ModelerState::export_shape(const std::string& path, bool finest) {
+  const Hierarchy& h = session_->hierarchy();
+  const int level = finest ? h.finest_level() : level_;
+  const Complex& c = h.levels[static_cast<std::size_t>(level)];
+  if (surface_export_supported(path) && c.dim >= 2) {
+    if (finest) {
+      write_surface_with_normals(path, faces_, limit_, normals_);
+      return {};
+    }
+    // The control net of the current level, with area-weighted face normals.
+    const auto xyz = session_->positions(level);
+    const Csr faces = boundary_faces(c, xyz);
+    std::vector<double> normals(xyz.size(), 0.0);
+    for (std::size_t f = 0; f < faces.rows(); ++f) {
+      const auto row = faces.row(f);
+      double n[3] = {0, 0, 0};
+      for (std::size_t i = 0; i < row.size(); ++i) {  // Newell
+        const double* a = &xyz[std::size_t(row[i]) * 3];
+        const double* b = &xyz[std::size_t(row[(i + 1) % row.size()]) * 3];
+        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+      }
+      for (const std::uint32_t v : row) {
+        for (int k = 0; k < 3; ++k) normals[std::size_t(v) * 3 + k] += n[k];
+      }
+    }
+    write_surface_with_normals(path, faces, xyz, normals);
+    return {};
+  }
+  if (const std::string problem = shape_output_problem(path, c.dim); !problem.empty()) {
+    throw Error(path + ": " + problem);
+  }
+  if (finest) return write_shape(path, c, limit_);
+  return write_shape(path, c, session_->positions(level));
+}
+
+std::vector<LevelRow> ModelerState::level_rows() const {
+  const Hierarchy& h = session_->hierarchy();
+  std::vector<LevelRow> rows;
+  const std::vector<LevelStats> stats = level_stats(h);
+  for (int l = 0; l <= h.finest_level(); ++l) {
+    LevelRow r;
+    r.level = l;
+    r.vertices = h.num_vertices(l);
+    for (const LevelStats& s : stats) {
+      if (s.level == l) {
+        r.wavelets = s.wavelets;
+        r.wavelet_max = s.wavelet_max;
+        r.wavelet_rms = s.wavelet_rms;
+      }
+    }
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+const std::vector<std::uint32_t>& ModelerState::net_edges() const {
+  return session_->hierarchy().levels[static_cast<std::size_t>(level_)].edge_verts;
+}
+
+std::vector<std::uint8_t> ModelerState::net_edge_features() const {
+  const Complex& c = session_->hierarchy().levels[static_cast<std::size_t>(level_)];
+  std::vector<std::uint8_t> f(c.num_edges(), 0);
+  if (c.edge_dim.size() != f.size()) return f;
+  for (std::size_t e = 0; e < f.size(); ++e) f[e] = c.edge_dim[e] == 1 && c.dim > 1 ? 1 : (c.edge_dim[e] == 0 ? 2 : 0);
+  return f;
+}
+
+std::vector<std::uint8_t> ModelerState::net_vertex_features() const {
+  const Complex& c = session_->hierarchy().levels[static_cast<std::size_t>(level_)];
+  std::vector<std::uint8_t> f(c.num_vertices, 0);
+  if (c.vertex_dim.size() != f.size()) return f;
+  for (std::size_t v = 0; v < f.size(); ++v) f[v] = c.vertex_dim[v] == 0 ? 2 : (c.vertex_dim[v] == 1 && c.dim > 1 ? 1 : 0);
+  return f;
+}
+
+ViewUpdate ModelerState::take_view_update() {
+  ViewUpdate out = std::move(update_);
+  update_ = ViewUpdate{};
+  return out;
+}
+
+}  // namespace sublift

@@ -1,0 +1,176 @@
+#pragma once
+// ModelerState: everything the modeler shows and edits, without GL or ImGui — the editing
+// Session, the open file, the current edit level, the selection and soft-selection radius, the
+// finest level's limit surface (positions, normals, display faces) and what changed since the
+// viewport last uploaded. The GUI's mouse/keys and `sublift --script` both drive it, so a
+// scripted `move` and a mouse drag run the same code (begin_drag / drag_to / end_drag).
+//
+// Display faces: a surface shows the finest complex's own faces; a lattice the outward
+// boundary faces of the finest complex (boundary_surface.h); a curve none (its limit polyline
+// is drawn from the finest edges instead).
+//
+// Wavelet colouring (colour_by_level >= 0): the level-l wavelets live on the e/f/c vertices of
+// level l+1; each level-(l+1) vertex gets |w| (Euclidean norm; 0 on the v-class vertices, which
+// carry no level-l wavelet), the values are carried to the finest level by linear refinement
+// (an edge/face/cell child takes the mean of its parent's corners) and divided by the largest
+// |w| of the level, so 0..1 maps onto viridis.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/csr.h"
+#include "core/hierarchy.h"
+#include "core/limit.h"
+#include "core/session.h"
+
+namespace sublift {
+
+/// What changed since the viewport last synchronised (take_view_update()).
+struct ViewUpdate {
+  bool topology = false;               // new file, subdivide, level change: re-upload everything
+  std::vector<std::uint32_t> surface;  // finest limit vertices whose position/normal changed
+  std::vector<std::uint32_t> net;      // control points of the current level that moved
+  bool state = false;                  // selection, hover or soft weights changed
+  bool scalar = false;                 // wavelet colouring changed
+};
+
+/// Per-level numbers for the panel.
+struct LevelRow {
+  int level = 0;
+  std::uint32_t vertices = 0;
+  std::uint32_t wavelets = 0;           // of this level (0 for the finest)
+  double wavelet_max = 0.0, wavelet_rms = 0.0;
+};
+
+class ModelerState {
+ public:
+  static constexpr int kDefaultLevels = 2;
+
+  /// Opens a shape (OBJ/OFF/PLY, curve OBJ, .lattice, .vtk) as a hierarchy of `levels` levels
+  /// of `scheme`, or a `.sublift` project with its gains, frames and current level. Throws
+  /// sublift::Error; on failure the current session is left untouched.
+  void open(const std::string& path, int levels = kDefaultLevels, Scheme scheme = Scheme::Cubic);
+  bool has_session() const { return session_ != nullptr; }
+  /// Bumped whenever a new session is installed (open, scheme change).
+  std::uint64_t serial() const { return serial_; }
+
+  // ---- editing (each catches nothing: callers show sublift::Error messages) -----------------
+  /// Rebuilds the hierarchy with another scheme from level 0's control points, keeping the
+  /// number of levels (wavelets are lost: confirm first when dirty). Undo history is cleared.
+  void set_scheme(Scheme scheme);
+  void set_level(int level);
+  void subdivide();
+  bool undo();
+  bool redo();
+  /// Jumps in the history so that entries [0, position) are applied.
+  void jump_to(std::size_t position);
+  void set_gain(int level, double factor);  // within begin_gain/end_gain: one history entry
+  void begin_gain(int level);
+  void end_gain();
+  void set_local_frames(bool local);
+
+  // A drag of the selection: one history entry; drag_to sets the total translation so far.
+  void begin_drag(const std::string& label);
+  void drag_to(const double total[3]);
+  void end_drag();
+  /// Ends the drag and reverts its moves exactly (undo of its entry).
+  void cancel_drag();
+  bool dragging() const { return dragging_; }
+  /// Translation applied by the current drag so far.
+  const double* drag_total() const { return drag_total_; }
+
+  // ---- selection ----------------------------------------------------------------------------
+  const std::vector<unsigned>& selection() const { return selection_; }
+  /// Replaces the selection (indices of the current level; sorted and deduplicated here).
+  void set_selection(std::vector<unsigned> selection);
+  void select_all();
+  void set_hover(long long vertex);
+  long long hover() const { return hover_; }
+  double soft_radius() const { return soft_radius_; }
+  void set_soft_radius(double radius);
+  /// A reasonable first soft radius: 5% of the model's bounding-box diagonal.
+  double default_soft_radius() const;
+
+  // ---- files --------------------------------------------------------------------------------
+  /// Saves the project (.sublift, atomic) and marks the session saved.
+  void save_project(const std::string& path);
+  /// Exports the finest level (finest = true) or the current level by extension: .obj/.ply/
+  /// .gltf/.glb with normals (the limit surface for the finest level; lattices: their boundary),
+  /// .lattice/.vtk (and .off) through write_shape. Returns notes on what the format dropped.
+  std::vector<std::string> export_shape(const std::string& path, bool finest);
+  /// Writes a recovery project without touching the saved state.
+  void write_recovery(const std::string& path) const;
+
+  // ---- what the viewport and panel read -----------------------------------------------------
+  const Session& session() const { return *session_; }
+  int level() const { return level_; }
+  int dim() const { return session_->dim(); }
+  const std::string& file_path() const { return file_path_; }
+  /// Where Save writes: the project opened or last saved; empty after opening a mesh.
+  const std::string& project_path() const { return project_path_; }
+  void set_project_path(std::string path) { project_path_ = std::move(path); }
+  const std::vector<std::string>& import_warnings() const { return warnings_; }
+  std::vector<LevelRow> level_rows() const;
+
+  const Csr& surface_faces() const { return faces_; }
+  const std::vector<double>& limit_positions() const { return limit_; }
+  const std::vector<double>& limit_normals() const { return normals_; }
+  /// Edges of the current level as vertex pairs, with feature classes for the net renderer.
+  const std::vector<std::uint32_t>& net_edges() const;
+  std::vector<std::uint8_t> net_edge_features() const;
+  std::vector<std::uint8_t> net_vertex_features() const;
+  const std::vector<std::uint8_t>& net_state() const { return net_state_; }
+  const std::vector<float>& net_soft() const { return net_soft_; }
+
+  /// Wavelet level shown as colour (-1: clay). Values 0..1 per finest vertex.
+  int colour_level() const { return colour_level_; }
+  void set_colour_level(int level);
+  const std::vector<float>& colour_values() const { return colour_; }
+
+  /// Accumulated changes since the last call, for the GPU buffers.
+  ViewUpdate take_view_update();
+
+ private:
+  void install(std::unique_ptr<Session> session);  // fresh topology
+  void after_operation();                           // pull changed() into limit and update
+  void rebuild_limit();
+  void refresh_state();   // soft weights, then the per-vertex state
+  void refresh_flags();   // the per-vertex state only (hover changes)
+  void refresh_colour();
+  void clamp_selection();
+
+  std::unique_ptr<Session> session_;
+  std::string file_path_, project_path_;
+  std::vector<std::string> warnings_;
+  int level_ = 0;
+  std::vector<unsigned> selection_;
+  long long hover_ = -1;
+  double soft_radius_ = 0.0;
+  double model_size_ = 1.0;
+
+  bool dragging_ = false;
+  double drag_total_[3] = {0, 0, 0};
+  SoftWeights drag_weights_;
+  std::size_t drag_undo_position_ = 0;
+  std::uint64_t seen_topology_ = 0;
+  std::uint64_t serial_ = 0;
+
+  LimitStencils stencils_;
+  Csr faces_, vertex_faces_;
+  std::vector<double> limit_, normals_;
+  std::vector<std::uint32_t> stamp_;
+  std::uint32_t epoch_ = 0;
+
+  std::vector<std::uint8_t> net_state_;
+  std::vector<float> net_soft_;
+  std::vector<unsigned> flagged_;  // vertices with a non-zero state
+  int colour_level_ = -1;
+  std::vector<float> colour_;
+  ViewUpdate update_;
+};
+
+/// True when `path` names a `.sublift` project (by extension, any case).
+bool is_project_file(const std::string& path);
+
+}  // namespace sublift

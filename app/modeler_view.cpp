@@ -1,0 +1,105 @@
+#include "app/modeler_view.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+
+namespace sublift {
+
+void ModelerView::sync(ModelerState& state) {
+  ViewUpdate u = state.take_view_update();
+  if (!state.has_session()) return;
+  if (u.topology) {
+    const Csr& faces = state.surface_faces();
+    const std::size_t n = state.limit_positions().size() / 3;
+    has_surface_ = faces.rows() > 0;
+    has_curve_ = !has_surface_;
+    if (has_surface_) {
+      surface_.set_topology(faces.offsets, faces.items, n);
+      surface_.set_positions_normals(state.limit_positions(), state.limit_normals());
+    } else {
+      const Complex& finest = state.session().hierarchy().levels.back();
+      curve_.set_topology(finest.edge_verts, {}, {}, n);
+      curve_.set_positions(state.limit_positions());
+    }
+    net_.set_topology(state.net_edges(), state.net_edge_features(), state.net_vertex_features(),
+                      state.session().num_vertices(state.level()));
+    net_.set_positions(state.session().positions(state.level()));
+    u.state = u.scalar = true;
+  } else {
+    if (!u.surface.empty()) {
+      if (has_surface_) {
+        surface_.update(state.limit_positions(), state.limit_normals(), u.surface);
+      } else {
+        curve_.update_positions(state.limit_positions(), u.surface);
+      }
+    }
+    if (!u.net.empty()) net_.update_positions(state.session().positions(state.level()), u.net);
+  }
+  if (u.state) net_.set_state(state.net_state(), state.net_soft());
+  if (u.scalar && has_surface_) {
+    colour_map_ = !state.colour_values().empty();
+    surface_.set_scalar(state.colour_values());
+  }
+}
+
+Bounds ModelerView::bounds() const {
+  Bounds b = has_surface_ ? surface_.bounds() : curve_.bounds();
+  const Bounds& n = net_.bounds();
+  if (b.empty) return n;
+  if (!n.empty) {
+    b.min = glm::min(b.min, n.min);
+    b.max = glm::max(b.max, n.max);
+  }
+  return b;
+}
+
+glm::vec4 ModelerView::clip_plane(const ModelerDisplay& d) const {
+  const Bounds b = bounds();
+  const int a = std::clamp(d.clip_axis, 0, 2);
+  const double lo = b.empty ? -1.0 : b.min[a], hi = b.empty ? 1.0 : b.max[a];
+  const double at = lo + (hi - lo) * static_cast<double>(std::clamp(d.clip_offset, 0.0f, 1.0f));
+  // Keeps dot(plane, (x, 1)) >= 0: the side below the offset (above with clip_flip).
+  glm::vec4 plane(0.0f);
+  const float s = d.clip_flip ? 1.0f : -1.0f;
+  plane[a] = s;
+  plane.w = static_cast<float>(-s * at);
+  return plane;
+}
+
+void ModelerView::draw(const OrbitCamera& camera, const ViewportRect& rect, const ModelerDisplay& d) const {
+  glViewport(rect.x, rect.y, rect.width, rect.height);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(rect.x, rect.y, rect.width, rect.height);
+  glDepthMask(GL_TRUE);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  background_.draw();
+  const glm::vec4 plane = clip_plane(d);
+  if (has_surface_) {
+    SurfaceStyle style;
+    style.smooth = d.smooth;
+    style.wireframe = d.wireframe;
+    style.color_map = colour_map_;
+    style.clip = d.clip;
+    style.clip_plane = plane;
+    surface_.draw(camera, style);
+  } else if (has_curve_) {
+    NetStyle style;
+    style.points = false;
+    style.clip = d.clip;
+    style.clip_plane = plane;
+    style.colors.edge = glm::vec4(0.80f, 0.45f, 0.20f, 1.0f);
+    curve_.draw(camera, style);
+  }
+  if (d.net) {
+    NetStyle style;
+    style.depth_cue = d.depth_cue;
+    style.xray = d.xray;
+    style.clip = d.clip;
+    style.clip_plane = plane;
+    net_.draw(camera, style);
+  }
+  glDisable(GL_SCISSOR_TEST);
+}
+
+}  // namespace sublift

@@ -1,0 +1,40 @@
+#pragma once
+// ModelerView: the modeler's 3-D viewport on the GPU — backdrop, the finest level's limit
+// surface (or a curve's limit polyline) and the control net of the edit level on top. It
+// mirrors a ModelerState, uploading only what take_view_update() reports as changed.
+#include <glm/vec4.hpp>
+
+#include "app/modeler_state.h"
+#include "render/background.h"
+#include "render/camera.h"
+#include "render/limit_surface_renderer.h"
+#include "render/net_renderer.h"
+#include "render/viewport_renderer.h"
+#include "ui/modeler_panels.h"
+
+namespace sublift {
+
+class ModelerView {
+ public:
+  /// Compiles the shaders; throws ShaderError. Needs a current GL 3.3 context.
+  ModelerView() = default;
+
+  /// Uploads what changed in `state` since the last call (all of it after a topology change).
+  void sync(ModelerState& state);
+  /// Draws into `rect` of the bound framebuffer (scissored, own depth clear).
+  void draw(const OrbitCamera& camera, const ViewportRect& rect, const ModelerDisplay& display) const;
+  /// Bounds of the limit surface (or curve), for framing and the clipping plane.
+  Bounds bounds() const;
+  /// The clipping plane the display asks for, in world coordinates.
+  glm::vec4 clip_plane(const ModelerDisplay& display) const;
+
+ private:
+  BackgroundRenderer background_;
+  LimitSurfaceRenderer surface_;
+  NetRenderer net_;
+  NetRenderer curve_;  // a curve's limit polyline (no points)
+  bool has_surface_ = false, has_curve_ = false;
+  bool colour_map_ = false;
+};
+
+}  // namespace sublift

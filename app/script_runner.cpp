@@ -1,0 +1,232 @@
+#include "app/script_runner.h"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/errors.h"
+
+namespace sublift {
+namespace {
+
+// A command's own mistake (bad arguments); reported like any other failure.
+struct ScriptError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+double number(const std::string& word, const char* what) {
+  double v = 0.0;
+  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), v);
+  if (error != std::errc() || end != word.data() + word.size() || !std::isfinite(v)) {
+    throw ScriptError(std::string(what) + " must be a number, got '" + word + "'");
+  }
+  return v;
+}
+
+long long integer(const std::string& word, const char* what) {
+  long long v = 0;
+  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), v);
+  if (error != std::errc() || end != word.data() + word.size()) {
+    throw ScriptError(std::string(what) + " must be a whole number, got '" + word + "'");
+  }
+  return v;
+}
+
+void expect_args(const std::vector<std::string>& w, std::size_t n, const char* usage) {
+  if (w.size() != n + 1) throw ScriptError(std::string("usage: ") + usage);
+}
+
+// The rest of the line after the command word: paths may contain spaces.
+std::string rest_of(const std::string& line, const std::string& command) {
+  std::size_t at = line.find(command) + command.size();
+  while (at < line.size() && (line[at] == ' ' || line[at] == '\t')) ++at;
+  std::string out = line.substr(at);
+  while (!out.empty() && (out.back() == ' ' || out.back() == '\t' || out.back() == '\r')) out.pop_back();
+  return out;
+}
+
+}  // namespace
+
+ScriptRunner::ScriptRunner(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(path + ": cannot read the script");
+  for (std::string line; std::getline(in, line);) lines_.push_back(line);
+}
+
+ScriptRunner::ScriptRunner(const std::string& /*name*/, const std::string& text) {
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines_.push_back(line);
+}
+
+ScriptStep ScriptRunner::next(ModelerState& state, ModelerDisplay* display) {
+  ScriptStep step;
+  while (line_ < lines_.size()) {
+    const std::size_t number = ++line_;
+    std::string line = lines_[number - 1];
+    if (const std::size_t hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    std::istringstream words_in(line);
+    std::vector<std::string> words;
+    for (std::string w; words_in >> w;) words.push_back(w);
+    if (words.empty()) continue;
+    words.push_back(rest_of(line, words[0]));  // last entry: the raw argument text
+    try {
+      const std::string& command = words[0];
+      if (command != "open" && !state.has_session()) throw ScriptError("no model is open (use 'open PATH')");
+      ScriptStep::Kind before = step.kind;
+      run_line(state, display, words, step);
+      if (step.kind != before) return step;  // screenshot or quit
+    } catch (const std::exception& e) {
+      std::string what = e.what();
+      while (!what.empty() && (what.back() == '\n' || what.back() == ' ')) what.pop_back();
+      step.kind = ScriptStep::Kind::Error;
+      step.message = "script:" + std::to_string(number) + ": " + what;
+      return step;
+    }
+  }
+  step.kind = ScriptStep::Kind::End;
+  return step;
+}
+
+void ScriptRunner::run_line(ModelerState& state, ModelerDisplay* display, const std::vector<std::string>& all,
+                            ScriptStep& step) {
+  ModelerDisplay ignored;
+  ModelerDisplay& show = display != nullptr ? *display : ignored;
+  const std::string raw = all.back();
+  const std::vector<std::string> w(all.begin(), all.end() - 1);
+  const std::string& c = w[0];
+  if (c == "open") {
+    if (raw.empty()) throw ScriptError("usage: open PATH");
+    state.open(raw);
+    step.reframe = true;
+  } else if (c == "scheme") {
+    expect_args(w, 1, "scheme linear|cubic");
+    Scheme s;
+    try {
+      s = parse_scheme(w[1]);
+    } catch (const std::exception&) {
+      throw ScriptError("unknown scheme '" + w[1] + "' (linear or cubic)");
+    }
+    state.set_scheme(s);
+  } else if (c == "subdivide") {
+    if (w.size() > 2) throw ScriptError("usage: subdivide [N]");
+    const long long n = w.size() == 2 ? integer(w[1], "N") : 1;
+    if (n < 1 || n > 12) throw ScriptError("subdivide N needs N from 1 to 12");
+    for (long long i = 0; i < n; ++i) state.subdivide();
+  } else if (c == "level") {
+    expect_args(w, 1, "level L");
+    const long long l = integer(w[1], "L");
+    if (l < 0 || l > state.session().finest_level()) {
+      throw ScriptError("level " + w[1] + " is outside 0.." + std::to_string(state.session().finest_level()));
+    }
+    state.set_level(static_cast<int>(l));
+  } else if (c == "select") {
+    std::vector<unsigned> sel;
+    const long long n = state.session().num_vertices(state.level());
+    for (std::size_t i = 1; i < w.size(); ++i) {
+      const long long v = integer(w[i], "INDEX");
+      if (v < 0 || v >= n) {
+        throw ScriptError("vertex " + w[i] + " is outside 0.." + std::to_string(n - 1) + " of level " +
+                          std::to_string(state.level()));
+      }
+      sel.push_back(static_cast<unsigned>(v));
+    }
+    state.set_selection(std::move(sel));
+  } else if (c == "soft") {
+    expect_args(w, 1, "soft RADIUS");
+    const double r = number(w[1], "RADIUS");
+    if (r < 0.0) throw ScriptError("RADIUS must not be negative");
+    state.set_soft_radius(r);
+  } else if (c == "move") {
+    expect_args(w, 3, "move DX DY DZ");
+    if (state.selection().empty()) throw ScriptError("move needs a selection (use 'select INDEX...')");
+    const double d[3] = {number(w[1], "DX"), number(w[2], "DY"), number(w[3], "DZ")};
+    state.begin_drag("Move");
+    try {
+      state.drag_to(d);
+    } catch (...) {
+      state.cancel_drag();
+      throw;
+    }
+    state.end_drag();
+  } else if (c == "gain") {
+    expect_args(w, 2, "gain LEVEL FACTOR");
+    const long long l = integer(w[1], "LEVEL");
+    const double f = number(w[2], "FACTOR");
+    if (l < 0 || l >= state.session().finest_level()) {
+      throw ScriptError("gain level " + w[1] + " is outside 0.." + std::to_string(state.session().finest_level() - 1));
+    }
+    state.begin_gain(static_cast<int>(l));
+    state.set_gain(static_cast<int>(l), f);
+    state.end_gain();
+  } else if (c == "frames") {
+    expect_args(w, 1, "frames world|local");
+    if (w[1] != "world" && w[1] != "local") throw ScriptError("frames must be 'world' or 'local'");
+    state.set_local_frames(w[1] == "local");
+  } else if (c == "undo") {
+    expect_args(w, 0, "undo");
+    if (!state.undo()) throw ScriptError("nothing to undo");
+  } else if (c == "redo") {
+    expect_args(w, 0, "redo");
+    if (!state.redo()) throw ScriptError("nothing to redo");
+  } else if (c == "save") {
+    if (raw.empty()) throw ScriptError("usage: save PATH");
+    if (!is_project_file(raw)) throw ScriptError("save writes a .sublift project; use export for '" + raw + "'");
+    state.save_project(raw);
+  } else if (c == "export") {
+    if (raw.empty()) throw ScriptError("usage: export PATH");
+    state.export_shape(raw, true);
+  } else if (c == "screenshot") {
+    if (raw.empty()) throw ScriptError("usage: screenshot PATH");
+    step.kind = ScriptStep::Kind::Screenshot;
+    step.path = raw;
+  } else if (c == "colour" || c == "color") {
+    expect_args(w, 1, "colour LEVEL|off");
+    if (w[1] == "off") {
+      state.set_colour_level(-1);
+    } else {
+      const long long l = integer(w[1], "LEVEL");
+      if (l < 0 || l >= state.session().finest_level()) {
+        throw ScriptError("colour level " + w[1] + " is outside 0.." + std::to_string(state.session().finest_level() - 1));
+      }
+      state.set_colour_level(static_cast<int>(l));
+    }
+  } else if (c == "display") {
+    expect_args(w, 2, "display smooth|wireframe|net|xray|depth_cue|clip|ortho on|off");
+    if (w[2] != "on" && w[2] != "off") throw ScriptError("display takes 'on' or 'off', got '" + w[2] + "'");
+    const bool on = w[2] == "on";
+    if (w[1] == "smooth") show.smooth = on;
+    else if (w[1] == "wireframe") show.wireframe = on;
+    else if (w[1] == "net") show.net = on;
+    else if (w[1] == "xray") show.xray = on;
+    else if (w[1] == "depth_cue") show.depth_cue = on;
+    else if (w[1] == "clip") show.clip = on;
+    else if (w[1] == "ortho") show.orthographic = on;
+    else throw ScriptError("unknown display switch '" + w[1] + "'");
+  } else if (c == "clip") {
+    expect_args(w, 2, "clip X|Y|Z OFFSET01");
+    if (w[1] != "X" && w[1] != "Y" && w[1] != "Z" && w[1] != "x" && w[1] != "y" && w[1] != "z") {
+      throw ScriptError("clip axis must be X, Y or Z");
+    }
+    const double at = number(w[2], "OFFSET01");
+    if (at < 0.0 || at > 1.0) throw ScriptError("OFFSET01 must be between 0 and 1");
+    show.clip = true;
+    show.clip_axis = (w[1][0] | 0x20) - 'x';
+    show.clip_offset = static_cast<float>(at);
+  } else if (c == "view") {
+    expect_args(w, 1, "view front|back|right|left|top|bottom");
+    static const char* kViews[] = {"front", "back", "right", "left", "top", "bottom"};
+    bool known = false;
+    for (const char* v : kViews) known |= w[1] == v;
+    if (!known) throw ScriptError("unknown view '" + w[1] + "'");
+    step.view = w[1];
+  } else if (c == "quit") {
+    expect_args(w, 0, "quit");
+    step.kind = ScriptStep::Kind::Quit;
+  } else {
+    throw ScriptError("unknown command '" + c + "'");
+  }
+}
+
+}  // namespace sublift

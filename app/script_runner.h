@@ -1,0 +1,49 @@
+#pragma once
+// `sublift --script FILE`: modeler commands one per line, run against a ModelerState through
+// the same calls the mouse and keys use (a `move` is a drag: begin_drag / drag_to / end_drag on
+// the selection with the current soft radius). Blank lines and `#` comments are skipped; paths
+// are relative to the current directory. Commands:
+//   open PATH | scheme linear|cubic | subdivide [N] | level L | select [INDEX...] | soft RADIUS
+//   move DX DY DZ | gain LEVEL FACTOR | frames world|local | undo | redo | save PATH
+//   export PATH | screenshot PATH | quit
+//   colour LEVEL|off | display smooth|wireframe|net|xray|depth_cue|clip|ortho on|off
+//   clip X|Y|Z OFFSET01 | view front|back|right|left|top|bottom  (display and camera only)
+// The runner executes commands until one needs a rendered frame (screenshot) or the script
+// ends; the app draws and saves the frame, then calls next() again.
+#include <string>
+#include <vector>
+
+#include "app/modeler_state.h"
+#include "ui/modeler_panels.h"
+
+namespace sublift {
+
+struct ScriptStep {
+  enum class Kind { Screenshot, Quit, End, Error };
+  Kind kind = Kind::End;
+  std::string path;     // Screenshot: the PNG to write
+  std::string message;  // Error: "script:LINE: message"
+  bool reframe = false; // an `open` ran since the last step: frame the new model
+  std::string view;     // a `view` command ran: the preset name (front, right, ...)
+};
+
+class ScriptRunner {
+ public:
+  /// Reads the script; throws IoError when it cannot be read.
+  explicit ScriptRunner(const std::string& path);
+  /// From text (tests).
+  ScriptRunner(const std::string& name, const std::string& text);
+
+  /// Runs commands until a screenshot, quit, the end or the first failure.
+  /// `display` receives the display commands (ignored when null).
+  ScriptStep next(ModelerState& state, ModelerDisplay* display = nullptr);
+
+ private:
+  void run_line(ModelerState& state, ModelerDisplay* display, const std::vector<std::string>& words,
+                ScriptStep& step);
+
+  std::vector<std::string> lines_;
+  std::size_t line_ = 0;  // next line to run (0-based)
+};
+
+}  // namespace sublift

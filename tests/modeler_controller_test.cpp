@@ -1,0 +1,245 @@
+// ModelerController: clicks, Shift+clicks, box selection, drags and the grab tool on a real
+// session, with synthetic window events and no GL context (picking is core math).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <unistd.h>
+#include <string>
+#include <vector>
+
+#include "app/modeler_controller.h"
+#include "core/picking.h"
+#include "render/net_renderer.h"
+#include "render/viewport_renderer.h"
+
+#ifndef SUBLIFT_ASSETS_DIR
+#error "SUBLIFT_ASSETS_DIR must name the assets folder"
+#endif
+
+namespace sublift {
+namespace {
+
+constexpr float kViewX = 330.0f, kViewW = 800.0f, kViewH = 600.0f;
+
+struct Fixture {
+  ModelerController app{false};
+  Fixture() {
+    app.model.open(std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj");
+    app.set_view_rect(kViewX, 0.0f, kViewW, kViewH, 1.0f);
+    app.camera.set_viewport(static_cast<int>(kViewW), static_cast<int>(kViewH));
+    frame_bounds(app.camera, point_bounds(app.model.limit_positions()));
+  }
+  PickView view() const {
+    return PickView{app.camera.projection() * app.camera.view(), app.camera.viewport_width,
+                    app.camera.viewport_height};
+  }
+  // Window position of control point v of the edit level; false when it is off screen.
+  bool window_position(unsigned v, double& x, double& y) const {
+    const auto p = app.model.session().positions(app.model.level());
+    glm::dvec2 s;
+    double depth = 0.0;
+    if (!project_point(view(), glm::dvec3(p[3 * v], p[3 * v + 1], p[3 * v + 2]), s, depth)) return false;
+    x = s.x + kViewX;
+    y = s.y;
+    return true;
+  }
+  // The front-most control point: the one a click at its projection picks.
+  unsigned visible_point() {
+    PickIndex index;
+    index.build(view(), app.model.session().positions(app.model.level()));
+    const auto n = app.model.session().num_vertices(app.model.level());
+    for (unsigned v = 0; v < n; ++v) {
+      double x = 0, y = 0;
+      if (window_position(v, x, y) && index.nearest(x - kViewX, y, 10.0, false) == v) return v;
+    }
+    return 0;
+  }
+  void send(WindowEvent::Type type, double x, double y, int button = 0, Modifiers mods = {}) {
+    WindowEvent e;
+    e.type = type;
+    e.x = x;
+    e.y = y;
+    e.button = button;
+    e.mods = mods;
+    app.handle(e);
+  }
+  void key(Key k, Modifiers mods = {}) {
+    WindowEvent e;
+    e.type = WindowEvent::Type::Key;
+    e.key = k;
+    e.mods = mods;
+    app.handle(e);
+  }
+  void click(double x, double y, Modifiers mods = {}) {
+    send(WindowEvent::Type::Move, x, y, 0, mods);
+    send(WindowEvent::Type::Press, x, y, 0, mods);
+    send(WindowEvent::Type::Release, x, y, 0, mods);
+  }
+  std::vector<double> positions() const {
+    const auto p = app.model.session().positions(app.model.level());
+    return {p.begin(), p.end()};
+  }
+};
+
+TEST(ModelerControllerTest, ClickShiftClickAndClickOnEmptySpace) {
+  Fixture f;
+  const unsigned v = f.visible_point();
+  double x = 0, y = 0;
+  ASSERT_TRUE(f.window_position(v, x, y));
+  f.click(x, y);
+  EXPECT_EQ(f.app.model.selection(), (std::vector<unsigned>{v}));
+  f.click(x, y, Modifiers{true, false, false});  // Shift on a selected point toggles it off
+  EXPECT_TRUE(f.app.model.selection().empty());
+  f.click(x, y);
+  f.click(kViewX + 5, 5);  // empty corner: clears
+  EXPECT_TRUE(f.app.model.selection().empty());
+  EXPECT_TRUE(f.app.model.session().history().empty()) << "selection is not an undo step";
+}
+
+TEST(ModelerControllerTest, BoxSelectAndSelectAllNone) {
+  Fixture f;
+  f.send(WindowEvent::Type::Move, kViewX + 2, 2);
+  f.send(WindowEvent::Type::Press, kViewX + 2, 2);
+  f.send(WindowEvent::Type::Move, kViewX + kViewW - 2, kViewH - 2);
+  f.send(WindowEvent::Type::Release, kViewX + kViewW - 2, kViewH - 2);
+  EXPECT_EQ(f.app.model.selection().size(), f.app.model.session().num_vertices(0));
+  f.key(Key::A, Modifiers{false, false, true});
+  EXPECT_TRUE(f.app.model.selection().empty());
+  f.key(Key::A);
+  EXPECT_EQ(f.app.model.selection().size(), f.app.model.session().num_vertices(0));
+}
+
+TEST(ModelerControllerTest, DragMovesTheSelectionAsOneUndoStep) {
+  Fixture f;
+  const unsigned v = f.visible_point();
+  double x = 0, y = 0;
+  ASSERT_TRUE(f.window_position(v, x, y));
+  f.click(x, y);
+  const std::vector<double> before = f.positions();
+  f.send(WindowEvent::Type::Press, x, y);
+  for (int i = 1; i <= 5; ++i) f.send(WindowEvent::Type::Move, x + 8 * i, y - 4 * i);
+  f.send(WindowEvent::Type::Release, x + 40, y - 20);
+  ASSERT_EQ(f.app.model.session().history().size(), 1u);
+  EXPECT_FALSE(f.app.model.dragging());
+  // The point now projects where the mouse let go.
+  double nx = 0, ny = 0;
+  ASSERT_TRUE(f.window_position(v, nx, ny));
+  EXPECT_NEAR(nx, x + 40, 1.0);
+  EXPECT_NEAR(ny, y - 20, 1.0);
+  // Only the selected point moved on its level.
+  const std::vector<double> after = f.positions();
+  for (std::size_t i = 0; i < after.size(); ++i) {
+    if (i / 3 != v) {
+      EXPECT_EQ(after[i], before[i]) << i;
+    }
+  }
+  f.key(Key::Z, Modifiers{false, true, false});
+  EXPECT_EQ(f.positions(), before);
+  f.key(Key::Z, Modifiers{true, true, false});
+  EXPECT_EQ(f.positions(), after);
+}
+
+TEST(ModelerControllerTest, GrabWithAxisAndTypedDistanceAndCancel) {
+  Fixture f;
+  const unsigned v = f.visible_point();
+  double x = 0, y = 0;
+  ASSERT_TRUE(f.window_position(v, x, y));
+  f.click(x, y);
+  const std::vector<double> before = f.positions();
+  f.key(Key::G);
+  ASSERT_TRUE(f.app.grabbing());
+  f.send(WindowEvent::Type::Move, x + 30, y + 10);
+  EXPECT_NE(f.positions(), before);
+  f.key(Key::Escape);  // cancel restores exactly and leaves no redo-able change behind
+  EXPECT_FALSE(f.app.grabbing());
+  EXPECT_EQ(f.positions(), before);
+  EXPECT_FALSE(f.app.model.session().can_redo());
+  EXPECT_TRUE(f.app.model.session().history().empty());
+
+  f.key(Key::G);
+  f.key(Key::Y);
+  f.key(Key::Digit0);
+  f.key(Key::Period);
+  f.key(Key::Digit5);
+  f.key(Key::Enter);
+  const std::vector<double> after = f.positions();
+  EXPECT_DOUBLE_EQ(after[3 * v + 0], before[3 * v + 0]);
+  EXPECT_NEAR(after[3 * v + 1], before[3 * v + 1] + 0.5, 1e-12);
+  EXPECT_DOUBLE_EQ(after[3 * v + 2], before[3 * v + 2]);
+  EXPECT_EQ(f.app.model.session().undo_position(), 1u);
+  EXPECT_EQ(f.app.model.session().history().size(), 1u);
+}
+
+TEST(ModelerControllerTest, SoftRadiusLevelsAndSubdivideKeys) {
+  Fixture f;
+  WindowEvent wheel;
+  wheel.type = WindowEvent::Type::Wheel;
+  wheel.x = kViewX + 100;
+  wheel.y = 100;
+  wheel.wheel = 1.0;
+  wheel.mods.ctrl = true;
+  f.app.handle(wheel);
+  EXPECT_NEAR(f.app.model.soft_radius(), f.app.model.default_soft_radius(), 1e-12);
+  EXPECT_EQ(f.app.model.level(), 0);
+  f.key(Key::PageUp);
+  EXPECT_EQ(f.app.model.level(), 1);
+  f.key(Key::D, Modifiers{true, false, false});
+  EXPECT_EQ(f.app.model.level(), 0);
+  const int finest = f.app.model.session().finest_level();
+  f.key(Key::D, Modifiers{false, true, false});
+  EXPECT_EQ(f.app.model.session().finest_level(), finest + 1);
+  f.key(Key::Z, Modifiers{false, true, false});
+  EXPECT_EQ(f.app.model.session().finest_level(), finest);
+}
+
+TEST(ModelerControllerTest, AutosaveRecoveryAndQuitPrompt) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("sublift_recovery_test_" + std::to_string(::getpid()));
+  ::setenv("SUBLIFT_RECOVERY_DIR", dir.c_str(), 1);
+  const std::filesystem::path file = dir / "recovery.sublift";
+  EXPECT_EQ(ModelerController::recovery_path(), file.string());
+  {
+    ModelerController app(true);
+    app.model.open(std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj");
+    EXPECT_TRUE(app.request_quit()) << "a clean session quits at once";
+    app.tick(0.0);
+    app.model.set_selection({1});
+    app.model.begin_drag("Move");
+    const double d[3] = {0.0, 0.1, 0.0};
+    app.model.drag_to(d);
+    app.tick(200.0);  // never during a drag
+    EXPECT_FALSE(std::filesystem::exists(file));
+    app.model.end_drag();
+    app.tick(100.0);  // not yet two minutes since the first tick
+    EXPECT_FALSE(std::filesystem::exists(file));
+    app.tick(200.0);
+    EXPECT_TRUE(std::filesystem::exists(file));
+    EXPECT_FALSE(app.request_quit()) << "unsaved changes must be asked about";
+    // The autosave reopens to the edited shape.
+    {
+      ModelerState copy;
+      copy.open(file.string());
+      const auto a = copy.session().positions(0), b = app.model.session().positions(0);
+      EXPECT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end()));
+    }
+    app.clean_exit();
+    EXPECT_FALSE(std::filesystem::exists(file));
+  }
+  {
+    ModelerController scripted(false);  // scripts and screenshots never autosave
+    scripted.model.open(std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj");
+    scripted.model.subdivide();
+    scripted.tick(0.0);
+    scripted.tick(500.0);
+    EXPECT_FALSE(std::filesystem::exists(file));
+    EXPECT_TRUE(scripted.request_quit());
+  }
+  std::filesystem::remove_all(dir);
+  ::unsetenv("SUBLIFT_RECOVERY_DIR");
+}
+
+}  // namespace
+}  // namespace sublift

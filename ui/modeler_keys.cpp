@@ -1,0 +1,160 @@
+#include "ui/modeler_keys.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+namespace sublift {
+namespace {
+
+ModelerCommand command(ModelerCommandType type) { return ModelerCommand{type}; }
+
+int digit_of(Key key) {
+  if (key < Key::Digit0 || key > Key::Digit9) return -1;
+  return static_cast<int>(key) - static_cast<int>(Key::Digit0);
+}
+
+ModelerCommand map_grab_key(Key key, const Modifiers& mods, GrabState& grab) {
+  if (key == Key::Escape) {
+    grab = GrabState{};
+    return command(ModelerCommandType::GrabCancel);
+  }
+  if (key == Key::Enter) {
+    grab = GrabState{};
+    return command(ModelerCommandType::GrabConfirm);
+  }
+  if (mods.ctrl || mods.alt) return {};
+  if (key == Key::X || key == Key::Y || key == Key::Z) {
+    const int axis = key == Key::X ? 0 : (key == Key::Y ? 1 : 2);
+    grab.axis = grab.axis == axis ? -1 : axis;  // the same key again frees the axis
+    return command(ModelerCommandType::GrabUpdate);
+  }
+  if (const int d = digit_of(key); d >= 0) {
+    grab.typed.push_back(static_cast<char>('0' + d));
+    return command(ModelerCommandType::GrabUpdate);
+  }
+  if (key == Key::Minus) {
+    // '-' flips the sign wherever it is typed (Blender's habit).
+    if (!grab.typed.empty() && grab.typed.front() == '-') {
+      grab.typed.erase(grab.typed.begin());
+    } else {
+      grab.typed.insert(grab.typed.begin(), '-');
+    }
+    return command(ModelerCommandType::GrabUpdate);
+  }
+  if (key == Key::Period) {
+    if (grab.typed.find('.') == std::string::npos) grab.typed.push_back('.');
+    return command(ModelerCommandType::GrabUpdate);
+  }
+  if (key == Key::Backspace) {
+    if (!grab.typed.empty()) grab.typed.pop_back();
+    return command(ModelerCommandType::GrabUpdate);
+  }
+  return {};
+}
+
+}  // namespace
+
+std::optional<double> GrabState::typed_value() const {
+  if (typed.empty()) return std::nullopt;
+  std::string text = typed;
+  if (text.back() == '.') text.pop_back();
+  if (!text.empty() && text.front() == '.') text.insert(text.begin(), '0');
+  if (text.size() > 1 && text[0] == '-' && text[1] == '.') text.insert(1, "0");
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+ModelerCommand map_modeler_key(Key key, const Modifiers& mods, GrabState& grab, bool has_selection) {
+  if (grab.active) return map_grab_key(key, mods, grab);
+  const bool ctrl = mods.ctrl, shift = mods.shift, alt = mods.alt;
+  switch (key) {
+    case Key::A:
+      if (ctrl || shift) return {};
+      return command(alt ? ModelerCommandType::SelectNone : ModelerCommandType::SelectAll);
+    case Key::D:
+      if (alt) return {};
+      if (ctrl) return shift ? ModelerCommand{} : command(ModelerCommandType::Subdivide);
+      return command(shift ? ModelerCommandType::LevelDown : ModelerCommandType::LevelUp);
+    case Key::PageUp:
+      return ctrl || alt || shift ? ModelerCommand{} : command(ModelerCommandType::LevelUp);
+    case Key::PageDown:
+      return ctrl || alt || shift ? ModelerCommand{} : command(ModelerCommandType::LevelDown);
+    case Key::Z:
+      if (!ctrl || alt) return {};
+      return command(shift ? ModelerCommandType::Redo : ModelerCommandType::Undo);
+    case Key::Y:
+      return ctrl && !shift && !alt ? command(ModelerCommandType::Redo) : ModelerCommand{};
+    case Key::S:
+      if (!ctrl || alt) return {};
+      return command(shift ? ModelerCommandType::SaveAs : ModelerCommandType::Save);
+    case Key::O:
+      return ctrl && !shift && !alt ? command(ModelerCommandType::Open) : ModelerCommand{};
+    case Key::E:
+      return ctrl && !shift && !alt ? command(ModelerCommandType::Export) : ModelerCommand{};
+    case Key::G:
+      if (ctrl || shift || alt || !has_selection) return {};
+      grab = GrabState{};
+      grab.active = true;
+      return command(ModelerCommandType::GrabStart);
+    default:
+      return {};
+  }
+}
+
+double soft_radius_after_wheel(double radius, double notches, double start) {
+  if (notches == 0.0) return radius;
+  if (radius <= 0.0) return notches > 0.0 ? start : 0.0;
+  const double next = radius * std::pow(1.15, notches);
+  return next < start / 20.0 ? 0.0 : next;
+}
+
+PressAction classify_left_press(bool hit, bool hit_selected, bool shift) {
+  if (!hit) return PressAction::BoxSelect;
+  if (hit_selected && !shift) return PressAction::DragSelection;
+  return PressAction::ClickSelect;
+}
+
+void apply_click(std::vector<unsigned>& selection, long long hit, bool shift) {
+  if (!shift) {
+    selection.clear();
+    if (hit >= 0) selection.push_back(static_cast<unsigned>(hit));
+    return;
+  }
+  if (hit < 0) return;
+  const auto v = static_cast<unsigned>(hit);
+  const auto it = std::lower_bound(selection.begin(), selection.end(), v);
+  if (it != selection.end() && *it == v) {
+    selection.erase(it);
+  } else {
+    selection.insert(it, v);
+  }
+}
+
+void apply_box(std::vector<unsigned>& selection, const std::vector<unsigned>& inside, bool shift) {
+  if (!shift) selection.clear();
+  selection.insert(selection.end(), inside.begin(), inside.end());
+  std::sort(selection.begin(), selection.end());
+  selection.erase(std::unique(selection.begin(), selection.end()), selection.end());
+}
+
+const std::vector<KeyBinding>& modeler_key_bindings() {
+  static const std::vector<KeyBinding> bindings = {
+      {"Click / Shift+click", "Select / toggle point"},
+      {"Drag empty space", "Box select (Shift adds)"},
+      {"Drag selected point", "Move in view plane"},
+      {"A / Alt+A", "Select all / none"},
+      {"G, then X/Y/Z, digits", "Grab, axis, distance"},
+      {"Enter / Esc", "Confirm / cancel grab"},
+      {"Ctrl+wheel", "Soft selection radius"},
+      {"PgUp/PgDn, D/Shift+D", "Finer / coarser level"},
+      {"Ctrl+D", "Subdivide once more"},
+      {"Ctrl+Z / Ctrl+Shift+Z, Y", "Undo / redo"},
+      {"Ctrl+S / O / E", "Save / open / export"},
+  };
+  return bindings;
+}
+
+}  // namespace sublift

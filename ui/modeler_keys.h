@@ -1,0 +1,82 @@
+#pragma once
+// Modeler hotkeys and mouse gestures as pure data: key (with modifiers) -> command, the grab
+// tool's state machine (axis constraint, typed distance), and what a left press/release in the
+// viewport means. No GLFW, no ImGui, no GL, so the bindings are unit-tested
+// (tests/modeler_keys_test.cpp); the app executes the commands on the session.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ui/viewport_input.h"
+
+namespace sublift {
+
+enum class ModelerCommandType {
+  None,
+  SelectAll,     // A
+  SelectNone,    // Alt+A
+  LevelUp,       // Page Up, D (finer)
+  LevelDown,     // Page Down, Shift+D (coarser)
+  Subdivide,     // Ctrl+D
+  Undo,          // Ctrl+Z
+  Redo,          // Ctrl+Shift+Z, Ctrl+Y
+  Save,          // Ctrl+S
+  SaveAs,        // Ctrl+Shift+S
+  Open,          // Ctrl+O
+  Export,        // Ctrl+E
+  GrabStart,     // G (with a selection)
+  GrabUpdate,    // axis or typed distance changed while grabbing
+  GrabConfirm,   // Enter, left click
+  GrabCancel,    // Esc, right click
+};
+
+struct ModelerCommand {
+  ModelerCommandType type = ModelerCommandType::None;
+};
+
+/// Grab tool state: active between G and Enter/Esc; axis -1 = free (view plane), 0/1/2 = X/Y/Z;
+/// `typed` is the distance being typed (digits, '-', '.'), empty = follow the mouse.
+struct GrabState {
+  bool active = false;
+  int axis = -1;
+  std::string typed;
+
+  /// The typed distance, if `typed` parses as a number ("-" alone or "." alone do not).
+  std::optional<double> typed_value() const;
+};
+
+/// Maps a key press to a modeler command, updating `grab` (starting it only when
+/// `has_selection`). While grabbing, X/Y/Z toggle the axis, digits/'-'/'.'/Backspace edit the
+/// typed distance, Enter confirms and Esc cancels; every other key is swallowed (None).
+ModelerCommand map_modeler_key(Key key, const Modifiers& mods, GrabState& grab, bool has_selection);
+
+/// Ctrl+wheel: the new soft-selection radius after `notches` (positive grows it 15% a notch);
+/// from 0 a positive notch starts at `start` (e.g. 5% of the model size); shrinking below
+/// `start` / 20 turns soft selection off (0).
+double soft_radius_after_wheel(double radius, double notches, double start);
+
+/// What a left press in the viewport starts.
+enum class PressAction {
+  None,
+  DragSelection,  // on a selected point, no Shift: moves the selection
+  ClickSelect,    // on a point (or Shift on a selected one): select on release if not dragged
+  BoxSelect,      // on empty space: a rubber band (a click without drag clears the selection)
+};
+
+/// Classifies a left press: `hit` = a control point is under the cursor, `hit_selected` = it is
+/// selected, `shift` = Shift held.
+PressAction classify_left_press(bool hit, bool hit_selected, bool shift);
+
+/// Pixels the mouse must travel before a press becomes a drag.
+inline constexpr double kDragThresholdPx = 4.0;
+
+/// How a click or box changes the selection: Shift adds (a click on a selected point toggles it
+/// off), otherwise the selection is replaced. Keeps `selection` sorted and unique.
+void apply_click(std::vector<unsigned>& selection, long long hit, bool shift);
+void apply_box(std::vector<unsigned>& selection, const std::vector<unsigned>& inside, bool shift);
+
+/// The modeler rows of the key help table.
+const std::vector<KeyBinding>& modeler_key_bindings();
+
+}  // namespace sublift

@@ -1,0 +1,336 @@
+#include "ui/modeler_panels.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "ui/modeler_keys.h"
+
+namespace sublift {
+namespace {
+
+constexpr ImGuiWindowFlags kDockedFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                                          ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings |
+                                          ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoTitleBar;
+const ImVec4 kAccent{0.93f, 0.72f, 0.45f, 1.0f};
+const ImVec4 kMuted{0.62f, 0.64f, 0.68f, 1.0f};
+const ImVec4 kWarning{0.98f, 0.78f, 0.30f, 1.0f};
+const ImVec4 kError{1.00f, 0.45f, 0.42f, 1.0f};
+const ImVec4 kGood{0.55f, 0.85f, 0.55f, 1.0f};
+
+bool section(const char* title, bool open_by_default = true) {
+  ImGui::Spacing();
+  return ImGui::CollapsingHeader(title, open_by_default ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+}
+
+void draw_file_section(const ModelerPanelData& d, FileFields& f, ModelerPanelRequests& r) {
+  ImGui::TextColored(kMuted, "File");
+  ImGui::SameLine();
+  ImGui::TextUnformatted(d.file_name.c_str());
+  if (d.dirty) {
+    ImGui::SameLine();
+    ImGui::TextColored(kWarning, "(modified)");
+  }
+  if (ImGui::IsItemHovered() && !d.file_path.empty()) ImGui::SetTooltip("%s", d.file_path.c_str());
+  if (!d.error.empty()) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextColored(kError, "%s", d.error.c_str());
+    ImGui::PopTextWrapPos();
+  } else if (!d.message.empty()) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextColored(kGood, "%s", d.message.c_str());
+    ImGui::PopTextWrapPos();
+  }
+  if (!section("Files", false)) return;
+  const float button = 70.0f;
+  ImGui::SetNextItemWidth(-button - ImGui::GetStyle().ItemSpacing.x);
+  const bool enter = ImGui::InputTextWithHint("##open", "path to open", &f.open_path,
+                                              ImGuiInputTextFlags_EnterReturnsTrue);
+  ImGui::SameLine();
+  if ((ImGui::Button("Open", ImVec2(button, 0)) || enter) && !f.open_path.empty()) r.open = f.open_path;
+  if (!d.recent.empty()) {
+    ImGui::SetNextItemWidth(-1.0f);
+    if (ImGui::BeginCombo("##recent", "Recent files")) {
+      for (const std::string& path : d.recent) {
+        if (ImGui::Selectable(path.c_str())) r.open = path;
+      }
+      ImGui::EndCombo();
+    }
+  }
+  ImGui::SetNextItemWidth(-button - ImGui::GetStyle().ItemSpacing.x);
+  ImGui::InputTextWithHint("##save", "project.sublift", &f.save_path);
+  ImGui::SameLine();
+  if (ImGui::Button("Save", ImVec2(button, 0)) && !f.save_path.empty()) r.save = f.save_path;
+  ImGui::SetNextItemWidth(-button - ImGui::GetStyle().ItemSpacing.x);
+  ImGui::InputTextWithHint("##export", "out.obj/.ply/.gltf/.glb/.lattice/.vtk", &f.export_path);
+  ImGui::SameLine();
+  if (ImGui::Button("Export", ImVec2(button, 0)) && !f.export_path.empty()) {
+    r.export_path = f.export_path;
+    r.export_finest = f.export_finest;
+  }
+  ImGui::Checkbox("Export the finest limit (off: current level's net)", &f.export_finest);
+}
+
+void draw_levels_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
+  if (!section("Hierarchy")) return;
+  const char* schemes[] = {"linear", "cubic"};
+  int scheme = d.scheme;
+  ImGui::SetNextItemWidth(120.0f);
+  if (ImGui::Combo("Scheme", &scheme, schemes, 2) && scheme != d.scheme) r.scheme = scheme;
+  int level = d.level;
+  ImGui::SetNextItemWidth(120.0f);
+  if (ImGui::SliderInt("Edit level", &level, 0, std::max(d.finest, 0)) && level != d.level) r.level = level;
+  ImGui::SameLine();
+  if (ImGui::Button("Subdivide")) r.subdivide = true;
+
+  if (ImGui::BeginTable("levels", 5, ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_RowBg)) {
+    ImGui::TableSetupColumn("L", ImGuiTableColumnFlags_WidthStretch, 0.25f);
+    ImGui::TableSetupColumn("verts", ImGuiTableColumnFlags_WidthStretch, 0.8f);
+    ImGui::TableSetupColumn("wavelets", ImGuiTableColumnFlags_WidthStretch, 0.8f);
+    ImGui::TableSetupColumn("|w| max", ImGuiTableColumnFlags_WidthStretch, 0.8f);
+    ImGui::TableSetupColumn("|w| rms", ImGuiTableColumnFlags_WidthStretch, 0.8f);
+    ImGui::TableHeadersRow();
+    for (const LevelInfo& l : d.levels) {
+      ImGui::TableNextRow();
+      ImGui::TableSetColumnIndex(0);
+      if (l.level == d.level) {
+        ImGui::TextColored(kAccent, "%d", l.level);
+      } else {
+        ImGui::Text("%d", l.level);
+      }
+      ImGui::TableSetColumnIndex(1);
+      ImGui::Text("%zu", l.vertices);
+      ImGui::TableSetColumnIndex(2);
+      if (l.level < d.finest) ImGui::Text("%zu", l.wavelets);
+      ImGui::TableSetColumnIndex(3);
+      if (l.level < d.finest) ImGui::Text("%.3g", l.wavelet_max);
+      ImGui::TableSetColumnIndex(4);
+      if (l.level < d.finest) ImGui::Text("%.3g", l.wavelet_rms);
+    }
+    ImGui::EndTable();
+  }
+}
+
+void draw_detail_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
+  if (!section("Detail")) return;
+  ImGui::TextColored(kMuted, "Gain per level (equalizer)");
+  for (std::size_t l = 0; l < d.gains.size(); ++l) {
+    float g = static_cast<float>(d.gains[l]);
+    char label[48];
+    std::snprintf(label, sizeof label, "Level %zu##gain", l);
+    ImGui::PushID(static_cast<int>(l));
+    ImGui::SetNextItemWidth(180.0f);
+    const bool changed = ImGui::SliderFloat(label, &g, 0.0f, 3.0f, "%.2f");
+    if (ImGui::IsItemActivated()) {
+      r.gain_begin = true;
+      r.gain_level = static_cast<int>(l);
+      r.gain_value = d.gains[l];
+    }
+    if (changed) {
+      r.gain_level = static_cast<int>(l);
+      r.gain_value = g;
+    }
+    if (ImGui::IsItemDeactivated()) r.gain_end = true;
+    ImGui::PopID();
+  }
+  bool local = d.local_frames;
+  ImGui::BeginDisabled(d.dim != 2);
+  if (ImGui::Checkbox("Local detail frames", &local)) r.local_frames = local;
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("Detail turns with the surface (surfaces only); off: world axes");
+  }
+  ImGui::TextColored(kMuted, "Colour by |w| of level");
+  int colour = d.colour_level + 1;
+  std::vector<std::string> names{"off (clay)"};
+  for (int l = 0; l < d.finest; ++l) names.push_back("level " + std::to_string(l));
+  ImGui::SetNextItemWidth(140.0f);
+  if (ImGui::BeginCombo("##colour", names[static_cast<std::size_t>(std::clamp(colour, 0, d.finest))].c_str())) {
+    for (int i = 0; i < static_cast<int>(names.size()); ++i) {
+      if (ImGui::Selectable(names[static_cast<std::size_t>(i)].c_str(), i == colour)) r.colour_level = i - 1;
+    }
+    ImGui::EndCombo();
+  }
+  float radius = static_cast<float>(d.soft_radius);
+  ImGui::SetNextItemWidth(140.0f);
+  if (ImGui::InputFloat("Soft radius", &radius, 0.0f, 0.0f, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue)) {
+    r.soft_radius = std::max(0.0f, radius);
+  }
+  ImGui::TextColored(kMuted, "%zu selected", d.selected);
+}
+
+void draw_history_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
+  if (!section("History")) return;
+  ImGui::BeginDisabled(d.undo_position == 0);
+  if (ImGui::Button("Undo")) r.undo = true;
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::BeginDisabled(d.undo_position >= d.history.size());
+  if (ImGui::Button("Redo")) r.redo = true;
+  ImGui::EndDisabled();
+  if (ImGui::BeginListBox("##history", ImVec2(-1.0f, 110.0f))) {
+    if (ImGui::Selectable("(opened)", d.undo_position == 0)) r.history_jump = 0;
+    for (std::size_t i = 0; i < d.history.size(); ++i) {
+      const bool applied = i < d.undo_position;
+      ImGui::PushID(static_cast<int>(i));
+      if (!applied) ImGui::PushStyleColor(ImGuiCol_Text, kMuted);
+      if (ImGui::Selectable(d.history[i].c_str(), i + 1 == d.undo_position)) r.history_jump = i + 1;
+      if (!applied) ImGui::PopStyleColor();
+      ImGui::PopID();
+    }
+    ImGui::EndListBox();
+  }
+}
+
+void draw_display_section(const ModelerPanelData& d, ModelerDisplay& v) {
+  if (!section("Display")) return;
+  const float column = ImGui::GetContentRegionAvail().x * 0.5f;
+  ImGui::Checkbox("Smooth", &v.smooth);
+  ImGui::SameLine(column);
+  ImGui::Checkbox("Wireframe", &v.wireframe);
+  ImGui::Checkbox("Control net", &v.net);
+  ImGui::SameLine(column);
+  ImGui::Checkbox("X-ray", &v.xray);
+  ImGui::Checkbox("Depth cue", &v.depth_cue);
+  ImGui::SameLine(column);
+  ImGui::Checkbox("Orthographic", &v.orthographic);
+  ImGui::Checkbox("Z up", &v.z_up);
+  ImGui::SameLine(column);
+  ImGui::Checkbox("Clip", &v.clip);
+  if (v.clip || d.dim == 3) {
+    const char* axes[] = {"X", "Y", "Z"};
+    ImGui::SetNextItemWidth(60.0f);
+    ImGui::Combo("##axis", &v.clip_axis, axes, 3);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(140.0f);
+    ImGui::SliderFloat("##offset", &v.clip_offset, 0.0f, 1.0f, "cut %.2f");
+    ImGui::SameLine();
+    ImGui::Checkbox("Flip", &v.clip_flip);
+  }
+}
+
+CameraAction draw_view_buttons() {
+  CameraAction action;
+  if (ImGui::Button("Frame (F)")) action.type = CameraActionType::Frame;
+  ImGui::SameLine();
+  if (ImGui::Button("Front")) action.type = CameraActionType::ViewFront;
+  ImGui::SameLine();
+  if (ImGui::Button("Right")) action.type = CameraActionType::ViewRight;
+  ImGui::SameLine();
+  if (ImGui::Button("Top")) action.type = CameraActionType::ViewTop;
+  return action;
+}
+
+void draw_keys_section() {
+  if (!section("Mouse and keys", false)) return;
+  if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_SizingStretchProp)) {
+    auto row = [](std::string_view k, std::string_view a) {
+      ImGui::TableNextRow();
+      ImGui::TableSetColumnIndex(0);
+      ImGui::TextColored(kMuted, "%.*s", static_cast<int>(k.size()), k.data());
+      ImGui::TableSetColumnIndex(1);
+      ImGui::Text("%.*s", static_cast<int>(a.size()), a.data());
+    };
+    for (const KeyBinding& b : modeler_key_bindings()) row(b.keys, b.action);
+    for (const MouseBinding& b : mouse_bindings()) row(b.blender, b.action);
+    for (const KeyBinding& b : key_bindings()) row(b.keys, b.action);
+    ImGui::EndTable();
+  }
+}
+
+}  // namespace
+
+ModelerPanelRequests draw_modeler_panel(const ModelerPanelData& d, ModelerDisplay& display, FileFields& fields,
+                                        float x, float y, float width, float height) {
+  ModelerPanelRequests r;
+  ImGui::SetNextWindowPos(ImVec2(x, y));
+  ImGui::SetNextWindowSize(ImVec2(width, height));
+  if (ImGui::Begin("Sublift##modeler_panel", nullptr, kDockedFlags)) {
+    ImGui::TextColored(kAccent, "SUBLIFT");
+    ImGui::SameLine();
+    ImGui::TextColored(kMuted, "multiresolution modeler");
+    ImGui::Separator();
+    draw_file_section(d, fields, r);
+    if (!d.warnings.empty() && section("Import warnings", false)) {
+      for (const std::string& w : d.warnings) ImGui::TextColored(kWarning, "%s", w.c_str());
+    }
+    draw_levels_section(d, r);
+    draw_detail_section(d, r);
+    draw_history_section(d, r);
+    draw_display_section(d, display);
+    r.camera = draw_view_buttons();
+    ImGui::TextColored(kMuted, "resynthesis %.2f ms, %zu vertices", d.resynthesis_ms, d.vertices_updated);
+    draw_keys_section();
+  }
+  ImGui::End();
+  return r;
+}
+
+namespace {
+
+PromptChoice prompt(bool open, const char* id, const std::string& text, bool recovery, bool confirm = false) {
+  if (open && !ImGui::IsPopupOpen(id)) ImGui::OpenPopup(id);
+  PromptChoice choice = PromptChoice::None;
+  const ImVec2 center(ImGui::GetIO().DisplaySize.x * 0.5f, ImGui::GetIO().DisplaySize.y * 0.5f);
+  ImGui::SetNextWindowPos(center, ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  if (ImGui::BeginPopupModal(id, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::TextUnformatted(text.c_str());
+    ImGui::Spacing();
+    if (confirm) {
+      if (ImGui::Button("Continue", ImVec2(100, 0))) choice = PromptChoice::Discard;
+      ImGui::SameLine();
+      if (ImGui::Button("Cancel", ImVec2(100, 0))) choice = PromptChoice::Cancel;
+    } else if (recovery) {
+      if (ImGui::Button("Recover", ImVec2(100, 0))) choice = PromptChoice::Recover;
+      ImGui::SameLine();
+      if (ImGui::Button("Discard", ImVec2(100, 0))) choice = PromptChoice::Discard;
+    } else {
+      if (ImGui::Button("Save", ImVec2(90, 0))) choice = PromptChoice::Save;
+      ImGui::SameLine();
+      if (ImGui::Button("Discard", ImVec2(90, 0))) choice = PromptChoice::Discard;
+      ImGui::SameLine();
+      if (ImGui::Button("Cancel", ImVec2(90, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) choice = PromptChoice::Cancel;
+    }
+    if (choice != PromptChoice::None || !open) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+  return choice;
+}
+
+}  // namespace
+
+PromptChoice draw_unsaved_prompt(bool open, const std::string& what) {
+  return prompt(open, "Unsaved changes", "The model has unsaved changes.\nSave them before " + what + "?", false);
+}
+
+PromptChoice draw_confirm_prompt(bool open, const std::string& text) {
+  return prompt(open, "Confirm", text, false, true);
+}
+
+PromptChoice draw_recovery_prompt(bool open, const std::string& path) {
+  return prompt(open, "Recover", "Sublift did not close cleanly last time.\nRecover the autosaved model?\n" + path,
+                true);
+}
+
+void draw_modeler_status(const std::string& left, const std::string& right, float display_width,
+                         float display_height, float height) {
+  height = std::min(height, display_height);
+  ImGui::SetNextWindowPos(ImVec2(0.0f, display_height - height));
+  ImGui::SetNextWindowSize(ImVec2(display_width, height));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(12.0f, 5.0f));
+  ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.11f, 0.12f, 0.13f, 1.0f));
+  const ImGuiWindowFlags flags = kDockedFlags | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoInputs;
+  if (ImGui::Begin("##modeler_status", nullptr, flags)) {
+    ImGui::TextUnformatted(left.c_str());
+    const float at = ImGui::GetWindowContentRegionMax().x - ImGui::CalcTextSize(right.c_str()).x;
+    ImGui::SameLine(std::max(at, ImGui::GetCursorPosX() + 24.0f));
+    ImGui::TextColored(kMuted, "%s", right.c_str());
+  }
+  ImGui::End();
+  ImGui::PopStyleColor();
+  ImGui::PopStyleVar();
+}
+
+}  // namespace sublift

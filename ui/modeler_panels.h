@@ -1,0 +1,100 @@
+#pragma once
+// The modeler's ImGui panel (edit level, per-level table, detail equalizer, frames, colouring,
+// history, files, display, timing) and its modal prompts. Plain data in, requests out: the app
+// applies them to its ModelerState (ui knows nothing of app or render, DESIGN.md).
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ui/viewport_input.h"
+
+namespace sublift {
+
+/// Display switches of the modeler viewport, edited in place by the panel.
+struct ModelerDisplay {
+  bool smooth = true;
+  bool wireframe = false;
+  bool net = true;
+  bool xray = false;
+  bool depth_cue = false;
+  bool clip = false;
+  int clip_axis = 2;          // 0 X, 1 Y, 2 Z
+  float clip_offset = 0.5f;   // 0..1 across the bounds along the axis
+  bool clip_flip = false;
+  bool orthographic = false;
+  bool z_up = false;
+};
+
+struct LevelInfo {
+  int level = 0;
+  std::size_t vertices = 0, wavelets = 0;
+  double wavelet_max = 0.0, wavelet_rms = 0.0;
+};
+
+/// What the panel shows (filled by the app each frame).
+struct ModelerPanelData {
+  std::string file_name, file_path;
+  std::string error;                  // last failed action, with file/line/reason
+  std::string message;                // last successful file action
+  std::vector<std::string> warnings;  // import report lines
+  int dim = 2;
+  int scheme = 1;                     // 0 linear, 1 cubic
+  int level = 0, finest = 0;
+  std::vector<LevelInfo> levels;
+  std::vector<double> gains;          // per level 0..finest-1
+  bool local_frames = false;
+  std::vector<std::string> history;   // labels, oldest first
+  std::size_t undo_position = 0;
+  double resynthesis_ms = 0.0, frame_ms = 0.0;
+  std::size_t vertices_updated = 0;
+  std::size_t selected = 0;
+  double soft_radius = 0.0;
+  int colour_level = -1;
+  bool dirty = false;
+  std::vector<std::string> recent;    // recently opened files, newest first
+};
+
+/// Text fields the panel edits in place (paths typed by the user).
+struct FileFields {
+  std::string open_path, save_path, export_path;
+  bool export_finest = true;
+};
+
+/// What the user asked for this frame.
+struct ModelerPanelRequests {
+  std::optional<int> scheme, level, colour_level;
+  std::optional<std::size_t> history_jump;
+  std::optional<bool> local_frames;
+  int gain_level = -1;                // a gain slider moved: level and value
+  double gain_value = 1.0;
+  bool gain_begin = false, gain_end = false;  // the slider drag started / ended
+  bool subdivide = false, undo = false, redo = false;
+  std::optional<std::string> open;    // path to open
+  std::optional<std::string> save;    // path to save the project to
+  std::optional<std::string> export_path;
+  bool export_finest = true;
+  std::optional<double> soft_radius;
+  CameraAction camera;
+};
+
+/// Draws the side panel; `display` and `fields` are edited in place.
+ModelerPanelRequests draw_modeler_panel(const ModelerPanelData& data, ModelerDisplay& display, FileFields& fields,
+                                        float x, float y, float width, float height);
+
+/// Answers of the modal prompts.
+enum class PromptChoice { None, Save, Discard, Cancel, Recover };
+
+/// The unsaved-changes prompt (Save / Discard / Cancel) while `open` is true.
+PromptChoice draw_unsaved_prompt(bool open, const std::string& what);
+/// The recovery prompt (Recover / Discard) while `open` is true.
+PromptChoice draw_recovery_prompt(bool open, const std::string& path);
+
+/// A yes/no confirmation (Continue / Cancel) while `open` is true; Continue answers Discard.
+PromptChoice draw_confirm_prompt(bool open, const std::string& text);
+
+/// The status line for the modeler.
+void draw_modeler_status(const std::string& left, const std::string& right, float display_width,
+                         float display_height, float height);
+
+}  // namespace sublift

@@ -17,18 +17,6 @@ using namespace lifting_detail;
 // to balance two cores when one is busy with something else.
 constexpr std::uint32_t kGrain = 8192;
 
-// Sum of the rows' source values (C channels) into s.
-template <int C>
-inline void sum_sources(const double* x, const std::uint32_t* idx, std::uint32_t n, std::uint32_t base, int ch,
-                        double* s) {
-  const int cc = C > 0 ? C : ch;
-  for (int c = 0; c < cc; ++c) s[c] = 0.0;
-  for (std::uint32_t k = 0; k < n; ++k) {
-    const double* p = x + std::size_t(base + idx[k]) * cc;
-    for (int c = 0; c < cc; ++c) s[c] += p[c];
-  }
-}
-
 // x[target] += sign * sum_g weight_g(m) * centroid_g, for targets [0, n) of one class. The
 // group count G and channel count C are template parameters so the loops unroll; C == 0 means
 // "channels at run time".
@@ -49,24 +37,7 @@ void gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* targ
     for (std::uint32_t i = begin; i < end; ++i) {
       const int m = target_m ? target_m[i] : 0;
       for (int c = 0; c < ch; ++c) acc[c] = 0.0;
-      bool any = false;
-      for (int g = 0; g < G; ++g) {
-        const Group& gr = groups[g];
-        const double wm = gr.weight[m];
-        std::uint32_t b, len;
-        if (gr.offsets) {
-          b = gr.offsets[i];
-          len = gr.offsets[i + 1] - b;
-        } else {
-          b = i * gr.stride;
-          len = gr.stride;
-        }
-        if (len == 0 || wm == 0.0) continue;
-        any = true;
-        sum_sources<C>(x, gr.items + b, len, gr.source_base, ch, sum);
-        const double w = wm * inv(len);
-        for (int c = 0; c < ch; ++c) acc[c] += w * sum[c];
-      }
+      const bool any = accumulate_row<C, G>(groups.data(), i, m, x, ch, sum, acc);
       if (!any) continue;
       double* dst = x + std::size_t(target_base + i) * ch;
       if constexpr (Integer) {

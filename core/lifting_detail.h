@@ -70,6 +70,46 @@ struct Classes {
         E0(nv), F0(nv + ne), C0(nv + ne + nf) {}
 };
 
+// Sum of the rows' source values (C channels) into s.
+template <int C>
+inline void sum_sources(const double* x, const std::uint32_t* idx, std::uint32_t n, std::uint32_t base, int ch,
+                        double* s) {
+  const int cc = C > 0 ? C : ch;
+  for (int c = 0; c < cc; ++c) s[c] = 0.0;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const double* p = x + std::size_t(base + idx[k]) * cc;
+    for (int c = 0; c < cc; ++c) s[c] += p[c];
+  }
+}
+
+// acc += sum over groups of weight_g(m) times the centroid of row i of group g (C channels, 0 =
+// `ch` at run time; `sum` is scratch of ch values). False when no group has a row for i. The
+// dense and the sparse loops evaluate a row through this one function, so they agree.
+template <int C, int G>
+inline bool accumulate_row(const Group* groups, std::uint32_t i, int m, const double* x, int ch, double* sum,
+                           double* acc) {
+  const int cc = C > 0 ? C : ch;
+  bool any = false;
+  for (int g = 0; g < G; ++g) {
+    const Group& gr = groups[g];
+    const double wm = gr.weight[m];
+    std::uint32_t b, len;
+    if (gr.offsets) {
+      b = gr.offsets[i];
+      len = gr.offsets[i + 1] - b;
+    } else {
+      b = i * gr.stride;
+      len = gr.stride;
+    }
+    if (len == 0 || wm == 0.0) continue;
+    any = true;
+    sum_sources<C>(x, gr.items + b, len, gr.source_base, cc, sum);
+    const double w = wm * inv(len);
+    for (int c = 0; c < cc; ++c) acc[c] += w * sum[c];
+  }
+  return any;
+}
+
 inline const Csr& pick(bool own, const Csr& owned, const Csr& complex_rows) { return own ? owned : complex_rows; }
 
 }  // namespace sublift::lifting_detail

@@ -72,27 +72,8 @@ void sparse_gather(std::uint32_t num_targets, std::uint32_t target_base, const s
     for (std::uint32_t k = begin; k < end; ++k) {
       const std::uint32_t i = d.candidates[k];
       const int m = target_m ? target_m[i] : 0;
-      double acc[3] = {0, 0, 0};
-      for (int g = 0; g < G; ++g) {
-        const Group& gr = groups[g];
-        const double wm = gr.weight[m];
-        std::uint32_t b, len;
-        if (gr.offsets) {
-          b = gr.offsets[i];
-          len = gr.offsets[i + 1] - b;
-        } else {
-          b = i * gr.stride;
-          len = gr.stride;
-        }
-        if (len == 0 || wm == 0.0) continue;
-        double sum[3] = {0, 0, 0};
-        for (std::uint32_t j = 0; j < len; ++j) {
-          const double* p = d.x.data() + std::size_t(gr.source_base + gr.items[b + j]) * 3;
-          sum[0] += p[0], sum[1] += p[1], sum[2] += p[2];
-        }
-        const double w = wm * inv(len);
-        for (int c = 0; c < 3; ++c) acc[c] += w * sum[c];
-      }
+      double acc[3] = {0, 0, 0}, sum[3];
+      accumulate_row<3, G>(groups, i, m, d.x.data(), 3, sum, acc);
       double* dst = d.x.data() + std::size_t(target_base + i) * 3;
       for (int c = 0; c < 3; ++c) dst[c] += acc[c];
     }

@@ -540,6 +540,17 @@ inline void face_normal(const Csr& faces, std::size_t f, const double* x, double
   }
 }
 
+// The limit position of v from its stencil row.
+inline void limit_row(const LimitStencils& s, std::uint32_t v, const double* control, double* out) {
+  double acc[3] = {0, 0, 0};
+  for (std::uint32_t k = s.rows.offsets[v]; k < s.rows.offsets[v + 1]; ++k) {
+    const double* p = control + 3 * std::size_t(s.rows.items[k]);
+    const double w = s.weights[k];
+    acc[0] += w * p[0], acc[1] += w * p[1], acc[2] += w * p[2];
+  }
+  out[0] = acc[0], out[1] = acc[1], out[2] = acc[2];
+}
+
 // tu x tv of v's exact tangents; false when v has none or they are degenerate.
 inline bool tangent_cross(const LimitStencils& s, std::uint32_t v, const double* control, double* t) {
   const std::uint32_t b = s.tangent_rows.offsets[v], e = s.tangent_rows.offsets[v + 1];
@@ -732,14 +743,7 @@ void eval_limit(const LimitStencils& s, const double* control, double* limit) {
   const std::uint32_t nv = static_cast<std::uint32_t>(s.rows.rows());
   parallel_for(nv, kGrain, [&](std::uint32_t b, std::uint32_t e) {
     for (std::uint32_t v = b; v < e; ++v) {
-      double acc[3] = {0, 0, 0};
-      for (std::uint32_t k = s.rows.offsets[v]; k < s.rows.offsets[v + 1]; ++k) {
-        const double* p = control + 3 * std::size_t(s.rows.items[k]);
-        const double w = s.weights[k];
-        acc[0] += w * p[0], acc[1] += w * p[1], acc[2] += w * p[2];
-      }
-      double* out = limit + 3 * std::size_t(v);
-      out[0] = acc[0], out[1] = acc[1], out[2] = acc[2];
+      limit_row(s, v, control, limit + 3 * std::size_t(v));
     }
   });
 }
@@ -770,14 +774,7 @@ void eval_limit_subset(const LimitStencils& s, const double* control, std::span<
   parallel_for(static_cast<std::uint32_t>(fresh.size()), kSubsetGrain, [&](std::uint32_t b, std::uint32_t e) {
     for (std::uint32_t i = b; i < e; ++i) {
       const std::uint32_t v = fresh[i];
-      double acc[3] = {0, 0, 0};
-      for (std::uint32_t k = s.rows.offsets[v]; k < s.rows.offsets[v + 1]; ++k) {
-        const double* p = control + 3 * std::size_t(s.rows.items[k]);
-        const double w = s.weights[k];
-        acc[0] += w * p[0], acc[1] += w * p[1], acc[2] += w * p[2];
-      }
-      double* out = limit + 3 * std::size_t(v);
-      out[0] = acc[0], out[1] = acc[1], out[2] = acc[2];
+      limit_row(s, v, control, limit + 3 * std::size_t(v));
     }
   });
 }

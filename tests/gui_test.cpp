@@ -3,8 +3,6 @@
 // panel on the left, the mesh in clay with a dark wireframe in the light grey-blue viewport.
 #include <gtest/gtest.h>
 
-#include <stb_image.h>
-
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,6 +14,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "gui_test_util.h"
 
 #ifndef SUBLIFT_GUI_EXE
 #error "SUBLIFT_GUI_EXE must name the sublift executable"
@@ -32,16 +32,10 @@ namespace fs = std::filesystem;
 constexpr int kPanelWidth = 330;
 constexpr int kStatusHeight = 28;
 
-struct ProcessResult {
-  int exit_code = -1;
-  std::string err;
-};
-
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
+using ProcessResult = sublift::testing::ShellResult;
+using sublift::testing::load_png;
+using sublift::testing::Png;
+using sublift::testing::quote;
 
 fs::path scratch_dir() {
   static const fs::path dir = [] {
@@ -54,15 +48,7 @@ fs::path scratch_dir() {
 
 // Runs a shell command with stderr captured; a hang is cut off by `timeout` inside `command`.
 ProcessResult run_command(const std::string& command) {
-  const fs::path err = scratch_dir() / "stderr.txt";
-  const int status = std::system((command + " 2>" + quote(err.string())).c_str());
-  ProcessResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(err);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.err = ss.str();
-  return r;
+  return sublift::testing::run_shell(command, scratch_dir() / "stderr.txt");
 }
 
 std::string sublift() { return quote(SUBLIFT_GUI_EXE); }
@@ -76,21 +62,6 @@ std::string xvfb_prefix() {
 }
 
 std::string headless_prefix() { return "env -u DISPLAY -u WAYLAND_DISPLAY "; }
-
-struct Png {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> rgba;
-};
-
-Png load_png(const fs::path& path) {
-  Png png;
-  int channels = 0;
-  stbi_uc* data = stbi_load(path.c_str(), &png.width, &png.height, &channels, 4);
-  if (data == nullptr) return png;
-  png.rgba.assign(data, data + static_cast<std::size_t>(png.width) * png.height * 4);
-  stbi_image_free(data);
-  return png;
-}
 
 struct Rgb {
   int r, g, b;

@@ -4,8 +4,6 @@
 // must exit 1 naming its line. PNGs are kept in the build directory (modeler_gui_test_out/).
 #include <gtest/gtest.h>
 
-#include <stb_image.h>
-
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -17,6 +15,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "gui_test_util.h"
 
 #ifndef SUBLIFT_GUI_EXE
 #error "SUBLIFT_GUI_EXE must name the sublift executable"
@@ -35,16 +35,10 @@ namespace fs = std::filesystem;
 constexpr int kWidth = 960, kHeight = 640;
 constexpr int kPanelWidth = 330, kStatusHeight = 28;  // ui/panels.h PanelLayout
 
-struct ProcessResult {
-  int exit_code = -1;
-  std::string err;
-};
-
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
+using ProcessResult = sublift::testing::ShellResult;
+using sublift::testing::load_png;
+using sublift::testing::Png;
+using sublift::testing::quote;
 
 // One folder per test and mode: ctest runs tests in parallel, and each run writes its stderr,
 // scripts and screenshots there.
@@ -56,15 +50,7 @@ fs::path out_dir(const std::string& mode) {
 }
 
 ProcessResult run_command(const std::string& command, const fs::path& dir) {
-  const fs::path err = dir / "stderr.txt";
-  const int status = std::system((command + " 2>" + quote(err.string())).c_str());
-  ProcessResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(err);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.err = ss.str();
-  return r;
+  return sublift::testing::run_shell(command, dir / "stderr.txt");
 }
 
 std::string prefix(const std::string& mode) {
@@ -88,22 +74,6 @@ ProcessResult run_script(const std::string& mode, const std::string& name, const
                          std::to_string(kWidth) + "x" + std::to_string(kHeight) + flags + " --script " +
                          quote(file.string()),
                      dir);
-}
-
-struct Png {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> rgba;
-  int channel(int x, int y, int c) const { return rgba[(static_cast<std::size_t>(y) * width + x) * 4 + c]; }
-};
-
-Png load_png(const fs::path& path) {
-  Png png;
-  int channels = 0;
-  stbi_uc* data = stbi_load(path.c_str(), &png.width, &png.height, &channels, 4);
-  if (data == nullptr) return png;
-  png.rgba.assign(data, data + static_cast<std::size_t>(png.width) * png.height * 4);
-  stbi_image_free(data);
-  return png;
 }
 
 int difference(const Png& a, const Png& b, int x, int y) {

@@ -278,6 +278,14 @@ int run_window(WindowContext& window, ModelerController& app, RunPlan& plan) {
   GlfwBackendGuard platform(handle);
   OpenGl3BackendGuard renderer;
   ModelerView view;
+  // Clicks skip control points behind the surface: picking reads the surface's depth.
+  app.set_depth_source([&view](const OrbitCamera& c, int w, int h, const ModelerDisplay& d) {
+    return view.surface_depth(c, w, h, d);
+  });
+  struct ForgetView {
+    ModelerController& app;
+    ~ForgetView() { app.set_depth_source({}); }
+  } forget_view{app};
   FrameClock clock;
   int exit_code = 0;
   std::string shown_title;

@@ -150,7 +150,7 @@ PickView ModelerController::pick_view() const {
 
 const PickIndex& ModelerController::pick_index() {
   const PickView v = pick_view();
-  if (pick_dirty_ || v.view_proj != pick_matrix_ || clip_now_ != pick_clip_) {
+  if (pick_dirty_ || v.view_proj != pick_matrix_ || clip_now_ != pick_clip_ || display.xray != pick_xray_) {
     // Points the clipping plane removed from view cannot be picked either.
     const auto xyz = model.session().positions(model.level());
     pick_visible_.clear();
@@ -160,7 +160,11 @@ const PickIndex& ModelerController::pick_index() {
         pick_visible_[i] = clip_now_.x * xyz[3 * i] + clip_now_.y * xyz[3 * i + 1] + clip_now_.z * xyz[3 * i + 2] +
                                clip_now_.w >= 0.0;
     }
-    pick_.build(v, xyz, pick_visible_);
+    std::vector<float> depth;
+    if (!display.xray && depth_source_) depth = depth_source_(camera, v.width, v.height, display);
+    const OcclusionDepth occlusion{depth};
+    pick_.build(v, xyz, pick_visible_, depth.size() == std::size_t(v.width) * std::size_t(v.height) ? &occlusion : nullptr);
+    pick_xray_ = display.xray;
     pick_matrix_ = v.view_proj;
     pick_clip_ = clip_now_;
     pick_dirty_ = false;

@@ -5,6 +5,7 @@
 // draw_frame(), which draws through a ModelerView.
 #include <cstdint>
 #include <optional>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,11 @@ class ModelerController {
   }
   bool grabbing() const { return grab_.active; }
 
+  /// Where picking gets the surface's depth so that points behind it are not picked without
+  /// x-ray (the app passes ModelerView::surface_depth; tests may leave it unset).
+  using DepthSource = std::function<std::vector<float>(const OrbitCamera&, int, int, const ModelerDisplay&)>;
+  void set_depth_source(DepthSource source) { depth_source_ = std::move(source), pick_dirty_ = true; }
+
   /// Draws panel, status line, overlays and viewport into the bound framebuffer; the caller has
   /// started the ImGui backend frame. Display size from ImGui's IO.
   void draw_frame(ModelerView& view, int fb_width, int fb_height);
@@ -116,6 +122,8 @@ class ModelerController {
   glm::vec4 pick_clip_{0.0f};  // the clipping plane the pick index was built with; 0 = none
   glm::vec4 clip_now_{0.0f};   // the one drawn last
   std::vector<std::uint8_t> pick_visible_;
+  bool pick_xray_ = false;
+  DepthSource depth_source_;
   Pending pending_;
   bool unsaved_prompt_ = false, recovery_prompt_ = false;
   std::optional<int> scheme_prompt_;  // a scheme change waiting for confirmation

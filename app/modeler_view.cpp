@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "render/offscreen_target.h"
+
 namespace sublift {
 
 void ModelerView::sync(ModelerState& state) {
@@ -100,6 +102,30 @@ void ModelerView::draw(const OrbitCamera& camera, const ViewportRect& rect, cons
     net_.draw(camera, style);
   }
   glDisable(GL_SCISSOR_TEST);
+}
+
+std::vector<float> ModelerView::surface_depth(const OrbitCamera& camera, int width, int height,
+                                             const ModelerDisplay& d) const {
+  if (!has_surface_ || width <= 0 || height <= 0) return {};
+  GLint previous_fbo = 0, previous_viewport[4] = {0, 0, 0, 0};
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous_fbo);
+  glGetIntegerv(GL_VIEWPORT, previous_viewport);
+  std::vector<float> depth(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 1.0f);
+  {
+    OffscreenTarget target(width, height, 0);
+    target.bind();
+    glDepthMask(GL_TRUE);
+    glClear(GL_DEPTH_BUFFER_BIT | GL_COLOR_BUFFER_BIT);
+    SurfaceStyle style;
+    style.clip = d.clip;
+    style.clip_plane = clip_plane(d);
+    surface_.draw(camera, style);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous_fbo));
+  glViewport(previous_viewport[0], previous_viewport[1], previous_viewport[2], previous_viewport[3]);
+  return depth;
 }
 
 }  // namespace sublift

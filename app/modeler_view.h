@@ -2,6 +2,8 @@
 // ModelerView: the modeler's 3-D viewport on the GPU — backdrop, the finest level's limit
 // surface (or a curve's limit polyline) and the control net of the edit level on top. It
 // mirrors a ModelerState, uploading only what take_view_update() reports as changed.
+#include <vector>
+
 #include <glm/vec4.hpp>
 
 #include "app/modeler_state.h"
@@ -27,6 +29,13 @@ class ModelerView {
   Bounds bounds() const;
   /// The clipping plane the display asks for, in world coordinates.
   glm::vec4 clip_plane(const ModelerDisplay& display) const;
+  /// Window depth ([0, 1], rows bottom-up, 1 where nothing is drawn) of the surface alone as
+  /// `camera` sees it at width x height pixels, drawn into a single-sample offscreen target (the
+  /// window's multisampled depth cannot be read back): what picking needs to skip control points
+  /// behind the surface. Leaves the previously bound framebuffer and viewport bound. Empty when
+  /// there is no surface.
+  std::vector<float> surface_depth(const OrbitCamera& camera, int width, int height,
+                                   const ModelerDisplay& display) const;
 
  private:
   BackgroundRenderer background_;

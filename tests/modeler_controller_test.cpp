@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "app/modeler_controller.h"
+#include "app/modeler_view.h"
 #include "core/picking.h"
+#include "render/headless_context.h"
 #include "render/net_renderer.h"
 #include "render/viewport_renderer.h"
 
@@ -97,6 +99,44 @@ TEST(ModelerControllerTest, ClickShiftClickAndClickOnEmptySpace) {
   f.click(kViewX + 5, 5);  // empty corner: clears
   EXPECT_TRUE(f.app.model.selection().empty());
   EXPECT_TRUE(f.app.model.session().history().empty()) << "selection is not an undo step";
+}
+
+// With the surface's depth (the app's ModelerView::surface_depth), a click at a control point
+// hidden behind the surface does not pick it; with x-ray it does. Needs a GL context (EGL).
+TEST(ModelerControllerTest, ClicksSkipPointsBehindTheSurfaceUnlessXray) {
+  HeadlessContext context;
+  Fixture f;
+  ModelerView view;
+  view.sync(f.app.model);
+  const int w = f.app.camera.viewport_width, h = f.app.camera.viewport_height;
+  const std::vector<float> depth = view.surface_depth(f.app.camera, w, h, f.app.display);
+  ASSERT_EQ(depth.size(), std::size_t(w) * std::size_t(h));
+  // A point the depth-less front-cluster rule would pick, but that lies behind the surface.
+  PickIndex plain;
+  plain.build(f.view(), f.app.model.session().positions(0));
+  const auto p = f.app.model.session().positions(0);
+  int hidden = -1;
+  for (unsigned v = 0; v < f.app.model.session().num_vertices(0) && hidden < 0; ++v) {
+    glm::dvec2 s;
+    double ndc = 0.0;
+    if (!project_point(f.view(), glm::dvec3(p[3 * v], p[3 * v + 1], p[3 * v + 2]), s, ndc)) continue;
+    const int px = static_cast<int>(s.x), py = h - 1 - static_cast<int>(s.y);
+    if (px < 0 || py < 0 || px >= w || py >= h) continue;
+    const double surface = depth[std::size_t(py) * std::size_t(w) + std::size_t(px)];
+    if (surface < 0.5 * (ndc + 1.0) - 0.01 && plain.nearest(s.x, s.y, 10.0, false) == v) hidden = int(v);
+  }
+  ASSERT_GE(hidden, 0) << "no control point of the torus is hidden behind its surface from this view";
+  f.app.set_depth_source([&view](const OrbitCamera& c, int dw, int dh, const ModelerDisplay& d) {
+    return view.surface_depth(c, dw, dh, d);
+  });
+  double x = 0, y = 0;
+  ASSERT_TRUE(f.window_position(unsigned(hidden), x, y));
+  f.click(x, y);
+  EXPECT_NE(f.app.model.selection(), (std::vector<unsigned>{unsigned(hidden)}));
+  f.app.display.xray = true;
+  f.click(x, y);
+  EXPECT_EQ(f.app.model.selection(), (std::vector<unsigned>{unsigned(hidden)}));
+  f.app.set_depth_source({});
 }
 
 TEST(ModelerControllerTest, BoxSelectAndSelectAllNone) {

@@ -180,9 +180,12 @@ void print_summary() {
   const double sl = get("surface drag (local + limit)"), sf = get("surface full synthesis"),
                sfl = get("surface full synthesis+limit");
   const double ll = get("lattice drag (local)"), lf = get("lattice full synthesis");
-  if (sl > 0 && sf > 0)
+  const double sr = get("surface drag (local + limit): resynthesis only");
+  if (sl > 0 && sf > 0) {
     std::printf("surface: drag %.3f ms (60 Hz frame: 16.7 ms), full synthesis %.1f ms: %.1fx; with limit+normals %.1f ms: %.1fx\n",
                 sl, sf, sf / sl, sfl, sfl / sl);
+    if (sr > 0) std::printf("surface: local resynthesis alone %.3f ms vs full synthesis %.1f ms: %.1fx\n", sr, sf, sf / sr);
+  }
   if (ll > 0 && lf > 0) std::printf("lattice 12^3: drag %.3f ms, full synthesis %.1f ms: %.1fx\n", ll, lf, lf / ll);
   const double Ll = get("lattice 16^3 drag (local)"), Lf = get("lattice 16^3 full synthesis");
   if (Ll > 0 && Lf > 0) std::printf("lattice 16^3: drag %.3f ms, full synthesis %.1f ms: %.1fx\n", Ll, Lf, Lf / Ll);

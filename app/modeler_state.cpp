@@ -128,12 +128,15 @@ void ModelerState::after_operation() {
         std::fill(stamp_.begin(), stamp_.end(), 0u);
         epoch_ = 1;
       }
+      // Vertices with exact tangents read only control points, so the moved ones suffice there.
+      const std::vector<std::int8_t>& exact = stencils_.tangent_sign;
+      auto face_based = [&](std::uint32_t w) { return w >= exact.size() || exact[w] == 0; };
       std::vector<std::uint32_t> shade;
       for (const std::uint32_t v : moved) {
         if (stamp_[v] != epoch_) stamp_[v] = epoch_, shade.push_back(v);
         for (const std::uint32_t f : vertex_faces_.row(v)) {
           for (const std::uint32_t w : faces_.row(f)) {
-            if (stamp_[w] != epoch_) stamp_[w] = epoch_, shade.push_back(w);
+            if (stamp_[w] != epoch_ && face_based(w)) stamp_[w] = epoch_, shade.push_back(w);
           }
         }
       }

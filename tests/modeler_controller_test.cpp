@@ -12,6 +12,7 @@
 
 #include "app/modeler_controller.h"
 #include "app/modeler_view.h"
+#include "core/limit.h"
 #include "core/picking.h"
 #include "render/headless_context.h"
 #include "render/net_renderer.h"
@@ -28,8 +29,8 @@ constexpr float kViewX = 330.0f, kViewW = 800.0f, kViewH = 600.0f;
 
 struct Fixture {
   ModelerController app{false};
-  Fixture() {
-    app.model.open(std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj");
+  explicit Fixture(const std::string& file = "torus_quad.obj") {
+    app.model.open(std::string(SUBLIFT_ASSETS_DIR) + "/" + file);
     app.set_view_rect(kViewX, 0.0f, kViewW, kViewH, 1.0f);
     app.camera.set_viewport(static_cast<int>(kViewW), static_cast<int>(kViewH));
     frame_bounds(app.camera, point_bounds(app.model.limit_positions()));
@@ -85,6 +86,24 @@ struct Fixture {
     return {p.begin(), p.end()};
   }
 };
+
+// What the viewport shows after the incremental updates equals a fresh evaluation.
+void expect_shown_equals_fresh(const Fixture& f) {
+  const Hierarchy& h = f.app.model.session().hierarchy();
+  const int J = h.finest_level();
+  const LimitStencils st = build_limit_stencils(h);
+  const auto control = f.app.model.session().positions(J);
+  std::vector<double> limit(control.size()), normals(control.size());
+  eval_limit(st, control.data(), limit.data());
+  limit_normals(st, h.levels[std::size_t(J)].faces, control.data(), limit.data(), normals.data());
+  const auto shown = f.app.model.limit_positions();
+  const auto shown_normals = f.app.model.limit_normals();
+  ASSERT_EQ(shown.size(), limit.size());
+  for (std::size_t i = 0; i < limit.size(); ++i) {
+    EXPECT_NEAR(shown[i], limit[i], 1e-12) << i;
+    EXPECT_NEAR(shown_normals[i], normals[i], 1e-12) << i;
+  }
+}
 
 TEST(ModelerControllerTest, ClickShiftClickAndClickOnEmptySpace) {
   Fixture f;
@@ -180,7 +199,27 @@ TEST(ModelerControllerTest, DragMovesTheSelectionAsOneUndoStep) {
   EXPECT_EQ(f.positions(), before);
   f.key(Key::Z, Modifiers{true, true, false});
   EXPECT_EQ(f.positions(), after);
+  expect_shown_equals_fresh(f);
 }
+
+// Boundaries and creases take face-based normals, which also depend on the neighbours.
+TEST(ModelerControllerTest, DragOnBoundaryAndCreaseKeepsTheShownLimitExact) {
+  for (const char* file : {"quad_grid_boundary.obj", "crease_loop.obj"}) {
+    Fixture f(file);
+    for (unsigned v = 0; v < f.app.model.session().num_vertices(0); v += 3) {
+      double x = 0, y = 0;
+      if (!f.window_position(v, x, y)) continue;
+      f.app.model.set_selection({v});
+      f.app.model.begin_drag("Drag");
+      const double total[3] = {0.05, 0.1, -0.02};
+      f.app.model.drag_to(total);
+      f.app.model.end_drag();
+    }
+    SCOPED_TRACE(file);
+    expect_shown_equals_fresh(f);
+  }
+}
+
 
 TEST(ModelerControllerTest, GrabWithAxisAndTypedDistanceAndCancel) {
   Fixture f;

@@ -31,6 +31,9 @@ constexpr const char* kUsage =
     "                                        the largest fraction F of the wavelets\n"
     "  edit PROJECT --level L --vertex I [--falloff R] --delta DX DY DZ [--local-frames] -o OUT\n"
     "                                        move control points of level L, fine detail kept\n"
+    "  basis IN [--scheme S] --level J (--vertex I | --wavelet I) [--dual] [--levels K] -o OUT\n"
+    "        [--png PNG]                     one scaling function or wavelet (or its dual) as\n"
+    "                                        values at the level J+K vertices (.ply or curve .json)\n"
     "\n"
     "Meshes: .obj (with OpenSubdiv 't' tags; 'l' polylines are curves), .off, .ply (ascii and\n"
     "binary). Lattices: .lattice (Sublift's text format), .vtk (legacy unstructured grid).\n"
@@ -55,6 +58,7 @@ int main(int argc, char** argv) {
     if (cmd == "analyze") return cli::run_analyze(argc, argv);
     if (cmd == "synthesize") return cli::run_synthesize(argc, argv);
     if (cmd == "edit") return cli::run_edit(argc, argv);
+    if (cmd == "basis") return cli::run_basis(argc, argv);
     std::cerr << "sublift-cli: unknown command '" << cmd << "'\n\n" << kUsage;
     return 2;
   } catch (const cli::UsageError& e) {

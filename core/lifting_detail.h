@@ -82,6 +82,17 @@ inline void sum_sources(const double* x, const std::uint32_t* idx, std::uint32_t
   }
 }
 
+// Row i of a group: items [b, b + len).
+inline void group_row(const Group& gr, std::uint32_t i, std::uint32_t& b, std::uint32_t& len) {
+  if (gr.offsets) {
+    b = gr.offsets[i];
+    len = gr.offsets[i + 1] - b;
+  } else {
+    b = i * gr.stride;
+    len = gr.stride;
+  }
+}
+
 // acc += sum over groups of weight_g(m) times the centroid of row i of group g (C channels, 0 =
 // `ch` at run time; `sum` is scratch of ch values). False when no group has a row for i. The
 // dense and the sparse loops evaluate a row through this one function, so they agree.
@@ -94,13 +105,7 @@ inline bool accumulate_row(const Group* groups, std::uint32_t i, int m, const do
     const Group& gr = groups[g];
     const double wm = gr.weight[m];
     std::uint32_t b, len;
-    if (gr.offsets) {
-      b = gr.offsets[i];
-      len = gr.offsets[i + 1] - b;
-    } else {
-      b = i * gr.stride;
-      len = gr.stride;
-    }
+    group_row(gr, i, b, len);
     if (len == 0 || wm == 0.0) continue;
     any = true;
     sum_sources<C>(x, gr.items + b, len, gr.source_base, cc, sum);

@@ -12,7 +12,7 @@
 #include "core/shape_io.h"
 #include "core/shapes.h"
 #include "tests/io_test_util.h"
-#include "tests/run_process.h"
+#include "tests/cli_run.h"
 #include "tests/test_shapes.h"
 
 namespace sublift {
@@ -21,11 +21,7 @@ namespace {
 using testing::ProcessResult;
 using testing::TempDir;
 
-ProcessResult cli(const std::vector<std::string>& args) {
-  std::vector<std::string> argv{SUBLIFT_CLI};
-  argv.insert(argv.end(), args.begin(), args.end());
-  return testing::run_process(argv, 60.0);
-}
+ProcessResult cli(const std::vector<std::string>& args) { return testing::run_cli(args); }
 
 double max_diff(std::span<const double> a, std::span<const double> b) {
   EXPECT_EQ(a.size(), b.size());

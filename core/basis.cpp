@@ -1,0 +1,232 @@
+#include "core/basis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/errors.h"
+#include "core/level_counts.h"
+#include "core/lifting_detail.h"
+#include "core/limit.h"
+
+namespace sublift {
+namespace {
+
+using namespace lifting_detail;
+
+// Adjoint of one analysis gather sub-step x_t += -sum_g w_g(m_t) mean(x_s in row_g(t)) over the
+// targets [0, n) of a class: x_s += -(w_g(m_t) / len) x_t. Targets and sources are different
+// classes, so the order of the targets does not matter.
+void adjoint_gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* target_m, const Group* groups,
+                    int num_groups, double* y) {
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const double yt = y[target_base + i];
+    if (yt == 0.0) continue;
+    const int m = target_m ? target_m[i] : 0;
+    for (int g = 0; g < num_groups; ++g) {
+      const Group& gr = groups[g];
+      const double wm = gr.weight[m];
+      std::uint32_t b, len;
+      group_row(gr, i, b, len);
+      if (len == 0 || wm == 0.0) continue;
+      const double c = -wm * inv(len) * yt;
+      for (std::uint32_t k = 0; k < len; ++k) y[gr.source_base + gr.items[b + k]] += c;
+    }
+  }
+}
+
+// The groups below are those of lifting.cpp's sub-steps (same rows, same weights).
+void adjoint_wlift(const Complex& p, const Classes& k, double a, double* y) {
+  if (k.nc) {  // c from v, e, f
+    Group g[3] = {group_of(p.cell_verts, 0), group_of(p.cell_edges, k.E0), group_of(p.cell_faces, k.F0)};
+    for (int s = 0; s < 3; ++s) set_wlift_weight(g[s], 3, s, a);
+    adjoint_gather(k.nc, k.C0, nullptr, g, 3, y);
+  }
+  if (k.nf) {  // f from v, e
+    Group g[2] = {group_of(p.faces, 0), group_of(p.face_edges, k.E0)};
+    for (int s = 0; s < 2; ++s) set_wlift_weight(g[s], 2, s, a);
+    adjoint_gather(k.nf, k.F0, nullptr, g, 2, y);
+  }
+  if (k.ne) {  // e from v
+    Group g;
+    g.items = p.edge_verts.data();
+    g.stride = 2;
+    g.source_base = 0;
+    set_wlift_weight(g, 1, 0, a);
+    adjoint_gather(k.ne, k.E0, nullptr, &g, 1, y);
+  }
+}
+
+void adjoint_slift(const Complex& p, const LiftTables& t, const Classes& k, double a, double* y) {
+  {  // v from e, f, c
+    Group g[3] = {group_of(pick(t.own_v_from_e, t.v_from_e, p.vertex_edges), k.E0),
+                  group_of(pick(t.own_v_from_f, t.v_from_f, p.vertex_faces), k.F0),
+                  group_of(pick(t.own_v_from_c, t.v_from_c, p.vertex_cells), k.C0)};
+    for (int s = 0; s < 3; ++s) set_slift_weight(g[s], 0, s + 1, a);
+    adjoint_gather(k.nv, 0, p.vertex_dim.data(), g, k.nc ? 3 : (k.nf ? 2 : 1), y);
+  }
+  if (k.nf) {  // e from f, c
+    Group g[2] = {group_of(pick(t.own_e_from_f, t.e_from_f, p.edge_faces), k.F0),
+                  group_of(pick(t.own_e_from_c, t.e_from_c, p.edge_cells), k.C0)};
+    for (int s = 0; s < 2; ++s) set_slift_weight(g[s], 1, s + 2, a);
+    adjoint_gather(k.ne, k.E0, p.edge_dim.data(), g, k.nc ? 2 : 1, y);
+  }
+  if (k.nc) {  // f from c
+    Group g = group_of(pick(t.own_f_from_c, t.f_from_c, p.face_cells), k.C0);
+    set_slift_weight(g, 2, 3, a);
+    adjoint_gather(k.nf, k.F0, p.face_dim.data(), &g, 1, y);
+  }
+}
+
+// Inverse s-scale (000 eq. 3.18) is diagonal, hence its own adjoint.
+void adjoint_sscale(const Complex& p, const Classes& k, double a, double* y) {
+  auto scale_class = [&](std::uint32_t n, std::uint32_t base, const std::vector<std::uint8_t>& dims, int t) {
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const int m = dims[i];
+      if (m > t) y[base + i] /= std::pow(a, m - t);
+    }
+  };
+  scale_class(k.nv, 0, p.vertex_dim, 0);
+  scale_class(k.ne, k.E0, p.edge_dim, 1);
+  scale_class(k.nf, k.F0, p.face_dim, 2);
+}
+
+std::uint32_t count_nonzero(const double* x, std::uint32_t n) {
+  return static_cast<std::uint32_t>(std::count_if(x, x + n, [](double v) { return v != 0.0; }));
+}
+
+// Dual cell measure per finest vertex (basis.h): each cell's 2^(-L*dim) split equally over its
+// corners.
+std::vector<double> vertex_measures(const Complex& c, int L) {
+  std::vector<double> mu(c.num_vertices, 0.0);
+  const double cell = std::ldexp(1.0, -L * c.dim);
+  if (c.dim == 1) {
+    for (std::uint32_t v : c.edge_verts) mu[v] += 0.5 * cell;
+  } else if (c.dim == 2) {
+    for (std::size_t f = 0; f < c.faces.rows(); ++f) {
+      const auto row = c.faces.row(f);
+      for (std::uint32_t v : row) mu[v] += cell / double(row.size());
+    }
+  } else {
+    std::vector<std::uint32_t> stamp(c.num_vertices, ~0u), corners;
+    for (std::uint32_t k = 0; k < c.num_cells(); ++k) {
+      corners.clear();
+      for (std::uint32_t f : c.cell_faces.row(k))
+        for (std::uint32_t v : c.faces.row(f))
+          if (stamp[v] != k) {
+            stamp[v] = k;
+            corners.push_back(v);
+          }
+      for (std::uint32_t v : corners) mu[v] += cell / double(corners.size());
+    }
+  }
+  return mu;
+}
+
+}  // namespace
+
+void lift_analyze_adjoint(const Complex& parent, const LiftTables& t, const LiftProgram& program, double* y) {
+  // Analysis runs the program's inverse sub-steps backwards; its adjoint runs their transposes
+  // forwards: w-lift c, f, e; s-lift v, e, f (the synthesis order).
+  const Classes k(parent);
+  for (const LiftStep& s : program) {
+    switch (s.op) {
+      case LiftOp::WLift: adjoint_wlift(parent, k, s.a, y); break;
+      case LiftOp::SLift: adjoint_slift(parent, t, k, s.a, y); break;
+      case LiftOp::SScale: adjoint_sscale(parent, k, s.a, y); break;
+    }
+  }
+}
+
+int default_extra_levels(const Complex& c, double max_vertices) {
+  int K = c.dim == 1 ? 6 : (c.dim == 2 ? 4 : 3);
+  const std::vector<double> counts = predicted_vertex_counts(c, K);
+  while (K > 0 && counts[static_cast<std::size_t>(K)] > max_vertices) --K;
+  return K;
+}
+
+BasisFunction basis_function(const Complex& level_j, Scheme scheme, const BasisRequest& r,
+                             std::span<const double> level_j_positions, std::vector<double>* finest_positions) {
+  const std::uint32_t nv = level_j.num_vertices;
+  if (level_j_positions.size() != std::size_t(nv) * 3)
+    throw Error("basis function: level " + std::to_string(r.level) + " needs " + std::to_string(3 * std::size_t(nv)) +
+                " position values, got " + std::to_string(level_j_positions.size()));
+  if (r.level < 0) throw Error("basis function: level must be non-negative");
+  const int K = r.extra_levels < 0 ? default_extra_levels(level_j, r.max_vertices) : r.extra_levels;
+  if (K > 16) throw Error("basis function: at most 16 extra levels, got " + std::to_string(K));
+  if (r.kind == BasisKind::Wavelet && K < 1) throw Error("basis function: a wavelet needs at least one extra level");
+  const double predicted = predicted_vertex_counts(level_j, K).back();
+  if (predicted > r.max_vertices)
+    throw Error("basis function: " + std::to_string(K) + " extra levels make " + std::to_string(std::llround(predicted)) +
+                " vertices, more than the limit of " + std::to_string(std::llround(r.max_vertices)));
+
+  Hierarchy h = make_hierarchy(level_j, K, scheme, 1);
+  const std::uint32_t lo = r.kind == BasisKind::Scaling ? 0 : nv;
+  const std::uint32_t hi = r.kind == BasisKind::Scaling ? nv : h.num_vertices(1);
+  if (r.index < lo || r.index >= hi) {
+    if (r.kind == BasisKind::Wavelet && r.index < nv)
+      throw Error("basis function: vertex " + std::to_string(r.index) + " of level " + std::to_string(r.level + 1) +
+                  " is a v vertex (indices below " + std::to_string(nv) +
+                  " are the old vertices); wavelets live on e/f/c vertices " + std::to_string(nv) + ".." +
+                  std::to_string(hi - 1));
+    throw Error("basis function: " + std::string(r.kind == BasisKind::Scaling ? "scaling" : "wavelet") + " index " +
+                std::to_string(r.index) + " is outside " + std::to_string(lo) + ".." + std::to_string(hi - 1));
+  }
+
+  BasisFunction out;
+  out.level = r.level;
+  out.extra_levels = K;
+  const LiftProgram program = scheme_program(scheme);
+  const std::uint32_t nL = h.num_vertices(K);
+  std::vector<double> x(nL, 0.0);
+  x[r.index] = 1.0;
+  out.support_per_level.push_back(count_nonzero(x.data(), nv));
+  for (int l = 0; l < K; ++l) {
+    const auto L = static_cast<std::size_t>(l);
+    if (r.dual) lift_analyze_adjoint(h.levels[L], h.tables[L], program, x.data());
+    else lift_synthesize(h.levels[L], h.tables[L], program, x.data(), 1, false);
+    out.support_per_level.push_back(count_nonzero(x.data(), h.num_vertices(l + 1)));
+  }
+
+  // Geometry: the level-j positions synthesised (zero details) to j+K, then their limit.
+  std::vector<double> p(std::size_t(nL) * 3, 0.0);
+  std::copy(level_j_positions.begin(), level_j_positions.end(), p.begin());
+  for (int l = 0; l < K; ++l)
+    lift_synthesize(h.levels[std::size_t(l)], h.tables[std::size_t(l)], program, p.data(), 3, false);
+  const LimitStencils stencils = build_limit_stencils(h);
+  std::vector<double> p_limit(p.size());
+  eval_limit(stencils, p.data(), p_limit.data());
+
+  out.control = std::move(x);
+  if (r.dual) {
+    out.values = out.control;
+  } else {
+    out.limit = true;
+    out.values.assign(nL, 0.0);
+    for (std::uint32_t v = 0; v < nL; ++v) {
+      double s = 0.0;
+      for (std::uint32_t k = stencils.rows.offsets[v]; k < stencils.rows.offsets[v + 1]; ++k)
+        s += stencils.weights[k] * out.control[stencils.rows.items[k]];
+      out.values[v] = s;
+    }
+  }
+
+  const std::vector<double> mu = vertex_measures(h.levels.back(), r.level + K);
+  const std::vector<double>& moment_positions = r.dual ? p : p_limit;
+  out.min = out.values.empty() ? 0.0 : out.values[0];
+  out.max = out.min;
+  for (std::uint32_t v = 0; v < nL; ++v) {
+    const double f = out.values[v];
+    out.min = std::min(out.min, f);
+    out.max = std::max(out.max, f);
+    if (f != 0.0 || out.control[v] != 0.0) out.support.push_back(v);
+    const double w = r.dual ? f : f * mu[v];
+    out.integral += w;
+    for (int c = 0; c < 3; ++c) out.moment[c] += w * moment_positions[std::size_t(v) * 3 + c];
+  }
+  if (finest_positions) *finest_positions = std::move(p_limit);
+  out.finest = std::move(h.levels.back());
+  return out;
+}
+
+}  // namespace sublift

@@ -20,8 +20,7 @@
 #include "core/shape_io.h"
 #include "core/text_lines.h"
 #ifdef SUBLIFT_HAVE_RENDER
-#include "render/headless_render.h"
-#include "render/offscreen_target.h"
+#include "app/cli_basis_png.h"
 #endif
 
 namespace sublift::cli {
@@ -44,9 +43,16 @@ constexpr const char* kHelp =
     "               a float64 vertex property 'value' (limit values of the primal function; the\n"
     "               weights of a dual one) and the faces (lattices: their boundary faces);\n"
     "               curves: .json {\"positions\": [[x,y,z],...], \"values\": [...]}\n"
-    "  --png PNG    a headless picture: surfaces as a height field (limit surface displaced along\n"
-    "               its normals by value times a scale that makes the largest |value| a fifth of\n"
-    "               the bounding box diagonal), curves as the curve displaced along z the same way\n"
+    "  --png PNG    an 800x600 headless picture, coloured by value with the viewer's viridis map\n"
+    "               (purple = low, yellow = high; wavelets and dual functions centred on 0: teal = 0,\n"
+    "               scaling functions: purple = 0 or the minimum, yellow = the maximum):\n"
+    "               surfaces: a height field (limit surface displaced along its normals, the largest\n"
+    "               |value| 0.15 of the support's diagonal), turned so the support's mean normal\n"
+    "               points up, cropped to the support plus a margin, seen from above-front;\n"
+    "               curves: the curve displaced along z (largest |value| a fifth of the bounding box\n"
+    "               diagonal) drawn as a coloured ribbon over the thin undisplaced curve;\n"
+    "               lattices: the plane z = z(peak vertex) cuts the volume: the boundary surface\n"
+    "               behind it and the slice of finest faces on it, both coloured, seen from +x+y+z\n"
     "  --json       level, kind, index, dual, levels, support (non-zero finest vertices),\n"
     "               support_per_level (non-zero control values of levels J..J+K), integral,\n"
     "               moments, min, max, output (conventions: core/basis.h, docs/engine.md)\n";
@@ -95,49 +101,6 @@ void write_curve_json(const std::string& path, std::span<const double> xyz, std:
   write_file_atomic(path, [&](std::ostream& o) { o << j.dump() << "\n"; });
 }
 
-#ifdef SUBLIFT_HAVE_RENDER
-// Height field of a surface (area-weighted vertex normals) or a curve displaced along z.
-SurfaceMesh height_field(const Complex& c, std::span<const double> xyz, std::span<const double> values) {
-  SurfaceMesh m;
-  const std::size_t n = values.size();
-  glm::dvec3 lo(1e300), hi(-1e300);
-  for (std::size_t v = 0; v < n; ++v) {
-    const glm::dvec3 p(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  double peak = 0;
-  for (double f : values) peak = std::max(peak, std::abs(f));
-  const double scale = peak > 0 ? 0.2 * glm::length(hi - lo) / peak : 0.0;
-  std::vector<glm::dvec3> normal(n, glm::dvec3(0.0));
-  if (c.dim == 2) {
-    for (std::size_t f = 0; f < c.faces.rows(); ++f) {
-      const auto row = c.faces.row(f);
-      glm::dvec3 nf(0.0);  // Newell
-      for (std::size_t i = 0; i < row.size(); ++i) {
-        const std::uint32_t a = row[i], b = row[(i + 1) % row.size()];
-        const glm::dvec3 p(xyz[3 * a], xyz[3 * a + 1], xyz[3 * a + 2]), q(xyz[3 * b], xyz[3 * b + 1], xyz[3 * b + 2]);
-        nf += glm::dvec3((p.y - q.y) * (p.z + q.z), (p.z - q.z) * (p.x + q.x), (p.x - q.x) * (p.y + q.y));
-      }
-      for (std::uint32_t v : row) normal[v] += nf;
-    }
-    for (glm::dvec3& d : normal)
-      if (glm::length(d) > 0) d = glm::normalize(d);
-  } else {
-    for (glm::dvec3& d : normal) d = glm::dvec3(0, 0, 1);
-  }
-  for (std::size_t v = 0; v < n; ++v)
-    m.positions.push_back(glm::dvec3(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]) + scale * values[v] * normal[v]);
-  if (c.dim == 2)
-    for (std::size_t f = 0; f < c.faces.rows(); ++f) m.add_face(c.faces.row(f));
-  else
-    for (std::uint32_t e = 0; e < c.num_edges(); ++e) {
-      const std::uint32_t seg[2] = {c.edge_verts[2 * e], c.edge_verts[2 * e + 1]};
-      m.add_polyline(seg);
-    }
-  return m;
-}
-#endif
 
 }  // namespace
 
@@ -184,7 +147,6 @@ int run_basis(int argc, char** argv) {
   const std::string ext = file_extension(out);
   if (dim == 1 && ext != "json") throw UsageError("a curve's basis function is written as .json, got '" + out + "'");
   if (dim != 1 && ext != "ply") throw UsageError("a surface's or lattice's basis function is written as .ply, got '" + out + "'");
-  if (!png.empty() && dim == 3) throw UsageError("--png is not available for lattices yet (use the .ply)");
 #ifndef SUBLIFT_HAVE_RENDER
   if (!png.empty()) throw Error("this build has no renderer (configured with SUBLIFT_WITH_GUI=OFF); --png is unavailable");
 #endif
@@ -220,8 +182,7 @@ int run_basis(int argc, char** argv) {
   }
   if (!png.empty()) {
 #ifdef SUBLIFT_HAVE_RENDER
-    const Image img = render_mesh_headless(height_field(b.finest, xyz, b.values), 800, 600);
-    write_png(png, img.width, img.height, img.rgba);
+    write_basis_png(png, b, xyz, r.kind == BasisKind::Wavelet || r.dual, 800, 600);
 #endif
   }
   if (a.has("--json")) {

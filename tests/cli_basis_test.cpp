@@ -196,3 +196,45 @@ TEST(CliBasis, Errors) {
 
 }  // namespace
 }  // namespace sublift
+
+namespace sublift {
+namespace {
+
+// Width and height from a PNG's IHDR chunk, or {0, 0} when `bytes` is not a PNG.
+std::pair<std::uint32_t, std::uint32_t> png_size(const std::string& bytes) {
+  if (bytes.size() < 24 || bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0 || bytes.compare(12, 4, "IHDR") != 0) return {0, 0};
+  auto be = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    for (std::size_t i = 0; i < 4; ++i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
+    return v;
+  };
+  return {be(16), be(20)};
+}
+
+// --png for a surface and a lattice: exit 0 and an 800x600 PNG. Skipped when the CLI has no
+// renderer (SUBLIFT_WITH_GUI=OFF) or headless EGL is unavailable. Pixels are not decoded here
+// (no PNG decoder in the tests): a uniform 800x600 picture compresses to well under 10 kB, so a
+// larger file is taken as "something was drawn".
+TEST(CliBasis, PngForSurfaceAndLattice) {
+  TempDir dir("sublift_cli_basis_png");
+  const std::string assets = SUBLIFT_ASSETS_DIR;
+  const std::vector<std::vector<std::string>> cases = {
+      {assets + "/quad_grid_boundary.obj", "--level", "1", "--wavelet", "120"},
+      {assets + "/hex_block_4.lattice", "--level", "0", "--vertex", "62", "--levels", "2"}};
+  for (const auto& c : cases) {
+    const std::string png = (dir.path() / "b.png").string(), ply = (dir.path() / "b.ply").string();
+    std::vector<std::string> args = {"basis"};
+    args.insert(args.end(), c.begin(), c.end());
+    args.insert(args.end(), {"--scheme", "cubic", "-o", ply, "--png", png});
+    const ProcessResult r = cli(args);
+    if (r.exit_code != 0 && (r.err.find("no renderer") != std::string::npos || r.err.find("EGL") != std::string::npos))
+      GTEST_SKIP() << "no headless rendering here: " << r.err;
+    ASSERT_EQ(r.exit_code, 0) << c[0] << ": " << r.err;
+    const std::string bytes = read_file_bytes(png);
+    EXPECT_EQ(png_size(bytes), (std::pair<std::uint32_t, std::uint32_t>(800, 600))) << c[0];
+    EXPECT_GT(bytes.size(), 10000u) << c[0];
+  }
+}
+
+}  // namespace
+}  // namespace sublift

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Regenerates the basis-function gallery docs/img/bases/*.png (shown in docs/bases.md) with
+# `sublift-cli basis --png`. Usage: scripts/make_bases_gallery.sh [BUILD_DIR]  (default: build)
+# Needs a build with the renderer (SUBLIFT_WITH_GUI=ON) and headless EGL (Mesa is enough).
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="${1:-$root/build}"
+cli="$build/app/sublift-cli"
+[[ -x "$cli" ]] || { echo "no sublift-cli at $cli (pass the build directory)" >&2; exit 1; }
+out="$root/docs/img/bases"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+mkdir -p "$out"
+a="$root/assets"
+
+# name  input  arguments...
+shot() {
+  local name="$1" in="$2"
+  shift 2
+  local ext=ply
+  echo "$name: basis $(basename "$in") $*"
+  "$cli" basis "$in" "$@" -o "$tmp/$name.$ext" --png "$out/$name.png" 2>/dev/null >/dev/null
+}
+
+# Regular patch: the open 4x4 quad grid (assets/quad_grid_boundary.obj, in the xz plane), level 1
+# (8x8 quads); vertex 12 is its centre. Level-2 e-vertices are 81..224, f-vertices 225..288;
+# 120 is the edge midpoint at (0.25, 0), 252 the face centre at (0.25, 0.25).
+grid="$a/quad_grid_boundary.obj"
+shot linear_scaling_regular "$grid" --scheme linear --level 1 --vertex 12
+shot cubic_scaling_regular  "$grid" --scheme cubic  --level 1 --vertex 12
+shot cubic_edge_wavelet     "$grid" --scheme cubic  --level 1 --wavelet 120
+shot cubic_face_wavelet     "$grid" --scheme cubic  --level 1 --wavelet 252
+shot cubic_dual_scaling     "$grid" --scheme cubic  --level 1 --vertex 12 --dual --levels 2
+# Extraordinary vertices: a cube corner (valence 3) and the apex of mixed_polygons (valence 5).
+shot cubic_scaling_valence3 "$a/cube.obj"           --scheme cubic --level 1 --vertex 0
+shot cubic_scaling_valence5 "$a/mixed_polygons.obj" --scheme cubic --level 1 --vertex 10
+# A vertex on the tagged crease ring of crease_loop.obj (file vertex 4, at a box edge).
+shot cubic_scaling_crease   "$a/crease_loop.obj"    --scheme cubic --level 1 --vertex 4
+# A volume scaling function: the centre vertex 62 of the 4x4x4 hex block, level 1.
+shot cubic_scaling_volume   "$a/hex_block_4.lattice" --scheme cubic --level 1 --vertex 62
+echo "wrote $(ls "$out"/*.png | wc -l) pictures to $out"

@@ -2,6 +2,7 @@
 # sublift_modeler holds the modeler's state, controller, view and script runner so GUI tests can
 # drive the controller without a window.
 add_library(sublift_modeler STATIC
+  ${CMAKE_CURRENT_LIST_DIR}/basis_view_state.cpp
   ${CMAKE_CURRENT_LIST_DIR}/modeler_controller.cpp
   ${CMAKE_CURRENT_LIST_DIR}/modeler_state.cpp
   ${CMAKE_CURRENT_LIST_DIR}/modeler_view.cpp

@@ -426,6 +426,22 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
     if (r.local_frames) model.set_local_frames(*r.local_frames);
     if (r.colour_level) model.set_colour_level(*r.colour_level);
     if (r.soft_radius) model.set_soft_radius(*r.soft_radius);
+    if (r.basis) {
+      BasisSettings b;
+      b.on = r.basis->on;
+      b.kind = r.basis->kind == 0 ? BasisKind::Scaling : BasisKind::Wavelet;
+      b.index = static_cast<std::uint32_t>(std::max(0LL, r.basis->index));
+      b.dual = r.basis->dual;
+      b.extra_levels = r.basis->extra_levels;
+      b.height = r.basis->height;
+      b.height_scale = r.basis->height_scale;
+      basis_request_ = b;  // kept even when it fails, so the panel shows what was typed
+      try {
+        model.set_basis(b);
+      } catch (const std::exception& e) {
+        fail(e, "Basis: ");
+      }
+    }
     if (r.gain_begin && !gain_active_) {
       model.begin_gain(r.gain_level);
       gain_active_ = true;
@@ -446,6 +462,40 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
   apply_camera(r.camera);
   if (r.scheme || r.level || r.subdivide || r.undo || r.redo || r.history_jump || r.gain_level >= 0 || r.gain_end) {
     pick_dirty_ = stats_dirty_ = true;
+  }
+}
+
+void ModelerController::fill_basis_data(BasisPanelData& b) const {
+  const Session& s = model.session();
+  const Complex& cj = s.hierarchy().levels[static_cast<std::size_t>(model.level())];
+  const BasisSettings& set = model.basis_on() ? model.basis_settings() : basis_request_;
+  b.on = model.basis_on();
+  b.kind = set.kind == BasisKind::Scaling ? 0 : 1;
+  b.dual = set.dual;
+  b.index = set.index;
+  b.extra_levels = set.extra_levels;
+  b.default_extra_levels = default_extra_levels(cj);
+  b.height = set.height;
+  b.height_scale = static_cast<float>(set.height_scale);
+  b.scaling_count = cj.num_vertices;
+  b.wavelet_end = cj.num_child_vertices();
+  b.curve = cj.dim == 1;
+  b.lattice = cj.dim == 3;
+  if (!model.selection().empty()) {
+    b.selected = model.selection().front();
+    b.selected_wavelet = edge_wavelet_at(cj, model.selection().front());
+  }
+  if (model.basis_on()) {
+    const BasisFunction& f = model.basis().function;
+    b.computed = true;
+    b.limit = f.limit;
+    b.used_levels = f.extra_levels;
+    b.support = f.support.size();
+    b.support_per_level = f.support_per_level;
+    b.integral = f.integral;
+    b.min = f.min;
+    b.max = f.max;
+    std::copy(f.moment, f.moment + 3, b.moment);
   }
 }
 
@@ -494,6 +544,7 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     d.soft_radius = model.soft_radius();
     d.colour_level = model.colour_level();
     d.dirty = s.dirty();
+    fill_basis_data(d.basis);
   }
   d.error = error;
   d.message = message;

@@ -81,6 +81,9 @@ class ModelerController {
   /// started the ImGui backend frame. Display size from ImGui's IO.
   void draw_frame(ModelerView& view, int fb_width, int fb_height);
 
+  /// Applies the panel's requests (draw_frame does; tests call it without ImGui).
+  void apply_panel_requests(const ModelerPanelRequests& r) { apply_requests(r); }
+
  private:
   enum class Press { None, Click, Drag, Box };
   struct Pending {
@@ -100,6 +103,7 @@ class ModelerController {
   const PickIndex& pick_index();
   void update_grab();
   void fail(const std::exception& e, const std::string& context);
+  void fill_basis_data(BasisPanelData& b) const;
 
   bool interactive_;
   // Viewport rectangle in window coordinates and the framebuffer scale, from the last frame.
@@ -133,6 +137,7 @@ class ModelerController {
   std::size_t stats_key_[4] = {~std::size_t(0), 0, 0, 0};  // undo position, history size, topology, session
   std::vector<LevelInfo> level_cache_;
   std::vector<std::string> recent_;
+  BasisSettings basis_request_;  // the Basis section's settings while the mode is off
 };
 
 }  // namespace sublift

@@ -79,6 +79,7 @@ void ModelerState::install(std::unique_ptr<Session> session) {
   dragging_ = false;
   hover_ = -1;
   seen_topology_ = session_->topology_version();
+  basis_off();
   rebuild_limit();
   model_size_ = bbox_diagonal(limit_);
   if (colour_level_ >= session_->finest_level()) colour_level_ = -1;
@@ -113,6 +114,7 @@ void ModelerState::after_operation() {
     clamp_selection();
     if (colour_level_ >= s.finest_level()) colour_level_ = -1;
     update_.topology = true;
+    basis_off();
     refresh_state();
     refresh_colour();
     return;
@@ -151,6 +153,17 @@ void ModelerState::after_operation() {
   update_.net.insert(update_.net.end(), changed_net.begin(), changed_net.end());
   if (soft_radius_ > 0.0 && !changed_net.empty() && !dragging_) refresh_state();  // weights follow the shape
   if (colour_level_ >= 0) refresh_colour();
+  if (basis_ && !changed_net.empty()) basis_stale_ = true;
+  if (!dragging_) refresh_basis();
+}
+
+void ModelerState::refresh_basis() {
+  if (!basis_ || !basis_stale_) return;
+  try {
+    set_basis(basis_settings_);  // the level-j geometry moved: new positions and moments
+  } catch (const Error&) {
+    basis_off();
+  }
 }
 
 void ModelerState::set_scheme(Scheme scheme) {
@@ -174,6 +187,7 @@ void ModelerState::set_level(int level) {
   level_ = level;
   selection_.clear();
   hover_ = -1;
+  basis_off();
   update_.topology = true;
   refresh_state();
 }
@@ -238,6 +252,7 @@ void ModelerState::end_drag() {
   session_->end_edit();
   dragging_ = false;
   if (soft_radius_ > 0.0) refresh_state();
+  refresh_basis();  // recomputed once per drag, at its end
 }
 
 void ModelerState::cancel_drag() {
@@ -450,6 +465,39 @@ std::vector<std::uint8_t> ModelerState::net_vertex_features() const {
   if (c.vertex_dim.size() != f.size()) return f;
   for (std::size_t v = 0; v < f.size(); ++v) f[v] = c.vertex_dim[v] == 0 ? 2 : (c.vertex_dim[v] == 1 && c.dim > 1 ? 1 : 0);
   return f;
+}
+
+void ModelerState::basis_off() {
+  if (basis_) update_.basis = true;
+  basis_.reset();
+  basis_settings_.on = false;
+}
+
+void ModelerState::set_basis(const BasisSettings& settings) {
+  if (!settings.on || !session_) {
+    basis_off();
+    return;
+  }
+  const auto same = [&](const BasisSettings& o) {
+    return o.kind == settings.kind && o.index == settings.index && o.dual == settings.dual &&
+           o.extra_levels == settings.extra_levels;
+  };
+  if (basis_ && same(basis_->settings) && basis_->level == level_ && !basis_stale_) {
+    basis_->settings = settings;
+    basis_settings_ = settings;
+    apply_basis_height(*basis_);
+    update_.basis = true;
+    return;
+  }
+  try {
+    basis_ = std::make_unique<BasisDisplay>(compute_basis_display(*session_, level_, settings));
+  } catch (...) {
+    basis_off();
+    throw;
+  }
+  basis_settings_ = settings;
+  basis_stale_ = false;
+  update_.basis = true;
 }
 
 ViewUpdate ModelerState::take_view_update() {

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "app/basis_view_state.h"
 #include "core/csr.h"
 #include "core/hierarchy.h"
 #include "core/limit.h"
@@ -33,6 +34,7 @@ struct ViewUpdate {
   std::vector<std::uint32_t> net;      // control points of the current level that moved
   bool state = false;                  // selection, hover or soft weights changed
   bool scalar = false;                 // wavelet colouring changed
+  bool basis = false;                  // the basis-function display changed (on, off, new values)
 };
 
 /// Per-level numbers for the panel.
@@ -128,6 +130,17 @@ class ModelerState {
   void set_colour_level(int level);
   const std::vector<float>& colour_values() const { return colour_; }
 
+  /// Basis-function mode (issue 5, app/basis_view_state.h) on the edit level: computes the
+  /// function of `settings` (settings.on false: off). Throws Error and leaves the mode off on a
+  /// bad index. A change of height/scale alone only re-displaces. Turned off when the level,
+  /// scheme, file or topology changes; recomputed after edits of the shape (once per drag, at
+  /// its end).
+  void set_basis(const BasisSettings& settings);
+  bool basis_on() const { return basis_ != nullptr; }
+  const BasisSettings& basis_settings() const { return basis_settings_; }
+  /// The current function's display (only while basis_on()).
+  const BasisDisplay& basis() const { return *basis_; }
+
   /// Accumulated changes since the last call, for the GPU buffers.
   ViewUpdate take_view_update();
 
@@ -168,6 +181,11 @@ class ModelerState {
   int colour_level_ = -1;
   std::vector<float> colour_;
   ViewUpdate update_;
+  BasisSettings basis_settings_;
+  std::unique_ptr<BasisDisplay> basis_;
+  bool basis_stale_ = false;
+  void basis_off();
+  void refresh_basis();  // recomputes a stale function (after edits of the shape)
 };
 
 /// True when `path` names a `.sublift` project (by extension, any case).

@@ -39,6 +39,26 @@ void ModelerView::sync(ModelerState& state) {
     if (!u.net.empty()) net_.update_positions(state.session().positions(state.level()), u.net);
   }
   if (u.state) net_.set_state(state.net_state(), state.net_soft());
+  if (u.basis || (u.topology && state.basis_on()) || (state.basis_on() && !u.net.empty())) {
+    basis_on_ = state.basis_on();
+    basis_surface_on_ = false;
+    if (basis_on_) {
+      const BasisDisplay& b = state.basis();
+      const std::size_t n = b.positions.size() / 3;
+      basis_surface_on_ = b.faces.rows() > 0;
+      if (basis_surface_on_) {
+        basis_surface_.set_topology(b.faces.offsets, b.faces.items, n);
+        basis_surface_.set_positions_normals(b.positions, b.normals);
+        basis_surface_.set_scalar(b.colour);
+      } else {
+        basis_curve_.set_topology(b.curve_edges, {}, {}, n);
+        basis_curve_.set_positions(b.positions);
+      }
+      const auto net = state.session().positions(state.level());
+      basis_support_.set_topology(b.support_edges, {}, {}, net.size() / 3);
+      basis_support_.set_positions(net);
+    }
+  }
   if (u.scalar && has_surface_) {
     colour_map_ = !state.colour_values().empty();
     surface_.set_scalar(state.colour_values());
@@ -77,21 +97,35 @@ void ModelerView::draw(const OrbitCamera& camera, const ViewportRect& rect, cons
   glClear(GL_DEPTH_BUFFER_BIT);
   background_.draw();
   const glm::vec4 plane = clip_plane(d);
-  if (has_surface_) {
+  // The surface and curve styles every branch shares: display switches and the clipping plane.
+  auto surface_style = [&](bool colour) {
     SurfaceStyle style;
     style.smooth = d.smooth;
     style.wireframe = d.wireframe;
-    style.color_map = colour_map_;
+    style.color_map = colour;
     style.clip = d.clip;
     style.clip_plane = plane;
-    surface_.draw(camera, style);
-  } else if (has_curve_) {
+    return style;
+  };
+  auto curve_style = [&](const glm::vec4& colour) {
     NetStyle style;
     style.points = false;
     style.clip = d.clip;
     style.clip_plane = plane;
-    style.colors.edge = glm::vec4(0.80f, 0.45f, 0.20f, 1.0f);
-    curve_.draw(camera, style);
+    style.colors.edge = colour;
+    return style;
+  };
+  const glm::vec4 curve_colour(0.80f, 0.45f, 0.20f, 1.0f);
+  if (basis_on_ && basis_surface_on_) {
+    basis_surface_.draw(camera, surface_style(true));
+  } else if (basis_on_) {
+    basis_curve_.draw(camera, curve_style(glm::vec4(0.10f, 0.55f, 0.75f, 1.0f)));
+    // The curve itself, thin and faint, as the zero line.
+    if (has_curve_) curve_.draw(camera, curve_style(glm::vec4(0.80f, 0.45f, 0.20f, 0.35f)));
+  } else if (has_surface_) {
+    surface_.draw(camera, surface_style(colour_map_));
+  } else if (has_curve_) {
+    curve_.draw(camera, curve_style(curve_colour));
   }
   if (d.net) {
     NetStyle style;
@@ -100,6 +134,15 @@ void ModelerView::draw(const OrbitCamera& camera, const ViewportRect& rect, cons
     style.clip = d.clip;
     style.clip_plane = plane;
     net_.draw(camera, style);
+  }
+  if (basis_on_) {  // the support outline, over the net and through the surface
+    NetStyle style;
+    style.points = false;
+    style.xray = true;
+    style.clip = d.clip;
+    style.clip_plane = plane;
+    style.colors.edge = glm::vec4(0.95f, 0.15f, 0.45f, 1.0f);
+    basis_support_.draw(camera, style);
   }
   glDisable(GL_SCISSOR_TEST);
 }

@@ -1,6 +1,8 @@
 #pragma once
 // ModelerView: the modeler's 3-D viewport on the GPU — backdrop, the finest level's limit
 // surface (or a curve's limit polyline) and the control net of the edit level on top. It
+// While the basis-function mode is on, the function (colour, optional height field) replaces the
+// limit surface or curve and its support outline is drawn over the net. It
 // mirrors a ModelerState, uploading only what take_view_update() reports as changed.
 #include <vector>
 
@@ -44,6 +46,10 @@ class ModelerView {
   NetRenderer curve_;  // a curve's limit polyline (no points)
   bool has_surface_ = false, has_curve_ = false;
   bool colour_map_ = false;
+  // Basis-function mode: the function on the level j+K shape, and its support on the level-j net.
+  LimitSurfaceRenderer basis_surface_;
+  NetRenderer basis_curve_, basis_support_;
+  bool basis_on_ = false, basis_surface_on_ = false;
 };
 
 }  // namespace sublift

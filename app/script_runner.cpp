@@ -192,6 +192,45 @@ void ScriptRunner::run_line(ModelerState& state, ModelerDisplay* display, const 
       }
       state.set_colour_level(static_cast<int>(l));
     }
+  } else if (c == "basis") {
+    const char* usage = "basis scaling|wavelet INDEX [dual] | basis height SCALE|off | basis off";
+    if (w.size() == 2 && w[1] == "off") {
+      state.set_basis(BasisSettings{});
+      return;
+    }
+    if (w.size() == 3 && w[1] == "height") {
+      if (!state.basis_on()) throw ScriptError("basis height needs the basis mode on (use 'basis scaling|wavelet INDEX')");
+      BasisSettings b = state.basis_settings();
+      if (w[2] == "off") {
+        b.height = false;
+      } else {
+        const double scale = number(w[2], "SCALE");
+        if (scale < 0.0) throw ScriptError("SCALE must not be negative");
+        b.height = scale > 0.0;
+        if (scale > 0.0) b.height_scale = scale;
+      }
+      state.set_basis(b);
+      return;
+    }
+    if (w.size() < 3 || w.size() > 4 || (w[1] != "scaling" && w[1] != "wavelet")) throw ScriptError(std::string("usage: ") + usage);
+    if (w.size() == 4 && w[3] != "dual") throw ScriptError("basis takes 'dual' after the index, got '" + w[3] + "'");
+    const long long index = integer(w[2], "INDEX");
+    const Complex& cj = state.session().hierarchy().levels[static_cast<std::size_t>(state.level())];
+    const long long nv = cj.num_vertices, nc = cj.num_child_vertices();
+    BasisSettings b = state.basis_on() ? state.basis_settings() : BasisSettings{};
+    b.on = true;
+    b.kind = w[1] == "scaling" ? BasisKind::Scaling : BasisKind::Wavelet;
+    b.dual = w.size() == 4;
+    if (b.kind == BasisKind::Scaling && (index < 0 || index >= nv)) {
+      throw ScriptError("scaling index " + w[2] + " is outside 0.." + std::to_string(nv - 1) + " of level " +
+                        std::to_string(state.level()));
+    }
+    if (b.kind == BasisKind::Wavelet && (index < nv || index >= nc)) {
+      throw ScriptError("wavelet index " + w[2] + " is outside " + std::to_string(nv) + ".." + std::to_string(nc - 1) +
+                        " (e/f/c vertices of level " + std::to_string(state.level() + 1) + ")");
+    }
+    b.index = static_cast<std::uint32_t>(index);
+    state.set_basis(b);
   } else if (c == "display") {
     expect_args(w, 2, "display smooth|wireframe|net|xray|depth_cue|clip|ortho on|off");
     if (w[2] != "on" && w[2] != "off") throw ScriptError("display takes 'on' or 'off', got '" + w[2] + "'");

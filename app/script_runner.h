@@ -8,6 +8,8 @@
 //   export PATH | screenshot PATH | quit
 //   colour LEVEL|off | display smooth|wireframe|net|xray|depth_cue|clip|ortho on|off
 //   clip X|Y|Z OFFSET01 | view front|back|right|left|top|bottom  (display and camera only)
+//   basis scaling|wavelet INDEX [dual] | basis height SCALE|off | basis off  (issue 5: the
+//   basis-function mode on the edit level; height SCALE > 0 displaces, times the bbox diagonal)
 // The runner executes commands until one needs a rendered frame (screenshot) or the script
 // ends; the app draws and saves the frame, then calls next() again.
 #include <string>

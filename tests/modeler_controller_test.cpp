@@ -12,6 +12,8 @@
 
 #include "app/modeler_controller.h"
 #include "app/modeler_view.h"
+#include "app/script_runner.h"
+#include "core/basis.h"
 #include "core/limit.h"
 #include "core/picking.h"
 #include "render/headless_context.h"
@@ -318,6 +320,126 @@ TEST(ModelerControllerTest, AutosaveRecoveryAndQuitPrompt) {
   }
   std::filesystem::remove_all(dir);
   ::unsetenv("SUBLIFT_RECOVERY_DIR");
+}
+
+// Basis mode (issue 5): the panel's request for the selected point computes the same function
+// as a direct basis_function call on the edit level, with the support outline around the point;
+// wavelets, duals, bad indices, level changes and edits.
+TEST(ModelerControllerTest, BasisModeComputesTheSelectedScalingFunctionAndWavelet) {
+  Fixture f;
+  ModelerState& m = f.app.model;
+  m.set_level(1);
+  const unsigned v = 2;
+  m.set_selection({v});
+  const Session& s = m.session();
+  const Complex& c1 = s.hierarchy().levels[1];
+
+  ModelerPanelRequests req;
+  req.basis = BasisPanelRequest{true, 0, false, static_cast<long long>(m.selection().front()), -1, false, 0.2f};
+  f.app.apply_panel_requests(req);
+  ASSERT_TRUE(f.app.error.empty()) << f.app.error;
+  ASSERT_TRUE(m.basis_on());
+  EXPECT_TRUE(m.take_view_update().basis);
+
+  BasisRequest r;
+  r.level = 1;
+  r.index = v;
+  const BasisFunction direct = basis_function(c1, s.hierarchy().scheme, r, s.positions(1));
+  const BasisFunction& got = m.basis().function;
+  EXPECT_EQ(got.extra_levels, direct.extra_levels);
+  EXPECT_EQ(got.support, direct.support);
+  EXPECT_EQ(got.support_per_level, direct.support_per_level);
+  EXPECT_DOUBLE_EQ(got.integral, direct.integral);
+  EXPECT_DOUBLE_EQ(got.max, direct.max);
+  EXPECT_GT(got.integral, 0.0);
+  ASSERT_GE(got.support_per_level.size(), 2u);
+  EXPECT_EQ(got.support_per_level[0], 1u);  // the unit coefficient itself at level j
+  // Cubic on a quad torus: the limit function is non-zero on the 2-ring of faces around v.
+  const std::size_t nfinest = got.values.size();
+  EXPECT_GT(got.support.size(), 10u);
+  EXPECT_LT(got.support.size(), nfinest / 4);
+  const BasisDisplay& d = m.basis();
+  EXPECT_EQ(d.colour.size(), nfinest);
+  EXPECT_EQ(d.faces.rows(), got.finest.num_faces());
+  EXPECT_FALSE(d.symmetric);
+  EXPECT_FLOAT_EQ(*std::max_element(d.colour.begin(), d.colour.end()), 1.0f);
+  bool outline_at_v = false;
+  for (const std::uint32_t e : d.support_edges) outline_at_v |= e == v;
+  EXPECT_TRUE(outline_at_v);
+  EXPECT_LT(d.support_edges.size() / 2, c1.num_edges() / 4);
+
+  // Height field: displaced only where the function is non-zero.
+  req.basis->height = true;
+  f.app.apply_panel_requests(req);
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < d.positions.size(); ++i) moved += d.positions[i] != d.base_positions[i];
+  EXPECT_GT(moved, 0u);
+  EXPECT_EQ(m.basis().function.integral, direct.integral);  // not recomputed
+
+  // The edge wavelet at the selected point, and its dual.
+  const long long w = edge_wavelet_at(c1, v);
+  ASSERT_GE(w, static_cast<long long>(c1.num_vertices));
+  req.basis = BasisPanelRequest{true, 1, false, w, -1, false, 0.2f};
+  f.app.apply_panel_requests(req);
+  ASSERT_TRUE(m.basis_on()) << f.app.error;
+  r.kind = BasisKind::Wavelet;
+  r.index = static_cast<std::uint32_t>(w);
+  const BasisFunction wd = basis_function(c1, s.hierarchy().scheme, r, s.positions(1));
+  EXPECT_EQ(m.basis().function.support, wd.support);
+  EXPECT_NEAR(m.basis().function.integral, wd.integral, 1e-15);
+  EXPECT_TRUE(m.basis().symmetric);
+  req.basis->dual = true;
+  f.app.apply_panel_requests(req);
+  ASSERT_TRUE(m.basis_on());
+  EXPECT_FALSE(m.basis().function.limit);
+
+  // A wavelet index on a v vertex fails like other actions and leaves the mode off.
+  req.basis = BasisPanelRequest{true, 1, false, 0, -1, false, 0.2f};
+  f.app.apply_panel_requests(req);
+  EXPECT_FALSE(m.basis_on());
+  EXPECT_NE(f.app.error.find("Basis: "), std::string::npos);
+
+  // An edit of the level recomputes (moments follow the geometry); a level change turns it off.
+  f.app.error.clear();
+  req.basis = BasisPanelRequest{true, 0, false, v, -1, false, 0.2f};
+  f.app.apply_panel_requests(req);
+  const double before = m.basis().function.moment[1];
+  m.begin_drag("Move");
+  const double t[3] = {0.0, 0.3, 0.0};
+  m.drag_to(t);
+  m.end_drag();
+  ASSERT_TRUE(m.basis_on());
+  EXPECT_NE(m.basis().function.moment[1], before);
+  m.set_level(0);
+  EXPECT_FALSE(m.basis_on());
+}
+
+TEST(ModelerControllerTest, BasisScriptCommands) {
+  ModelerState m;
+  const std::string torus = std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj";
+  ScriptRunner ok("ok", "open " + torus + "\nlevel 1\nbasis scaling 5\nbasis height 0.1\nbasis wavelet 400 dual\n");
+  EXPECT_EQ(ok.next(m).kind, ScriptStep::Kind::End);
+  ASSERT_TRUE(m.basis_on());
+  EXPECT_EQ(m.basis_settings().kind, BasisKind::Wavelet);
+  EXPECT_TRUE(m.basis_settings().dual);
+  EXPECT_TRUE(m.basis_settings().height);
+  EXPECT_EQ(m.basis().function.finest.num_vertices, m.basis().function.values.size());
+  ScriptRunner off("off", "basis off\n");
+  EXPECT_EQ(off.next(m).kind, ScriptStep::Kind::End);
+  EXPECT_FALSE(m.basis_on());
+  const std::pair<std::string, std::string> cases[] = {
+      {"basis wavelet 3\n", "script:1: wavelet index 3 is outside 384.."},
+      {"basis scaling 384\n", "script:1: scaling index 384 is outside 0..383"},
+      {"basis scaling 1 primal\n", "script:1: basis takes 'dual'"},
+      {"basis\n", "script:1: usage: basis scaling|wavelet"},
+      {"basis height 0.2\n", "script:1: basis height needs the basis mode on"},
+  };
+  for (const auto& [text, expect] : cases) {
+    ScriptRunner bad("bad", text);
+    const ScriptStep step = bad.next(m);
+    EXPECT_EQ(step.kind, ScriptStep::Kind::Error) << text;
+    EXPECT_NE(step.message.find(expect), std::string::npos) << step.message;
+  }
 }
 
 }  // namespace

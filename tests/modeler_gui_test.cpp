@@ -264,4 +264,38 @@ TEST(ModelerGuiTest, EverySampleEditsSavesReopensAndExports) {
   }
 }
 
+// Saturated pixels of the viewport (the colour map; clay, backdrop and net are near grey).
+long coloured_pixels(const Png& p) {
+  long n = 0;
+  for (int y = 0; y < kHeight - kStatusHeight; ++y) {
+    for (int x = kPanelWidth; x < kWidth; ++x) {
+      const int r = p.channel(x, y, 0), g = p.channel(x, y, 1), b = p.channel(x, y, 2);
+      n += std::max({r, g, b}) - std::min({r, g, b}) > 70;
+    }
+  }
+  return n;
+}
+
+// Basis mode (issue 5): `basis scaling I` colours the surface by the function, the height field
+// changes the silhouette, a wavelet is drawn too, and `basis off` restores the picture.
+TEST(ModelerGuiTest, HeadlessBasisScalingColoursAndBasisOffRestores) {
+  const fs::path dir = out_dir("headless");
+  for (const char* f : {"basis_a.png", "basis_b.png", "basis_h.png", "basis_w.png", "basis_c.png"}) fs::remove(dir / f);
+  const std::string script = "open " + torus() + "\nlevel 1\nscreenshot basis_a.png\nbasis scaling 2\n"
+                             "screenshot basis_b.png\nbasis height 0.15\nscreenshot basis_h.png\n"
+                             "basis wavelet 400\nscreenshot basis_w.png\nbasis off\nscreenshot basis_c.png\n";
+  const ProcessResult r = run_script("headless", "basis", script);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Png a = load_png(dir / "basis_a.png"), b = load_png(dir / "basis_b.png"), h = load_png(dir / "basis_h.png"),
+            w = load_png(dir / "basis_w.png"), c = load_png(dir / "basis_c.png");
+  ASSERT_EQ(a.width, kWidth);
+  ASSERT_EQ(c.width, kWidth);
+  const long view_area = static_cast<long>(kWidth - kPanelWidth) * (kHeight - kStatusHeight);
+  EXPECT_LT(coloured_pixels(a), view_area / 200) << "clay should not be coloured";
+  EXPECT_GT(coloured_pixels(b), view_area / 20) << "the basis function did not colour the surface";
+  EXPECT_GT(coloured_pixels(w), view_area / 20) << "the wavelet did not colour the surface";
+  EXPECT_GT(changed_pixels(b, h, 40).count, 200) << "the height field changed nothing";
+  EXPECT_LT(changed_pixels(a, c, 24).count, 20) << "basis off did not restore the picture";
+}
+
 }  // namespace

@@ -161,6 +161,73 @@ void draw_detail_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   ImGui::TextColored(kMuted, "%zu selected", d.selected);
 }
 
+void draw_basis_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
+  if (!section("Basis")) return;
+  const BasisPanelData& b = d.basis;
+  BasisPanelRequest q{b.on, b.kind, b.dual, b.index, b.extra_levels, b.height, b.height_scale};
+  bool changed = false;
+  changed |= ImGui::Checkbox("Show basis function", &q.on);
+  ImGui::BeginDisabled(!q.on);
+  changed |= ImGui::RadioButton("scaling function", &q.kind, 0);
+  ImGui::SameLine();
+  changed |= ImGui::RadioButton("wavelet", &q.kind, 1);
+  if (q.kind != b.kind) {  // keep the index in the new kind's range
+    if (q.kind == 1 && q.index < b.scaling_count) q.index = b.selected_wavelet >= 0 ? b.selected_wavelet : b.scaling_count;
+    if (q.kind == 0 && q.index >= b.scaling_count) q.index = b.selected >= 0 ? b.selected : 0;
+  }
+  const float column = ImGui::GetContentRegionAvail().x * 0.5f;
+  changed |= ImGui::Checkbox("Dual (analysis)", &q.dual);
+  ImGui::SameLine(column);
+  ImGui::BeginDisabled(b.lattice);
+  changed |= ImGui::Checkbox("Height field", &q.height);
+  ImGui::EndDisabled();
+  int index = static_cast<int>(q.index);
+  ImGui::SetNextItemWidth(110.0f);
+  if (ImGui::InputInt("Index", &index, 1, 10, ImGuiInputTextFlags_EnterReturnsTrue)) {
+    q.index = index, changed = true;
+  }
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(q.kind == 0 ? "control point of the edit level (0..%lld)"
+                                  : "e/f/c vertex of the next level (%lld..%lld)",
+                      q.kind == 0 ? b.scaling_count - 1 : b.scaling_count, b.wavelet_end - 1);
+  }
+  ImGui::SameLine();
+  ImGui::BeginDisabled(b.selected < 0 || (q.kind == 1 && b.selected_wavelet < 0));
+  if (ImGui::Button("At selection")) {
+    q.index = q.kind == 0 ? b.selected : b.selected_wavelet;
+    changed = true;
+  }
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("scaling: the selected control point; wavelet: the edge wavelet on its first edge");
+  }
+  int k = q.extra_levels < 0 ? b.default_extra_levels : q.extra_levels;
+  ImGui::SetNextItemWidth(110.0f);
+  if (ImGui::SliderInt("Extra levels K", &k, 0, 8)) q.extra_levels = k, changed = true;
+  ImGui::BeginDisabled(!q.height || b.lattice);
+  ImGui::SetNextItemWidth(140.0f);
+  if (ImGui::SliderFloat("Height scale", &q.height_scale, 0.0f, 1.0f, "%.2f")) changed = true;
+  ImGui::EndDisabled();
+  ImGui::EndDisabled();
+  if (changed) r.basis = q;
+  if (b.computed) {
+    ImGui::TextColored(kMuted, "%s %s %lld, K = %d (%s)", b.dual ? "dual" : "primal", b.kind == 0 ? "scaling" : "wavelet",
+                       b.index, b.used_levels, b.limit ? "limit values" : "control values");
+    ImGui::Text("support %zu finest vertices", b.support);
+    std::string per;
+    for (const std::uint32_t n : b.support_per_level) {
+      char one[16];
+      std::snprintf(one, sizeof one, per.empty() ? "%u" : " %u", n);
+      per += one;
+    }
+    ImGui::TextColored(kMuted, "per level: %s", per.c_str());
+    ImGui::Text("integral %.6g", b.integral);
+    ImGui::Text("min %.4g   max %.4g", b.min, b.max);
+    ImGui::Text("moments %.3g %.3g %.3g", b.moment[0], b.moment[1], b.moment[2]);
+    if (b.lattice) ImGui::TextColored(kMuted, "lattices: boundary colour only");
+  }
+}
+
 void draw_history_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   if (!section("History")) return;
   ImGui::BeginDisabled(d.undo_position == 0);
@@ -258,6 +325,7 @@ ModelerPanelRequests draw_modeler_panel(const ModelerPanelData& d, ModelerDispla
     }
     draw_levels_section(d, r);
     draw_detail_section(d, r);
+    draw_basis_section(d, r);
     draw_history_section(d, r);
     draw_display_section(d, display);
     r.camera = draw_view_buttons();

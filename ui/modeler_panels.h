@@ -1,8 +1,9 @@
 #pragma once
 // The modeler's ImGui panel (edit level, per-level table, detail equalizer, frames, colouring,
-// history, files, display, timing) and its modal prompts. Plain data in, requests out: the app
+// basis functions, history, files, display, timing) and its modal prompts. Plain data in, requests out: the app
 // applies them to its ModelerState (ui knows nothing of app or render, DESIGN.md).
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +33,41 @@ struct LevelInfo {
   double wavelet_max = 0.0, wavelet_rms = 0.0;
 };
 
+/// The Basis section (issue 5): the mode's settings and the current function's readouts.
+struct BasisPanelData {
+  bool on = false;
+  int kind = 0;                  // 0 scaling function, 1 wavelet
+  bool dual = false;
+  long long index = 0;
+  int extra_levels = -1;         // K asked for (-1: default)
+  int default_extra_levels = 4;  // core's default for this complex
+  bool height = false;
+  float height_scale = 0.2f;
+  long long scaling_count = 0;   // level-j vertices: scaling indices 0..scaling_count-1
+  long long wavelet_end = 0;     // wavelet indices scaling_count..wavelet_end-1 (e/f/c of level j+1)
+  long long selected = -1;       // first selected control point, -1: none
+  long long selected_wavelet = -1;  // the edge wavelet at the selected point
+  bool curve = false, lattice = false;
+  // Readouts of the computed function (valid when `computed`).
+  bool computed = false, limit = false;
+  int used_levels = 0;           // K used
+  std::size_t support = 0;       // finest vertices with a non-zero value
+  std::vector<std::uint32_t> support_per_level;
+  double integral = 0, min = 0, max = 0;
+  double moment[3] = {0, 0, 0};
+};
+
+/// The Basis section's settings after the user changed one (all of them, as in BasisPanelData).
+struct BasisPanelRequest {
+  bool on = false;
+  int kind = 0;
+  bool dual = false;
+  long long index = 0;
+  int extra_levels = -1;
+  bool height = false;
+  float height_scale = 0.2f;
+};
+
 /// What the panel shows (filled by the app each frame).
 struct ModelerPanelData {
   std::string file_name, file_path;
@@ -53,6 +89,7 @@ struct ModelerPanelData {
   int colour_level = -1;
   bool dirty = false;
   std::vector<std::string> recent;    // recently opened files, newest first
+  BasisPanelData basis;
 };
 
 /// Text fields the panel edits in place (paths typed by the user).
@@ -75,6 +112,7 @@ struct ModelerPanelRequests {
   std::optional<std::string> export_path;
   bool export_finest = true;
   std::optional<double> soft_radius;
+  std::optional<BasisPanelRequest> basis;
   CameraAction camera;
 };
 

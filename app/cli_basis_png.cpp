@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/boundary_surface.h"
+#include "core/polygon_normal.h"
 #include "render/background.h"
 #include "render/camera.h"
 #include "render/headless_context.h"
@@ -46,20 +47,11 @@ std::vector<float> to_unit(std::span<const double> values, bool symmetric) {
   return s;
 }
 
-// Area-weighted (Newell) vertex normals of faces over xyz.
+// Area-weighted unit vertex normals (core/polygon_normal.h) as vectors.
 std::vector<glm::dvec3> vertex_normals(const Csr& faces, std::span<const double> xyz) {
-  std::vector<glm::dvec3> n(xyz.size() / 3, glm::dvec3(0.0));
-  for (std::size_t f = 0; f < faces.rows(); ++f) {
-    const auto row = faces.row(f);
-    glm::dvec3 nf(0.0);
-    for (std::size_t i = 0; i < row.size(); ++i) {
-      const glm::dvec3 p = at(xyz, row[i]), q = at(xyz, row[(i + 1) % row.size()]);
-      nf += glm::dvec3((p.y - q.y) * (p.z + q.z), (p.z - q.z) * (p.x + q.x), (p.x - q.x) * (p.y + q.y));
-    }
-    for (std::uint32_t v : row) n[v] += nf;
-  }
-  for (glm::dvec3& d : n)
-    if (glm::length(d) > 0) d = glm::normalize(d);
+  const std::vector<double> flat = area_weighted_normals(faces, xyz);
+  std::vector<glm::dvec3> n(flat.size() / 3);
+  for (std::size_t v = 0; v < n.size(); ++v) n[v] = glm::dvec3(flat[3 * v], flat[3 * v + 1], flat[3 * v + 2]);
   return n;
 }
 

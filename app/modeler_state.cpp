@@ -9,6 +9,7 @@
 #include "core/errors.h"
 #include "core/project_io.h"
 #include "core/shape_io.h"
+#include "core/polygon_normal.h"
 #include "core/surface_export.h"
 
 namespace sublift {
@@ -402,21 +403,7 @@ std::vector<std::string> ModelerState::export_shape(const std::string& path, boo
     // The control net of the current level, with area-weighted face normals.
     const auto xyz = session_->positions(level);
     const Csr faces = boundary_faces(c, xyz);
-    std::vector<double> normals(xyz.size(), 0.0);
-    for (std::size_t f = 0; f < faces.rows(); ++f) {
-      const auto row = faces.row(f);
-      double n[3] = {0, 0, 0};
-      for (std::size_t i = 0; i < row.size(); ++i) {  // Newell
-        const double* a = &xyz[std::size_t(row[i]) * 3];
-        const double* b = &xyz[std::size_t(row[(i + 1) % row.size()]) * 3];
-        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
-      }
-      for (const std::uint32_t v : row) {
-        for (int k = 0; k < 3; ++k) normals[std::size_t(v) * 3 + k] += n[k];
-      }
-    }
+    const std::vector<double> normals = area_weighted_normals(faces, xyz);
     write_surface_with_normals(path, faces, xyz, normals);
     return {};
   }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/polygon_normal.h"
+
 namespace sublift {
 namespace {
 
@@ -26,18 +28,18 @@ bool normalize(V3& v, double ref) {
   return true;
 }
 
+// The face's area vector (core/polygon_normal.h) and its longest edge, the size that says
+// when the normal is degenerate.
 V3 newell(const Complex& c, const double* p, std::uint32_t f, double& size) {
-  V3 n;
   const auto row = c.faces.row(f);
   size = 0;
   for (std::size_t i = 0; i < row.size(); ++i) {
-    const V3 a = at(p, row[i]), b = at(p, row[(i + 1) % row.size()]);
-    n.x += (a.y - b.y) * (a.z + b.z);
-    n.y += (a.z - b.z) * (a.x + b.x);
-    n.z += (a.x - b.x) * (a.y + b.y);
-    size = std::max(size, std::sqrt(dot(sub(b, a), sub(b, a))));
+    const V3 e = sub(at(p, row[(i + 1) % row.size()]), at(p, row[i]));
+    size = std::max(size, std::sqrt(dot(e, e)));
   }
-  return n;
+  double n[3];
+  polygon_area_vector(row, p, n);
+  return {n[0], n[1], n[2]};
 }
 
 void set_identity(double f[9]) {

@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include "core/parallel.h"
+#include "core/polygon_normal.h"
 
 namespace sublift {
 namespace {
@@ -527,17 +528,9 @@ inline void cross(const double* a, const double* b, double* c) {
   c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-// Twice the area vector of a polygon (Newell).
+// Twice the area vector of face f (Newell, core/polygon_normal.h).
 inline void face_normal(const Csr& faces, std::size_t f, const double* x, double* n) {
-  n[0] = n[1] = n[2] = 0;
-  const auto r = faces.row(f);
-  for (std::size_t i = 0; i < r.size(); ++i) {
-    const double* a = x + 3 * std::size_t(r[i]);
-    const double* b = x + 3 * std::size_t(r[(i + 1) % r.size()]);
-    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
-  }
+  polygon_area_vector(faces.row(f), x, n);
 }
 
 // The limit position of v from its stencil row.
@@ -799,14 +792,8 @@ void limit_normals(const LimitStencils& s, const Csr& faces, const double* contr
 
 void orient_tangents(LimitStencils& s, const Csr& faces, const double* control, const double* limit) {
   const std::uint32_t nv = static_cast<std::uint32_t>(s.rows.rows());
-  const std::uint32_t nf = static_cast<std::uint32_t>(faces.rows());
   std::vector<double> acc(3 * std::size_t(nv), 0.0);
-  for (std::uint32_t f = 0; f < nf; ++f) {
-    double n[3];
-    face_normal(faces, f, limit, n);
-    for (std::uint32_t v : faces.row(f))
-      for (int c = 0; c < 3; ++c) acc[3 * std::size_t(v) + c] += n[c];
-  }
+  accumulate_face_normals(faces, limit, acc.data());
   s.tangent_sign.assign(nv, 0);
   parallel_for(nv, kGrain, [&](std::uint32_t b, std::uint32_t e) {
     for (std::uint32_t v = b; v < e; ++v) {

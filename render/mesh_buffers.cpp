@@ -6,6 +6,8 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "core/polygon_normal.h"
+
 namespace sublift {
 
 Bounds drawn_bounds(const SurfaceMesh& mesh) {
@@ -28,17 +30,11 @@ Bounds drawn_bounds(const SurfaceMesh& mesh) {
 }
 
 glm::dvec3 newell_normal(const SurfaceMesh& mesh, std::span<const std::uint32_t> corners) {
-  glm::dvec3 n(0.0);
-  // Relative to the first corner: the sum is translation invariant and this avoids cancellation.
-  const glm::dvec3 origin = mesh.positions[corners[0]];
-  for (std::size_t i = 0; i < corners.size(); ++i) {
-    const glm::dvec3 a = mesh.positions[corners[i]] - origin;
-    const glm::dvec3 b = mesh.positions[corners[(i + 1) % corners.size()]] - origin;
-    n.x += (a.y - b.y) * (a.z + b.z);
-    n.y += (a.z - b.z) * (a.x + b.x);
-    n.z += (a.x - b.x) * (a.y + b.y);
-  }
-  return n;
+  // glm::dvec3 holds three packed doubles: the positions are a flat xyz array.
+  static_assert(sizeof(glm::dvec3) == 3 * sizeof(double));
+  double n[3];
+  polygon_area_vector(corners, &mesh.positions.data()->x, n);
+  return {n[0], n[1], n[2]};
 }
 
 MeshBuffers build_mesh_buffers(const SurfaceMesh& mesh) {

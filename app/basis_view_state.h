@@ -9,11 +9,19 @@
 // function with negative values, else 0 -> 0 (dark) and the maximum -> 1.
 // Height field: surfaces move along their vertex normal, curves along the in-plane normal
 // (tangent x Z, or tangent x Y for curves along Z), by value / max|value| * scale * the model's
-// bounding-box diagonal. Lattices are coloured on their boundary surface only (no slices or
-// iso-surface in this slice) and never displaced.
+// bounding-box diagonal. Lattices are never displaced: they show the function as colour on
+// their boundary surface, or, when a slice plane or an iso-surface is asked for, on a plane
+// normal to x, y or z through the volume (at a fraction of the function's bounds) and on the
+// surfaces where the function equals +-iso_level * max|value| (core/cell_contour.h; the negative
+// one only for functions with negative values), coloured by the same map.
+// Curves also give a plot: the values along the curve component holding the largest |value|,
+// in parameter order, over the support and a margin of a tenth of its length on either side.
+// Level: a function of any level 0..J can be shown while another level is edited; its support
+// outline is drawn on the level-j net (net_positions).
 // Support outline: the level-j net edges that touch the support — an end vertex, or the edge's
 // midpoint child at level j+1 (when K >= 1), carries a non-zero value at level j+K.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,13 +33,22 @@ namespace sublift {
 
 struct BasisSettings {
   bool on = false;
+  int level = -1;             // j; -1: the edit level (ModelerState stores the level it used)
+  bool follow = false;        // a click on the net picks the function there (basis_target_at)
   BasisKind kind = BasisKind::Scaling;
   std::uint32_t index = 0;    // level-j vertex (scaling) or e/f/c vertex of level j+1 (wavelet)
   bool dual = false;
   int extra_levels = -1;      // K; -1: core's default
   bool height = false;        // displace as a height field (surfaces, curves)
   double height_scale = 0.2;  // times the bounding-box diagonal at max|value|
+  int slice_axis = -1;        // lattices: a slice plane normal to x, y or z (0, 1, 2); -1 none
+  double slice_pos = 0.5;     // where along that axis, as a fraction of the bounds
+  bool iso = false;           // lattices: iso-surfaces at +-iso_level * max|value|
+  double iso_level = 0.3;
 };
+
+/// The same function (kind, index, dual, K, level); the view settings may differ.
+bool same_function(const BasisSettings& a, const BasisSettings& b);
 
 struct BasisDisplay {
   BasisSettings settings;
@@ -39,11 +56,16 @@ struct BasisDisplay {
   BasisFunction function;
   std::vector<double> base_positions;    // level j+K limit positions (3 per vertex)
   std::vector<double> positions, normals;  // as drawn (displaced when settings.height)
-  Csr faces;                             // surfaces: finest faces; lattices: boundary; curves: none
+  Csr faces;                             // as drawn: surfaces: finest faces; lattices: boundary
+                                         // or slice/iso triangles; curves: none
+  Csr boundary;                          // lattices: the finest boundary faces
   std::vector<std::uint32_t> curve_edges;  // curves: finest edges
-  std::vector<float> colour;             // 0..1 per finest vertex
+  std::vector<float> vertex_colour;      // 0..1 per finest vertex
+  std::vector<float> colour;             // 0..1 per drawn vertex
+  std::vector<float> plot;               // curves: values along the curve (see above)
   bool symmetric = false;
   std::vector<std::uint32_t> support_edges;  // level-j net edges (vertex pairs) touching the support
+  std::vector<double> net_positions;     // level-j control points (for the outline)
   double model_size = 1.0;               // bounding-box diagonal of base_positions
 };
 
@@ -51,8 +73,22 @@ struct BasisDisplay {
 /// index out of range, a wavelet index on a v vertex, a level j+K too large).
 BasisDisplay compute_basis_display(const Session& session, int level, const BasisSettings& settings);
 
-/// Recomputes positions and normals for settings.height / height_scale (no new function).
-void apply_basis_height(BasisDisplay& d);
+/// Recomputes what is drawn for the view settings (height field, slice, iso-surfaces) without
+/// computing a new function.
+void apply_basis_view(BasisDisplay& d);
+
+/// The colour map's value (0..1) of function value `v` in display `d`.
+float basis_colour(const BasisDisplay& d, double v);
+
+/// What a click on control point `vertex` of edit level `edit_level` picks: a scaling function
+/// of that level at it; a wavelet: the wavelet of level edit_level - 1 on it when it is an
+/// e/f/c vertex of that level (the level j+1 net), else the edge wavelet at it
+/// (edge_wavelet_at) on the edit level. Empty when there is none (an isolated vertex).
+struct BasisTarget {
+  int level = 0;
+  std::uint32_t index = 0;
+};
+std::optional<BasisTarget> basis_target_at(const Hierarchy& h, int edit_level, BasisKind kind, std::uint32_t vertex);
 
 /// The wavelet "nearest" level-j vertex v: the edge wavelet on the midpoint of v's first edge
 /// (index nv_j + e); -1 when v has no edge.

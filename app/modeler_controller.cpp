@@ -427,14 +427,21 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
     if (r.colour_level) model.set_colour_level(*r.colour_level);
     if (r.soft_radius) model.set_soft_radius(*r.soft_radius);
     if (r.basis) {
+      const BasisPanelRequest& q = *r.basis;
       BasisSettings b;
-      b.on = r.basis->on;
-      b.kind = r.basis->kind == 0 ? BasisKind::Scaling : BasisKind::Wavelet;
-      b.index = static_cast<std::uint32_t>(std::max(0LL, r.basis->index));
-      b.dual = r.basis->dual;
-      b.extra_levels = r.basis->extra_levels;
-      b.height = r.basis->height;
-      b.height_scale = r.basis->height_scale;
+      b.on = q.on;
+      b.level = q.level;
+      b.follow = q.follow;
+      b.kind = q.kind == 0 ? BasisKind::Scaling : BasisKind::Wavelet;
+      b.index = static_cast<std::uint32_t>(std::max(0LL, q.index));
+      b.dual = q.dual;
+      b.extra_levels = q.extra_levels;
+      b.height = q.height;
+      b.height_scale = q.height_scale;
+      b.slice_axis = q.slice_axis;
+      b.slice_pos = q.slice_pos;
+      b.iso = q.iso;
+      b.iso_level = q.iso_level;
       basis_request_ = b;  // kept even when it fails, so the panel shows what was typed
       try {
         model.set_basis(b);
@@ -442,6 +449,8 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
         fail(e, "Basis: ");
       }
     }
+    if (r.pin_basis) model.pin_basis();
+    if (r.clear_pin) model.clear_pin();
     if (r.gain_begin && !gain_active_) {
       model.begin_gain(r.gain_level);
       gain_active_ = true;
@@ -465,11 +474,37 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
   }
 }
 
+namespace {
+
+BasisReadout readout_of(const BasisDisplay& d) {
+  const BasisFunction& f = d.function;
+  BasisReadout o;
+  char title[160];
+  std::snprintf(title, sizeof title, "%s %s %u of level %d, K = %d (%s)", d.settings.dual ? "dual" : "primal",
+                d.settings.kind == BasisKind::Scaling ? "scaling" : "wavelet", d.settings.index, d.level,
+                f.extra_levels, f.limit ? "limit values" : "control values");
+  o.title = title;
+  o.support = f.support.size();
+  o.support_per_level = f.support_per_level;
+  o.integral = f.integral;
+  o.min = f.min;
+  o.max = f.max;
+  std::copy(f.moment, f.moment + 3, o.moment);
+  o.plot = d.plot;
+  return o;
+}
+
+}  // namespace
+
 void ModelerController::fill_basis_data(BasisPanelData& b) const {
   const Session& s = model.session();
-  const Complex& cj = s.hierarchy().levels[static_cast<std::size_t>(model.level())];
   const BasisSettings& set = model.basis_on() ? model.basis_settings() : basis_request_;
+  const int level = set.level >= 0 && set.level <= s.finest_level() ? set.level : model.level();
+  const Complex& cj = s.hierarchy().levels[static_cast<std::size_t>(level)];
   b.on = model.basis_on();
+  b.level = level;
+  b.finest = s.finest_level();
+  b.follow = set.follow;
   b.kind = set.kind == BasisKind::Scaling ? 0 : 1;
   b.dual = set.dual;
   b.index = set.index;
@@ -477,25 +512,30 @@ void ModelerController::fill_basis_data(BasisPanelData& b) const {
   b.default_extra_levels = default_extra_levels(cj);
   b.height = set.height;
   b.height_scale = static_cast<float>(set.height_scale);
+  b.slice_axis = set.slice_axis;
+  b.slice_pos = static_cast<float>(set.slice_pos);
+  b.iso = set.iso;
+  b.iso_level = static_cast<float>(set.iso_level);
   b.scaling_count = cj.num_vertices;
   b.wavelet_end = cj.num_child_vertices();
   b.curve = cj.dim == 1;
   b.lattice = cj.dim == 3;
   if (!model.selection().empty()) {
-    b.selected = model.selection().front();
-    b.selected_wavelet = edge_wavelet_at(cj, model.selection().front());
+    const unsigned v = model.selection().front();
+    if (const auto t = basis_target_at(s.hierarchy(), model.level(), BasisKind::Scaling, v)) {
+      b.selected_scaling_level = t->level, b.selected = t->index;
+    }
+    if (const auto t = basis_target_at(s.hierarchy(), model.level(), BasisKind::Wavelet, v)) {
+      b.selected_wavelet_level = t->level, b.selected_wavelet = t->index;
+    }
   }
   if (model.basis_on()) {
-    const BasisFunction& f = model.basis().function;
     b.computed = true;
-    b.limit = f.limit;
-    b.used_levels = f.extra_levels;
-    b.support = f.support.size();
-    b.support_per_level = f.support_per_level;
-    b.integral = f.integral;
-    b.min = f.min;
-    b.max = f.max;
-    std::copy(f.moment, f.moment + 3, b.moment);
+    b.current = readout_of(model.basis());
+  }
+  if (model.pinned() != nullptr) {
+    b.pinned = true;
+    b.pin = readout_of(*model.pinned());
   }
 }
 

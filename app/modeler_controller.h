@@ -83,6 +83,8 @@ class ModelerController {
 
   /// Applies the panel's requests (draw_frame does; tests call it without ImGui).
   void apply_panel_requests(const ModelerPanelRequests& r) { apply_requests(r); }
+  /// The Basis section's data: settings, what "At selection" picks, readouts (current, pinned).
+  void fill_basis_data(BasisPanelData& b) const;
 
  private:
   enum class Press { None, Click, Drag, Box };
@@ -103,7 +105,6 @@ class ModelerController {
   const PickIndex& pick_index();
   void update_grab();
   void fail(const std::exception& e, const std::string& context);
-  void fill_basis_data(BasisPanelData& b) const;
 
   bool interactive_;
   // Viewport rectangle in window coordinates and the framebuffer scale, from the last frame.

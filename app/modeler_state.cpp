@@ -67,6 +67,7 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   file_path_ = path;
   project_path_ = project ? path : std::string();
   warnings_ = std::move(warnings);
+  clear_pin();  // a new model: the comparison belonged to the old one
   install(std::move(session));
   level_ = std::clamp(level, 0, session_->finest_level());
   selection_.clear();
@@ -154,7 +155,7 @@ void ModelerState::after_operation() {
   update_.net.insert(update_.net.end(), changed_net.begin(), changed_net.end());
   if (soft_radius_ > 0.0 && !changed_net.empty() && !dragging_) refresh_state();  // weights follow the shape
   if (colour_level_ >= 0) refresh_colour();
-  if (basis_ && !changed_net.empty()) basis_stale_ = true;
+  if (basis_ && !s.changed(basis_->level).empty()) basis_stale_ = true;
   if (!dragging_) refresh_basis();
 }
 
@@ -188,8 +189,7 @@ void ModelerState::set_level(int level) {
   level_ = level;
   selection_.clear();
   hover_ = -1;
-  basis_off();
-  update_.topology = true;
+  update_.topology = true;  // the function keeps its own level
   refresh_state();
 }
 
@@ -270,6 +270,7 @@ void ModelerState::set_selection(std::vector<unsigned> selection) {
   selection_ = std::move(selection);
   clamp_selection();
   refresh_state();
+  if (selection_.size() == 1) follow_selection();
 }
 
 void ModelerState::select_all() {
@@ -460,24 +461,27 @@ void ModelerState::basis_off() {
   basis_settings_.on = false;
 }
 
-void ModelerState::set_basis(const BasisSettings& settings) {
-  if (!settings.on || !session_) {
+void ModelerState::set_basis(const BasisSettings& settings_in) {
+  if (!settings_in.on || !session_) {
     basis_off();
     return;
   }
-  const auto same = [&](const BasisSettings& o) {
-    return o.kind == settings.kind && o.index == settings.index && o.dual == settings.dual &&
-           o.extra_levels == settings.extra_levels;
-  };
-  if (basis_ && same(basis_->settings) && basis_->level == level_ && !basis_stale_) {
+  BasisSettings settings = settings_in;
+  if (settings.level < 0) settings.level = level_;
+  if (settings.level > session_->finest_level()) {
+    basis_off();
+    throw Error("basis: level " + std::to_string(settings.level) + " does not exist (finest is " +
+                std::to_string(session_->finest_level()) + ")");
+  }
+  if (basis_ && same_function(basis_->settings, settings) && !basis_stale_) {
     basis_->settings = settings;
     basis_settings_ = settings;
-    apply_basis_height(*basis_);
+    apply_basis_view(*basis_);
     update_.basis = true;
     return;
   }
   try {
-    basis_ = std::make_unique<BasisDisplay>(compute_basis_display(*session_, level_, settings));
+    basis_ = std::make_unique<BasisDisplay>(compute_basis_display(*session_, settings.level, settings));
   } catch (...) {
     basis_off();
     throw;
@@ -485,6 +489,31 @@ void ModelerState::set_basis(const BasisSettings& settings) {
   basis_settings_ = settings;
   basis_stale_ = false;
   update_.basis = true;
+}
+
+void ModelerState::pin_basis() {
+  if (!basis_) throw Error("basis: nothing to pin (show a function first)");
+  pinned_ = std::make_unique<BasisDisplay>(*basis_);
+  update_.basis = true;
+}
+
+void ModelerState::clear_pin() {
+  if (pinned_) update_.basis = true;
+  pinned_.reset();
+}
+
+void ModelerState::follow_selection() {
+  if (!basis_ || !basis_settings_.follow || selection_.empty()) return;
+  const auto target = basis_target_at(session_->hierarchy(), level_, basis_settings_.kind, selection_.front());
+  if (!target) return;
+  BasisSettings b = basis_settings_;
+  b.level = target->level;
+  b.index = target->index;
+  try {
+    set_basis(b);
+  } catch (const Error&) {
+    basis_off();  // K too large for that level: the panel says the mode is off
+  }
 }
 
 ViewUpdate ModelerState::take_view_update() {

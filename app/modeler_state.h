@@ -130,16 +130,24 @@ class ModelerState {
   void set_colour_level(int level);
   const std::vector<float>& colour_values() const { return colour_; }
 
-  /// Basis-function mode (issue 5, app/basis_view_state.h) on the edit level: computes the
-  /// function of `settings` (settings.on false: off). Throws Error and leaves the mode off on a
-  /// bad index. A change of height/scale alone only re-displaces. Turned off when the level,
-  /// scheme, file or topology changes; recomputed after edits of the shape (once per drag, at
-  /// its end).
+  /// Basis-function mode (issue 5, app/basis_view_state.h): computes the function of
+  /// `settings` on level settings.level (-1: the edit level; the level used is stored)
+  /// (settings.on false: off). Throws Error and leaves the mode off on a bad level or index. A
+  /// change of view settings alone (height, slice, iso) only redraws. Kept when the edit level
+  /// changes; turned off when the scheme, file or topology changes; recomputed after edits of
+  /// its level's shape (once per drag, at its end). With settings.follow, selecting one control
+  /// point shows the function basis_target_at() picks there.
   void set_basis(const BasisSettings& settings);
   bool basis_on() const { return basis_ != nullptr; }
   const BasisSettings& basis_settings() const { return basis_settings_; }
   /// The current function's display (only while basis_on()).
   const BasisDisplay& basis() const { return *basis_; }
+  /// Side-by-side comparison: a copy of the current function, kept (and drawn beside it) until
+  /// cleared or another file is opened, across level and scheme changes. Throws Error when the
+  /// mode is off.
+  void pin_basis();
+  void clear_pin();
+  const BasisDisplay* pinned() const { return pinned_.get(); }
 
   /// Accumulated changes since the last call, for the GPU buffers.
   ViewUpdate take_view_update();
@@ -182,8 +190,9 @@ class ModelerState {
   std::vector<float> colour_;
   ViewUpdate update_;
   BasisSettings basis_settings_;
-  std::unique_ptr<BasisDisplay> basis_;
+  std::unique_ptr<BasisDisplay> basis_, pinned_;
   bool basis_stale_ = false;
+  void follow_selection();
   void basis_off();
   void refresh_basis();  // recomputes a stale function (after edits of the shape)
 };

@@ -7,6 +7,35 @@
 #include "render/offscreen_target.h"
 
 namespace sublift {
+namespace {
+
+Bounds bounds_of(const std::vector<double>& xyz) {
+  Bounds b;
+  for (std::size_t i = 0; i + 2 < xyz.size(); i += 3) {
+    const glm::dvec3 p(xyz[i], xyz[i + 1], xyz[i + 2]);
+    b.min = b.empty ? p : glm::min(b.min, p);
+    b.max = b.empty ? p : glm::max(b.max, p);
+    b.empty = false;
+  }
+  return b;
+}
+
+// Uploads a function's drawn shape at `positions`; true when it is a surface.
+bool upload_basis(const BasisDisplay& b, const std::vector<double>& positions, LimitSurfaceRenderer& surface,
+                  NetRenderer& curve) {
+  const std::size_t n = positions.size() / 3;
+  if (b.faces.rows() > 0) {
+    surface.set_topology(b.faces.offsets, b.faces.items, n);
+    surface.set_positions_normals(positions, b.normals);
+    surface.set_scalar(b.colour);
+    return true;
+  }
+  curve.set_topology(b.curve_edges, {}, {}, n);
+  curve.set_positions(positions);
+  return false;
+}
+
+}  // namespace
 
 void ModelerView::sync(ModelerState& state) {
   ViewUpdate u = state.take_view_update();
@@ -44,19 +73,25 @@ void ModelerView::sync(ModelerState& state) {
     basis_surface_on_ = false;
     if (basis_on_) {
       const BasisDisplay& b = state.basis();
-      const std::size_t n = b.positions.size() / 3;
-      basis_surface_on_ = b.faces.rows() > 0;
-      if (basis_surface_on_) {
-        basis_surface_.set_topology(b.faces.offsets, b.faces.items, n);
-        basis_surface_.set_positions_normals(b.positions, b.normals);
-        basis_surface_.set_scalar(b.colour);
-      } else {
-        basis_curve_.set_topology(b.curve_edges, {}, {}, n);
-        basis_curve_.set_positions(b.positions);
-      }
-      const auto net = state.session().positions(state.level());
+      basis_surface_on_ = upload_basis(b, b.positions, basis_surface_, basis_curve_);
+      // The outline follows a drag live when the function's level is the one being edited.
+      const bool live = b.level == state.level();
+      const auto net = live ? state.session().positions(state.level()) : std::span<const double>(b.net_positions);
       basis_support_.set_topology(b.support_edges, {}, {}, net.size() / 3);
       basis_support_.set_positions(net);
+    }
+    pinned_on_ = state.pinned() != nullptr;
+    if (pinned_on_) {
+      // Beside what is shown now, to the right (+x), a tenth of the wider extent apart.
+      const BasisDisplay& p = *state.pinned();
+      const std::vector<double>& shown = basis_on_ ? state.basis().positions : state.limit_positions();
+      const Bounds a = bounds_of(shown), c = bounds_of(p.positions);
+      const double gap = 0.1 * std::max(a.max.x - a.min.x, c.max.x - c.min.x) + 1e-9;
+      const double dx = a.max.x + gap - c.min.x;
+      std::vector<double> moved = p.positions;
+      for (std::size_t i = 0; i < moved.size(); i += 3) moved[i] += dx;
+      pinned_surface_on_ = upload_basis(p, moved, pinned_surface_, pinned_curve_);
+      pinned_bounds_ = bounds_of(moved);
     }
   }
   if (u.scalar && has_surface_) {
@@ -67,6 +102,10 @@ void ModelerView::sync(ModelerState& state) {
 
 Bounds ModelerView::bounds() const {
   Bounds b = has_surface_ ? surface_.bounds() : curve_.bounds();
+  if (pinned_on_ && !pinned_bounds_.empty && !b.empty) {
+    b.min = glm::min(b.min, pinned_bounds_.min);
+    b.max = glm::max(b.max, pinned_bounds_.max);
+  }
   const Bounds& n = net_.bounds();
   if (b.empty) return n;
   if (!n.empty) {
@@ -126,6 +165,11 @@ void ModelerView::draw(const OrbitCamera& camera, const ViewportRect& rect, cons
     surface_.draw(camera, surface_style(colour_map_));
   } else if (has_curve_) {
     curve_.draw(camera, curve_style(curve_colour));
+  }
+  if (pinned_on_ && pinned_surface_on_) {
+    pinned_surface_.draw(camera, surface_style(true));
+  } else if (pinned_on_) {
+    pinned_curve_.draw(camera, curve_style(glm::vec4(0.55f, 0.30f, 0.75f, 1.0f)));
   }
   if (d.net) {
     NetStyle style;

@@ -1,8 +1,9 @@
 #pragma once
 // ModelerView: the modeler's 3-D viewport on the GPU — backdrop, the finest level's limit
 // surface (or a curve's limit polyline) and the control net of the edit level on top. It
-// While the basis-function mode is on, the function (colour, optional height field) replaces the
-// limit surface or curve and its support outline is drawn over the net. It
+// While the basis-function mode is on, the function (colour, optional height field, lattice
+// slices and iso-surfaces) replaces the limit surface or curve and its support outline is drawn
+// over the net; a pinned function is drawn to the right of it for comparison. It
 // mirrors a ModelerState, uploading only what take_view_update() reports as changed.
 #include <vector>
 
@@ -50,6 +51,11 @@ class ModelerView {
   LimitSurfaceRenderer basis_surface_;
   NetRenderer basis_curve_, basis_support_;
   bool basis_on_ = false, basis_surface_on_ = false;
+  // A pinned function for comparison, drawn to the right of what is shown.
+  LimitSurfaceRenderer pinned_surface_;
+  NetRenderer pinned_curve_;
+  bool pinned_on_ = false, pinned_surface_on_ = false;
+  Bounds pinned_bounds_;
 };
 
 }  // namespace sublift

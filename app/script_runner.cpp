@@ -193,9 +193,54 @@ void ScriptRunner::run_line(ModelerState& state, ModelerDisplay* display, const 
       state.set_colour_level(static_cast<int>(l));
     }
   } else if (c == "basis") {
-    const char* usage = "basis scaling|wavelet INDEX [dual] | basis height SCALE|off | basis off";
+    const char* usage =
+        "basis scaling|wavelet INDEX [dual] | basis height SCALE|off | basis slice x|y|z FRACTION | basis slice off | "
+        "basis iso FRACTION|off | basis follow on|off | basis pin | basis unpin | basis off";
     if (w.size() == 2 && w[1] == "off") {
       state.set_basis(BasisSettings{});
+      return;
+    }
+    if (w.size() == 2 && (w[1] == "pin" || w[1] == "unpin")) {
+      if (w[1] == "pin") state.pin_basis();
+      else state.clear_pin();
+      return;
+    }
+    auto current = [&](const char* what) {
+      if (!state.basis_on()) throw ScriptError(std::string("basis ") + what + " needs the basis mode on (use 'basis scaling|wavelet INDEX')");
+      return state.basis_settings();
+    };
+    auto fraction = [&](const std::string& word, const char* name) {
+      const double f = number(word, name);
+      if (f < 0.0 || f > 1.0) throw ScriptError(std::string(name) + " must be in 0..1, got " + word);
+      return f;
+    };
+    if (w.size() >= 3 && w[1] == "slice") {
+      BasisSettings b = current("slice");
+      if (w.size() == 3 && w[2] == "off") {
+        b.slice_axis = -1;
+      } else if (w.size() == 4 && (w[2] == "x" || w[2] == "y" || w[2] == "z")) {
+        b.slice_axis = w[2][0] - 'x';
+        b.slice_pos = fraction(w[3], "FRACTION");
+      } else {
+        throw ScriptError("usage: basis slice x|y|z FRACTION | basis slice off");
+      }
+      if (state.dim() != 3) throw ScriptError("basis slice needs a lattice");
+      state.set_basis(b);
+      return;
+    }
+    if (w.size() == 3 && w[1] == "iso") {
+      BasisSettings b = current("iso");
+      if (state.dim() != 3) throw ScriptError("basis iso needs a lattice");
+      b.iso = w[2] != "off";
+      if (b.iso) b.iso_level = fraction(w[2], "FRACTION");
+      state.set_basis(b);
+      return;
+    }
+    if (w.size() == 3 && w[1] == "follow") {
+      if (w[2] != "on" && w[2] != "off") throw ScriptError("basis follow takes 'on' or 'off', got '" + w[2] + "'");
+      BasisSettings b = current("follow");
+      b.follow = w[2] == "on";
+      state.set_basis(b);
       return;
     }
     if (w.size() == 3 && w[1] == "height") {
@@ -230,6 +275,7 @@ void ScriptRunner::run_line(ModelerState& state, ModelerDisplay* display, const 
                         " (e/f/c vertices of level " + std::to_string(state.level() + 1) + ")");
     }
     b.index = static_cast<std::uint32_t>(index);
+    b.level = state.level();
     state.set_basis(b);
   } else if (c == "display") {
     expect_args(w, 2, "display smooth|wireframe|net|xray|depth_cue|clip|ortho on|off");

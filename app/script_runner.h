@@ -10,6 +10,8 @@
 //   clip X|Y|Z OFFSET01 | view front|back|right|left|top|bottom  (display and camera only)
 //   basis scaling|wavelet INDEX [dual] | basis height SCALE|off | basis off  (issue 5: the
 //   basis-function mode on the edit level; height SCALE > 0 displaces, times the bbox diagonal)
+//   basis slice x|y|z FRACTION | basis slice off | basis iso FRACTION|off  (lattices)
+//   basis follow on|off (a selected point picks the function) | basis pin | basis unpin
 // The runner executes commands until one needs a rendered frame (screenshot) or the script
 // ends; the app draws and saves the frame, then calls next() again.
 #include <string>

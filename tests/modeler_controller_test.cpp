@@ -322,6 +322,15 @@ TEST(ModelerControllerTest, AutosaveRecoveryAndQuitPrompt) {
   ::unsetenv("SUBLIFT_RECOVERY_DIR");
 }
 
+// A Basis-section request for the edit level: on, kind (0 scaling, 1 wavelet), index.
+BasisPanelRequest basis_request(int kind, long long index) {
+  BasisPanelRequest q;
+  q.on = true;
+  q.kind = kind;
+  q.index = index;
+  return q;
+}
+
 // Basis mode (issue 5): the panel's request for the selected point computes the same function
 // as a direct basis_function call on the edit level, with the support outline around the point;
 // wavelets, duals, bad indices, level changes and edits.
@@ -335,7 +344,7 @@ TEST(ModelerControllerTest, BasisModeComputesTheSelectedScalingFunctionAndWavele
   const Complex& c1 = s.hierarchy().levels[1];
 
   ModelerPanelRequests req;
-  req.basis = BasisPanelRequest{true, 0, false, static_cast<long long>(m.selection().front()), -1, false, 0.2f};
+  req.basis = basis_request(0, static_cast<long long>(m.selection().front()));
   f.app.apply_panel_requests(req);
   ASSERT_TRUE(f.app.error.empty()) << f.app.error;
   ASSERT_TRUE(m.basis_on());
@@ -379,7 +388,7 @@ TEST(ModelerControllerTest, BasisModeComputesTheSelectedScalingFunctionAndWavele
   // The edge wavelet at the selected point, and its dual.
   const long long w = edge_wavelet_at(c1, v);
   ASSERT_GE(w, static_cast<long long>(c1.num_vertices));
-  req.basis = BasisPanelRequest{true, 1, false, w, -1, false, 0.2f};
+  req.basis = basis_request(1, w);
   f.app.apply_panel_requests(req);
   ASSERT_TRUE(m.basis_on()) << f.app.error;
   r.kind = BasisKind::Wavelet;
@@ -394,14 +403,15 @@ TEST(ModelerControllerTest, BasisModeComputesTheSelectedScalingFunctionAndWavele
   EXPECT_FALSE(m.basis().function.limit);
 
   // A wavelet index on a v vertex fails like other actions and leaves the mode off.
-  req.basis = BasisPanelRequest{true, 1, false, 0, -1, false, 0.2f};
+  req.basis = basis_request(1, 0);
   f.app.apply_panel_requests(req);
   EXPECT_FALSE(m.basis_on());
   EXPECT_NE(f.app.error.find("Basis: "), std::string::npos);
 
-  // An edit of the level recomputes (moments follow the geometry); a level change turns it off.
+  // An edit of the level recomputes (moments follow the geometry); the function keeps its level
+  // when another level is edited.
   f.app.error.clear();
-  req.basis = BasisPanelRequest{true, 0, false, v, -1, false, 0.2f};
+  req.basis = basis_request(0, v);
   f.app.apply_panel_requests(req);
   const double before = m.basis().function.moment[1];
   m.begin_drag("Move");
@@ -410,8 +420,155 @@ TEST(ModelerControllerTest, BasisModeComputesTheSelectedScalingFunctionAndWavele
   m.end_drag();
   ASSERT_TRUE(m.basis_on());
   EXPECT_NE(m.basis().function.moment[1], before);
+  const auto support = m.basis().function.support;
   m.set_level(0);
+  ASSERT_TRUE(m.basis_on());
+  EXPECT_EQ(m.basis().level, 1);
+  EXPECT_EQ(m.basis().function.support, support);
+}
+
+// Follow: selecting an e/f/c point of the level j+1 net shows its level-j wavelet; a vertex
+// point shows the edge wavelet on its first edge at the edit level; scaling mode the point's
+// own scaling function. Each matches a direct basis_function call.
+TEST(ModelerControllerTest, BasisFollowPicksWaveletsOnTheNextLevelNet) {
+  Fixture f;
+  ModelerState& m = f.app.model;
+  m.set_level(1);
+  const Hierarchy& h = m.session().hierarchy();
+  const std::uint32_t nv0 = h.levels[0].num_vertices;
+  ModelerPanelRequests req;
+  req.basis = basis_request(1, h.levels[1].num_vertices);  // the first edge wavelet of level 1
+  req.basis->follow = true;
+  f.app.apply_panel_requests(req);
+  ASSERT_TRUE(m.basis_on()) << f.app.error;
+  auto direct = [&](int level, BasisKind kind, std::uint32_t index) {
+    BasisRequest r;
+    r.level = level;
+    r.kind = kind;
+    r.index = index;
+    return basis_function(h.levels[static_cast<std::size_t>(level)], h.scheme, r, m.session().positions(level));
+  };
+  const std::uint32_t face_point = nv0 + h.levels[0].num_edges() + 3;  // a face child of level 0
+  m.set_selection({face_point});
+  ASSERT_TRUE(m.basis_on());
+  EXPECT_EQ(m.basis().level, 0);
+  EXPECT_EQ(m.basis().settings.index, face_point);
+  EXPECT_EQ(m.basis().function.support, direct(0, BasisKind::Wavelet, face_point).support);
+  m.set_selection({5});  // a vertex point: the edge wavelet of level 1 on its first edge
+  const long long w = edge_wavelet_at(h.levels[1], 5);
+  EXPECT_EQ(m.basis().level, 1);
+  EXPECT_EQ(m.basis().settings.index, static_cast<std::uint32_t>(w));
+  EXPECT_EQ(m.basis().function.support, direct(1, BasisKind::Wavelet, static_cast<std::uint32_t>(w)).support);
+  // Scaling mode follows too; without follow nothing changes on a click.
+  req.basis = basis_request(0, 0);
+  req.basis->follow = true;
+  f.app.apply_panel_requests(req);
+  m.set_selection({face_point});
+  EXPECT_EQ(m.basis().level, 1);
+  EXPECT_EQ(m.basis().settings.index, face_point);
+  EXPECT_EQ(m.basis().function.integral, direct(1, BasisKind::Scaling, face_point).integral);
+  req.basis->follow = false;
+  req.basis->index = 7;
+  f.app.apply_panel_requests(req);
+  m.set_selection({9});
+  EXPECT_EQ(m.basis().settings.index, 7u);
+}
+
+// Pinning keeps a copy of the function across index and scheme changes (linear vs cubic) and
+// the panel shows both readouts.
+TEST(ModelerControllerTest, BasisPinKeepsAFunctionForComparison) {
+  Fixture f;
+  ModelerState& m = f.app.model;
+  ModelerPanelRequests req;
+  req.basis = basis_request(0, 4);
+  f.app.apply_panel_requests(req);
+  ASSERT_TRUE(m.basis_on());
+  const double cubic_max = m.basis().function.max;
+  ModelerPanelRequests pin;
+  pin.pin_basis = true;
+  f.app.apply_panel_requests(pin);
+  ASSERT_NE(m.pinned(), nullptr);
+  m.set_scheme(Scheme::Linear);
   EXPECT_FALSE(m.basis_on());
+  f.app.apply_panel_requests(req);
+  ASSERT_TRUE(m.basis_on());
+  ASSERT_NE(m.pinned(), nullptr);
+  EXPECT_EQ(m.pinned()->function.max, cubic_max);
+  EXPECT_DOUBLE_EQ(m.basis().function.max, 1.0);  // the linear hat peaks at its own vertex
+  EXPECT_LT(cubic_max, 1.0);                        // the cubic one (limit values) does not
+  BasisPanelData data;
+  f.app.fill_basis_data(data);
+  EXPECT_TRUE(data.pinned && data.computed);
+  EXPECT_EQ(data.pin.max, cubic_max);
+  EXPECT_NE(data.current.title.find("scaling 4 of level 0"), std::string::npos) << data.current.title;
+  ModelerPanelRequests clear;
+  clear.clear_pin = true;
+  f.app.apply_panel_requests(clear);
+  EXPECT_EQ(m.pinned(), nullptr);
+  ModelerPanelRequests off;
+  off.basis = BasisPanelRequest{};
+  f.app.apply_panel_requests(off);
+  f.app.apply_panel_requests(pin);  // nothing to pin: an error, not a crash
+  EXPECT_NE(f.app.error.find("nothing to pin"), std::string::npos) << f.app.error;
+}
+
+// Lattices: a slice plane lies in its plane and is coloured by the function; an iso-surface
+// carries the iso value's colour; both are view settings (the function is not recomputed).
+TEST(ModelerControllerTest, BasisLatticeSlicesAndIsoSurfaces) {
+  Fixture f("hex_block_4.lattice");
+  ModelerState& m = f.app.model;
+  ModelerPanelRequests req;
+  req.basis = basis_request(0, 62);  // the block's centre vertex (0, 0, 0)
+  f.app.apply_panel_requests(req);
+  ASSERT_TRUE(m.basis_on()) << f.app.error;
+  const BasisDisplay& d = m.basis();
+  const std::size_t boundary_faces = d.faces.rows();
+  EXPECT_EQ(d.faces.rows(), d.boundary.rows());
+  req.basis->slice_axis = 2;
+  req.basis->slice_pos = 0.5f;
+  f.app.apply_panel_requests(req);
+  const BasisDisplay& s = m.basis();
+  ASSERT_GT(s.faces.rows(), 0u);
+  EXPECT_EQ(s.faces.items.size(), 3 * s.faces.rows());
+  double zlo = 1e300, zhi = -1e300;
+  for (std::size_t v = 0; v < d.base_positions.size() / 3; ++v) {
+    zlo = std::min(zlo, d.base_positions[3 * v + 2]), zhi = std::max(zhi, d.base_positions[3 * v + 2]);
+  }
+  for (std::size_t v = 0; v < s.positions.size() / 3; ++v) EXPECT_NEAR(s.positions[3 * v + 2], 0.5 * (zlo + zhi), 1e-12);
+  // The centre vertex lies in that plane: the slice's brightest colour is the function's max.
+  EXPECT_FLOAT_EQ(*std::max_element(s.colour.begin(), s.colour.end()), 1.0f);
+  const double integral = s.function.integral;
+  req.basis->slice_axis = -1;
+  req.basis->iso = true;
+  req.basis->iso_level = 0.5f;
+  f.app.apply_panel_requests(req);
+  const BasisDisplay& iso = m.basis();
+  ASSERT_GT(iso.faces.rows(), 0u);
+  EXPECT_EQ(iso.function.integral, integral);
+  const float expected = basis_colour(iso, 0.5 * iso.function.max);
+  for (const float c : iso.colour) EXPECT_NEAR(c, expected, 1e-6);
+  req.basis->iso = false;
+  f.app.apply_panel_requests(req);
+  EXPECT_EQ(m.basis().faces.rows(), boundary_faces);
+}
+
+// Curves: the plot runs along the curve over the support with zero margins, and its peak is
+// the function's maximum.
+TEST(ModelerControllerTest, BasisCurvePlot) {
+  Fixture f("curves/curve.obj");
+  ModelerState& m = f.app.model;
+  ModelerPanelRequests req;
+  req.basis = basis_request(0, m.session().num_vertices(0) / 2);
+  f.app.apply_panel_requests(req);
+  ASSERT_TRUE(m.basis_on()) << f.app.error;
+  const std::vector<float>& plot = m.basis().plot;
+  ASSERT_GT(plot.size(), 8u);
+  EXPECT_EQ(plot.front(), 0.0f);
+  EXPECT_EQ(plot.back(), 0.0f);
+  EXPECT_FLOAT_EQ(*std::max_element(plot.begin(), plot.end()), static_cast<float>(m.basis().function.max));
+  std::size_t nonzero = 0;
+  for (const float x : plot) nonzero += x != 0.0f;
+  EXPECT_EQ(nonzero, m.basis().function.support.size());  // the whole support, in one piece
 }
 
 TEST(ModelerControllerTest, BasisScriptCommands) {

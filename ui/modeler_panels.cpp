@@ -161,10 +161,66 @@ void draw_detail_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   ImGui::TextColored(kMuted, "%zu selected", d.selected);
 }
 
+// A curve function's values along the curve, with the pinned one over it (purple) and the zero
+// line; both share the vertical scale.
+void draw_basis_plot(const BasisPanelData& b) {
+  const std::vector<float>& a = b.current.plot;
+  const std::vector<float>* p = b.pinned && !b.pin.plot.empty() ? &b.pin.plot : nullptr;
+  if (a.size() < 2 && p == nullptr) return;
+  float lo = 0.0f, hi = 0.0f;
+  for (const float v : a) lo = std::min(lo, v), hi = std::max(hi, v);
+  if (p) {
+    for (const float v : *p) lo = std::min(lo, v), hi = std::max(hi, v);
+  }
+  if (hi - lo <= 0.0f) hi = lo + 1.0f;
+  const float width = ImGui::GetContentRegionAvail().x, height = 110.0f;
+  const ImVec2 o = ImGui::GetCursorScreenPos();
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  dl->AddRectFilled(o, ImVec2(o.x + width, o.y + height), IM_COL32(24, 26, 30, 255));
+  auto y_of = [&](float v) { return o.y + height - 4.0f - (v - lo) / (hi - lo) * (height - 8.0f); };
+  dl->AddLine(ImVec2(o.x, y_of(0.0f)), ImVec2(o.x + width, y_of(0.0f)), IM_COL32(110, 110, 120, 255));
+  auto line = [&](const std::vector<float>& v, ImU32 colour) {
+    if (v.size() < 2) return;
+    for (std::size_t i = 0; i + 1 < v.size(); ++i) {
+      const float x0 = o.x + width * static_cast<float>(i) / static_cast<float>(v.size() - 1);
+      const float x1 = o.x + width * static_cast<float>(i + 1) / static_cast<float>(v.size() - 1);
+      dl->AddLine(ImVec2(x0, y_of(v[i])), ImVec2(x1, y_of(v[i + 1])), colour, 2.0f);
+    }
+  };
+  if (p) line(*p, IM_COL32(150, 90, 200, 255));
+  line(a, IM_COL32(40, 170, 220, 255));
+  char label[64];
+  std::snprintf(label, sizeof label, "%.3g", static_cast<double>(hi));
+  dl->AddText(ImVec2(o.x + 3.0f, o.y + 2.0f), IM_COL32(170, 170, 180, 255), label);
+  std::snprintf(label, sizeof label, "%.3g", static_cast<double>(lo));
+  dl->AddText(ImVec2(o.x + 3.0f, o.y + height - 16.0f), IM_COL32(170, 170, 180, 255), label);
+  ImGui::Dummy(ImVec2(width, height));
+  ImGui::TextColored(kMuted, p ? "blue current, purple pinned, each over its support" : "along the curve (parameter order)");
+}
+
+void draw_basis_readout(const BasisReadout& o) {
+  // Wrapped, so that two readouts fit side by side in the comparison table.
+  ImGui::TextWrapped("%s", o.title.c_str());
+  ImGui::TextWrapped("support %zu finest vertices", o.support);
+  std::string per;
+  for (const std::uint32_t n : o.support_per_level) {
+    char one[16];
+    std::snprintf(one, sizeof one, per.empty() ? "%u" : " %u", n);
+    per += one;
+  }
+  ImGui::PushStyleColor(ImGuiCol_Text, kMuted);
+  ImGui::TextWrapped("per level: %s", per.c_str());
+  ImGui::PopStyleColor();
+  ImGui::TextWrapped("integral %.6g", o.integral);
+  ImGui::TextWrapped("min %.4g   max %.4g", o.min, o.max);
+  ImGui::TextWrapped("moments %.3g %.3g %.3g", o.moment[0], o.moment[1], o.moment[2]);
+}
+
 void draw_basis_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   if (!section("Basis")) return;
   const BasisPanelData& b = d.basis;
-  BasisPanelRequest q{b.on, b.kind, b.dual, b.index, b.extra_levels, b.height, b.height_scale};
+  BasisPanelRequest q{b.on,  b.level,      b.follow,     b.kind,      b.dual,      b.index,    b.extra_levels,
+                      b.height, b.height_scale, b.slice_axis, b.slice_pos, b.iso, b.iso_level};
   bool changed = false;
   changed |= ImGui::Checkbox("Show basis function", &q.on);
   ImGui::BeginDisabled(!q.on);
@@ -172,8 +228,15 @@ void draw_basis_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   ImGui::SameLine();
   changed |= ImGui::RadioButton("wavelet", &q.kind, 1);
   if (q.kind != b.kind) {  // keep the index in the new kind's range
-    if (q.kind == 1 && q.index < b.scaling_count) q.index = b.selected_wavelet >= 0 ? b.selected_wavelet : b.scaling_count;
-    if (q.kind == 0 && q.index >= b.scaling_count) q.index = b.selected >= 0 ? b.selected : 0;
+    const int level = q.kind == 1 ? b.selected_wavelet_level : b.selected_scaling_level;
+    const long long at = q.kind == 1 ? b.selected_wavelet : b.selected;
+    if (at >= 0) {
+      q.level = level, q.index = at;
+    } else if (q.kind == 1 && q.index < b.scaling_count) {
+      q.index = b.scaling_count;
+    } else if (q.kind == 0 && q.index >= b.scaling_count) {
+      q.index = 0;
+    }
   }
   const float column = ImGui::GetContentRegionAvail().x * 0.5f;
   changed |= ImGui::Checkbox("Dual (analysis)", &q.dual);
@@ -181,50 +244,85 @@ void draw_basis_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   ImGui::BeginDisabled(b.lattice);
   changed |= ImGui::Checkbox("Height field", &q.height);
   ImGui::EndDisabled();
+  int level = q.level;
+  ImGui::SetNextItemWidth(110.0f);
+  if (ImGui::InputInt("Level j", &level, 1, 1)) q.level = std::clamp(level, 0, b.finest), changed = true;
+  ImGui::SameLine(column + 40.0f);
+  changed |= ImGui::Checkbox("Follow", &q.follow);
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("clicking a control point shows its function; for a wavelet, click an\n"
+                      "edge, face or cell point of the level j+1 net (or a vertex: its first edge)");
+  }
   int index = static_cast<int>(q.index);
   ImGui::SetNextItemWidth(110.0f);
   if (ImGui::InputInt("Index", &index, 1, 10, ImGuiInputTextFlags_EnterReturnsTrue)) {
     q.index = index, changed = true;
   }
   if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip(q.kind == 0 ? "control point of the edit level (0..%lld)"
-                                  : "e/f/c vertex of the next level (%lld..%lld)",
+    ImGui::SetTooltip(q.kind == 0 ? "control point of level j (0..%lld)" : "e/f/c vertex of level j+1 (%lld..%lld)",
                       q.kind == 0 ? b.scaling_count - 1 : b.scaling_count, b.wavelet_end - 1);
   }
   ImGui::SameLine();
-  ImGui::BeginDisabled(b.selected < 0 || (q.kind == 1 && b.selected_wavelet < 0));
+  const long long at = q.kind == 0 ? b.selected : b.selected_wavelet;
+  ImGui::BeginDisabled(at < 0);
   if (ImGui::Button("At selection")) {
-    q.index = q.kind == 0 ? b.selected : b.selected_wavelet;
+    q.level = q.kind == 0 ? b.selected_scaling_level : b.selected_wavelet_level;
+    q.index = at;
     changed = true;
   }
   ImGui::EndDisabled();
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
-    ImGui::SetTooltip("scaling: the selected control point; wavelet: the edge wavelet on its first edge");
-  }
   int k = q.extra_levels < 0 ? b.default_extra_levels : q.extra_levels;
   ImGui::SetNextItemWidth(110.0f);
   if (ImGui::SliderInt("Extra levels K", &k, 0, 8)) q.extra_levels = k, changed = true;
-  ImGui::BeginDisabled(!q.height || b.lattice);
-  ImGui::SetNextItemWidth(140.0f);
-  if (ImGui::SliderFloat("Height scale", &q.height_scale, 0.0f, 1.0f, "%.2f")) changed = true;
-  ImGui::EndDisabled();
+  if (!b.lattice) {
+    ImGui::BeginDisabled(!q.height);
+    ImGui::SetNextItemWidth(140.0f);
+    if (ImGui::SliderFloat("Height scale", &q.height_scale, 0.0f, 1.0f, "%.2f")) changed = true;
+    ImGui::EndDisabled();
+  } else {
+    const char* axes[] = {"no slice", "slice x", "slice y", "slice z"};
+    int axis = q.slice_axis + 1;
+    ImGui::SetNextItemWidth(110.0f);
+    if (ImGui::Combo("##slice", &axis, axes, 4)) q.slice_axis = axis - 1, changed = true;
+    ImGui::SameLine();
+    ImGui::BeginDisabled(q.slice_axis < 0);
+    ImGui::SetNextItemWidth(120.0f);
+    if (ImGui::SliderFloat("at", &q.slice_pos, 0.0f, 1.0f, "%.2f")) changed = true;
+    ImGui::EndDisabled();
+    changed |= ImGui::Checkbox("Iso-surface", &q.iso);
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!q.iso);
+    ImGui::SetNextItemWidth(120.0f);
+    if (ImGui::SliderFloat("of max", &q.iso_level, 0.01f, 0.99f, "%.2f")) changed = true;
+    ImGui::EndDisabled();
+  }
   ImGui::EndDisabled();
   if (changed) r.basis = q;
-  if (b.computed) {
-    ImGui::TextColored(kMuted, "%s %s %lld, K = %d (%s)", b.dual ? "dual" : "primal", b.kind == 0 ? "scaling" : "wavelet",
-                       b.index, b.used_levels, b.limit ? "limit values" : "control values");
-    ImGui::Text("support %zu finest vertices", b.support);
-    std::string per;
-    for (const std::uint32_t n : b.support_per_level) {
-      char one[16];
-      std::snprintf(one, sizeof one, per.empty() ? "%u" : " %u", n);
-      per += one;
-    }
-    ImGui::TextColored(kMuted, "per level: %s", per.c_str());
-    ImGui::Text("integral %.6g", b.integral);
-    ImGui::Text("min %.4g   max %.4g", b.min, b.max);
-    ImGui::Text("moments %.3g %.3g %.3g", b.moment[0], b.moment[1], b.moment[2]);
-    if (b.lattice) ImGui::TextColored(kMuted, "lattices: boundary colour only");
+  ImGui::BeginDisabled(!b.computed);
+  if (ImGui::Button("Pin for comparison")) r.pin_basis = true;
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("keep this function and draw it beside the next one\n(another index, level or scheme)");
+  }
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!b.pinned);
+  if (ImGui::Button("Clear pin")) r.clear_pin = true;
+  ImGui::EndDisabled();
+  if (b.computed && b.curve) draw_basis_plot(b);
+  if (b.computed && b.pinned && ImGui::BeginTable("##compare", 2, ImGuiTableFlags_BordersInnerV)) {
+    ImGui::TableNextColumn();
+    draw_basis_readout(b.current);
+    ImGui::TableNextColumn();
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.78f, 0.66f, 0.95f, 1.0f));
+    draw_basis_readout(b.pin);
+    ImGui::PopStyleColor();
+    ImGui::EndTable();
+  } else if (b.computed) {
+    draw_basis_readout(b.current);
+  } else if (b.pinned) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.78f, 0.66f, 0.95f, 1.0f));
+    draw_basis_readout(b.pin);
+    ImGui::PopStyleColor();
   }
 }
 

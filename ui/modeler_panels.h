@@ -33,9 +33,22 @@ struct LevelInfo {
   double wavelet_max = 0.0, wavelet_rms = 0.0;
 };
 
+/// Readouts of one computed basis function.
+struct BasisReadout {
+  std::string title;             // "primal scaling 12 of level 1, K = 4 (limit values)"
+  std::size_t support = 0;       // finest vertices with a non-zero value
+  std::vector<std::uint32_t> support_per_level;
+  double integral = 0, min = 0, max = 0;
+  double moment[3] = {0, 0, 0};
+  std::vector<float> plot;       // curves: values along the curve
+};
+
 /// The Basis section (issue 5): the mode's settings and the current function's readouts.
 struct BasisPanelData {
   bool on = false;
+  int level = 0;                 // j of the function (the edit level when off)
+  int finest = 0;
+  bool follow = false;
   int kind = 0;                  // 0 scaling function, 1 wavelet
   bool dual = false;
   long long index = 0;
@@ -43,29 +56,37 @@ struct BasisPanelData {
   int default_extra_levels = 4;  // core's default for this complex
   bool height = false;
   float height_scale = 0.2f;
+  int slice_axis = -1;           // lattices
+  float slice_pos = 0.5f;
+  bool iso = false;
+  float iso_level = 0.3f;
   long long scaling_count = 0;   // level-j vertices: scaling indices 0..scaling_count-1
   long long wavelet_end = 0;     // wavelet indices scaling_count..wavelet_end-1 (e/f/c of level j+1)
-  long long selected = -1;       // first selected control point, -1: none
-  long long selected_wavelet = -1;  // the edge wavelet at the selected point
+  // What "At selection" picks (basis_target_at): level and index per kind, -1: nothing.
+  int selected_scaling_level = -1, selected_wavelet_level = -1;
+  long long selected = -1, selected_wavelet = -1;
   bool curve = false, lattice = false;
-  // Readouts of the computed function (valid when `computed`).
-  bool computed = false, limit = false;
-  int used_levels = 0;           // K used
-  std::size_t support = 0;       // finest vertices with a non-zero value
-  std::vector<std::uint32_t> support_per_level;
-  double integral = 0, min = 0, max = 0;
-  double moment[3] = {0, 0, 0};
+  bool computed = false;
+  BasisReadout current;
+  bool pinned = false;
+  BasisReadout pin;
 };
 
 /// The Basis section's settings after the user changed one (all of them, as in BasisPanelData).
 struct BasisPanelRequest {
   bool on = false;
+  int level = -1;
+  bool follow = false;
   int kind = 0;
   bool dual = false;
   long long index = 0;
   int extra_levels = -1;
   bool height = false;
   float height_scale = 0.2f;
+  int slice_axis = -1;
+  float slice_pos = 0.5f;
+  bool iso = false;
+  float iso_level = 0.3f;
 };
 
 /// What the panel shows (filled by the app each frame).
@@ -113,6 +134,7 @@ struct ModelerPanelRequests {
   bool export_finest = true;
   std::optional<double> soft_radius;
   std::optional<BasisPanelRequest> basis;
+  bool pin_basis = false, clear_pin = false;
   CameraAction camera;
 };
 

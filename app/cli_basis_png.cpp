@@ -98,7 +98,7 @@ Drawn surface_scene(const BasisFunction& b, std::span<const double> xyz, bool sy
     if (std::abs(b.values[v]) >= 0.02 * peak) big.push_back(v);
   const Bounds sb = bounds_of(xyz, big);
   const double diag = sb.empty ? 1.0 : glm::length(sb.max - sb.min);
-  const double scale = peak > 0 ? 0.15 * diag / peak : 0.0;
+  const double scale = peak > 0 ? 0.3 * diag / peak : 0.0;
   glm::dvec3 up(0.0);
   for (std::uint32_t v : b.support) up += std::abs(b.values[v]) * n[v];
   const Frame r = frame_up(up);
@@ -205,7 +205,7 @@ void write_basis_png(const std::string& path, const BasisFunction& b, std::span<
   LimitSurfaceRenderer first, second;
   SurfaceStyle style;
   style.color_map = true;
-  OrbitCamera camera = camera_for(width, height, 30, 50);
+  OrbitCamera camera = camera_for(width, height, 30, 35);
   bool two = false;
   SurfaceStyle second_style = style;
   if (b.finest.dim == 2) {

@@ -62,6 +62,29 @@ gv = [(x - 2.0, y - 2.0, 0.15 * math.sin(x) * math.cos(y)) for y in range(5) for
 gf = [(y * 5 + x, y * 5 + x + 1, (y + 1) * 5 + x + 1, (y + 1) * 5 + x) for y in range(4) for x in range(4)]
 write("quad_grid_boundary.obj", "Open 4 x 4 quad grid: one boundary loop of 16 edges, 4 corners", gv, gf)
 
+# Flat stars of n kite quads around one vertex of valence n (3 and 5): the basis gallery's
+# extraordinary vertices, on a plane so the height field shows the function and not the shape.
+def star(n):
+    rq = 1.0 / math.cos(math.pi / n)  # kite tips on the lines through the spoke ends
+    sv = [(0.0, 0.0, 0.0)]
+    for k in range(n):
+        a = 2 * math.pi * k / n
+        b = a + math.pi / n
+        sv += [(math.cos(a), math.sin(a), 0.0), (rq * math.cos(b), rq * math.sin(b), 0.0)]
+    sf = [(0, 1 + 2 * k, 2 + 2 * k, 1 + (2 * k + 2) % (2 * n)) for k in range(n)]
+    return sv, sf
+
+for n in (3, 5):
+    sv, sf = star(n)
+    write("star%d_flat.obj" % n, "Flat star of %d kite quads around a valence-%d vertex, the first" % (n, n), sv, sf)
+
+# A flat 6 x 6 quad grid with its middle column (x = 0, vertices 3, 10, ..., 45) tagged as a
+# crease: the gallery's crease function over a plane; vertex 24 is the centre.
+cv = [(x - 3.0, y - 3.0, 0.0) for y in range(7) for x in range(7)]
+cf = [(y * 7 + x, y * 7 + x + 1, (y + 1) * 7 + x + 1, (y + 1) * 7 + x) for y in range(6) for x in range(6)]
+ctags = "".join("t crease 2/1/0 %d %d 10\n" % (3 + 7 * k, 10 + 7 * k) for k in range(6))
+write("crease_grid_flat.obj", "Flat 6 x 6 quad grid, middle column tagged as a crease (t crease)", cv, cf, ctags)
+
 # A box in four rings (z = 0, 1/3, 2/3, 1); the ring at z = 1/3 is tagged as a crease loop in
 # OpenSubdiv's syntax (0-based vertex indices, infinite-ish sharpness 10).
 zs = (0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0)

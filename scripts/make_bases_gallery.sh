@@ -31,11 +31,13 @@ shot cubic_scaling_regular  "$grid" --scheme cubic  --level 1 --vertex 12
 shot cubic_edge_wavelet     "$grid" --scheme cubic  --level 1 --wavelet 120
 shot cubic_face_wavelet     "$grid" --scheme cubic  --level 1 --wavelet 252
 shot cubic_dual_scaling     "$grid" --scheme cubic  --level 1 --vertex 12 --dual --levels 2
-# Extraordinary vertices: a cube corner (valence 3) and the apex of mixed_polygons (valence 5).
-shot cubic_scaling_valence3 "$a/cube.obj"           --scheme cubic --level 1 --vertex 0
-shot cubic_scaling_valence5 "$a/mixed_polygons.obj" --scheme cubic --level 1 --vertex 10
-# A vertex on the tagged crease ring of crease_loop.obj (file vertex 4, at a box edge).
-shot cubic_scaling_crease   "$a/crease_loop.obj"    --scheme cubic --level 1 --vertex 4
+# Extraordinary vertices of valence 3 and 5 at the centre of flat stars of kite quads, level 2
+# (the support, two level-2 rings, stays two rings clear of the boundary), so the height field
+# shows the function over a plane rather than the curvature of a corner.
+shot cubic_scaling_valence3 "$a/star3_flat.obj" --scheme cubic --level 2 --vertex 0
+shot cubic_scaling_valence5 "$a/star5_flat.obj" --scheme cubic --level 2 --vertex 0
+# The centre of a flat grid whose middle row is a tagged crease (vertex 24 on the crease).
+shot cubic_scaling_crease   "$a/crease_grid_flat.obj" --scheme cubic --level 1 --vertex 24
 # A volume scaling function: the centre vertex 62 of the 4x4x4 hex block, level 1.
 shot cubic_scaling_volume   "$a/hex_block_4.lattice" --scheme cubic --level 1 --vertex 62
 echo "wrote $(ls "$out"/*.png | wc -l) pictures to $out"

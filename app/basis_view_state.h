@@ -31,6 +31,9 @@
 
 namespace sublift {
 
+/// Finest vertices the modeler's default K may reach (core's own default allows 4e6).
+inline constexpr double kModelerBasisVertices = 1.0e6;
+
 struct BasisSettings {
   bool on = false;
   int level = -1;             // j; -1: the edit level (ModelerState stores the level it used)
@@ -38,7 +41,7 @@ struct BasisSettings {
   BasisKind kind = BasisKind::Scaling;
   std::uint32_t index = 0;    // level-j vertex (scaling) or e/f/c vertex of level j+1 (wavelet)
   bool dual = false;
-  int extra_levels = -1;      // K; -1: core's default
+  int extra_levels = -1;      // K; -1: core's default, capped at kModelerBasisVertices
   bool height = false;        // displace as a height field (surfaces, curves)
   double height_scale = 0.2;  // times the bounding-box diagonal at max|value|
   int slice_axis = -1;        // lattices: a slice plane normal to x, y or z (0, 1, 2); -1 none

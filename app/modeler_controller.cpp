@@ -509,7 +509,7 @@ void ModelerController::fill_basis_data(BasisPanelData& b) const {
   b.dual = set.dual;
   b.index = set.index;
   b.extra_levels = set.extra_levels;
-  b.default_extra_levels = default_extra_levels(cj);
+  b.default_extra_levels = default_extra_levels(cj, kModelerBasisVertices);
   b.height = set.height;
   b.height_scale = static_cast<float>(set.height_scale);
   b.slice_axis = set.slice_axis;

@@ -13,6 +13,9 @@ sublift_install_deps() {
       missing="$missing $p"
     fi
   done
+  # Node.js runs the Khronos glTF validator in the tests (tests/gltf_validate.mjs); Debian 12's
+  # nodejs + npm only when no node/npm is on the PATH already.
+  if ! command -v node >/dev/null || ! command -v npm >/dev/null; then missing="$missing nodejs npm"; fi
   [ -z "$missing" ] && return 0
   echo "sublift: installing missing packages:$missing"
   local sudo=""

@@ -1,0 +1,101 @@
+// Exported glTF must pass the Khronos glTF Validator: deformed Box, BoxTextured (.gltf with its
+// external texture, and .glb) and Fox are exported and validated by tests/gltf_validate.mjs
+// (npm gltf-validator, installed into the build folder by the gltf_validator_install fixture).
+// Skips only when node is not installed.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "core/model.h"
+#include "tests/io_test_util.h"
+#include "tests/run_process.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace sublift;
+
+const fs::path kGltf = fs::path(SUBLIFT_SHARED_DATA) / "gltf";
+const fs::path kNodeTools = SUBLIFT_NODE_TOOLS;
+const fs::path kScript = SUBLIFT_VALIDATE_SCRIPT;
+
+bool node_installed() {
+  try {
+    return sublift::testing::run_process({"node", "--version"}, 30).exit_code == 0;
+  } catch (...) {
+    return false;
+  }
+}
+
+// Runs the validator on `file`; returns its JSON report line (fails the test on a bad run).
+nlohmann::json validate(const fs::path& file, int* exit_code) {
+  const sublift::testing::ProcessResult r = sublift::testing::run_process({"node", kScript.string(), kNodeTools.string(), file.string()}, 60);
+  *exit_code = r.exit_code;
+  EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1) << "validator run failed (exit " << r.exit_code << "):\n" << r.err;
+  if (!nlohmann::json::accept(r.out)) {
+    ADD_FAILURE() << "validator printed no report:\n" << r.out << r.err;
+    return {};
+  }
+  return nlohmann::json::parse(r.out);
+}
+
+class GltfValidator : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!fs::is_directory(kGltf)) GTEST_SKIP() << "glTF models not found at " << kGltf << " (../shared/data absent)";
+    if (!node_installed()) GTEST_SKIP() << "node is not installed: the Khronos glTF validator cannot run (scripts/deps.sh installs it)";
+    ASSERT_TRUE(fs::exists(kNodeTools / "node_modules" / "gltf-validator" / "package.json"))
+        << "gltf-validator missing in " << kNodeTools << ": the ctest fixture gltf_validator_install puts it there "
+        << "(or: npm install --prefix " << kNodeTools << " gltf-validator)";
+  }
+};
+
+// The deformation of model_io_test: p -> p + (0.1 y, 0, 0.05 x z / L).
+std::vector<double> deform(const std::vector<double>& p) {
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (std::size_t i = 0; i < p.size(); ++i) lo[i % 3] = std::min(lo[i % 3], p[i]), hi[i % 3] = std::max(hi[i % 3], p[i]);
+  const double L = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  std::vector<double> q = p;
+  for (std::size_t v = 0; v < p.size() / 3; ++v) {
+    q[3 * v] += 0.1 * p[3 * v + 1];
+    q[3 * v + 2] += 0.05 * p[3 * v] * p[3 * v + 2] / L;
+  }
+  return q;
+}
+
+TEST_F(GltfValidator, DeformedExportsHaveNoErrors) {
+  sublift::testing::TempDir dir("sublift_gltf_validator");
+  const std::pair<const char*, const char*> cases[] = {
+      {"Box/Box.glb", "box.glb"},
+      {"BoxTextured/BoxTextured.gltf", "textured/box_textured.gltf"},  // another folder: the png is copied
+      {"BoxTextured/BoxTextured.glb", "box_textured.glb"},
+      {"BoxTextured/BoxTextured.gltf", "box_textured_from_gltf.glb"},
+      {"Fox/Fox.glb", "fox.glb"},
+      {"SimpleSkin/SimpleSkin.gltf", "simple_skin.gltf"},
+  };
+  fs::create_directories(dir.path() / "textured");
+  for (const auto& [source, output] : cases) {
+    SCOPED_TRACE(source);
+    const Model m = import_model((kGltf / source).string());
+    const fs::path out = dir.path() / output;
+    export_model(m, deform(m.positions), out.string());
+    int code = -1;
+    const nlohmann::json report = validate(out, &code);
+    EXPECT_EQ(code, 0) << report.dump();
+    EXPECT_EQ(report.value("errors", -1), 0) << report.dump(2);
+  }
+}
+
+TEST_F(GltfValidator, TheValidatorReportsABrokenFile) {
+  // The check above is only as good as the script: a known-invalid model must fail it.
+  const fs::path bad = kGltf / "invalid" / "IndexOutOfRange.gltf";
+  if (!fs::exists(bad)) GTEST_SKIP() << bad << " not found";
+  int code = -1;
+  const nlohmann::json report = validate(bad, &code);
+  EXPECT_EQ(code, 1);
+  EXPECT_GT(report.value("errors", 0), 0) << report.dump(2);
+}
+
+}  // namespace

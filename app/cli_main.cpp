@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
     if (cmd == "synthesize") return cli::run_synthesize(argc, argv);
     if (cmd == "edit") return cli::run_edit(argc, argv);
     if (cmd == "basis") return cli::run_basis(argc, argv);
+    if (cmd == "ffd") return cli::run_ffd(argc, argv);
     std::cerr << "sublift-cli: unknown command '" << cmd << "'\n\n" << kUsage;
     return 2;
   } catch (const cli::UsageError& e) {

@@ -430,19 +430,21 @@ void check_finite(std::span<const double> xyz, const char* what) {
 }
 
 // The one formula both deform paths use, so they agree bit for bit.
+// In displacement form, rest + sum w_k (x_k - rest_k): an unmoved lattice gives the rest
+// position back bit for bit (not merely to round-off), so undoing every edit, or exporting an
+// untouched model, returns the file's own coordinates. Weights sum to 1, so affine maps are
+// reproduced as in the plain form.
 inline void deform_one(const FfdBinding& b, const double* x, std::uint32_t i, double* out) {
   const std::uint32_t o0 = b.stencil.offsets[i], o1 = b.stencil.offsets[i + 1];
-  if (o0 == o1) {
-    out[3 * i] = b.rest[3 * i], out[3 * i + 1] = b.rest[3 * i + 1], out[3 * i + 2] = b.rest[3 * i + 2];
-    return;
-  }
   double px = 0, py = 0, pz = 0;
   for (std::uint32_t o = o0; o < o1; ++o) {
     const double w = b.weight[o];
-    const double* q = x + 3 * std::size_t(b.stencil.items[o]);
-    px += w * q[0], py += w * q[1], pz += w * q[2];
+    const std::size_t k = 3 * std::size_t(b.stencil.items[o]);
+    const double* q = x + k;
+    const double* r = b.lattice_rest.data() + k;
+    px += w * (q[0] - r[0]), py += w * (q[1] - r[1]), pz += w * (q[2] - r[2]);
   }
-  out[3 * i] = px, out[3 * i + 1] = py, out[3 * i + 2] = pz;
+  out[3 * i] = b.rest[3 * i] + px, out[3 * i + 1] = b.rest[3 * i + 1] + py, out[3 * i + 2] = b.rest[3 * i + 2] + pz;
 }
 
 void check_deform_sizes(const FfdBinding& b, std::span<const double> lattice_xyz, std::span<double> out) {
@@ -494,6 +496,7 @@ FfdBinding bind_model(const Complex& lattice, std::span<const double> lattice_xy
   FfdBinding b;
   b.num_lattice_vertices = c.num_vertices;
   b.rest.assign(model_xyz.begin(), model_xyz.end());
+  b.lattice_rest.assign(lattice_xyz.begin(), lattice_xyz.end());
   b.cell.resize(n);
   b.placement.resize(n);
   b.stencil.offsets.assign(std::size_t(n) + 1, 0);

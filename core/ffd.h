@@ -24,7 +24,9 @@
 // cell's extrapolated coordinates, so they follow it affinely. "Nearest" is by bounding box,
 // hence approximate near concave or skewed boundaries.
 //
-// Deformation. deform() recomputes every vertex; deform_changed() only the vertices whose
+// Deformation, in displacement form: p = rest + sum_k w_k (x_k - rest_k) with the lattice's rest
+// positions kept from binding, so a lattice back at rest gives every vertex back bit for bit.
+// deform() recomputes every vertex; deform_changed() only the vertices whose
 // stencil names a changed lattice vertex (through the reverse index `users`, built at bind
 // time), with the same arithmetic, so it equals deform() bit for bit and leaves every other
 // output value untouched.
@@ -58,6 +60,7 @@ struct FfdReport {
 struct FfdBinding {
   std::uint32_t num_lattice_vertices = 0;
   std::vector<double> rest;            // model rest positions, 3 per vertex
+  std::vector<double> lattice_rest;    // lattice positions at binding, 3 per vertex
   std::vector<std::int32_t> cell;      // lattice cell per model vertex; -1 when it stays
   std::vector<Placement> placement;    // per model vertex
   Csr stencil;                         // model vertex -> lattice vertices it weighs
@@ -75,8 +78,8 @@ struct FfdBinding {
 FfdBinding bind_model(const Complex& lattice, std::span<const double> lattice_xyz, std::span<const double> model_xyz,
                       const FfdOptions& options = {});
 
-/// Model positions for lattice positions `lattice_xyz`: out = sum_k w_k x_k per bound vertex,
-/// the rest position for the others. `out` holds 3 per model vertex. Throws Error on sizes.
+/// Model positions for lattice positions `lattice_xyz`: out = rest + sum_k w_k (x_k - rest_k)
+/// per bound vertex, the rest position for the others. `out` holds 3 per model vertex. Throws Error on sizes.
 void deform(const FfdBinding& b, std::span<const double> lattice_xyz, std::span<double> out);
 
 /// Like deform() for the model vertices whose stencils name a vertex of `changed` (lattice

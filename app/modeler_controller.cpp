@@ -101,6 +101,19 @@ void ModelerController::export_to(const std::string& path, bool finest) {
   }
 }
 
+void ModelerController::load_model(const std::string& path) {
+  try {
+    model.load_model(path);
+    error.clear();
+    const FfdModelState* f = model.ffd();
+    pick_dirty_ = true;
+    message = "Loaded " + path + (f->bound ? " (bound to the lattice)" : " (wrap it in a box lattice or open one)");
+    framed = false;
+  } catch (const std::exception& e) {
+    fail(e, "Cannot load the model: ");
+  }
+}
+
 bool ModelerController::request_quit() {
   if (!interactive_ || !model.has_session() || !model.session().dirty() || quit_confirmed_) return true;
   pending_ = Pending{Pending::Kind::Quit, {}};
@@ -451,6 +464,14 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
     }
     if (r.pin_basis) model.pin_basis();
     if (r.clear_pin) model.clear_pin();
+    if (r.wrap_box) {
+      model.wrap_model_in_box(fields.box[0], fields.box[1], fields.box[2], fields.box_margin);
+      pick_dirty_ = stats_dirty_ = true;
+      framed = false;
+    }
+    if (r.bind) model.bind_model(*r.bind == 1 ? Outside::Nearest : Outside::Stay);
+    if (r.unbind) model.unbind_model();
+    if (r.remove_model) model.remove_model();
     if (r.gain_begin && !gain_active_) {
       model.begin_gain(r.gain_level);
       gain_active_ = true;
@@ -466,6 +487,16 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
     fail(e, "");
   }
   if (r.open) open(*r.open);
+  if (r.load_model) load_model(*r.load_model);
+  if (r.export_model) {
+    try {
+      model.export_model(*r.export_model);
+      error.clear();
+      message = "Exported the model to " + *r.export_model;
+    } catch (const std::exception& e) {
+      fail(e, "Cannot export the model: ");
+    }
+  }
   if (r.save) save(*r.save);
   if (r.export_path) export_to(*r.export_path, r.export_finest);
   apply_camera(r.camera);
@@ -495,6 +526,29 @@ BasisReadout readout_of(const BasisDisplay& d) {
 }
 
 }  // namespace
+
+void ModelerController::fill_ffd_data(FfdPanelData& p) const {
+  const FfdModelState* f = model.ffd();
+  p.lattice = model.has_session() && model.dim() == 3;
+  if (f == nullptr) return;
+  p.loaded = true;
+  p.model_name = std::filesystem::path(f->model.path).filename().string();
+  p.notes = f->model.notes;
+  p.note = f->note;
+  p.vertices = f->model.num_vertices();
+  p.faces = f->model.faces.rows();
+  p.bound = f->bound;
+  p.outside_mode = f->outside == Outside::Nearest ? 1 : 0;
+  if (f->bound) {
+    const FfdReport& rep = f->binding.report;
+    p.bound_count = rep.bound;
+    p.outside = rep.outside;
+    p.nearest = rep.nearest;
+    p.bind_ms = rep.ms;
+    p.moved = f->last_moved;
+    p.deform_ms = f->last_deform_ms;
+  }
+}
 
 void ModelerController::fill_basis_data(BasisPanelData& b) const {
   const Session& s = model.session();
@@ -586,6 +640,7 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     d.dirty = s.dirty();
     fill_basis_data(d.basis);
   }
+  fill_ffd_data(d.ffd);
   d.error = error;
   d.message = message;
   d.frame_ms = frame_ms;

@@ -85,6 +85,10 @@ class ModelerController {
   void apply_panel_requests(const ModelerPanelRequests& r) { apply_requests(r); }
   /// The Basis section's data: settings, what "At selection" picks, readouts (current, pinned).
   void fill_basis_data(BasisPanelData& b) const;
+  /// The FFD section's data (model, binding report, last deformation).
+  void fill_ffd_data(FfdPanelData& p) const;
+  /// Loads a model for free-form deformation; errors go to `error` like other actions.
+  void load_model(const std::string& path);
 
  private:
   enum class Press { None, Click, Drag, Box };

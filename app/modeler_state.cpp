@@ -1,12 +1,15 @@
 #include "app/modeler_state.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 
 #include "core/boundary_surface.h"
 #include "core/errors.h"
+#include "core/ffd_scene.h"
 #include "core/project_io.h"
 #include "core/shape_io.h"
 #include "core/polygon_normal.h"
@@ -82,6 +85,7 @@ void ModelerState::install(std::unique_ptr<Session> session) {
   hover_ = -1;
   seen_topology_ = session_->topology_version();
   basis_off();
+  if (ffd_) ffd_->bound = false;  // bound to the old session's lattice
   rebuild_limit();
   model_size_ = bbox_diagonal(limit_);
   if (colour_level_ >= session_->finest_level()) colour_level_ = -1;
@@ -117,6 +121,10 @@ void ModelerState::after_operation() {
     if (colour_level_ >= s.finest_level()) colour_level_ = -1;
     update_.topology = true;
     basis_off();
+    if (ffd_ && ffd_->bound) {  // an undone subdivide: the finest level the binding used is gone
+      ffd_->bound = false;
+      ffd_->note = "unbound: the lattice's levels changed (bind again)";
+    }
     refresh_state();
     refresh_colour();
     return;
@@ -156,6 +164,7 @@ void ModelerState::after_operation() {
   if (soft_radius_ > 0.0 && !changed_net.empty() && !dragging_) refresh_state();  // weights follow the shape
   if (colour_level_ >= 0) refresh_colour();
   if (basis_ && !s.changed(basis_->level).empty()) basis_stale_ = true;
+  ffd_follow();
   if (!dragging_) refresh_basis();
 }
 
@@ -169,6 +178,7 @@ void ModelerState::refresh_basis() {
 }
 
 void ModelerState::set_scheme(Scheme scheme) {
+  ffd_check_free("changing the scheme");
   const Hierarchy& old = session_->hierarchy();
   const auto base_positions = session_->positions(0);
   Hierarchy h = make_hierarchy(old.levels.front(), old.finest_level(), scheme, 3);
@@ -194,6 +204,7 @@ void ModelerState::set_level(int level) {
 }
 
 void ModelerState::subdivide() {
+  ffd_check_free("subdividing the lattice");
   session_->subdivide();
   after_operation();
 }
@@ -514,6 +525,94 @@ void ModelerState::follow_selection() {
   } catch (const Error&) {
     basis_off();  // K too large for that level: the panel says the mode is off
   }
+}
+
+void ModelerState::ffd_check_free(const char* what) const {
+  if (ffd_ && ffd_->bound) throw Error(std::string(what) + " is not possible while a model is bound (unbind it first)");
+}
+
+void ModelerState::ffd_follow() {
+  if (!ffd_ || !ffd_->bound) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<std::uint32_t> moved = update_deformation(ffd_->binding, *session_, ffd_->positions);
+  ffd_->last_moved = moved.size();
+  if (moved.empty()) return;
+  ffd_->normals = model_normals(ffd_->model, ffd_->positions);
+  ffd_->last_deform_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  update_.model = true;
+}
+
+void ModelerState::load_model(const std::string& path) {
+  const bool lattice = session_ && session_->dim() == 3;
+  if (session_ && !lattice && session_->dirty()) {
+    throw Error("the open " + std::string(session_->dim() == 2 ? "surface" : "curve") +
+                " has unsaved changes: save it first (loading a model replaces it by a box lattice)");
+  }
+  auto f = std::make_unique<FfdModelState>();
+  f->model = import_model(path);
+  f->positions = f->model.positions;
+  f->normals = f->model.normals;
+  if (ffd_) f->outside = ffd_->outside;
+  std::unique_ptr<FfdModelState> old = std::move(ffd_);
+  ffd_ = std::move(f);
+  try {
+    if (lattice) {
+      bind_model(ffd_->outside);
+    } else {
+      wrap_model_in_box(4, 4, 4, 0.05);
+    }
+  } catch (...) {
+    ffd_ = std::move(old);  // keep what was there
+    throw;
+  }
+  update_.model_topology = true;
+}
+
+void ModelerState::wrap_model_in_box(int nx, int ny, int nz, double margin) {
+  if (!ffd_) throw Error("wrap in a box: load a model first");
+  Model shape = ffd_->model;
+  shape.positions = ffd_->positions;  // around the model as it is now
+  const Shape box = box_lattice_around(shape, nx, ny, nz, margin);
+  const Scheme scheme = session_ ? session_->hierarchy().scheme : Scheme::Cubic;
+  Hierarchy h = make_hierarchy(box.base, kDefaultLevels, scheme, 3);
+  set_base(h, box.positions);
+  install(std::make_unique<Session>(std::move(h)));
+  char name[64];
+  std::snprintf(name, sizeof name, "box lattice %dx%dx%d", nx, ny, nz);
+  file_path_ = name;
+  project_path_.clear();
+  warnings_.clear();
+  level_ = 0;
+  selection_.clear();
+  update_.topology = true;
+  refresh_state();
+  bind_model(ffd_->outside);
+}
+
+void ModelerState::bind_model(Outside outside) {
+  if (!ffd_) throw Error("bind: load a model first");
+  if (!session_ || session_->dim() != 3) throw Error("bind: the open shape is not a lattice (open one or wrap the model in a box)");
+  const int J = session_->finest_level();
+  ffd_->binding = sublift::bind_model(session_->hierarchy().levels[static_cast<std::size_t>(J)], session_->positions(J),
+                                      ffd_->positions, FfdOptions{outside});
+  ffd_->outside = outside;
+  ffd_->bound = true;
+  ffd_->note.clear();
+}
+
+void ModelerState::unbind_model() {
+  if (ffd_) ffd_->bound = false;
+}
+
+void ModelerState::remove_model() {
+  if (!ffd_) return;
+  ffd_.reset();
+  update_.model_topology = true;
+}
+
+void ModelerState::export_model(const std::string& path) const {
+  if (!ffd_) throw Error("export model: no model loaded");
+  sublift::export_model(ffd_->model, ffd_->positions, path);
 }
 
 ViewUpdate ModelerState::take_view_update() {

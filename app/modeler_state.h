@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "app/basis_view_state.h"
+#include "app/ffd_view_state.h"
 #include "core/csr.h"
 #include "core/hierarchy.h"
 #include "core/limit.h"
@@ -35,6 +36,8 @@ struct ViewUpdate {
   bool state = false;                  // selection, hover or soft weights changed
   bool scalar = false;                 // wavelet colouring changed
   bool basis = false;                  // the basis-function display changed (on, off, new values)
+  bool model_topology = false;         // FFD: a model was loaded or removed
+  bool model = false;                  // FFD: the model's positions and normals changed
 };
 
 /// Per-level numbers for the panel.
@@ -60,6 +63,7 @@ class ModelerState {
   // ---- editing (each catches nothing: callers show sublift::Error messages) -----------------
   /// Rebuilds the hierarchy with another scheme from level 0's control points, keeping the
   /// number of levels (wavelets are lost: confirm first when dirty). Undo history is cleared.
+  /// Refused (Error) while a model is bound, as is subdivide().
   void set_scheme(Scheme scheme);
   void set_level(int level);
   void subdivide();
@@ -149,6 +153,25 @@ class ModelerState {
   void clear_pin();
   const BasisDisplay* pinned() const { return pinned_.get(); }
 
+  // ---- free-form deformation (issue 6, app/ffd_view_state.h) -------------------------------
+  /// Imports a model (.gltf/.glb/.obj/.ply/.off) and binds it to the open lattice; with no
+  /// lattice open, wraps it in a 4x4x4 box lattice first (refused when an open surface or curve
+  /// has unsaved changes). Throws Error; a failure keeps the current model.
+  void load_model(const std::string& path);
+  /// Replaces the session by a box lattice of nx x ny x nz hexahedra around the model's current
+  /// shape (margin times its bounding-box diagonal on every side, kDefaultLevels levels of the
+  /// current scheme) and binds the model to it. Throws Error without a model.
+  void wrap_model_in_box(int nx, int ny, int nz, double margin);
+  /// Binds the model, as it is now, to the lattice as it is now (its finest level). Throws Error
+  /// without a model or when the session is not a lattice.
+  void bind_model(Outside outside = Outside::Stay);
+  /// The model stays where it is and no longer follows the lattice.
+  void unbind_model();
+  void remove_model();
+  /// Writes the model as it is now in its own format family (core/model.h export_model).
+  void export_model(const std::string& path) const;
+  const FfdModelState* ffd() const { return ffd_.get(); }
+
   /// Accumulated changes since the last call, for the GPU buffers.
   ViewUpdate take_view_update();
 
@@ -190,6 +213,9 @@ class ModelerState {
   std::vector<float> colour_;
   ViewUpdate update_;
   BasisSettings basis_settings_;
+  std::unique_ptr<FfdModelState> ffd_;
+  void ffd_follow();       // after a lattice operation: move the bound model
+  void ffd_check_free(const char* what) const;  // throws while a model is bound
   std::unique_ptr<BasisDisplay> basis_, pinned_;
   bool basis_stale_ = false;
   void follow_selection();

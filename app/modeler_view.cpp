@@ -94,6 +94,19 @@ void ModelerView::sync(ModelerState& state) {
       pinned_bounds_ = bounds_of(moved);
     }
   }
+  if (u.model_topology) {
+    const FfdModelState* f = state.ffd();
+    model_on_ = f != nullptr && f->model.faces.rows() > 0;
+    if (model_on_) {
+      model_surface_.set_topology(f->model.faces.offsets, f->model.faces.items, f->positions.size() / 3);
+      u.model = true;
+    }
+  }
+  if (u.model && model_on_ && state.ffd() != nullptr) {
+    model_surface_.set_positions_normals(state.ffd()->positions, state.ffd()->normals);
+  }
+  // A lattice with a model inside shows its net only: its boundary would hide the model.
+  hide_lattice_surface_ = model_on_ && state.dim() == 3;
   if (u.scalar && has_surface_) {
     colour_map_ = !state.colour_values().empty();
     surface_.set_scalar(state.colour_values());
@@ -102,6 +115,15 @@ void ModelerView::sync(ModelerState& state) {
 
 Bounds ModelerView::bounds() const {
   Bounds b = has_surface_ ? surface_.bounds() : curve_.bounds();
+  if (model_on_) {
+    const Bounds m = model_surface_.bounds();
+    if (b.empty) {
+      b = m;
+    } else if (!m.empty) {
+      b.min = glm::min(b.min, m.min);
+      b.max = glm::max(b.max, m.max);
+    }
+  }
   if (pinned_on_ && !pinned_bounds_.empty && !b.empty) {
     b.min = glm::min(b.min, pinned_bounds_.min);
     b.max = glm::max(b.max, pinned_bounds_.max);
@@ -161,11 +183,12 @@ void ModelerView::draw(const OrbitCamera& camera, const ViewportRect& rect, cons
     basis_curve_.draw(camera, curve_style(glm::vec4(0.10f, 0.55f, 0.75f, 1.0f)));
     // The curve itself, thin and faint, as the zero line.
     if (has_curve_) curve_.draw(camera, curve_style(glm::vec4(0.80f, 0.45f, 0.20f, 0.35f)));
-  } else if (has_surface_) {
+  } else if (has_surface_ && !hide_lattice_surface_) {
     surface_.draw(camera, surface_style(colour_map_));
   } else if (has_curve_) {
     curve_.draw(camera, curve_style(curve_colour));
   }
+  if (model_on_) model_surface_.draw(camera, surface_style(false));
   if (pinned_on_ && pinned_surface_on_) {
     pinned_surface_.draw(camera, surface_style(true));
   } else if (pinned_on_) {
@@ -193,7 +216,7 @@ void ModelerView::draw(const OrbitCamera& camera, const ViewportRect& rect, cons
 
 std::vector<float> ModelerView::surface_depth(const OrbitCamera& camera, int width, int height,
                                              const ModelerDisplay& d) const {
-  if (!has_surface_ || width <= 0 || height <= 0) return {};
+  if ((!has_surface_ && !model_on_) || width <= 0 || height <= 0) return {};
   GLint previous_fbo = 0, previous_viewport[4] = {0, 0, 0, 0};
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous_fbo);
   glGetIntegerv(GL_VIEWPORT, previous_viewport);
@@ -206,7 +229,8 @@ std::vector<float> ModelerView::surface_depth(const OrbitCamera& camera, int wid
     SurfaceStyle style;
     style.clip = d.clip;
     style.clip_plane = clip_plane(d);
-    surface_.draw(camera, style);
+    if (has_surface_ && !hide_lattice_surface_) surface_.draw(camera, style);
+    if (model_on_) model_surface_.draw(camera, style);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
   }

@@ -3,7 +3,8 @@
 // surface (or a curve's limit polyline) and the control net of the edit level on top. It
 // While the basis-function mode is on, the function (colour, optional height field, lattice
 // slices and iso-surfaces) replaces the limit surface or curve and its support outline is drawn
-// over the net; a pinned function is drawn to the right of it for comparison. It
+// over the net; a pinned function is drawn to the right of it for comparison. A model loaded
+// for free-form deformation is drawn shaded inside its lattice's net. It
 // mirrors a ModelerState, uploading only what take_view_update() reports as changed.
 #include <vector>
 
@@ -56,6 +57,9 @@ class ModelerView {
   NetRenderer pinned_curve_;
   bool pinned_on_ = false, pinned_surface_on_ = false;
   Bounds pinned_bounds_;
+  // Free-form deformation: the model, shaded; a lattice around it shows only its net.
+  LimitSurfaceRenderer model_surface_;
+  bool model_on_ = false, hide_lattice_surface_ = false;
 };
 
 }  // namespace sublift

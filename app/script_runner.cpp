@@ -73,7 +73,9 @@ ScriptStep ScriptRunner::next(ModelerState& state, ModelerDisplay* display) {
     words.push_back(rest_of(line, words[0]));  // last entry: the raw argument text
     try {
       const std::string& command = words[0];
-      if (command != "open" && !state.has_session()) throw ScriptError("no model is open (use 'open PATH')");
+      if (command != "open" && command != "model" && !state.has_session()) {
+        throw ScriptError("no model is open (use 'open PATH' or 'model PATH')");
+      }
       ScriptStep::Kind before = step.kind;
       run_line(state, display, words, step);
       if (step.kind != before) return step;  // screenshot or quit
@@ -100,6 +102,36 @@ void ScriptRunner::run_line(ModelerState& state, ModelerDisplay* display, const 
     if (raw.empty()) throw ScriptError("usage: open PATH");
     state.open(raw);
     step.reframe = true;
+  } else if (c == "model") {
+    if (raw.empty()) throw ScriptError("usage: model PATH");
+    state.load_model(raw);
+    step.reframe = true;
+  } else if (c == "ffd") {
+    const char* usage = "ffd box NX NY NZ [MARGIN] | ffd bind [nearest] | ffd unbind | ffd remove | ffd export PATH";
+    if (w.size() < 2) throw ScriptError(std::string("usage: ") + usage);
+    if (w[1] == "box" && (w.size() == 5 || w.size() == 6)) {
+      int n[3];
+      for (int k = 0; k < 3; ++k) {
+        const long long v = integer(w[static_cast<std::size_t>(2 + k)], "cell count");
+        if (v < 1 || v > 64) throw ScriptError("cell counts must be 1..64, got " + w[static_cast<std::size_t>(2 + k)]);
+        n[k] = static_cast<int>(v);
+      }
+      const double margin = w.size() == 6 ? number(w[5], "MARGIN") : 0.05;
+      if (margin < 0.0) throw ScriptError("MARGIN must not be negative");
+      state.wrap_model_in_box(n[0], n[1], n[2], margin);
+      step.reframe = true;
+    } else if (w[1] == "bind" && w.size() <= 3) {
+      if (w.size() == 3 && w[2] != "nearest") throw ScriptError("ffd bind takes 'nearest' or nothing, got '" + w[2] + "'");
+      state.bind_model(w.size() == 3 ? Outside::Nearest : Outside::Stay);
+    } else if (w[1] == "unbind" && w.size() == 2) {
+      state.unbind_model();
+    } else if (w[1] == "remove" && w.size() == 2) {
+      state.remove_model();
+    } else if (w[1] == "export" && w.size() >= 3) {
+      state.export_model(raw.substr(raw.find("export") + 7));
+    } else {
+      throw ScriptError(std::string("usage: ") + usage);
+    }
   } else if (c == "scheme") {
     expect_args(w, 1, "scheme linear|cubic");
     Scheme s;

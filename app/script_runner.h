@@ -12,6 +12,8 @@
 //   basis-function mode on the edit level; height SCALE > 0 displaces, times the bbox diagonal)
 //   basis slice x|y|z FRACTION | basis slice off | basis iso FRACTION|off  (lattices)
 //   basis follow on|off (a selected point picks the function) | basis pin | basis unpin
+//   model PATH (load a model for FFD; bound at once to an open lattice)
+//   ffd box NX NY NZ [MARGIN] | ffd bind [nearest] | ffd unbind | ffd remove | ffd export PATH
 // The runner executes commands until one needs a rendered frame (screenshot) or the script
 // ends; the app draws and saves the frame, then calls next() again.
 #include <string>

@@ -14,6 +14,8 @@
 #include "app/modeler_view.h"
 #include "app/script_runner.h"
 #include "core/basis.h"
+#include "core/errors.h"
+#include "core/model.h"
 #include "core/limit.h"
 #include "core/picking.h"
 #include "render/headless_context.h"
@@ -590,6 +592,114 @@ TEST(ModelerControllerTest, BasisScriptCommands) {
       {"basis scaling 1 primal\n", "script:1: basis takes 'dual'"},
       {"basis\n", "script:1: usage: basis scaling|wavelet"},
       {"basis height 0.2\n", "script:1: basis height needs the basis mode on"},
+  };
+  for (const auto& [text, expect] : cases) {
+    ScriptRunner bad("bad", text);
+    const ScriptStep step = bad.next(m);
+    EXPECT_EQ(step.kind, ScriptStep::Kind::Error) << text;
+    EXPECT_NE(step.message.find(expect), std::string::npos) << step.message;
+  }
+}
+
+}  // namespace
+}  // namespace sublift
+
+namespace sublift {
+namespace {
+
+// FFD mode (issue 6): a model loaded with no lattice open is wrapped in a 4x4x4 box lattice and
+// bound; a lattice drag moves it exactly as core/ffd.h's deform of the same binding does, undo
+// brings it back bit for bit, an unbound model stays put, topology changes are refused while
+// bound, and a dirty surface is not replaced.
+TEST(ModelerFfdTest, ModelFollowsLatticeEditsAndUndo) {
+  ModelerState m;
+  const std::string torus = std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj";
+  m.load_model(torus);
+  ASSERT_TRUE(m.has_session());
+  ASSERT_NE(m.ffd(), nullptr);
+  EXPECT_EQ(m.dim(), 3);
+  EXPECT_EQ(m.session().num_vertices(0), 125u);
+  EXPECT_TRUE(m.ffd()->bound);
+  EXPECT_EQ(m.ffd()->binding.report.bound, 96u);
+  EXPECT_TRUE(m.take_view_update().model_topology);
+  const std::vector<double> rest = m.ffd()->positions;
+
+  m.set_selection({62});  // the box's centre point
+  m.begin_drag("Move");
+  const double t[3] = {0.0, 0.0, 0.2};
+  m.drag_to(t);
+  m.end_drag();
+  EXPECT_TRUE(m.take_view_update().model);
+  const int J = m.session().finest_level();
+  std::vector<double> expected(rest.size());
+  deform(m.ffd()->binding, m.session().positions(J), expected);
+  EXPECT_EQ(m.ffd()->positions, expected);
+  EXPECT_NE(m.ffd()->positions, rest);
+  EXPECT_GT(m.ffd()->last_moved, 0u);
+
+  m.undo();
+  EXPECT_EQ(m.ffd()->positions, rest);  // bit for bit
+  m.redo();
+  EXPECT_EQ(m.ffd()->positions, expected);
+
+  EXPECT_THROW(m.subdivide(), Error);
+  EXPECT_THROW(m.set_scheme(Scheme::Linear), Error);
+  m.unbind_model();
+  m.set_selection({0});
+  m.begin_drag("Move");
+  m.drag_to(t);
+  m.end_drag();
+  EXPECT_EQ(m.ffd()->positions, expected);  // unbound: the model stays
+  EXPECT_NO_THROW(m.subdivide());
+  // Bound again to the lattice as it is: the model does not jump.
+  m.bind_model();
+  EXPECT_EQ(m.ffd()->positions, expected);
+  EXPECT_EQ(m.session().finest_level(), 3);
+
+  // Export and read back: the model as it is now.
+  const std::string out = (std::filesystem::temp_directory_path() / "sublift_ffd_state.obj").string();
+  m.export_model(out);
+  const Model back = import_model(out);
+  ASSERT_EQ(back.positions.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_NEAR(back.positions[i], expected[i], 1e-12);
+  std::filesystem::remove(out);
+}
+
+TEST(ModelerFfdTest, LoadBindsToAnOpenLatticeAndRefusesToDropADirtySurface) {
+  ModelerState m;
+  m.open(std::string(SUBLIFT_ASSETS_DIR) + "/hex_block_4.lattice");
+  m.load_model(std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj");
+  EXPECT_EQ(m.session().num_vertices(0), 125u);  // the open lattice, not a box
+  EXPECT_TRUE(m.ffd()->bound);
+  EXPECT_EQ(m.ffd()->binding.report.bound + m.ffd()->binding.report.outside, 96u);
+
+  ModelerState s;
+  s.open(std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj");
+  s.set_selection({3});
+  s.begin_drag("Move");
+  const double t[3] = {0.0, 0.1, 0.0};
+  s.drag_to(t);
+  s.end_drag();
+  EXPECT_THROW(s.load_model(std::string(SUBLIFT_ASSETS_DIR) + "/cube.obj"), Error);
+  EXPECT_EQ(s.dim(), 2);
+  EXPECT_EQ(s.ffd(), nullptr);
+  EXPECT_THROW(s.load_model("/nonexistent/model.obj"), Error);
+}
+
+TEST(ModelerFfdTest, ScriptCommands) {
+  ModelerState m;
+  const std::string torus = std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj";
+  ScriptRunner ok("ok", "model " + torus + "\nffd box 2 2 2 0.1\nffd bind nearest\nselect 13\nmove 0 0.3 0\n");
+  EXPECT_EQ(ok.next(m).kind, ScriptStep::Kind::End);
+  ASSERT_NE(m.ffd(), nullptr);
+  EXPECT_EQ(m.session().num_vertices(0), 27u);
+  EXPECT_EQ(m.ffd()->outside, Outside::Nearest);
+  EXPECT_NE(m.ffd()->positions, m.ffd()->model.positions);
+  const std::pair<std::string, std::string> cases[] = {
+      {"ffd box 2 0 2\n", "script:1: cell counts must be 1..64"},
+      {"ffd bind far\n", "script:1: ffd bind takes 'nearest'"},
+      {"ffd\n", "script:1: usage: ffd box"},
+      {"subdivide\n", "not possible while a model is bound"},
   };
   for (const auto& [text, expect] : cases) {
     ScriptRunner bad("bad", text);

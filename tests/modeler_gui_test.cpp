@@ -299,3 +299,26 @@ TEST(ModelerGuiTest, HeadlessBasisScalingColoursAndBasisOffRestores) {
 }
 
 }  // namespace
+
+namespace {
+
+// Free-form deformation (issue 6), headless: a model wrapped in a box lattice changes on screen
+// when a lattice point moves, undo restores the picture, and once unbound a lattice move leaves
+// it alone (the net is hidden, so only the model can show a change).
+TEST(ModelerGuiTest, HeadlessFfdModelFollowsTheLatticeUntilUnbound) {
+  const fs::path dir = out_dir("headless");
+  for (const char* f : {"ffd_a.png", "ffd_b.png", "ffd_c.png", "ffd_d.png"}) fs::remove(dir / f);
+  const std::string script = "model " + torus() + "\nffd box 2 2 2 0.1\ndisplay net off\nscreenshot ffd_a.png\n"
+                             "select 13\nmove 0 0.6 0\nscreenshot ffd_b.png\nundo\nscreenshot ffd_c.png\n"
+                             "ffd unbind\nmove 0 0.6 0\nscreenshot ffd_d.png\n";
+  const ProcessResult r = run_script("headless", "ffd", script);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Png a = load_png(dir / "ffd_a.png"), b = load_png(dir / "ffd_b.png"), c = load_png(dir / "ffd_c.png"),
+            d = load_png(dir / "ffd_d.png");
+  ASSERT_EQ(a.width, kWidth);
+  EXPECT_GT(changed_pixels(a, b, 40).count, 500) << "the bound model did not follow the lattice";
+  EXPECT_LT(changed_pixels(a, c, 24).count, 20) << "undo did not restore the model";
+  EXPECT_LT(changed_pixels(c, d, 24).count, 20) << "an unbound model followed the lattice";
+}
+
+}  // namespace

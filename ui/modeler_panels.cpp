@@ -326,6 +326,67 @@ void draw_basis_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   }
 }
 
+void draw_ffd_section(const ModelerPanelData& d, FileFields& f, ModelerPanelRequests& r) {
+  if (!section("Free-form deformation", d.ffd.loaded)) return;
+  const FfdPanelData& m = d.ffd;
+  const float button = 70.0f;
+  ImGui::SetNextItemWidth(-button - ImGui::GetStyle().ItemSpacing.x);
+  const bool enter = ImGui::InputTextWithHint("##model", "model .gltf/.glb/.obj/.ply/.off", &f.model_path,
+                                              ImGuiInputTextFlags_EnterReturnsTrue);
+  ImGui::SameLine();
+  if ((ImGui::Button("Model", ImVec2(button, 0)) || enter) && !f.model_path.empty()) r.load_model = f.model_path;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("load a model; it is bound at once when a lattice is open");
+  if (!m.loaded) {
+    ImGui::TextColored(kMuted, "open a lattice (or wrap the model in a box), then bend it");
+    return;
+  }
+  ImGui::Text("%s: %zu vertices, %zu faces", m.model_name.c_str(), m.vertices, m.faces);
+  for (const std::string& n : m.notes) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextColored(kMuted, "%s", n.c_str());
+    ImGui::PopTextWrapPos();
+  }
+  ImGui::SetNextItemWidth(140.0f);
+  ImGui::InputInt3("cells", f.box);
+  for (int& n : f.box) n = std::clamp(n, 1, 64);
+  ImGui::SetNextItemWidth(140.0f);
+  ImGui::SliderFloat("margin", &f.box_margin, 0.0f, 0.5f, "%.2f");
+  if (ImGui::Button("Wrap in box lattice")) r.wrap_box = true;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("replace the open shape by a box lattice around the model, and bind");
+  int mode = m.outside_mode;
+  ImGui::TextColored(kMuted, "Outside the lattice:");
+  ImGui::SameLine();
+  const bool stay = ImGui::RadioButton("stay", &mode, 0);
+  ImGui::SameLine();
+  const bool nearest = ImGui::RadioButton("follow nearest cell", &mode, 1);
+  ImGui::BeginDisabled(!m.lattice);
+  if (ImGui::Button(m.bound ? "Bind again" : "Bind") || ((stay || nearest) && m.bound)) r.bind = mode;
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("bind the model as it is now to the lattice as it is now (needs a lattice)");
+  }
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!m.bound);
+  if (ImGui::Button("Unbind")) r.unbind = true;
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (ImGui::Button("Remove")) r.remove_model = true;
+  if (m.bound) {
+    ImGui::TextColored(kGood, "bound: %zu inside, %zu outside (%zu follow), %.1f ms", m.bound_count, m.outside, m.nearest,
+                       m.bind_ms);
+    ImGui::TextColored(kMuted, "last edit moved %zu vertices in %.2f ms", m.moved, m.deform_ms);
+  } else {
+    ImGui::TextColored(kWarning, "not bound: lattice edits leave the model alone");
+  }
+  if (!m.note.empty()) ImGui::TextColored(kWarning, "%s", m.note.c_str());
+  ImGui::SetNextItemWidth(-button - ImGui::GetStyle().ItemSpacing.x);
+  ImGui::InputTextWithHint("##model_export", "deformed model, same format", &f.model_export_path);
+  ImGui::SameLine();
+  if (ImGui::Button("Export##model", ImVec2(button, 0)) && !f.model_export_path.empty()) {
+    r.export_model = f.model_export_path;
+  }
+}
+
 void draw_history_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   if (!section("History")) return;
   ImGui::BeginDisabled(d.undo_position == 0);
@@ -423,6 +484,7 @@ ModelerPanelRequests draw_modeler_panel(const ModelerPanelData& d, ModelerDispla
     }
     draw_levels_section(d, r);
     draw_detail_section(d, r);
+    draw_ffd_section(d, fields, r);
     draw_basis_section(d, r);
     draw_history_section(d, r);
     draw_display_section(d, display);

@@ -72,6 +72,18 @@ struct BasisPanelData {
   BasisReadout pin;
 };
 
+/// The FFD section (issue 6): a model deformed by the lattice being edited.
+struct FfdPanelData {
+  bool loaded = false, bound = false, lattice = false;  // lattice: the session is a volume
+  std::string model_name, note;
+  std::vector<std::string> notes;  // import decisions (instancing, skins, images)
+  std::size_t vertices = 0, faces = 0;
+  std::size_t bound_count = 0, outside = 0, nearest = 0;
+  int outside_mode = 0;            // 0 stay, 1 nearest
+  double bind_ms = 0.0, deform_ms = 0.0;
+  std::size_t moved = 0;           // model vertices the last lattice operation recomputed
+};
+
 /// The Basis section's settings after the user changed one (all of them, as in BasisPanelData).
 struct BasisPanelRequest {
   bool on = false;
@@ -111,12 +123,16 @@ struct ModelerPanelData {
   bool dirty = false;
   std::vector<std::string> recent;    // recently opened files, newest first
   BasisPanelData basis;
+  FfdPanelData ffd;
 };
 
 /// Text fields the panel edits in place (paths typed by the user).
 struct FileFields {
   std::string open_path, save_path, export_path;
   bool export_finest = true;
+  std::string model_path, model_export_path;  // FFD
+  int box[3] = {4, 4, 4};
+  float box_margin = 0.05f;
 };
 
 /// What the user asked for this frame.
@@ -135,6 +151,11 @@ struct ModelerPanelRequests {
   std::optional<double> soft_radius;
   std::optional<BasisPanelRequest> basis;
   bool pin_basis = false, clear_pin = false;
+  // FFD: load a model, wrap it in a box lattice (fields.box, fields.box_margin), bind (with the
+  // outside mode), unbind, remove, export.
+  std::optional<std::string> load_model, export_model;
+  bool wrap_box = false, unbind = false, remove_model = false;
+  std::optional<int> bind;  // the outside mode: 0 stay, 1 nearest
   CameraAction camera;
 };
 

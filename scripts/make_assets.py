@@ -169,3 +169,90 @@ tags = "".join("feature_face %d %d %d %d\n" % (idx(i, j, 2), idx(i + 1, j, 2), i
                for j in range(3) for i in range(3))
 write_lattice("feature_surface.lattice", "3 x 3 x 4 hexahedra with an inner feature surface (9 feature_face tags at z = 0)",
               v, c, tags)
+
+# ---- FFD sample lattices (issue 6), in assets/ffd/ ----
+# In a folder of their own, so that tools iterating over assets/*.lattice keep their set. Built
+# Z-up like the others, written Y-up like the OBJ files (and glTF models, and the modeler's
+# view), so that "top" is +y and torus_ring fits assets/torus_quad.obj as written. Every
+# standard cell is written positively oriented (hex: 0-1 x 0-3 toward 4; wedge: 0-1 x 0-2 toward
+# 3; pyramid: 0-1 x 0-3 toward the apex); oriented() flips any cell built the other way.
+os.makedirs(os.path.join(HERE, "ffd"), exist_ok=True)
+
+def oriented(verts, cells):
+    def det(o, a, b, c):
+        p = [[verts[i][k] - verts[o][k] for k in range(3)] for i in (a, b, c)]
+        return (p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) - p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0])
+                + p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0]))
+    out = []
+    for kind, ids in cells:
+        if kind == "hex" and det(ids[0], ids[1], ids[3], ids[4]) < 0:
+            ids = ids[4:] + ids[:4]
+        elif kind == "wedge" and det(ids[0], ids[1], ids[2], ids[3]) < 0:
+            ids = ids[3:] + ids[:3]
+        elif kind == "pyramid" and det(ids[0], ids[1], ids[3], ids[4]) < 0:
+            ids = [ids[0], ids[3], ids[2], ids[1], ids[4]]
+        out.append((kind, ids))
+    return out
+
+def write_ffd_lattice(name, comment, verts, cells, extra=""):
+    verts = [y_up(p) for p in verts]
+    write_lattice("ffd/" + name, comment, verts, oriented(verts, cells), extra)
+
+# Bent tube: a SOLID round tube (an O-grid section: 2 x 2 hexahedra in the middle and a ring of 8
+# around them, 17 vertices a section; its 4 O-grid corner edges have valence 3) swept along a
+# quarter circle of radius 2 about the vertical axis (Y-up: from +x to -z), in 6 steps. Solid rather than a
+# pipe wall, so a model anywhere inside the tube (a bent rod or cylinder along the arc, radius
+# up to about 0.4 after cubic subdivision) is embedded.
+bend_R, tube_r, core_a, steps = 2.0, 0.5, 0.22, 6
+ring_ij = [(2, 1), (2, 2), (1, 2), (0, 2), (0, 1), (0, 0), (1, 0), (2, 0)]  # square border, ccw
+section = [(core_a * (i - 1), core_a * (j - 1)) for j in range(3) for i in range(3)]
+section += [(tube_r * math.cos(math.pi * k / 4), tube_r * math.sin(math.pi * k / 4)) for k in range(8)]
+quads = [(j * 3 + i, j * 3 + i + 1, (j + 1) * 3 + i + 1, (j + 1) * 3 + i) for j in range(2) for i in range(2)]
+quads += [(ring_ij[k][1] * 3 + ring_ij[k][0], 9 + k, 9 + (k + 1) % 8,
+           ring_ij[(k + 1) % 8][1] * 3 + ring_ij[(k + 1) % 8][0]) for k in range(8)]
+tv = []
+for m in range(steps + 1):
+    t = 0.5 * math.pi * m / steps
+    tv += [((bend_R + s) * math.cos(t), (bend_R + s) * math.sin(t), h) for s, h in section]
+n_sec = len(section)
+tc = [("hex", [m * n_sec + q for q in quad] + [(m + 1) * n_sec + q for q in quad]) for m in range(steps) for quad in quads]
+write_ffd_lattice("bent_tube.lattice", "Solid round tube (O-grid section, 12 hexahedra) bent along a quarter circle in 6 steps",
+                  tv, tc)
+
+# Pyramid cap: a 2 x 2 x 2 block of hexahedra ([-1, 1]^3) whose 4 top quads are capped by 4
+# pyramids sharing one apex above the middle, so the lattice tapers to a point; the edge from
+# the top centre to the apex is shared by the 4 pyramids. The apex is tagged as a corner: cubic
+# levels would round it off (to height 1.6 at level 2); the corner keeps the point at every level.
+v, c, idx = hex_block(2, 2, 2, 1.0)
+apex = len(v)
+v.append((0.0, 0.0, 2.2))
+c += [("pyramid", [idx(i, j, 2), idx(i + 1, j, 2), idx(i + 1, j + 1, 2), idx(i, j + 1, 2), apex])
+      for j in range(2) for i in range(2)]
+write_ffd_lattice("pyramid_cap.lattice", "2 x 2 x 2 hexahedra capped by 4 pyramids meeting at one apex (a corner)",
+                  v, c, "corner %d\n" % apex)
+
+# Torus ring: 12 wedges around the axis of assets/torus_quad.obj (R = 1, r = 0.4; both written
+# Y-up, so the axis is y in the files), closed (the last wedge reuses the first section). Each section is an
+# equilateral triangle around the tube circle with inradius 0.62 (its inner side vertical, apex
+# outward): cubic levels round the triangles off, and from two levels on an inradius below about
+# 0.49 leaves torus vertices outside, so 0.62 keeps a margin at every depth.
+ring_n, ring_in = 12, 0.62
+tri = [(1.0 - ring_in, -math.sqrt(3) * ring_in), (1.0 + 2 * ring_in, 0.0), (1.0 - ring_in, math.sqrt(3) * ring_in)]
+rv = []
+for m in range(ring_n):
+    u = 2 * math.pi * m / ring_n
+    rv += [(rho * math.cos(u), rho * math.sin(u), z) for rho, z in tri]
+rc = [("wedge", [3 * m, 3 * m + 1, 3 * m + 2] + [3 * ((m + 1) % ring_n) + k for k in range(3)]) for m in range(ring_n)]
+write_ffd_lattice("torus_ring.lattice", "Closed ring of 12 wedges around assets/torus_quad.obj (axis y, as that file)",
+                  rv, rc)
+
+# Crease and feature face: a 4 x 4 x 3 block of hexahedra (edge 0.5) with a crease chain across
+# the top face along x = 0 (5 vertices, 4 edges; boundary edges, so a fold line of the top) and
+# an inner feature surface: the 2 x 2 faces of the horizontal plane 0.25 below the middle,
+# around the vertical axis (Y-up: the top is y = 0.75, the surface at y = -0.25).
+v, c, idx = hex_block(4, 4, 3, 0.5)
+tags = "crease %s\n" % " ".join(str(idx(2, j, 3)) for j in range(5))
+tags += "".join("feature_face %d %d %d %d\n" % (idx(i, j, 1), idx(i + 1, j, 1), idx(i + 1, j + 1, 1), idx(i, j + 1, 1))
+                for j in (1, 2) for i in (1, 2))
+write_ffd_lattice("crease_feature.lattice", "4 x 4 x 3 hexahedra, a crease across the top and a 2 x 2 inner feature surface",
+                  v, c, tags)

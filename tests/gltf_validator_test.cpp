@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -81,6 +82,31 @@ TEST_F(GltfValidator, DeformedExportsHaveNoErrors) {
     const Model m = import_model((kGltf / source).string());
     const fs::path out = dir.path() / output;
     export_model(m, deform(m.positions), out.string());
+    int code = -1;
+    const nlohmann::json report = validate(out, &code);
+    EXPECT_EQ(code, 0) << report.dump();
+    EXPECT_EQ(report.value("errors", -1), 0) << report.dump(2);
+  }
+}
+
+// The path end to end: `sublift-cli ffd` wraps the Fox and the textured Box in box
+// lattices, bends them at level 0 and dents them at level 1, and writes glTF the validator
+// accepts.
+TEST_F(GltfValidator, FfdExportsOfBentAndDentedModelsHaveNoErrors) {
+  sublift::testing::TempDir dir("sublift_gltf_validator_ffd");
+  std::ofstream(dir.path() / "edits.txt") << "# bend: a level-0 corner up, then a level-1 dent\n"
+                                             "0 63 0 30 0\n0 62 0 30 0\n1 332 0 -10 0\n";
+  const std::pair<const char*, const char*> cases[] = {{"Fox/Fox.glb", "fox_bent.glb"},
+                                                       {"BoxTextured/BoxTextured.gltf", "box_bent.gltf"}};
+  for (const auto& [source, output] : cases) {
+    SCOPED_TRACE(source);
+    const fs::path out = dir.path() / output;
+    const sublift::testing::ProcessResult r = sublift::testing::run_process(
+        {SUBLIFT_CLI, "ffd", "--box", "3", "3", "3", "--model", (kGltf / source).string(), "--edits",
+         (dir.path() / "edits.txt").string(), "-o", out.string(), "--json"},
+        60);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_GT(nlohmann::json::parse(r.out).value("moved", 0), 0);
     int code = -1;
     const nlohmann::json report = validate(out, &code);
     EXPECT_EQ(code, 0) << report.dump();

@@ -34,6 +34,9 @@ constexpr const char* kUsage =
     "  basis IN [--scheme S] --level J (--vertex I | --wavelet I) [--dual] [--levels K] -o OUT\n"
     "        [--png PNG]                     one scaling function or wavelet (or its dual) as\n"
     "                                        values at the level J+K vertices (.ply or curve .json)\n"
+    "  coefficients --scheme sqrt2 (--valences N0 N1 N2 N3 | --boundary a|b) [--json]\n"
+    "                                        lifting coefficient tables (sqrt(2): omega of a\n"
+    "                                        face wavelet, eta of a boundary wavelet)\n"
     "\n"
     "Meshes: .obj (with OpenSubdiv 't' tags; 'l' polylines are curves), .off, .ply (ascii and\n"
     "binary). Lattices: .lattice (Sublift's text format), .vtk (legacy unstructured grid).\n"
@@ -60,6 +63,7 @@ int main(int argc, char** argv) {
     if (cmd == "edit") return cli::run_edit(argc, argv);
     if (cmd == "basis") return cli::run_basis(argc, argv);
     if (cmd == "ffd") return cli::run_ffd(argc, argv);
+    if (cmd == "coefficients") return cli::run_coefficients(argc, argv);
     std::cerr << "sublift-cli: unknown command '" << cmd << "'\n\n" << kUsage;
     return 2;
   } catch (const cli::UsageError& e) {

@@ -37,6 +37,9 @@ constexpr const char* kUsage =
     "  coefficients --scheme sqrt2 (--valences N0 N1 N2 N3 | --boundary a|b) [--json]\n"
     "                                        lifting coefficient tables (sqrt(2): omega of a\n"
     "                                        face wavelet, eta of a boundary wavelet)\n"
+    "  experiment noise|fit|compress --scheme S --model BASE --levels J [--sigma X] [--json]\n"
+    "                                        the papers' noise-filtering, fitting and\n"
+    "                                        compression errors per level (docs/experiments.md)\n"
     "\n"
     "Meshes: .obj (with OpenSubdiv 't' tags; 'l' polylines are curves), .off, .ply (ascii and\n"
     "binary). Lattices: .lattice (Sublift's text format), .vtk (legacy unstructured grid).\n"
@@ -64,6 +67,7 @@ int main(int argc, char** argv) {
     if (cmd == "basis") return cli::run_basis(argc, argv);
     if (cmd == "ffd") return cli::run_ffd(argc, argv);
     if (cmd == "coefficients") return cli::run_coefficients(argc, argv);
+    if (cmd == "experiment") return cli::run_experiment(argc, argv);
     std::cerr << "sublift-cli: unknown command '" << cmd << "'\n\n" << kUsage;
     return 2;
   } catch (const cli::UsageError& e) {

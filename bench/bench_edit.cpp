@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_timing.h"
 #include "core/complex_build.h"
 #include "core/csr.h"
 #include "core/hierarchy.h"
@@ -30,19 +31,10 @@
 namespace {
 
 using namespace sublift;
-using Clock = std::chrono::steady_clock;
-
-std::map<std::string, double>& best_ms() {
-  static std::map<std::string, double> m;
-  return m;
-}
-
-void note(const std::string& name, double ms) {
-  auto [it, fresh] = best_ms().emplace(name, ms);
-  if (!fresh) it->second = std::min(it->second, ms);
-}
-
-double since_ms(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+using bench::best_ms;
+using bench::Clock;
+using bench::note;
+using bench::since_ms;
 
 // Details: the pure subdivision plus a deterministic ripple, analysed.
 Hierarchy detailed(Complex base, const std::vector<double>& xyz, int levels) {

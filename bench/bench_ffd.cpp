@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_timing.h"
 #include "core/box_lattice.h"
 #include "core/ffd.h"
 #include "core/hierarchy.h"
@@ -28,23 +29,15 @@
 namespace {
 
 using namespace sublift;
-using Clock = std::chrono::steady_clock;
+using bench::best_ms;
+using bench::Clock;
+using bench::note;
+using bench::since_ms;
 
-std::map<std::string, double>& best_ms() {
-  static std::map<std::string, double> m;
-  return m;
-}
 std::map<std::string, double>& counts() {
   static std::map<std::string, double> m;
   return m;
 }
-
-void note(const std::string& name, double ms) {
-  auto [it, fresh] = best_ms().emplace(name, ms);
-  if (!fresh) it->second = std::min(it->second, ms);
-}
-
-double since_ms(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 struct Fixture {
   std::vector<double> model;

@@ -18,6 +18,7 @@
 #include "core/mesh_export.h"
 #include "core/mesh_import.h"
 #include "core/model_source.h"
+#include "core/ply_types.h"
 #include "core/polygon_normal.h"
 #include "core/text_lines.h"
 
@@ -177,25 +178,6 @@ std::string rewrite_obj(const Model& model, const std::string& bytes, std::span<
 
 // ---- PLY: x y z (and nx ny nz, recomputed) overwritten in their declared type, in place for
 // binary files, token by token for ASCII ones.
-enum class PlyType { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
-
-bool ply_type(std::string_view s, PlyType& t) {
-  struct Name { std::string_view name; PlyType type; };
-  static constexpr Name kNames[] = {
-      {"char", PlyType::Int8},     {"int8", PlyType::Int8},     {"uchar", PlyType::UInt8},
-      {"uint8", PlyType::UInt8},   {"short", PlyType::Int16},   {"int16", PlyType::Int16},
-      {"ushort", PlyType::UInt16}, {"uint16", PlyType::UInt16}, {"int", PlyType::Int32},
-      {"int32", PlyType::Int32},   {"uint", PlyType::UInt32},   {"uint32", PlyType::UInt32},
-      {"float", PlyType::Float32}, {"float32", PlyType::Float32}, {"double", PlyType::Float64},
-      {"float64", PlyType::Float64}};
-  for (const Name& n : kNames)
-    if (n.name == s) { t = n.type; return true; }
-  return false;
-}
-
-
-bool ply_float(PlyType t) { return t == PlyType::Float32 || t == PlyType::Float64; }
-
 struct PlyProp {
   std::string name;
   PlyType type = PlyType::Float32;
@@ -294,11 +276,11 @@ std::string rewrite_ply(const Model& model, const std::string& bytes, std::span<
       PlyProp p;
       if (tok.size() == 5 && tok[1] == "list") {
         p.list = true;
-        ply_type(tok[2], p.count_type);
-        ply_type(tok[3], p.type);
+        parse_ply_type(tok[2], p.count_type);
+        parse_ply_type(tok[3], p.type);
         p.name = tok[4];
       } else if (tok.size() == 3) {
-        ply_type(tok[1], p.type);
+        parse_ply_type(tok[1], p.type);
         p.name = tok[2];
       }
       static constexpr std::string_view kSlots[] = {"x", "y", "z", "nx", "ny", "nz"};
@@ -355,7 +337,7 @@ std::string rewrite_ply(const Model& model, const std::string& bytes, std::span<
             if (p.slot < 3) fail_range(std::size_t(r), p, *x);
             continue;  // an integer normal is left as written
           }
-          if (p.slot >= 3 && !ply_float(p.type)) continue;
+          if (p.slot >= 3 && !ply_type_is_float(p.type)) continue;
           const auto old = parse_double(t);
           if (old && *old == pv.v) continue;
           edits.push_back({offset_in(bytes, t), t.size(), ply_text(p.type, pv.v)});
@@ -385,7 +367,7 @@ std::string rewrite_ply(const Model& model, const std::string& bytes, std::span<
           if (p.slot < 3) fail_range(std::size_t(r), p, *x);
           continue;
         }
-        if (p.slot >= 3 && !ply_float(p.type)) continue;
+        if (p.slot >= 3 && !ply_type_is_float(p.type)) continue;
         put_ply(out, at, p.type, pv.v, big);
       }
     if (vertex) break;

@@ -9,38 +9,11 @@
 #include "core/errors.h"
 #include "core/face_builder.h"
 #include "core/mesh_readers.h"
+#include "core/ply_types.h"
 #include "core/text_lines.h"
 
 namespace sublift {
 namespace {
-
-enum class PlyType { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
-
-bool parse_type(std::string_view s, PlyType& t) {
-  struct Name { std::string_view name; PlyType type; };
-  static constexpr Name kNames[] = {
-      {"char", PlyType::Int8},     {"int8", PlyType::Int8},     {"uchar", PlyType::UInt8},
-      {"uint8", PlyType::UInt8},   {"short", PlyType::Int16},   {"int16", PlyType::Int16},
-      {"ushort", PlyType::UInt16}, {"uint16", PlyType::UInt16}, {"int", PlyType::Int32},
-      {"int32", PlyType::Int32},   {"uint", PlyType::UInt32},   {"uint32", PlyType::UInt32},
-      {"float", PlyType::Float32}, {"float32", PlyType::Float32}, {"double", PlyType::Float64},
-      {"float64", PlyType::Float64}};
-  for (const Name& n : kNames)
-    if (n.name == s) { t = n.type; return true; }
-  return false;
-}
-
-std::size_t type_size(PlyType t) {
-  switch (t) {
-    case PlyType::Int8: case PlyType::UInt8: return 1;
-    case PlyType::Int16: case PlyType::UInt16: return 2;
-    case PlyType::Int32: case PlyType::UInt32: case PlyType::Float32: return 4;
-    case PlyType::Float64: return 8;
-  }
-  return 0;
-}
-
-bool is_float(PlyType t) { return t == PlyType::Float32 || t == PlyType::Float64; }
 
 struct PlyProperty {
   std::string name;
@@ -71,7 +44,7 @@ class PlyValues {
   double read(PlyType t, const char* what) {
     if (fmt_ == PlyFormat::Ascii) {
       const std::string_view tok = next_token(what);
-      if (is_float(t)) {
+      if (ply_type_is_float(t)) {
         auto d = parse_double(tok);
         if (!d) throw InputError(file_, line(), std::string("bad or non-finite number '") +
                                                     std::string(tok.substr(0, 32)) + "' in " + what);
@@ -175,13 +148,13 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
       PlyProperty p;
       if (tok.size() == 5 && tok[1] == "list") {
         p.is_list = true;
-        if (!parse_type(tok[2], p.count_type) || is_float(p.count_type))
+        if (!parse_ply_type(tok[2], p.count_type) || ply_type_is_float(p.count_type))
           throw InputError(file, ln, "unknown or non-integer list count type '" + std::string(tok[2].substr(0, 32)) + "'");
-        if (!parse_type(tok[3], p.type))
+        if (!parse_ply_type(tok[3], p.type))
           throw InputError(file, ln, "unknown property type '" + std::string(tok[3].substr(0, 32)) + "'");
         p.name = tok[4];
       } else if (tok.size() == 3) {
-        if (!parse_type(tok[1], p.type))
+        if (!parse_ply_type(tok[1], p.type))
           throw InputError(file, ln, "unknown property type '" + std::string(tok[1].substr(0, 32)) + "'");
         p.name = tok[2];
       } else {
@@ -203,7 +176,7 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
   for (const PlyElement& e : elements) {
     double row = 0;
     for (const PlyProperty& p : e.props)
-      row += fmt == PlyFormat::Ascii ? 2.0 : double(type_size(p.is_list ? p.count_type : p.type));
+      row += fmt == PlyFormat::Ascii ? 2.0 : double(ply_type_size(p.is_list ? p.count_type : p.type));
     min_bytes += row * double(e.count);
     if (min_bytes > double(bytes.size() - body))
       throw InputError(file, e.line, "element '" + e.name + "' claims " + std::to_string(e.count) +
@@ -250,7 +223,7 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
         row_line = row_line ? row_line : in.line();
         const auto n = static_cast<std::int64_t>(nd);
         const bool too_many = n < 0 || static_cast<std::size_t>(n) > limits.max_face_size ||
-                              (!in.ascii() && double(n) * double(type_size(p.type)) > double(in.remaining_binary()));
+                              (!in.ascii() && double(n) * double(ply_type_size(p.type)) > double(in.remaining_binary()));
         if (too_many)
           throw InputError(file, in.line(), "list of " + std::to_string(n) + " entries in element '" + e.name +
                                                 "' row " + std::to_string(r) +
@@ -259,7 +232,7 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
         list.clear();
         for (std::int64_t k = 0; k < n; ++k) {
           const double v = in.read(p.type, "list entries");
-          if (is_float(p.type) && v != std::floor(v)) list.push_back(-1);
+          if (ply_type_is_float(p.type) && v != std::floor(v)) list.push_back(-1);
           else list.push_back(static_cast<std::int64_t>(v));
         }
         if (is_face && (p.name == "vertex_indices" || p.name == "vertex_index")) {

@@ -12,9 +12,7 @@ namespace {
 
 constexpr std::uint32_t kNone = Sqrt2Children::kNone;
 
-// Curves are kept/refined by 001 sec. 4; an edge without exactly two faces cannot carry a quad,
-// so it is a curve whatever its tag says.
-bool is_curve(const Complex& c, std::uint32_t e) { return c.edge_dim[e] <= 1 || c.edge_faces.size(e) != 2; }
+bool is_curve(const Complex& c, std::uint32_t e) { return sqrt2_is_curve_edge(c, e); }
 
 // The slot after s in the cycle of face f.
 std::uint32_t next_slot(const Complex& c, std::uint32_t f, std::uint32_t s) {

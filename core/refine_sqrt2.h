@@ -58,6 +58,13 @@
 
 namespace sublift {
 
+/// Whether edge e of `c` (adjacency built) is a curve of 001 sec. 4, refined by the 4-point
+/// rule: a boundary, crease or cusp edge (feature dim <= 1), or any edge without exactly two
+/// faces (it cannot carry a quad). The refinement and the transform share this one test.
+inline bool sqrt2_is_curve_edge(const Complex& c, std::uint32_t e) {
+  return c.edge_dim[e] <= 1 || c.edge_faces.size(e) != 2;
+}
+
 /// What each child of one sqrt(2) step comes from, so the lifting steps can find their stencils.
 /// Vertex indices below are of the coarse level unless said otherwise.
 struct Sqrt2Children {

@@ -18,8 +18,7 @@ namespace {
 
 constexpr std::uint32_t kNone = Sqrt2Children::kNone;
 
-// Same test as refine_sqrt2.cpp: these edges are the curves of 001 sec. 4.
-bool is_curve(const Complex& c, std::uint32_t e) { return c.edge_dim[e] <= 1 || c.edge_faces.size(e) != 2; }
+bool is_curve(const Complex& c, std::uint32_t e) { return sqrt2_is_curve_edge(c, e); }
 
 std::uint32_t next_slot(const Complex& c, std::uint32_t f, std::uint32_t s) {
   return s + 1 == c.faces.offsets[f + 1] ? c.faces.offsets[f] : s + 1;

@@ -6,6 +6,7 @@ SUBLIFT_PACKAGES="build-essential cmake ninja-build pkg-config
   libopengl-dev libglx-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0
   libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth"
 
+# `sublift_install_deps tests` also brings Node.js for the test suite's glTF validator.
 sublift_install_deps() {
   local missing=""
   for p in $SUBLIFT_PACKAGES; do
@@ -14,8 +15,10 @@ sublift_install_deps() {
     fi
   done
   # Node.js runs the Khronos glTF validator in the tests (tests/gltf_validate.mjs); Debian 12's
-  # nodejs + npm only when no node/npm is on the PATH already.
-  if ! command -v node >/dev/null || ! command -v npm >/dev/null; then missing="$missing nodejs npm"; fi
+  # nodejs + npm only for the tests and only when no node/npm is on the PATH already.
+  if [ "${1:-}" = tests ] && { ! command -v node >/dev/null || ! command -v npm >/dev/null; }; then
+    missing="$missing nodejs npm"
+  fi
   [ -z "$missing" ] && return 0
   echo "sublift: installing missing packages:$missing"
   local sudo=""

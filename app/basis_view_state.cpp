@@ -7,6 +7,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/boundary_surface.h"
+#include "core/bounds.h"
 #include "core/cell_contour.h"
 #include "core/errors.h"
 
@@ -59,10 +60,7 @@ std::vector<double> curve_normals(const std::vector<std::uint32_t>& edges, const
 }
 
 double diagonal(const std::vector<double>& xyz) {
-  if (xyz.empty()) return 1.0;
-  glm::dvec3 lo(1e300), hi(-1e300);
-  for (std::size_t v = 0; v < xyz.size() / 3; ++v) lo = glm::min(lo, at(xyz, v)), hi = glm::max(hi, at(xyz, v));
-  const double d = glm::length(hi - lo);
+  const double d = bbox_diagonal(xyz);
   return d > 0.0 ? d : 1.0;
 }
 

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/boundary_surface.h"
+#include "core/bounds.h"
 #include "core/errors.h"
 #include "core/ffd_scene.h"
 #include "core/project_io.h"
@@ -24,17 +25,9 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-double bbox_diagonal(const std::vector<double>& xyz) {
-  if (xyz.size() < 3) return 1.0;
-  double lo[3] = {xyz[0], xyz[1], xyz[2]}, hi[3] = {xyz[0], xyz[1], xyz[2]};
-  for (std::size_t i = 0; i + 2 < xyz.size(); i += 3) {
-    for (int c = 0; c < 3; ++c) {
-      lo[c] = std::min(lo[c], xyz[i + c]);
-      hi[c] = std::max(hi[c], xyz[i + c]);
-    }
-  }
-  const double d = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                             (hi[2] - lo[2]) * (hi[2] - lo[2]));
+// The model's size for soft radii; 1 for an empty or degenerate shape.
+double model_size_of(const std::vector<double>& xyz) {
+  const double d = bbox_diagonal(xyz);
   return d > 0.0 ? d : 1.0;
 }
 
@@ -87,7 +80,7 @@ void ModelerState::install(std::unique_ptr<Session> session) {
   basis_off();
   if (ffd_) ffd_->bound = false;  // bound to the old session's lattice
   rebuild_limit();
-  model_size_ = bbox_diagonal(limit_);
+  model_size_ = model_size_of(limit_);
   if (colour_level_ >= session_->finest_level()) colour_level_ = -1;
   refresh_colour();
 }

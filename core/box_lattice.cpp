@@ -9,17 +9,6 @@
 
 namespace sublift {
 
-std::array<std::array<double, 3>, 2> bounding_box(const double* xyz, std::size_t num_points) {
-  if (num_points == 0) throw Error("bounding box of no points");
-  std::array<double, 3> lo{xyz[0], xyz[1], xyz[2]}, hi = lo;
-  for (std::size_t i = 1; i < num_points; ++i)
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], xyz[3 * i + a]);
-      hi[a] = std::max(hi[a], xyz[3 * i + a]);
-    }
-  return {lo, hi};
-}
-
 Shape make_box_lattice(const std::array<double, 3>& lo_in, const std::array<double, 3>& hi_in, int nx, int ny,
                        int nz, double margin) {
   for (int a = 0; a < 3; ++a) {

@@ -12,6 +12,7 @@
 #include <array>
 #include <cstddef>
 
+#include "core/bounds.h"
 #include "core/shape.h"
 
 namespace sublift {
@@ -21,8 +22,5 @@ namespace sublift {
 /// margin, lo > hi, a count < 1, or nx * ny * nz >= 1e6 cells.
 Shape make_box_lattice(const std::array<double, 3>& lo, const std::array<double, 3>& hi, int nx, int ny, int nz,
                        double margin);
-
-/// The bounding box of `xyz` (3 doubles per point) as {lo, hi}; throws Error when empty.
-std::array<std::array<double, 3>, 2> bounding_box(const double* xyz, std::size_t num_points);
 
 }  // namespace sublift

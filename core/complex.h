@@ -46,6 +46,15 @@ struct Complex {
   std::size_t bytes() const;
 };
 
+/// Corner slots of face f (indices into c.faces.items, also into c.face_edges.items): the slot
+/// after and before s in the face's cycle.
+inline std::uint32_t face_next_slot(const Complex& c, std::uint32_t f, std::uint32_t s) {
+  return s + 1 == c.faces.offsets[f + 1] ? c.faces.offsets[f] : s + 1;
+}
+inline std::uint32_t face_prev_slot(const Complex& c, std::uint32_t f, std::uint32_t s) {
+  return s == c.faces.offsets[f] ? c.faces.offsets[f + 1] - 1 : s - 1;
+}
+
 /// Fills the derived rows of `c` from its downward connectivity.
 void build_adjacency(Complex& c);
 

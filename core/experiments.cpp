@@ -91,18 +91,6 @@ std::size_t keep_largest_raw(Hierarchy& h, double fraction) {
 
 }  // namespace
 
-double bbox_diagonal(std::span<const double> xyz) {
-  if (xyz.size() < 3) return 0;
-  double lo[3], hi[3];
-  for (int c = 0; c < 3; ++c) lo[c] = hi[c] = xyz[c];
-  for (std::size_t i = 0; i + 2 < xyz.size(); i += 3)
-    for (int c = 0; c < 3; ++c) {
-      lo[c] = std::min(lo[c], xyz[i + c]);
-      hi[c] = std::max(hi[c], xyz[i + c]);
-    }
-  return std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
-}
-
 ShapeError shape_error(std::span<const double> a, std::span<const double> ref, double diagonal) {
   if (a.size() != ref.size() || a.size() % 3 != 0) throw Error("shape_error: position arrays differ in size");
   if (!(diagonal > 0)) throw Error("shape_error: the reference model has no extent (diagonal 0)");

@@ -18,6 +18,7 @@
 #include <span>
 #include <vector>
 
+#include "core/bounds.h"
 #include "core/complex.h"
 #include "core/hierarchy.h"
 
@@ -61,8 +62,6 @@ struct CompressExperiment {
 /// or by the raw Euclidean norm of the coefficient vector.
 enum class Ranking : std::uint8_t { L2, Raw };
 
-/// Bounding-box diagonal of xyz triples.
-double bbox_diagonal(std::span<const double> xyz);
 
 /// rms and max of |a_i - ref_i| over xyz triples, divided by `diagonal`. Sizes must match.
 ShapeError shape_error(std::span<const double> a, std::span<const double> ref, double diagonal);

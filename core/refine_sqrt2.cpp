@@ -14,11 +14,6 @@ constexpr std::uint32_t kNone = Sqrt2Children::kNone;
 
 bool is_curve(const Complex& c, std::uint32_t e) { return sqrt2_is_curve_edge(c, e); }
 
-// The slot after s in the cycle of face f.
-std::uint32_t next_slot(const Complex& c, std::uint32_t f, std::uint32_t s) {
-  return s + 1 == c.faces.offsets[f + 1] ? c.faces.offsets[f] : s + 1;
-}
-
 // The slot of edge e in face f.
 std::uint32_t edge_slot(const Complex& c, std::uint32_t f, std::uint32_t e) {
   for (std::uint32_t s = c.face_edges.offsets[f]; s < c.face_edges.offsets[f + 1]; ++s)
@@ -111,14 +106,14 @@ Sqrt2Step keep_step(const Complex& p) {
       const Sides sd = sides(p, e);
       const std::uint32_t a = p.edge_verts[2 * e], b = p.edge_verts[2 * e + 1];
       push_face(c, {a, nv + sd.B, b, nv + sd.A},
-                {corner_edge(next_slot(p, sd.B, sd.sb)), corner_edge(sd.sb), corner_edge(next_slot(p, sd.A, sd.sa)),
+                {corner_edge(face_next_slot(p, sd.B, sd.sb)), corner_edge(sd.sb), corner_edge(face_next_slot(p, sd.A, sd.sa)),
                  corner_edge(sd.sa)},
                 p.edge_dim[e]);
       ch.fine_face_edge.push_back(e);
       continue;
     }
     for (std::uint32_t x : p.edge_faces.row(e)) {
-      const std::uint32_t s = edge_slot(p, x, e), t = next_slot(p, x, s);
+      const std::uint32_t s = edge_slot(p, x, e), t = face_next_slot(p, x, s);
       push_face(c, {p.faces.items[s], p.faces.items[t], nv + x}, {curve_index[e], corner_edge(t), corner_edge(s)},
                 p.face_dim[x]);
       ch.fine_face_edge.push_back(e);
@@ -185,7 +180,7 @@ Sqrt2Step curve_step(const Complex& p) {
       for (std::uint32_t v : p.faces.row(f)) c.edge_verts.insert(c.edge_verts.end(), {v, new_point[f]});
       c.edge_dim.insert(c.edge_dim.end(), 4, p.face_dim[f]);
     } else {  // apex (the corner off the curve edge) to the curve point
-      const std::uint32_t apex = next_slot(p, f, next_slot(p, f, tri_slot[f]));
+      const std::uint32_t apex = face_next_slot(p, f, face_next_slot(p, f, tri_slot[f]));
       c.edge_verts.insert(c.edge_verts.end(), {p.faces.items[apex], new_point[f]});
       c.edge_dim.push_back(p.face_dim[f]);
     }
@@ -194,7 +189,7 @@ Sqrt2Step curve_step(const Complex& p) {
   auto inner_edge = [&](std::uint32_t f, std::uint32_t s) -> std::uint32_t {
     if (tri_slot[f] == kNone) return inner_base[f] + (s - p.faces.offsets[f]);
     const std::uint32_t ts = tri_slot[f];
-    if (s != ts && s != next_slot(p, f, ts)) return inner_base[f];  // the apex
+    if (s != ts && s != face_next_slot(p, f, ts)) return inner_base[f];  // the apex
     const std::uint32_t e = p.face_edges.items[ts], k = curve_index[e];
     return p.edge_verts[2 * e] == p.faces.items[s] ? 2 * k : 2 * k + 1;  // half touching the corner
   };
@@ -205,8 +200,8 @@ Sqrt2Step curve_step(const Complex& p) {
     const Sides sd = sides(p, e);
     const std::uint32_t a = p.edge_verts[2 * e], b = p.edge_verts[2 * e + 1];
     push_face(c, {a, new_point[sd.B], b, new_point[sd.A]},
-              {inner_edge(sd.B, next_slot(p, sd.B, sd.sb)), inner_edge(sd.B, sd.sb),
-               inner_edge(sd.A, next_slot(p, sd.A, sd.sa)), inner_edge(sd.A, sd.sa)},
+              {inner_edge(sd.B, face_next_slot(p, sd.B, sd.sb)), inner_edge(sd.B, sd.sb),
+               inner_edge(sd.A, face_next_slot(p, sd.A, sd.sa)), inner_edge(sd.A, sd.sa)},
               p.edge_dim[e]);
     ch.fine_face_edge.push_back(e);
   }

@@ -20,13 +20,6 @@ constexpr std::uint32_t kNone = Sqrt2Children::kNone;
 
 bool is_curve(const Complex& c, std::uint32_t e) { return sqrt2_is_curve_edge(c, e); }
 
-std::uint32_t next_slot(const Complex& c, std::uint32_t f, std::uint32_t s) {
-  return s + 1 == c.faces.offsets[f + 1] ? c.faces.offsets[f] : s + 1;
-}
-std::uint32_t prev_slot(const Complex& c, std::uint32_t f, std::uint32_t s) {
-  return s == c.faces.offsets[f] ? c.faces.offsets[f + 1] - 1 : s - 1;
-}
-
 std::uint32_t other_end(const Complex& c, std::uint32_t e, std::uint32_t v) {
   return c.edge_verts[2 * e] == v ? c.edge_verts[2 * e + 1] : c.edge_verts[2 * e];
 }
@@ -41,10 +34,10 @@ bool corner_ring(const Complex& c, std::uint32_t f, std::uint32_t s, std::vector
   for (std::uint32_t e : c.vertex_edges.row(v))
     if (is_curve(c, e)) return false;
   ring.clear();
-  ring.push_back(c.faces.items[next_slot(c, f, s)]);
-  ring.push_back(c.faces.items[prev_slot(c, f, s)]);
+  ring.push_back(c.faces.items[face_next_slot(c, f, s)]);
+  ring.push_back(c.faces.items[face_prev_slot(c, f, s)]);
   const std::uint32_t first = c.face_edges.items[s];  // v -> next corner
-  std::uint32_t e = c.face_edges.items[prev_slot(c, f, s)], face = f;
+  std::uint32_t e = c.face_edges.items[face_prev_slot(c, f, s)], face = f;
   while (true) {
     const auto fs = c.edge_faces.row(e);
     const std::uint32_t g = fs[0] == face ? fs[1] : fs[0];
@@ -52,7 +45,7 @@ bool corner_ring(const Complex& c, std::uint32_t f, std::uint32_t s, std::vector
     std::uint32_t e2 = kNone;
     for (std::uint32_t t = c.faces.offsets[g]; t < c.faces.offsets[g + 1]; ++t) {
       if (c.faces.items[t] != v) continue;
-      const std::uint32_t out = c.face_edges.items[t], in = c.face_edges.items[prev_slot(c, g, t)];
+      const std::uint32_t out = c.face_edges.items[t], in = c.face_edges.items[face_prev_slot(c, g, t)];
       if (out == e) e2 = in;
       else if (in == e) e2 = out;
     }
@@ -129,7 +122,7 @@ bool find_phis(const Complex& c, std::uint32_t f, const std::vector<bool>& inner
     if (c.faces.size(g) != 4) continue;
     std::uint32_t t = c.faces.offsets[g];
     while (c.faces.items[t] != phi[i]) ++t;
-    const std::uint32_t t1 = next_slot(c, g, t), t2 = next_slot(c, g, t1);
+    const std::uint32_t t1 = face_next_slot(c, g, t), t2 = face_next_slot(c, g, t1);
     phi[4 + 2 * i] = c.faces.items[t1];
     phi[5 + 2 * i] = c.faces.items[t2];
   }

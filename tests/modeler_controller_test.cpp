@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <unistd.h>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -573,6 +574,16 @@ TEST(ModelerControllerTest, BasisCurvePlot) {
   EXPECT_EQ(nonzero, m.basis().function.support.size());  // the whole support, in one piece
 }
 
+// Each (script, message) case stops with an error whose message contains the expected text.
+void expect_script_errors(ModelerState& m, std::span<const std::pair<std::string, std::string>> cases) {
+  for (const auto& [text, expect] : cases) {
+    ScriptRunner bad("bad", text);
+    const ScriptStep step = bad.next(m);
+    EXPECT_EQ(step.kind, ScriptStep::Kind::Error) << text;
+    EXPECT_NE(step.message.find(expect), std::string::npos) << step.message;
+  }
+}
+
 TEST(ModelerControllerTest, BasisScriptCommands) {
   ModelerState m;
   const std::string torus = std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj";
@@ -593,12 +604,7 @@ TEST(ModelerControllerTest, BasisScriptCommands) {
       {"basis\n", "script:1: usage: basis scaling|wavelet"},
       {"basis height 0.2\n", "script:1: basis height needs the basis mode on"},
   };
-  for (const auto& [text, expect] : cases) {
-    ScriptRunner bad("bad", text);
-    const ScriptStep step = bad.next(m);
-    EXPECT_EQ(step.kind, ScriptStep::Kind::Error) << text;
-    EXPECT_NE(step.message.find(expect), std::string::npos) << step.message;
-  }
+  expect_script_errors(m, cases);
 }
 
 }  // namespace
@@ -701,12 +707,7 @@ TEST(ModelerFfdTest, ScriptCommands) {
       {"ffd\n", "script:1: usage: ffd box"},
       {"subdivide\n", "not possible while a model is bound"},
   };
-  for (const auto& [text, expect] : cases) {
-    ScriptRunner bad("bad", text);
-    const ScriptStep step = bad.next(m);
-    EXPECT_EQ(step.kind, ScriptStep::Kind::Error) << text;
-    EXPECT_NE(step.message.find(expect), std::string::npos) << step.message;
-  }
+  expect_script_errors(m, cases);
 }
 
 }  // namespace

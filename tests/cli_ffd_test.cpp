@@ -172,7 +172,9 @@ TEST(CliFfd, OneLevelZeroEditIsLocal) {
   std::size_t moved = 0;
   for (std::size_t v = 0; v < before.num_vertices(); ++v) {
     for (int k = 0; k < 3; ++k) {
-      if (!reach[v]) EXPECT_EQ(after.positions[3 * v + k], before.positions[3 * v + k]) << v;
+      if (!reach[v]) {
+        EXPECT_EQ(after.positions[3 * v + k], before.positions[3 * v + k]) << v;
+      }
       moved += after.positions[3 * v + k] != before.positions[3 * v + k];
     }
   }

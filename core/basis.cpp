@@ -6,6 +6,7 @@
 
 #include "core/errors.h"
 #include "core/level_counts.h"
+#include "core/sqrt2_sparse.h"
 #include "core/lifting_detail.h"
 #include "core/limit.h"
 
@@ -96,16 +97,19 @@ std::uint32_t count_nonzero(const double* x, std::uint32_t n) {
 }
 
 // Dual cell measure per finest vertex (basis.h): each cell's 2^(-L*dim) split equally over its
-// corners.
-std::vector<double> vertex_measures(const Complex& c, int L) {
+// corners. sqrt2 levels halve the area: a quad of level L has 2^-L, a triangle on a kept curve
+// (odd L) half of that.
+std::vector<double> vertex_measures(const Complex& c, int L, Scheme scheme) {
   std::vector<double> mu(c.num_vertices, 0.0);
-  const double cell = std::ldexp(1.0, -L * c.dim);
+  const bool sqrt2 = scheme == Scheme::Sqrt2;
+  const double cell = std::ldexp(1.0, sqrt2 ? -L : -L * c.dim);
   if (c.dim == 1) {
     for (std::uint32_t v : c.edge_verts) mu[v] += 0.5 * cell;
   } else if (c.dim == 2) {
     for (std::size_t f = 0; f < c.faces.rows(); ++f) {
       const auto row = c.faces.row(f);
-      for (std::uint32_t v : row) mu[v] += cell / double(row.size());
+      const double area = sqrt2 && row.size() == 3 && L % 2 == 1 ? 0.5 * cell : cell;
+      for (std::uint32_t v : row) mu[v] += area / double(row.size());
     }
   } else {
     std::vector<std::uint32_t> stamp(c.num_vertices, ~0u), corners;
@@ -138,9 +142,9 @@ void lift_analyze_adjoint(const Complex& parent, const LiftTables& t, const Lift
   }
 }
 
-int default_extra_levels(const Complex& c, double max_vertices) {
-  int K = c.dim == 1 ? 6 : (c.dim == 2 ? 4 : 3);
-  const std::vector<double> counts = predicted_vertex_counts(c, K);
+int default_extra_levels(const Complex& c, double max_vertices, Scheme scheme, int level) {
+  int K = (c.dim == 1 ? 6 : (c.dim == 2 ? 4 : 3)) * scheme_levels_per_split(scheme);
+  const std::vector<double> counts = predicted_level_counts(c, K, scheme, level);
   while (K > 0 && counts[static_cast<std::size_t>(K)] > max_vertices) --K;
   return K;
 }
@@ -152,15 +156,16 @@ BasisFunction basis_function(const Complex& level_j, Scheme scheme, const BasisR
     throw Error("basis function: level " + std::to_string(r.level) + " needs " + std::to_string(3 * std::size_t(nv)) +
                 " position values, got " + std::to_string(level_j_positions.size()));
   if (r.level < 0) throw Error("basis function: level must be non-negative");
-  const int K = r.extra_levels < 0 ? default_extra_levels(level_j, r.max_vertices) : r.extra_levels;
-  if (K > 16) throw Error("basis function: at most 16 extra levels, got " + std::to_string(K));
+  const int K = r.extra_levels < 0 ? default_extra_levels(level_j, r.max_vertices, scheme, r.level) : r.extra_levels;
+  const int most = 16 * scheme_levels_per_split(scheme);
+  if (K > most) throw Error("basis function: at most " + std::to_string(most) + " extra levels, got " + std::to_string(K));
   if (r.kind == BasisKind::Wavelet && K < 1) throw Error("basis function: a wavelet needs at least one extra level");
-  const double predicted = predicted_vertex_counts(level_j, K).back();
+  const double predicted = predicted_level_counts(level_j, K, scheme, r.level).back();
   if (predicted > r.max_vertices)
     throw Error("basis function: " + std::to_string(K) + " extra levels make " + std::to_string(std::llround(predicted)) +
                 " vertices, more than the limit of " + std::to_string(std::llround(r.max_vertices)));
 
-  Hierarchy h = make_hierarchy(level_j, K, scheme, 1);
+  Hierarchy h = make_hierarchy(level_j, K, scheme, 1, false, r.level);
   const std::uint32_t lo = r.kind == BasisKind::Scaling ? 0 : nv;
   const std::uint32_t hi = r.kind == BasisKind::Scaling ? nv : h.num_vertices(1);
   if (r.index < lo || r.index >= hi) {
@@ -176,23 +181,22 @@ BasisFunction basis_function(const Complex& level_j, Scheme scheme, const BasisR
   BasisFunction out;
   out.level = r.level;
   out.extra_levels = K;
-  const LiftProgram program = scheme_program(scheme);
   const std::uint32_t nL = h.num_vertices(K);
   std::vector<double> x(nL, 0.0);
   x[r.index] = 1.0;
   out.support_per_level.push_back(count_nonzero(x.data(), nv));
   for (int l = 0; l < K; ++l) {
     const auto L = static_cast<std::size_t>(l);
-    if (r.dual) lift_analyze_adjoint(h.levels[L], h.tables[L], program, x.data());
-    else lift_synthesize(h.levels[L], h.tables[L], program, x.data(), 1, false);
+    if (r.dual && scheme == Scheme::Sqrt2) sqrt2_analyze_adjoint(h.sqrt2[L], x.data());
+    else if (r.dual) lift_analyze_adjoint(h.levels[L], h.tables[L], scheme_program(scheme), x.data());
+    else synthesize_transition(h, l, x.data(), 1, false);
     out.support_per_level.push_back(count_nonzero(x.data(), h.num_vertices(l + 1)));
   }
 
   // Geometry: the level-j positions synthesised (zero details) to j+K, then their limit.
   std::vector<double> p(std::size_t(nL) * 3, 0.0);
   std::copy(level_j_positions.begin(), level_j_positions.end(), p.begin());
-  for (int l = 0; l < K; ++l)
-    lift_synthesize(h.levels[std::size_t(l)], h.tables[std::size_t(l)], program, p.data(), 3, false);
+  for (int l = 0; l < K; ++l) synthesize_transition(h, l, p.data(), 3, false);
   const LimitStencils stencils = build_limit_stencils(h);
   std::vector<double> p_limit(p.size());
   eval_limit(stencils, p.data(), p_limit.data());
@@ -211,7 +215,7 @@ BasisFunction basis_function(const Complex& level_j, Scheme scheme, const BasisR
     }
   }
 
-  const std::vector<double> mu = vertex_measures(h.levels.back(), r.level + K);
+  const std::vector<double> mu = vertex_measures(h.levels.back(), r.level + K, scheme);
   const std::vector<double>& moment_positions = r.dual ? p : p_limit;
   out.min = out.values.empty() ? 0.0 : out.values[0];
   out.max = out.min;

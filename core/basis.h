@@ -16,7 +16,8 @@
 //   - Primal integral: sum_k values_k * mu_k, where mu_k is the dual cell measure of finest vertex
 //     k: every finest cell (edge of a curve, face of a surface, cell of a lattice) has parametric
 //     measure 2^(-(level+K)*dim) and gives it in equal parts to its corners. A base quad, hex or
-//     curve edge thus has measure 1 (a base n-gon n/4; a base hexahedron 1). First moments:
+//     curve edge thus has measure 1 (a base n-gon n/4; a base hexahedron 1). sqrt2 (whose
+//     levels halve the area): a quad of level L has 2^-L, a triangle on a kept curve half that. First moments:
 //     sum_k values_k * mu_k * p_k with p_k the finest limit positions of the geometry passed in.
 //   - Dual "integral" and "moments": the functional applied to the constant 1 and to the x, y, z
 //     coordinate functions of the finest control positions, i.e. sum_k w_k and sum_k w_k p_k
@@ -59,9 +60,10 @@ struct BasisFunction {
   double moment[3] = {0, 0, 0};
 };
 
-/// K for a complex of this dimension: 6 for curves, 4 for surfaces, 3 for volumes, lowered
-/// until level K of `c` has at most `max_vertices` vertices (at least 0).
-int default_extra_levels(const Complex& c, double max_vertices = 4.0e6);
+/// K for a complex of this dimension: 6 for curves, 4 for surfaces, 3 for volumes (sqrt2: twice
+/// as many, its levels being half steps), lowered until level K of `c` has at most
+/// `max_vertices` vertices (at least 0). `level`: which sqrt(2) level `c` is.
+int default_extra_levels(const Complex& c, double max_vertices = 4.0e6, Scheme scheme = Scheme::Cubic, int level = 0);
 
 /// The basis function of request `r` on `level_j` (a complex of level r.level with its feature
 /// dims; adjacency is built on a copy if missing) under `scheme`. `level_j_positions` (3 per

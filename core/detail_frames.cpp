@@ -54,8 +54,12 @@ void store(double f[9], const V3& t, const V3& b, const V3& n) {
 
 }  // namespace
 
-void wavelet_frame(const Complex& c, const double* p, std::uint32_t child, double f[9]) {
+void wavelet_frame(const Complex& c, const double* p, std::uint32_t child, double f[9], const ChildSites* sites) {
   const std::uint32_t nv = c.num_vertices, ne = c.num_edges();
+  if (sites) {  // map the child to the 1-to-4 index of its site
+    if (child < nv || child - nv >= sites->site.size()) return set_identity(f);
+    child = nv + sites->site[child - nv];
+  }
   if (child >= nv && child < nv + ne) {
     const std::uint32_t e = child - nv;
     const V3 a = at(p, c.edge_verts[2 * std::size_t(e)]), b = at(p, c.edge_verts[2 * std::size_t(e) + 1]);
@@ -89,9 +93,13 @@ void wavelet_frame(const Complex& c, const double* p, std::uint32_t child, doubl
 }
 
 void frames_reading(const Complex& c, std::span<const std::uint32_t> changed, std::vector<std::uint32_t>& out,
-                    std::vector<std::uint32_t>& stamp, std::uint32_t epoch) {
+                    std::vector<std::uint32_t>& stamp, std::uint32_t epoch, const ChildSites* sites) {
   const std::uint32_t nv = c.num_vertices, ne = c.num_edges();
   auto add_child = [&](std::uint32_t u) {
+    if (sites) {  // u is the 1-to-4 index of a site: its sqrt(2) child, if it has one
+      u = u < nv + ne ? sites->edge_child[u - nv] : sites->face_child[u - nv - ne];
+      if (u == UINT32_MAX) return;
+    }
     if (stamp[u] != epoch) {
       stamp[u] = epoch;
       out.push_back(u);

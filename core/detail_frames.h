@@ -14,13 +14,16 @@
 #include <span>
 #include <vector>
 
+#include "core/child_sites.h"
 #include "core/complex.h"
 
 namespace sublift {
 
 /// Frame columns t, b, n (9 doubles, column-major) of the wavelet on `child` (a vertex of the
-/// refined level in [nv, nv + ne + nf)) from `parent` positions (3 per vertex).
-void wavelet_frame(const Complex& parent, const double* pos, std::uint32_t child, double frame[9]);
+/// refined level in [nv, nv + ne + nf)) from `parent` positions (3 per vertex). `sites`: where
+/// the children sit when the refinement is not 1-to-4 (sqrt2); nullptr for refine.h's layout.
+void wavelet_frame(const Complex& parent, const double* pos, std::uint32_t child, double frame[9],
+                   const ChildSites* sites = nullptr);
 
 /// world = F * local and local = F^T * world.
 inline void frame_to_world(const double f[9], const double l[3], double w[3]) {
@@ -34,6 +37,6 @@ inline void frame_to_local(const double f[9], const double w[3], double l[3]) {
 /// parent vertices; appended to `out` without repeats (stamp: scratch, one entry per child
 /// vertex, compared against `epoch`).
 void frames_reading(const Complex& parent, std::span<const std::uint32_t> changed, std::vector<std::uint32_t>& out,
-                    std::vector<std::uint32_t>& stamp, std::uint32_t epoch);
+                    std::vector<std::uint32_t>& stamp, std::uint32_t epoch, const ChildSites* sites = nullptr);
 
 }  // namespace sublift

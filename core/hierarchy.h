@@ -6,29 +6,42 @@
 // level 1 (nv_2 - nv_1) | ... ], because level j+1 numbers its vertices [v | e | f | c] with the
 // v-class equal to level j's vertices. Wavelet coefficients of level j sit on the e/f/c vertices
 // of level j+1. Synthesis to level L runs the program on the prefix of nv_L vertices.
+// The sqrt(2) scheme (paper 001) keeps this layout: level j+1 numbers its vertices [v | curve
+// points | face points] (refine_sqrt2.h), so its wavelets too sit on the new vertices.
 #include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "core/child_sites.h"
 #include "core/complex.h"
 #include "core/lifting.h"
+#include "core/sqrt2_transform.h"
 
 namespace sublift {
 
-enum class Scheme : std::uint8_t { Linear, Cubic };
+enum class Scheme : std::uint8_t { Linear, Cubic, Sqrt2 };
 
-/// "linear" / "cubic"; parse throws InputError-free std::invalid_argument on other names.
+/// "linear" / "cubic" / "sqrt2"; parse throws std::invalid_argument on other names.
 std::string scheme_name(Scheme s);
 Scheme parse_scheme(const std::string& name);
+/// The lifting program of the 1-to-4 schemes (Sqrt2 has explicit transitions instead).
 LiftProgram scheme_program(Scheme s);
+/// Whether the scheme interpolates (its limit passes through every control point): sqrt2.
+inline bool scheme_interpolates(Scheme s) { return s == Scheme::Sqrt2; }
+/// How many of the scheme's levels make one 1-to-4 refinement: 2 for sqrt2, else 1.
+inline int scheme_levels_per_split(Scheme s) { return s == Scheme::Sqrt2 ? 2 : 1; }
+
 
 struct Hierarchy {
   Scheme scheme = Scheme::Cubic;
   bool integer = false;
   int channels = 3;
   std::vector<Complex> levels;      // 0..J; the last one without adjacency
-  std::vector<LiftTables> tables;   // tables[j]: transition j -> j+1
+  std::vector<LiftTables> tables;   // tables[j]: transition j -> j+1 (Linear, Cubic)
+  std::vector<Sqrt2Transition> sqrt2;  // sqrt2[j]: transition j -> j+1 (Sqrt2)
+  std::vector<ChildSites> sites;        // sites[j]: new vertices of level j+1 (Sqrt2)
+  int first_level = 0;  // the sqrt(2) level index of levels[0] (odd levels keep their curves)
   std::vector<double> coeffs;       // num_vertices(J) * channels, layout above
 
   int finest_level() const { return static_cast<int>(levels.size()) - 1; }
@@ -37,7 +50,28 @@ struct Hierarchy {
 };
 
 /// Builds levels 0..J of `base` (topology and lifting tables) with all coefficients zero.
-Hierarchy make_hierarchy(Complex base, int levels, Scheme scheme, int channels, bool integer = false);
+/// Sqrt2 needs a surface; `first_level` says which sqrt(2) level `base` is (a level-j complex
+/// taken out of a hierarchy refines as level j does: curves are refined after odd levels).
+Hierarchy make_hierarchy(Complex base, int levels, Scheme scheme, int channels, bool integer = false,
+                         int first_level = 0);
+
+/// Appends level J+1 and transition J -> J+1 (the new level with its derived rows when
+/// `adjacency`; the old finest level gets them if it lacks them). Coefficients are not touched.
+void append_level(Hierarchy& h, bool adjacency = true);
+/// Drops the finest level and its transition (coefficients not touched).
+void pop_level(Hierarchy& h);
+
+/// Synthesis of transition j -> j+1 in place on x (level j+1 layout, `channels` per vertex).
+/// `wavelets_zero`: the caller knows the level's wavelets are zero, so steps that only read
+/// them are skipped (they would add exact zeros).
+void synthesize_transition(const Hierarchy& h, int j, double* x, int channels, bool integer, bool wavelets_zero = false);
+/// Analysis of transition j -> j+1 in place: the exact inverse of synthesize_transition.
+void analyze_transition(const Hierarchy& h, int j, double* x, int channels, bool integer);
+
+/// Vertex counts of levels 0..levels that make_hierarchy(c, levels, scheme, ..., first_level)
+/// builds (doubles: large requests do not wrap); exact from an even sqrt(2) level, an upper
+/// estimate from an odd one.
+std::vector<double> predicted_level_counts(const Complex& c, int levels, Scheme scheme, int first_level = 0);
 
 /// Sets the level-0 scaling coefficients (num_vertices(0) * channels values) and zeroes all
 /// wavelets: the hierarchy then describes the pure subdivision of the base.
@@ -61,7 +95,8 @@ struct LevelStats {
 std::vector<LevelStats> level_stats(const Hierarchy& h);
 
 /// Zeroes all but the largest `fraction` (0..1) of wavelet coefficients, ranked by
-/// L2-normalised magnitude |w| * 2^(-j * dim / 2) for level j. Returns how many were kept.
+/// L2-normalised magnitude |w| * 2^(-j * dim / 2) for level j (sqrt2: 2^(-j / 2), its levels
+/// halve the area). Returns how many were kept.
 std::size_t keep_largest(Hierarchy& h, double fraction);
 
 }  // namespace sublift

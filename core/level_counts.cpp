@@ -4,7 +4,10 @@
 
 namespace sublift {
 
-std::vector<double> predicted_vertex_counts(const Complex& c, int levels) {
+namespace {
+
+// Counts of levels 0..levels: vertices (what = 0) or faces (what = 1).
+std::vector<double> predicted_counts(const Complex& c, int levels, int what) {
   double V = c.num_vertices, E = c.num_edges(), F = c.num_faces(), C = c.num_cells();
   double SF = static_cast<double>(c.faces.items.size()), CF = static_cast<double>(c.cell_faces.items.size());
   double CE = 0, CV = 0;
@@ -21,14 +24,19 @@ std::vector<double> predicted_vertex_counts(const Complex& c, int levels) {
       (pass == 0 ? CV : CE) += n;
     }
   }
-  std::vector<double> out{V};
+  std::vector<double> out{what == 0 ? V : F};
   for (int j = 0; j < levels; ++j) {
     const double V2 = V + E + F + C, E2 = 2 * E + SF + CF, F2 = SF + CE, C2 = CV;
     const double SF2 = 4 * F2, CF2 = 4 * CE, CE2 = 8 * CE, CV2 = 2 * CV + 4 * CE;
     V = V2, E = E2, F = F2, C = C2, SF = SF2, CF = CF2, CE = CE2, CV = CV2;
-    out.push_back(V);
+    out.push_back(what == 0 ? V : F);
   }
   return out;
 }
+
+}  // namespace
+
+std::vector<double> predicted_vertex_counts(const Complex& c, int levels) { return predicted_counts(c, levels, 0); }
+std::vector<double> predicted_face_counts(const Complex& c, int levels) { return predicted_counts(c, levels, 1); }
 
 }  // namespace sublift

@@ -16,5 +16,7 @@ namespace sublift {
 /// Vertex counts of levels 0..levels of refining `c` (doubles: large requests do not wrap).
 /// Needs only c's downward connectivity.
 std::vector<double> predicted_vertex_counts(const Complex& c, int levels);
+/// Face counts of the same levels.
+std::vector<double> predicted_face_counts(const Complex& c, int levels);
 
 }  // namespace sublift

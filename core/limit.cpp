@@ -605,7 +605,7 @@ LimitStencils build_limit_stencils(const Hierarchy& h) {
   LimitStencils s;
   const Complex& fin = h.levels.back();
   const std::uint32_t nv = fin.num_vertices;
-  if (h.scheme == Scheme::Linear) {
+  if (h.scheme == Scheme::Linear || scheme_interpolates(h.scheme)) {  // the limit is the control net
     s.rows.offsets.resize(std::size_t(nv) + 1);
     std::iota(s.rows.offsets.begin(), s.rows.offsets.end(), 0u);
     s.rows.items.resize(nv);

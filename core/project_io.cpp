@@ -158,8 +158,8 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
     }
     if (const auto it = j.find("gains"); it != j.end()) {
       if (!it->is_array()) throw InputError(file, 2, "header 'gains' is not an array");
-      if (it->size() > static_cast<std::size_t>(kMaxLevels))
-        throw InputError(file, 2, std::to_string(it->size()) + " gains, more than " + std::to_string(kMaxLevels) + " levels");
+      if (it->size() > static_cast<std::size_t>(max_levels(scheme)))
+        throw InputError(file, 2, std::to_string(it->size()) + " gains, more than " + std::to_string(max_levels(scheme)) + " levels");
       for (std::size_t i = 0; i < it->size(); ++i) {
         if (!(*it)[i].is_number()) throw InputError(file, 2, "gain of level " + std::to_string(i) + " is not a number");
         extras.gains.push_back((*it)[i].get<double>());
@@ -172,7 +172,8 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   } catch (const nlohmann::json::exception& e) {
     throw InputError(file, 2, std::string("malformed header: ") + e.what());
   }
-  if (levels < 0 || levels > kMaxLevels) throw InputError(file, 2, "levels " + std::to_string(levels) + " outside 0.." + std::to_string(kMaxLevels));
+  if (levels < 0 || levels > max_levels(scheme))
+    throw InputError(file, 2, "levels " + std::to_string(levels) + " outside 0.." + std::to_string(max_levels(scheme)));
   if (channels < 1 || channels > 64) throw InputError(file, 2, "channels " + std::to_string(channels) + " outside 1..64");
   if (dim < 1 || dim > 3) throw InputError(file, 2, "dim " + std::to_string(dim) + " outside 1..3");
   constexpr std::uint64_t kMax = 0xfffffffeu;
@@ -219,13 +220,15 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   check_csr(c.cell_faces, CF, F, "cell");
   if ((dim < 3 && C) || (dim < 2 && F) || (dim >= 2 && F == 0))
     throw InputError(file, 2, "counts do not fit a complex of dimension " + std::to_string(dim));
+  if (scheme == Scheme::Sqrt2 && dim != 2)
+    throw InputError(file, 2, "the sqrt2 scheme needs a surface (dim 2), the header says dim " + std::to_string(dim));
   try {
     build_adjacency(c);
     validate(c);
   } catch (const TopologyError& e) {
     throw InputError(file, 0, std::string("base complex: ") + e.what());
   }
-  const std::vector<double> counts = predicted_vertex_counts(c, levels);
+  const std::vector<double> counts = predicted_level_counts(c, levels, scheme);
   if (static_cast<double>(N) != counts.back() * channels)
     throw InputError(file, 2, std::to_string(N) + " coefficients, but " + std::to_string(levels) + " levels of this base with " +
                                   std::to_string(channels) + " channels need " +
@@ -238,7 +241,12 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   std::vector<double> coeffs = take<double>(bytes, pos, N);
   for (std::size_t i = 0; i < coeffs.size(); ++i)
     if (!std::isfinite(coeffs[i])) throw InputError(file, 0, "coefficient " + std::to_string(i) + " is not finite");
-  Hierarchy h = make_hierarchy(std::move(c), levels, scheme, channels, integer);
+  Hierarchy h;
+  try {
+    h = make_hierarchy(std::move(c), levels, scheme, channels, integer);
+  } catch (const TopologyError& e) {  // sqrt2 needs consistently oriented faces
+    throw InputError(file, 0, std::string("base complex: ") + e.what());
+  }
   if (h.coeffs.size() != coeffs.size())
     throw InputError(file, 2, "coefficient count does not match the refined base");
   h.coeffs = std::move(coeffs);

@@ -10,6 +10,7 @@
 #include "core/errors.h"
 #include "core/project_io.h"
 #include "core/refine.h"
+#include "core/sqrt2_sparse.h"
 
 namespace sublift {
 namespace {
@@ -42,6 +43,7 @@ Session::Session(Hierarchy h, std::vector<double> gains) : h_(std::move(h)) {
   for (const double g : gains)
     if (!std::isfinite(g)) throw Error("a detail gain is not finite");
   gains_ = std::move(gains);
+  for (const Sqrt2Transition& t : h_.sqrt2) sqrt2_index_.push_back(build_sqrt2_sparse_index(t));
   pos_.resize(static_cast<std::size_t>(J) + 1);
   pos_[0].assign(h_.coeffs.begin(), h_.coeffs.begin() + std::size_t(num_vertices(0)) * 3);
   resynthesize_from(0);
@@ -66,8 +68,6 @@ void Session::resynthesize_from(int level) {
 }
 
 void Session::resynthesize_one(int l) {
-  const LiftProgram program = scheme_program(h_.scheme);
-  const LiftProgram tail(program.begin() + (!program.empty() && program.front().op == LiftOp::SLift ? 1 : 0), program.end());
   const std::size_t nl = std::size_t(num_vertices(l)) * 3, nn = std::size_t(num_vertices(l + 1)) * 3;
   std::vector<double>& x = pos_[static_cast<std::size_t>(l) + 1];
   x.resize(nn);
@@ -78,9 +78,23 @@ void Session::resynthesize_one(int l) {
     x[i] = g * h_.coeffs[i];
     zero &= x[i] == 0.0;
   }
-  // A leading s-lift reads only wavelets: with none it adds exactly zero (hierarchy.cpp).
-  lift_synthesize(h_.levels[static_cast<std::size_t>(l)], h_.tables[static_cast<std::size_t>(l)], zero ? tail : program,
-                  x.data(), 3, false);
+  synthesize_transition(h_, l, x.data(), 3, false, zero);
+}
+
+const ChildSites* Session::sites(int l) const {
+  return h_.scheme == Scheme::Sqrt2 ? &h_.sites[static_cast<std::size_t>(l)] : nullptr;
+}
+
+void Session::synthesize_sparse(int l, SparseDelta& d) {
+  const auto L = static_cast<std::size_t>(l);
+  if (h_.scheme == Scheme::Sqrt2) return sqrt2_synthesize_sparse(h_.sqrt2[L], sqrt2_index_[L], d);
+  lift_synthesize_sparse(h_.levels[L], h_.tables[L], scheme_program(h_.scheme), d);
+}
+
+void Session::analyze_sparse(int l, SparseDelta& d) {
+  const auto L = static_cast<std::size_t>(l);
+  if (h_.scheme == Scheme::Sqrt2) return sqrt2_analyze_sparse(h_.sqrt2[L], sqrt2_index_[L], d);
+  lift_analyze_sparse(h_.levels[L], h_.tables[L], scheme_program(h_.scheme), d);
 }
 
 void Session::clear_changed() {
@@ -203,7 +217,7 @@ void Session::update_local(int l, std::span<const std::uint32_t> changed_pos, st
   frame_list_.clear();
   if (frame_stamp_.size() < num_vertices(l + 1)) frame_stamp_.resize(num_vertices(l + 1), 0u);
   ++frame_epoch_;
-  frames_reading(parent, changed_pos, frame_list_, frame_stamp_, frame_epoch_);
+  frames_reading(parent, changed_pos, frame_list_, frame_stamp_, frame_epoch_, sites(l));
   for (const std::uint32_t u : changed_coeffs)
     if (u >= num_vertices(l) && frame_stamp_[u] != frame_epoch_) {
       frame_stamp_[u] = frame_epoch_;
@@ -213,7 +227,7 @@ void Session::update_local(int l, std::span<const std::uint32_t> changed_pos, st
   const double g = gains_[static_cast<std::size_t>(l)];
   for (const std::uint32_t u : frame_list_) {
     double f[9];
-    wavelet_frame(parent, p, u, f);
+    wavelet_frame(parent, p, u, f, sites(l));
     double* w = &h_.coeffs[std::size_t(u) * 3];
     double* loc = &local_[std::size_t(u) * 3];
     if (out) {
@@ -254,7 +268,6 @@ OpReport Session::move_impl(int level, std::span<const std::uint32_t> vertices, 
   const auto t0 = std::chrono::steady_clock::now();
   clear_changed();
   const bool local = frames_ == DetailFrames::Local;
-  const LiftProgram program = scheme_program(h_.scheme);
 
   // The change of level `level`.
   SparseDelta& D = deltas_[static_cast<std::size_t>(level)];
@@ -290,7 +303,7 @@ OpReport Session::move_impl(int level, std::span<const std::uint32_t> vertices, 
       for (const std::uint32_t v : src.list) std::memcpy(dst.at(v), &src.x[3 * std::size_t(v)], 3 * sizeof(double));
       if (local) update_local(l, src.list, {}, &dst);
       if (l != level) src.clear();
-      lift_synthesize_sparse(h_.levels[static_cast<std::size_t>(l)], h_.tables[static_cast<std::size_t>(l)], program, dst);
+      synthesize_sparse(l, dst);
       std::vector<double>& Q = pos_[static_cast<std::size_t>(l) + 1];
       for (const std::uint32_t v : dst.list) {
         record(l + 1, v);
@@ -319,11 +332,10 @@ OpReport Session::move_impl(int level, std::span<const std::uint32_t> vertices, 
 // Analyses the change of level `level` (in deltas_[level]) down to level 0: coarser control
 // points and the wavelets of the levels below take it up.
 void Session::fold_back_sparse(int level) {
-  const LiftProgram program = scheme_program(h_.scheme);
   const bool local = frames_ == DetailFrames::Local;
   for (int l = level - 1; l >= 0; --l) {
     SparseDelta& cur = deltas_[static_cast<std::size_t>(l) + 1];
-    lift_analyze_sparse(h_.levels[static_cast<std::size_t>(l)], h_.tables[static_cast<std::size_t>(l)], program, cur);
+    analyze_sparse(l, cur);
     SparseDelta& next = deltas_[static_cast<std::size_t>(l)];
     next.reset(num_vertices(l));
     const std::uint32_t nl = num_vertices(l);
@@ -352,10 +364,8 @@ void Session::fold_back_sparse(int level) {
 // The reference path: the whole of level `level` analysed down to level 0.
 void Session::fold_back_dense(int level) {
   if (level == 0) return;
-  const LiftProgram program = scheme_program(h_.scheme);
   std::vector<double> x = pos_[static_cast<std::size_t>(level)];
-  for (int l = level - 1; l >= 0; --l)
-    lift_analyze(h_.levels[static_cast<std::size_t>(l)], h_.tables[static_cast<std::size_t>(l)], program, x.data(), 3, false);
+  for (int l = level - 1; l >= 0; --l) analyze_transition(h_, l, x.data(), 3, false);
   for (std::uint32_t v = 0; v < num_vertices(level); ++v) record(kCoeffs, v);
   for (int l = 0; l < level; ++l) {
     const double g = gains_[static_cast<std::size_t>(l)];
@@ -381,7 +391,7 @@ void Session::local_from_world_dense(int l) {
   const double* p = pos_[static_cast<std::size_t>(l)].data();
   for (std::uint32_t u = num_vertices(l); u < num_vertices(l + 1); ++u) {
     double f[9];
-    wavelet_frame(parent, p, u, f);
+    wavelet_frame(parent, p, u, f, sites(l));
     record(kLocal, u);
     frame_to_local(f, &h_.coeffs[3 * std::size_t(u)], &local_[3 * std::size_t(u)]);
   }
@@ -392,7 +402,7 @@ void Session::update_local_world_dense(int l) {
   const double* p = pos_[static_cast<std::size_t>(l)].data();
   for (std::uint32_t u = num_vertices(l); u < num_vertices(l + 1); ++u) {
     double f[9];
-    wavelet_frame(parent, p, u, f);
+    wavelet_frame(parent, p, u, f, sites(l));
     record(kCoeffs, u);
     frame_to_world(f, &local_[3 * std::size_t(u)], &h_.coeffs[3 * std::size_t(u)]);
   }
@@ -433,10 +443,8 @@ OpReport Session::set_gain(int level, double factor) {
 }
 
 void Session::add_level() {
-  Complex& finest = h_.levels.back();
-  if (finest.vertex_edges.rows() != finest.num_vertices) build_adjacency(finest);
-  h_.tables.push_back(build_lift_tables(finest));
-  h_.levels.push_back(refine(finest, true));
+  append_level(h_, true);
+  if (h_.scheme == Scheme::Sqrt2) sqrt2_index_.push_back(build_sqrt2_sparse_index(h_.sqrt2.back()));
   const std::size_t n = std::size_t(h_.levels.back().num_vertices) * 3;
   h_.coeffs.resize(n, 0.0);
   if (!local_.empty()) local_.resize(n, 0.0);
@@ -449,8 +457,8 @@ void Session::add_level() {
 }
 
 void Session::remove_level() {
-  h_.levels.pop_back();
-  h_.tables.pop_back();
+  pop_level(h_);
+  if (!sqrt2_index_.empty()) sqrt2_index_.pop_back();
   const std::size_t n = std::size_t(h_.levels.back().num_vertices) * 3;
   h_.coeffs.resize(n);
   if (!local_.empty()) local_.resize(n);
@@ -462,8 +470,9 @@ void Session::remove_level() {
 }
 
 OpReport Session::subdivide(double max_vertices) {
-  if (finest_level() >= kMaxLevels) throw Error("at most " + std::to_string(kMaxLevels) + " levels");
-  const double next = double(h_.levels.back().num_child_vertices());
+  const int most = max_levels(h_.scheme);
+  if (finest_level() >= most) throw Error("at most " + std::to_string(most) + " levels");
+  const double next = predicted_level_counts(h_.levels.back(), 1, h_.scheme, h_.first_level + finest_level()).back();
   if (next > max_vertices)
     throw Error("level " + std::to_string(finest_level() + 1) + " would have " + std::to_string(static_cast<long long>(next)) +
                 " vertices, more than the limit of " + std::to_string(static_cast<long long>(max_vertices)));
@@ -502,7 +511,7 @@ void Session::set_detail_frames(DetailFrames f) {
     const double* p = pos_[static_cast<std::size_t>(l)].data();
     for (std::uint32_t u = num_vertices(l); u < num_vertices(l + 1); ++u) {
       double fr[9];
-      wavelet_frame(parent, p, u, fr);
+      wavelet_frame(parent, p, u, fr, sites(l));
       frame_to_local(fr, &h_.coeffs[3 * std::size_t(u)], &local_[3 * std::size_t(u)]);
     }
   }
@@ -526,7 +535,7 @@ void Session::apply_entry(const HistoryEntry& e, bool forward) {
     const std::vector<double>& vals = forward ? b.after : b.before;
     for (std::size_t k = 0; k < b.vertices.size(); ++k)
       std::memcpy(base + std::size_t(b.vertices[k]) * 3, &vals[3 * k], 3 * sizeof(double));
-    if (b.array <= kMaxLevels) {
+    if (b.array < kCoeffs) {
       changed_[static_cast<std::size_t>(b.array)] = b.vertices;
       lowest = std::min(lowest, b.array);
     }

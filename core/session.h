@@ -31,6 +31,7 @@
 
 #include "core/hierarchy.h"
 #include "core/lifting_sparse.h"
+#include "core/sqrt2_sparse.h"
 
 namespace sublift {
 
@@ -155,6 +156,9 @@ class Session {
   void update_local_world_dense(int level);
   void add_level();
   void remove_level();
+  const ChildSites* sites(int level) const;           // sqrt2's new-vertex sites, else nullptr
+  void synthesize_sparse(int level, SparseDelta& d);  // transition level -> level + 1
+  void analyze_sparse(int level, SparseDelta& d);
   void ensure_touched();
   void record(int array, std::uint32_t v);  // remembers the old value before a change
   double* array_ptr(int array);
@@ -172,6 +176,7 @@ class Session {
   DetailFrames frames_ = DetailFrames::World;
   std::vector<double> local_;             // like coeffs (wavelet entries only) in Local mode
   std::vector<SparseDelta> deltas_;       // per level: the change being propagated
+  std::vector<Sqrt2SparseIndex> sqrt2_index_;  // sqrt2: per transition, the rows reading each vertex
   std::vector<std::uint32_t> frame_list_, frame_stamp_, coeff_list_;
   std::uint32_t frame_epoch_ = 0;
 

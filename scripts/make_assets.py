@@ -84,6 +84,10 @@ cv = [(x - 3.0, y - 3.0, 0.0) for y in range(7) for x in range(7)]
 cf = [(y * 7 + x, y * 7 + x + 1, (y + 1) * 7 + x + 1, (y + 1) * 7 + x) for y in range(6) for x in range(6)]
 ctags = "".join("t crease 2/1/0 %d %d 10\n" % (3 + 7 * k, 10 + 7 * k) for k in range(6))
 write("crease_grid_flat.obj", "Flat 6 x 6 quad grid, middle column tagged as a crease (t crease)", cv, cf, ctags)
+# The same grid with a crease from the boundary to the centre vertex (24), where it ends inside
+# the surface (a dart): the sqrt(2) lifting next to a curve end (001 sec. 4).
+dtags = "".join("t crease 2/1/0 %d %d 10\n" % (3 + 7 * k, 10 + 7 * k) for k in range(3))
+write("crease_dart_flat.obj", "Flat 6 x 6 quad grid, a crease from the boundary ending at the centre vertex (t crease)", cv, cf, dtags)
 
 # A box in four rings (z = 0, 1/3, 2/3, 1); the ring at z = 1/3 is tagged as a crease loop in
 # OpenSubdiv's syntax (0-based vertex indices, infinite-ish sharpness 10).

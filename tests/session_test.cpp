@@ -110,6 +110,12 @@ Hierarchy block_linear() {
   return noisy(c, xyz, 2, Scheme::Linear);
 }
 Hierarchy curve_cubic() { return from_asset("curves/curve.obj", 4, Scheme::Cubic); }
+// sqrt2 (paper 001): explicit sparse transitions; odd finest levels keep their curves.
+Hierarchy torus_sqrt2() { return torus(5, Scheme::Sqrt2); }
+Hierarchy boundary_sqrt2() { return from_asset("quad_grid_boundary.obj", 3, Scheme::Sqrt2); }
+Hierarchy crease_sqrt2() { return from_asset("crease_loop.obj", 4, Scheme::Sqrt2); }
+Hierarchy dart_sqrt2() { return from_asset("crease_dart_flat.obj", 3, Scheme::Sqrt2); }
+Hierarchy mixed_sqrt2() { return from_asset("mixed_polygons.obj", 4, Scheme::Sqrt2); }
 
 INSTANTIATE_TEST_SUITE_P(Shapes, LocalEqualsFull,
                          ::testing::Values(Case{"torus_cubic", torus_cubic}, Case{"torus_linear", torus_linear},
@@ -117,11 +123,15 @@ INSTANTIATE_TEST_SUITE_P(Shapes, LocalEqualsFull,
                                            Case{"boundary_cubic", boundary_cubic},
                                            Case{"prism_ring_cubic", prism_ring_cubic},
                                            Case{"features_lattice_cubic", features_lattice_cubic},
-                                           Case{"block_linear", block_linear}, Case{"curve_cubic", curve_cubic}),
+                                           Case{"block_linear", block_linear}, Case{"curve_cubic", curve_cubic},
+                                           Case{"torus_sqrt2", torus_sqrt2}, Case{"boundary_sqrt2", boundary_sqrt2},
+                                           Case{"crease_sqrt2", crease_sqrt2}, Case{"dart_sqrt2", dart_sqrt2},
+                                           Case{"mixed_sqrt2", mixed_sqrt2}),
                          [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Session, LocalFramesLocalEqualsFull) {
-  for (Hierarchy (*make)() : {torus_cubic, crease_cubic, mixed_cubic, boundary_cubic}) {
+  for (Hierarchy (*make)() :
+       {torus_cubic, crease_cubic, mixed_cubic, boundary_cubic, torus_sqrt2, crease_sqrt2, dart_sqrt2, mixed_sqrt2}) {
     const Hierarchy h = make();
     for (int level = 0; level <= h.finest_level(); ++level) {
       Session local(h), full(h);
@@ -261,10 +271,13 @@ void rotate_coarse(Session& s, double angle) {
 
 TEST(Session, LocalFrameDetailFollowsRotation) {
   const double angle = 0.7, c = std::cos(angle), sn = std::sin(angle);
+  for (const bool sqrt2 : {false, true})
   for (const DetailFrames mode : {DetailFrames::Local, DetailFrames::World}) {
-    Session s(torus_cubic());
+    Session s(sqrt2 ? torus_sqrt2() : torus_cubic());
+    SCOPED_TRACE(sqrt2 ? "sqrt2" : "cubic");
     s.set_detail_frames(mode);
-    const std::vector<double> fine(s.positions(3).begin(), s.positions(3).end());
+    const int J = s.finest_level();
+    const std::vector<double> fine(s.positions(J).begin(), s.positions(J).end());
     rotate_coarse(s, angle);
     std::vector<double> want(fine.size());
     for (std::size_t i = 0; i < fine.size(); i += 3) {
@@ -272,13 +285,15 @@ TEST(Session, LocalFrameDetailFollowsRotation) {
       want[i + 1] = fine[i + 1];
       want[i + 2] = sn * fine[i] + c * fine[i + 2];
     }
-    if (mode == DetailFrames::Local) EXPECT_LT(max_diff(s.positions(3), want), 1e-12);
-    else EXPECT_GT(max_diff(s.positions(3), want), 1e-3) << "world-coordinate detail only translates";
+    if (mode == DetailFrames::Local) EXPECT_LT(max_diff(s.positions(J), want), 1e-12);
+    else EXPECT_GT(max_diff(s.positions(J), want), 1e-3) << "world-coordinate detail only translates";
   }
 }
 
 TEST(Session, SubdivideAndUndo) {
-  Session s(torus(1, Scheme::Cubic));
+  for (const Scheme scheme : {Scheme::Cubic, Scheme::Sqrt2}) {
+  SCOPED_TRACE(scheme_name(scheme));
+  Session s(torus(1, scheme));
   const std::uint32_t n1 = s.num_vertices(1);
   s.subdivide();
   ASSERT_EQ(s.finest_level(), 2);
@@ -296,6 +311,7 @@ TEST(Session, SubdivideAndUndo) {
   EXPECT_EQ(s.finest_level(), 2);
   EXPECT_TRUE(same_bits(s.hierarchy().coeffs, c2));
   EXPECT_THROW(s.subdivide(10.0), Error);
+  }
 }
 
 TEST(Session, BadInput) {

@@ -180,7 +180,7 @@ BasisDisplay compute_basis_display(const Session& session, int level, const Basi
   r.dual = settings.dual;
   // The modeler's default K stops at a million finest vertices (about a third of a second here),
   // so that a click with Follow answers at once; a K typed in the panel may go to core's cap.
-  r.extra_levels = settings.extra_levels >= 0 ? settings.extra_levels : default_extra_levels(cj, kModelerBasisVertices);
+  r.extra_levels = settings.extra_levels >= 0 ? settings.extra_levels : default_extra_levels(cj, kModelerBasisVertices, h.scheme, level);
   d.function = basis_function(cj, h.scheme, r, session.positions(level), &d.base_positions);
   const BasisFunction& f = d.function;
   d.model_size = diagonal(d.base_positions);

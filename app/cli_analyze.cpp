@@ -17,7 +17,7 @@ namespace sublift::cli {
 namespace {
 
 constexpr const char* kHelp =
-    "usage: sublift-cli analyze FINE --base BASE --scheme linear|cubic --levels N [--integer]\n"
+    "usage: sublift-cli analyze FINE --base BASE --scheme linear|cubic|sqrt2 --levels N [--integer]\n"
     "                           -o PROJECT.sublift [--json]\n"
     "  Analyses FINE, a shape with the connectivity of BASE refined N times and its vertices in\n"
     "  the order 'subdivide' writes, into scaling and wavelet coefficients, and saves base,\n"
@@ -39,14 +39,14 @@ int run_analyze(int argc, char** argv) {
   const auto base_path = a.value("--base");
   if (!base_path) throw UsageError("missing --base BASE");
   const Scheme scheme = scheme_option(a);
-  const int levels = levels_option(a);
+  const int levels = levels_option(a, scheme);
   const std::string out = output_option(a, 0);
   if (file_extension(out) != "sublift") throw UsageError("the project OUT must have the extension .sublift");
   const std::string& fine_path = a.positional[0];
 
   Shape base = read_shape(*base_path);
   std::cerr << base.report.format(*base_path);
-  check_refined_size(base.base, levels);
+  check_refined_size(base.base, levels, scheme);
   Shape fine = read_shape(fine_path);
   std::cerr << fine.report.format(fine_path);
   Hierarchy h = make_hierarchy(std::move(base.base), levels, scheme, 3, a.has("--integer"));

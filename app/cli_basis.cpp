@@ -27,7 +27,7 @@ namespace sublift::cli {
 namespace {
 
 constexpr const char* kHelp =
-    "usage: sublift-cli basis IN [--scheme linear|cubic] --level J (--vertex I | --wavelet I) [--dual]\n"
+    "usage: sublift-cli basis IN [--scheme linear|cubic|sqrt2] --level J (--vertex I | --wavelet I) [--dual]\n"
     "                    [--levels K] -o OUT [--png PNG] [--json]\n"
     "  One basis function of the hierarchy on IN (a curve, surface or lattice file, or a .sublift\n"
     "  project, whose base and scheme are used; --scheme is then optional): one coefficient set to\n"
@@ -37,8 +37,8 @@ constexpr const char* kHelp =
     "               vertex count of level J)\n"
     "  --dual       the dual function instead: the row of the analysis operator, i.e. the weights w\n"
     "               with coefficient = sum_k w_k x_k for level J+K values x\n"
-    "  --levels K   extra levels (default 6 for curves, 4 for surfaces, 3 for lattices, fewer when\n"
-    "               level J+K would pass 4 million vertices)\n"
+    "  --levels K   extra levels (default 6 for curves, 4 for surfaces, 3 for lattices, 8 for sqrt2\n"
+    "               surfaces, fewer when level J+K would pass 4 million vertices)\n"
     "  OUT          surfaces and lattices: .ply with the level J+K vertices at their limit positions,\n"
     "               a float64 vertex property 'value' (limit values of the primal function; the\n"
     "               weights of a dual one) and the faces (lattices: their boundary faces);\n"
@@ -114,7 +114,7 @@ int run_basis(int argc, char** argv) {
   if (a.positional.size() != 1) throw UsageError("expected exactly one input file");
   if (!a.value("-o")) throw UsageError("missing -o OUT");
   if (!a.value("--level")) throw UsageError("missing --level J");
-  const int J = int_option(a, "--level", 0, kMaxLevels);
+  const int J = int_option(a, "--level", 0, 2 * kMaxLevels);  // checked against the scheme below
   if (a.value("--vertex") && a.value("--wavelet")) throw UsageError("give either --vertex I or --wavelet I, not both");
   if (!a.value("--vertex") && !a.value("--wavelet")) throw UsageError("missing --vertex I or --wavelet I");
   BasisRequest r;
@@ -122,7 +122,7 @@ int run_basis(int argc, char** argv) {
   r.kind = a.value("--vertex") ? BasisKind::Scaling : BasisKind::Wavelet;
   r.index = index_option(a, r.kind == BasisKind::Scaling ? "--vertex" : "--wavelet");
   r.dual = a.has("--dual");
-  if (a.value("--levels")) r.extra_levels = int_option(a, "--levels", r.kind == BasisKind::Wavelet ? 1 : 0, kMaxLevels);
+  if (a.value("--levels")) r.extra_levels = int_option(a, "--levels", r.kind == BasisKind::Wavelet ? 1 : 0, 2 * kMaxLevels);
   const std::string out = *a.value("-o");
   const std::string png = a.value("--png").value_or("");
   if (!png.empty() && file_extension(png) != "png") throw UsageError("--png must name a .png file, got '" + png + "'");
@@ -151,16 +151,19 @@ int run_basis(int argc, char** argv) {
   if (!png.empty()) throw Error("this build has no renderer (configured with SUBLIFT_WITH_GUI=OFF); --png is unavailable");
 #endif
 
-  check_refined_size(base, J);
+  if (J > max_levels(scheme)) throw UsageError("--level must be in 0.." + std::to_string(max_levels(scheme)) + " for " + scheme_name(scheme));
+  if (r.extra_levels > max_levels(scheme))
+    throw UsageError("--levels must be at most " + std::to_string(max_levels(scheme)) + " for " + scheme_name(scheme));
+  check_refined_size(base, J, scheme);
   if (r.extra_levels >= 0) {
-    check_refined_size(base, J + r.extra_levels);
+    check_refined_size(base, J + r.extra_levels, scheme);
     r.max_vertices = kMaxOutputVertices;
   }
   Hierarchy h = make_hierarchy(base, J, scheme, 3);
   set_base(h, base_xyz);
   const std::vector<double> level_xyz = synthesize(h, J);
   const Complex& level = h.levels[std::size_t(J)];
-  const std::uint32_t nv = level.num_vertices, nv1 = level.num_child_vertices();
+  const std::uint32_t nv = level.num_vertices, nv1 = static_cast<std::uint32_t>(predicted_level_counts(level, 1, scheme, J).back());
   if (r.kind == BasisKind::Scaling && r.index >= nv)
     throw UsageError("--vertex " + std::to_string(r.index) + ": level " + std::to_string(J) + " has " +
                      std::to_string(nv) + " vertices");

@@ -36,7 +36,8 @@ constexpr const char* kHelp =
     "  compress  the finest model with only the largest fraction F of its wavelet coefficients\n"
     "            (and all level-0 scaling coefficients) against itself. --keep F (0..1) may be\n"
     "            repeated or a comma list; default 0,0.03,0.06,...,0.3 (Wang & Ma's 0..30 %).\n"
-    "            --ranking l2 (default): by |w| 2^(-j dim/2), the L2 norm of the level-j wavelet;\n"
+    "            --ranking l2 (default): by |w| 2^(-j dim/2), the L2 norm of the level-j wavelet\n"
+    "            (sqrt2: 2^(-j/2), its levels halve the area);\n"
     "            raw: by |w|.\n"
     "  MODEL (fit, compress): --fine FINE, a file with the connectivity of BASE refined J times\n"
     "            (as 'analyze' takes), or else BASE subdivided J times by the scheme plus the smooth\n"
@@ -168,7 +169,7 @@ int run_experiment(int argc, char** argv) {
   const auto model = a.value("--model");
   if (!model) throw UsageError("missing --model BASE");
   const Scheme scheme = scheme_option(a);
-  const int levels = levels_option(a);
+  const int levels = levels_option(a, scheme);
   double sigma = 0;
   if (kind == "noise") {
     if (!a.value("--sigma")) throw UsageError("missing --sigma X");
@@ -184,7 +185,7 @@ int run_experiment(int argc, char** argv) {
 
   Shape base = read_shape(*model);
   std::cerr << base.report.format(*model);
-  check_refined_size(base.base, levels);
+  check_refined_size(base.base, levels, scheme);
   Hierarchy h = make_hierarchy(base.base, levels, scheme, 3);
   nlohmann::json j = {{"experiment", kind}, {"scheme", scheme_name(scheme)}, {"model", *model},
                       {"finest_level", levels}, {"finest_vertices", h.num_vertices(levels)}};

@@ -74,7 +74,8 @@ int run_ffd(int argc, char** argv) {
   FfdSceneOptions options;
   if (const auto s = a.value("--scheme")) {
     const std::string name = to_lower(*s);
-    if (name != "linear" && name != "cubic") throw UsageError("--scheme must be linear or cubic, got '" + *s + "'");
+    if (name != "linear" && name != "cubic")  // sqrt2 refines surfaces; FFD lattices are volumes
+      throw UsageError("--scheme must be linear or cubic (FFD lattices are volumes), got '" + *s + "'");
     options.scheme = parse_scheme(name);
   }
   if (const auto e = a.value("--extra-levels")) {

@@ -10,26 +10,31 @@
 
 namespace sublift::cli {
 
-int levels_option(const Args& a) {
+int levels_option(const Args& a, Scheme scheme) {
   const auto v = a.value("--levels");
   if (!v) throw UsageError("missing --levels N");
   int n = -1;
+  const int most = max_levels(scheme);
   auto [p, ec] = std::from_chars(v->data(), v->data() + v->size(), n);
-  if (ec != std::errc() || p != v->data() + v->size() || n < 0 || n > kMaxLevels)
-    throw UsageError("--levels must be an integer in 0.." + std::to_string(kMaxLevels) + ", got '" + *v + "'");
+  if (ec != std::errc() || p != v->data() + v->size() || n < 0 || n > most)
+    throw UsageError("--levels must be an integer in 0.." + std::to_string(most) + ", got '" + *v + "'");
   return n;
 }
 
 Scheme scheme_option(const Args& a) {
   const auto v = a.value("--scheme");
-  if (!v) throw UsageError("missing --scheme linear|cubic");
+  if (!v) throw UsageError("missing --scheme linear|cubic|sqrt2");
   if (*v == "linear") return Scheme::Linear;
   if (*v == "cubic") return Scheme::Cubic;
-  throw UsageError("--scheme must be linear or cubic, got '" + *v + "'");
+  if (*v == "sqrt2") return Scheme::Sqrt2;
+  throw UsageError("--scheme must be linear, cubic or sqrt2, got '" + *v + "'");
 }
 
-void check_refined_size(const Complex& base, int levels) {
-  const double n = predicted_vertex_counts(base, levels).back();
+void check_refined_size(const Complex& base, int levels, Scheme scheme) {
+  if (scheme == Scheme::Sqrt2 && base.dim != 2)
+    throw UsageError(std::string("the sqrt2 scheme refines surfaces only; this input is a ") +
+                     (base.dim == 1 ? "curve" : "volume lattice") + " (use --scheme linear or cubic)");
+  const double n = predicted_level_counts(base, levels, scheme).back();
   if (n > kMaxOutputVertices) {
     char buf[160];
     std::snprintf(buf, sizeof buf, "%d levels of this base make %.0f vertices, more than the limit of %.0f; use fewer levels",

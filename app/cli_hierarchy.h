@@ -16,14 +16,15 @@ namespace sublift::cli {
 /// Largest finest level a command builds (vertices); more is refused before allocating.
 inline constexpr double kMaxOutputVertices = 50e6;
 
-/// `--levels N`, required, 0..kMaxLevels. Throws UsageError.
-int levels_option(const Args& a);
+/// `--levels N`, required, 0..max_levels(scheme). Throws UsageError.
+int levels_option(const Args& a, Scheme scheme);
 
-/// `--scheme linear|cubic`, required. Throws UsageError.
+/// `--scheme linear|cubic|sqrt2`, required. Throws UsageError.
 Scheme scheme_option(const Args& a);
 
-/// Throws UsageError when `levels` refinements of `base` would exceed kMaxOutputVertices.
-void check_refined_size(const Complex& base, int levels);
+/// Throws UsageError when `levels` refinements of `base` would exceed kMaxOutputVertices, or
+/// when the scheme cannot refine this kind of complex (sqrt2 takes surfaces only).
+void check_refined_size(const Complex& base, int levels, Scheme scheme);
 
 /// The output path `-o OUT`, required; UsageError when missing or when `dim` cannot be written
 /// to its extension (an empty `dim` check when dim is 0).

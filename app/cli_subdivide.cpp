@@ -1,4 +1,4 @@
-// sublift-cli subdivide IN --scheme linear|cubic --levels N [--integer] -o OUT [--json]
+// sublift-cli subdivide IN --scheme linear|cubic|sqrt2 --levels N [--integer] -o OUT [--json]
 #include <iostream>
 
 #include "app/cli_args.h"
@@ -13,11 +13,13 @@ namespace sublift::cli {
 namespace {
 
 constexpr const char* kHelp =
-    "usage: sublift-cli subdivide IN --scheme linear|cubic --levels N [--integer] -o OUT [--json]\n"
+    "usage: sublift-cli subdivide IN --scheme linear|cubic|sqrt2 --levels N [--integer] -o OUT [--json]\n"
     "  Subdivides the curve, surface or lattice IN N times (0..12) with Bertram's lifted B-spline\n"
     "  scheme (zero wavelet coefficients) and writes the finest level to OUT, vertices in the\n"
     "  engine's order (old vertices, then one per edge, face and cell of each level), which is\n"
-    "  the order 'analyze' expects. IN: .obj/.off/.ply surfaces, .obj with only 'l' polylines\n"
+    "  the order 'analyze' expects. sqrt2 (Wang & Ma's interpolatory sqrt(2) wavelets) takes\n"
+    "  surfaces only, N in 0..24 (two of its levels make one 1-to-4 split); its new vertices\n"
+    "  are one per boundary or crease edge (even levels) and one per face. IN: .obj/.off/.ply surfaces, .obj with only 'l' polylines\n"
     "  (curves), .lattice and .vtk lattices. OUT by extension: .obj/.off/.ply for surfaces,\n"
     "  .obj for curves, .lattice for lattices, .vtk for any. --integer rounds every lifting\n"
     "  term (lossless integer transform). Requests beyond 50 million vertices are refused.\n";
@@ -32,13 +34,13 @@ int run_subdivide(int argc, char** argv) {
   }
   if (a.positional.size() != 1) throw UsageError("expected exactly one input file");
   const Scheme scheme = scheme_option(a);
-  const int levels = levels_option(a);
+  const int levels = levels_option(a, scheme);
   if (!a.value("-o")) throw UsageError("missing -o OUT");
   const std::string& in = a.positional[0];
   Shape shape = read_shape(in);
   std::cerr << shape.report.format(in);
   const std::string out = output_option(a, shape.base.dim);
-  check_refined_size(shape.base, levels);
+  check_refined_size(shape.base, levels, scheme);
   const nlohmann::json base_counts = complex_counts_json(shape.base);
   Hierarchy h = make_hierarchy(std::move(shape.base), levels, scheme, 3, a.has("--integer"));
   set_base(h, shape.positions);

@@ -427,9 +427,9 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
     if (r.scheme && !model.session().history().empty()) {
       scheme_prompt_ = *r.scheme;  // edits would be lost: ask first
     } else if (r.scheme) {
-      model.set_scheme(*r.scheme == 0 ? Scheme::Linear : Scheme::Cubic);
-      message = "Rebuilt with the " + scheme_name(*r.scheme == 0 ? Scheme::Linear : Scheme::Cubic) +
-                " scheme (detail and history cleared)";
+      const Scheme s = static_cast<Scheme>(*r.scheme);  // the combo lists the enum in order
+      model.set_scheme(s);
+      message = "Rebuilt with the " + scheme_name(s) + " scheme (detail and history cleared)";
     }
     if (r.level) model.set_level(*r.level);
     if (r.subdivide) model.subdivide();
@@ -563,7 +563,7 @@ void ModelerController::fill_basis_data(BasisPanelData& b) const {
   b.dual = set.dual;
   b.index = set.index;
   b.extra_levels = set.extra_levels;
-  b.default_extra_levels = default_extra_levels(cj, kModelerBasisVertices);
+  b.default_extra_levels = default_extra_levels(cj, kModelerBasisVertices, s.hierarchy().scheme, level);
   b.height = set.height;
   b.height_scale = static_cast<float>(set.height_scale);
   b.slice_axis = set.slice_axis;
@@ -571,7 +571,7 @@ void ModelerController::fill_basis_data(BasisPanelData& b) const {
   b.iso = set.iso;
   b.iso_level = static_cast<float>(set.iso_level);
   b.scaling_count = cj.num_vertices;
-  b.wavelet_end = cj.num_child_vertices();
+  b.wavelet_end = static_cast<unsigned>(predicted_level_counts(cj, 1, s.hierarchy().scheme, level).back());
   b.curve = cj.dim == 1;
   b.lattice = cj.dim == 3;
   if (!model.selection().empty()) {
@@ -613,7 +613,7 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     d.file_path = model.file_path();
     d.warnings = model.import_warnings();
     d.dim = model.dim();
-    d.scheme = s.hierarchy().scheme == Scheme::Linear ? 0 : 1;
+    d.scheme = static_cast<int>(s.hierarchy().scheme);
     d.level = model.level();
     d.finest = s.finest_level();
     const std::size_t key[4] = {s.undo_position(), s.history().size(), static_cast<std::size_t>(s.topology_version()),
@@ -697,7 +697,7 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
   if (confirm != PromptChoice::None) {
     if (confirm == PromptChoice::Discard) {
       try {
-        const Scheme s = *scheme_prompt_ == 0 ? Scheme::Linear : Scheme::Cubic;
+        const Scheme s = static_cast<Scheme>(*scheme_prompt_);
         model.set_scheme(s);
         message = "Rebuilt with the " + scheme_name(s) + " scheme (detail and history cleared)";
         pick_dirty_ = true;

@@ -173,15 +173,21 @@ void ModelerState::refresh_basis() {
 void ModelerState::set_scheme(Scheme scheme) {
   ffd_check_free("changing the scheme");
   const Hierarchy& old = session_->hierarchy();
+  if (scheme == Scheme::Sqrt2 && old.levels.front().dim != 2)
+    throw Error(std::string("the sqrt2 scheme refines surfaces only; this is a ") +
+                (old.levels.front().dim == 1 ? "curve" : "volume lattice") + " (use linear or cubic)");
   const auto base_positions = session_->positions(0);
-  Hierarchy h = make_hierarchy(old.levels.front(), old.finest_level(), scheme, 3);
+  // The same finest resolution: two sqrt(2) levels make one 1-to-4 split.
+  const int from = scheme_levels_per_split(old.scheme), to = scheme_levels_per_split(scheme);
+  const int levels = std::min((old.finest_level() * to + from - 1) / from, max_levels(scheme));
+  const int edit_level = std::min((level_ * to + from - 1) / from, levels);
+  Hierarchy h = make_hierarchy(old.levels.front(), levels, scheme, 3);
   set_base(h, base_positions);
   const bool local = session_->detail_frames() == DetailFrames::Local;
   auto session = std::make_unique<Session>(std::move(h));
   if (local) session->set_detail_frames(DetailFrames::Local);
-  const int level = level_;
   install(std::move(session));
-  level_ = level;
+  level_ = edit_level;
   update_.topology = true;
   refresh_state();
 }
@@ -566,7 +572,9 @@ void ModelerState::wrap_model_in_box(int nx, int ny, int nz, double margin) {
   Model shape = ffd_->model;
   shape.positions = ffd_->positions;  // around the model as it is now
   const Shape box = box_lattice_around(shape, nx, ny, nz, margin);
-  const Scheme scheme = session_ ? session_->hierarchy().scheme : Scheme::Cubic;
+  // A box lattice is a volume: sqrt2 (surfaces only) falls back to cubic.
+  const Scheme current = session_ ? session_->hierarchy().scheme : Scheme::Cubic;
+  const Scheme scheme = current == Scheme::Sqrt2 ? Scheme::Cubic : current;
   Hierarchy h = make_hierarchy(box.base, kDefaultLevels, scheme, 3);
   set_base(h, box.positions);
   install(std::make_unique<Session>(std::move(h)));

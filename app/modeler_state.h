@@ -62,8 +62,9 @@ class ModelerState {
 
   // ---- editing (each catches nothing: callers show sublift::Error messages) -----------------
   /// Rebuilds the hierarchy with another scheme from level 0's control points, keeping the
-  /// number of levels (wavelets are lost: confirm first when dirty). Undo history is cleared.
-  /// Refused (Error) while a model is bound, as is subdivide().
+  /// finest resolution (wavelets are lost: confirm first when dirty): J levels of a 1-to-4
+  /// scheme become 2J sqrt2 levels and back (rounded up). Undo history is cleared. Refused
+  /// (Error) while a model is bound, as is subdivide(), and sqrt2 for curves and lattices.
   void set_scheme(Scheme scheme);
   void set_level(int level);
   void subdivide();

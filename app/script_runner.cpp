@@ -133,12 +133,12 @@ void ScriptRunner::run_line(ModelerState& state, ModelerDisplay* display, const 
       throw ScriptError(std::string("usage: ") + usage);
     }
   } else if (c == "scheme") {
-    expect_args(w, 1, "scheme linear|cubic");
+    expect_args(w, 1, "scheme linear|cubic|sqrt2");
     Scheme s;
     try {
       s = parse_scheme(w[1]);
     } catch (const std::exception&) {
-      throw ScriptError("unknown scheme '" + w[1] + "' (linear or cubic)");
+      throw ScriptError("unknown scheme '" + w[1] + "' (linear, cubic or sqrt2)");
     }
     state.set_scheme(s);
   } else if (c == "subdivide") {
@@ -293,7 +293,7 @@ void ScriptRunner::run_line(ModelerState& state, ModelerDisplay* display, const 
     if (w.size() == 4 && w[3] != "dual") throw ScriptError("basis takes 'dual' after the index, got '" + w[3] + "'");
     const long long index = integer(w[2], "INDEX");
     const Complex& cj = state.session().hierarchy().levels[static_cast<std::size_t>(state.level())];
-    const long long nv = cj.num_vertices, nc = cj.num_child_vertices();
+    const long long nv = cj.num_vertices, nc = static_cast<long long>(predicted_level_counts(cj, 1, state.session().hierarchy().scheme, state.level()).back());
     BasisSettings b = state.basis_on() ? state.basis_settings() : BasisSettings{};
     b.on = true;
     b.kind = w[1] == "scaling" ? BasisKind::Scaling : BasisKind::Wavelet;

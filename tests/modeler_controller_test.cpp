@@ -584,6 +584,58 @@ void expect_script_errors(ModelerState& m, std::span<const std::pair<std::string
   }
 }
 
+// The scheme menu's third entry (issue 7): the hierarchy is rebuilt as sqrt2 at the same finest
+// resolution (2 levels per 1-to-4 level), drags stay exact on the shown surface (the limit of an
+// interpolatory scheme is its control net), the scaling function of a clicked point peaks at
+// exactly 1 there, and lattices refuse the scheme with a message.
+TEST(ModelerControllerTest, Sqrt2SchemeFromTheMenu) {
+  Fixture f("quad_grid_boundary.obj");
+  ModelerState& m = f.app.model;
+  const int cubic_levels = m.session().finest_level();
+  const std::uint32_t finest = m.session().num_vertices(cubic_levels);
+  ModelerPanelRequests req;
+  req.scheme = 2;
+  f.app.apply_panel_requests(req);
+  ASSERT_EQ(m.session().hierarchy().scheme, Scheme::Sqrt2);
+  EXPECT_EQ(m.session().finest_level(), 2 * cubic_levels);
+  EXPECT_EQ(m.session().num_vertices(m.session().finest_level()), finest);  // Catmull-Clark topology
+  for (int level : {1, 2}) {
+    m.set_level(level);
+    m.set_selection({5});
+    m.begin_drag("Drag");
+    const double total[3] = {0.05, 0.1, -0.02};
+    m.drag_to(total);
+    m.end_drag();
+    expect_shown_equals_fresh(f);
+  }
+  // The shown surface passes through the finest control points.
+  const auto net = m.session().positions(m.session().finest_level());
+  const auto shown = m.limit_positions();
+  ASSERT_EQ(shown.size(), net.size());
+  for (std::size_t i = 0; i < net.size(); ++i) ASSERT_EQ(shown[i], net[i]) << i;
+  ModelerPanelRequests basis;
+  basis.basis = basis_request(0, 7);
+  f.app.apply_panel_requests(basis);
+  ASSERT_TRUE(m.basis_on());
+  EXPECT_EQ(m.basis().function.values[7], 1.0);
+  EXPECT_EQ(m.basis().function.max, 1.0);
+  // Back to cubic: the resolution comes back too.
+  ModelerPanelRequests back;
+  back.scheme = 1;
+  f.app.apply_panel_requests(back);  // with history: asks first
+  EXPECT_EQ(m.session().hierarchy().scheme, Scheme::Sqrt2);
+  m.set_scheme(Scheme::Cubic);
+  EXPECT_EQ(m.session().finest_level(), cubic_levels);
+
+  Fixture lattice("cube_cell.lattice");
+  EXPECT_THROW(lattice.app.model.set_scheme(Scheme::Sqrt2), Error);
+  ModelerPanelRequests to_sqrt2;
+  to_sqrt2.scheme = 2;
+  lattice.app.apply_panel_requests(to_sqrt2);
+  EXPECT_NE(lattice.app.error.find("surfaces only"), std::string::npos) << lattice.app.error;
+  EXPECT_EQ(lattice.app.model.session().hierarchy().scheme, Scheme::Cubic);
+}
+
 TEST(ModelerControllerTest, BasisScriptCommands) {
   ModelerState m;
   const std::string torus = std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj";

@@ -75,10 +75,14 @@ void draw_file_section(const ModelerPanelData& d, FileFields& f, ModelerPanelReq
 
 void draw_levels_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   if (!section("Hierarchy")) return;
-  const char* schemes[] = {"linear", "cubic"};
+  const char* schemes[] = {"linear", "cubic", "sqrt2"};  // Scheme's order
   int scheme = d.scheme;
   ImGui::SetNextItemWidth(120.0f);
-  if (ImGui::Combo("Scheme", &scheme, schemes, 2) && scheme != d.scheme) r.scheme = scheme;
+  if (ImGui::Combo("Scheme", &scheme, schemes, 3) && scheme != d.scheme) r.scheme = scheme;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("linear / cubic: Bertram's lifted B-spline wavelets (1-to-4 per level)\n"
+                      "sqrt2: Wang & Ma's interpolatory sqrt(2) wavelets (surfaces; 2x faces per level,\n"
+                      "the limit passes through every control point)");
   int level = d.level;
   ImGui::SetNextItemWidth(120.0f);
   if (ImGui::SliderInt("Edit level", &level, 0, std::max(d.finest, 0)) && level != d.level) r.level = level;

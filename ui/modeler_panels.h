@@ -108,7 +108,7 @@ struct ModelerPanelData {
   std::string message;                // last successful file action
   std::vector<std::string> warnings;  // import report lines
   int dim = 2;
-  int scheme = 1;                     // 0 linear, 1 cubic
+  int scheme = 1;                     // Scheme's value: 0 linear, 1 cubic, 2 sqrt2
   int level = 0, finest = 0;
   std::vector<LevelInfo> levels;
   std::vector<double> gains;          // per level 0..finest-1

@@ -40,4 +40,11 @@ shot cubic_scaling_valence5 "$a/star5_flat.obj" --scheme cubic --level 2 --verte
 shot cubic_scaling_crease   "$a/crease_grid_flat.obj" --scheme cubic --level 1 --vertex 24
 # A volume scaling function: the centre vertex 62 of the 4x4x4 hex block, level 1.
 shot cubic_scaling_volume   "$a/hex_block_4.lattice" --scheme cubic --level 1 --vertex 62
+# Wang & Ma's interpolatory sqrt(2) scheme on the same grid: level 2 has the 1-to-4 level-1
+# topology (vertex 12 the centre again), level 1 is the diagonal grid between. Level-3 face point
+# 108 sits on the level-2 face at (0.25, 0.25); its wavelet is lifted by local orthogonalisation.
+shot sqrt2_scaling_regular "$grid" --scheme sqrt2 --level 2 --vertex 12
+shot sqrt2_scaling_odd     "$grid" --scheme sqrt2 --level 1 --vertex 12
+shot sqrt2_face_wavelet    "$grid" --scheme sqrt2 --level 2 --wavelet 108
+shot sqrt2_scaling_crease  "$a/crease_grid_flat.obj" --scheme sqrt2 --level 2 --vertex 24
 echo "wrote $(ls "$out"/*.png | wc -l) pictures to $out"

@@ -119,15 +119,16 @@ std::string torus() { return std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj"
 
 // Level 1, vertex 2 sits on top of the torus ring, facing the default 3/4 view; moving it down
 // keeps the bounds (and so the framing) unchanged.
-std::string edit_script() {
+// `scheme`: empty for the default (cubic), else a `scheme NAME` line after opening.
+std::string edit_script(const std::string& scheme = "") {
   return "# move one control point, undo, redo, save\n"
-         "open " + torus() + "\n"
+         "open " + torus() + "\n" + (scheme.empty() ? "" : "scheme " + scheme + "\n") +
          "subdivide 1\n"
          "level 1\n"
          "select 2\n"
          "\n"
          "screenshot a.png\n"
-         "move 0 -0.25 0\n"
+         "move 0 " + std::string(scheme == "sqrt2" ? "-0.1" : "-0.25") + " 0\n"
          "screenshot b.png\n"
          "undo\n"
          "screenshot c.png\n"
@@ -139,12 +140,12 @@ std::string edit_script() {
          "quit\n";
 }
 
-void check_edit_run(const std::string& mode) {
+void check_edit_run(const std::string& mode, const std::string& scheme = "") {
   const fs::path dir = out_dir(mode);
   for (const char* f : {"a.png", "b.png", "c.png", "b_plain.png", "d.png", "edited.sublift", "edited.obj"}) {
     fs::remove(dir / f);
   }
-  const ProcessResult r = run_script(mode, "edit", edit_script());
+  const ProcessResult r = run_script(mode, "edit", edit_script(scheme));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Png a = load_png(dir / "a.png"), b = load_png(dir / "b.png"), c = load_png(dir / "c.png");
   ASSERT_EQ(a.width, kWidth);
@@ -188,6 +189,12 @@ void check_edit_run(const std::string& mode) {
 TEST(ModelerGuiTest, XvfbMoveIsLocalUndoRestoresAndProjectReopens) { check_edit_run("xvfb"); }
 
 TEST(ModelerGuiTest, HeadlessMoveIsLocalUndoRestoresAndProjectReopens) { check_edit_run("headless"); }
+
+// The same with the interpolatory sqrt(2) scheme (issue 7): 5 levels, the edit on the diagonal
+// level 1, the project saved and reopened as sqrt2. The move is shorter: an interpolating
+// surface overshoots, and 0.25 down lifts the ring next to the point above the old bounds, so
+// the reopened project (framed on its own bounds) would be framed differently.
+TEST(ModelerGuiTest, XvfbSqrt2MoveIsLocalUndoRestoresAndProjectReopens) { check_edit_run("xvfb", "sqrt2"); }
 
 TEST(ModelerGuiTest, WindowAndHeadlessScriptsDrawTheSameFrame) {
   const std::string script = "open " + torus() + "\nselect 3\nscreenshot same.png\n";

@@ -80,8 +80,9 @@ TEST(Sqrt2Hierarchy, LevelCountsMatchPredictionAndCatmullClark) {
         EXPECT_EQ(h.num_vertices(l), cc.num_vertices(l / 2)) << "level " << l;
         EXPECT_EQ(h.levels[std::size_t(l)].num_faces(), cc.levels[std::size_t(l / 2)].num_faces()) << "level " << l;
       }
-      if (l % 2 == 1)
+      if (l % 2 == 1) {
         EXPECT_EQ(h.num_vertices(l), h.num_vertices(l - 1) + h.levels[std::size_t(l - 1)].num_faces()) << "level " << l;
+      }
     }
     // From an odd level the next count is exact too (one point per curve edge and per quad).
     EXPECT_EQ(predicted_level_counts(h.levels[1], 1, Scheme::Sqrt2, 1)[1], double(h.num_vertices(2)));

@@ -3,14 +3,15 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <future>
 #include <string>
-#include <tuple>
 
 #include <Eigen/Dense>
 
 #include "core/errors.h"
 #include "core/parallel.h"
 #include "core/sqrt2_coefficients.h"
+#include "core/sqrt2_sparse.h"
 
 namespace sublift {
 
@@ -26,13 +27,13 @@ std::uint32_t other_end(const Complex& c, std::uint32_t e, std::uint32_t v) {
 
 // Edge neighbours of the corner at slot s of face f in eq. 1's order: the next corner, the
 // previous corner, then on around the vertex away from f. False when the corner is not inner
-// (curve edge, open or non-manifold fan, valence outside 3..1000).
-bool corner_ring(const Complex& c, std::uint32_t f, std::uint32_t s, std::vector<std::uint32_t>& ring) {
+// (curve edge, open or non-manifold fan, valence outside 3..1000). inner[v]: no curve edge at v
+// (computed once per transition instead of scanning v's edges per corner).
+bool corner_ring(const Complex& c, const std::vector<std::uint8_t>& inner, std::uint32_t f, std::uint32_t s,
+                 std::vector<std::uint32_t>& ring) {
   const std::uint32_t v = c.faces.items[s];
   const std::uint32_t valence = c.vertex_edges.size(v);
-  if (valence < 3 || valence > 1000) return false;
-  for (std::uint32_t e : c.vertex_edges.row(v))
-    if (is_curve(c, e)) return false;
+  if (valence < 3 || valence > 1000 || !inner[v]) return false;
   ring.clear();
   ring.push_back(c.faces.items[face_next_slot(c, f, s)]);
   ring.push_back(c.faces.items[face_prev_slot(c, f, s)]);
@@ -59,58 +60,111 @@ bool corner_ring(const Complex& c, std::uint32_t f, std::uint32_t s, std::vector
   return ring.size() == valence;
 }
 
-using Triplet = std::tuple<std::uint32_t, std::uint32_t, double>;  // target, source, weight
+// One term of a sub-step: weight * x[source] added to x[target], with (target, source) packed
+// into one key (target in the high half) so sorting compares one integer.
+struct Entry {
+  std::uint64_t key;
+  double weight;
+};
 
-// Rows sorted by target, duplicate sources merged (small closed curves repeat vertices).
-Sqrt2Substep make_substep(std::vector<Triplet> t) {
-  std::sort(t.begin(), t.end(), [](const Triplet& a, const Triplet& b) {
-    return std::tie(std::get<0>(a), std::get<1>(a)) < std::tie(std::get<0>(b), std::get<1>(b));
-  });
+Entry entry(std::uint32_t target, std::uint32_t source, double weight) {
+  return {std::uint64_t(target) << 32 | source, weight};
+}
+
+// Rows sorted by target, duplicate sources merged (small closed curves repeat vertices; a face
+// rule repeats its corners). Comparing the packed keys gives the same results as comparing
+// (target, source) pairs, so std::sort moves the entries exactly as it did when they were
+// tuples: duplicates are summed in the same order and the weights stay bit-identical.
+Sqrt2Substep make_substep(std::vector<Entry> t) {
+  std::sort(t.begin(), t.end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });
   Sqrt2Substep s;
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    const auto [tg, src, w] = t[i];
+  s.sources.items.reserve(t.size());
+  s.weights.reserve(t.size());
+  for (const Entry& x : t) {
+    const std::uint32_t tg = std::uint32_t(x.key >> 32), src = std::uint32_t(x.key);
     if (s.target.empty() || s.target.back() != tg) {
       if (!s.target.empty()) s.sources.offsets.push_back(static_cast<std::uint32_t>(s.sources.items.size()));
       s.target.push_back(tg);
     } else if (s.sources.items.back() == src) {
-      s.weights.back() += w;
+      s.weights.back() += x.weight;
       continue;
     }
     s.sources.items.push_back(src);
-    s.weights.push_back(w);
+    s.weights.push_back(x.weight);
   }
   if (!s.target.empty()) s.sources.offsets.push_back(static_cast<std::uint32_t>(s.sources.items.size()));
   return s;
 }
 
-// Face point `fp` of coarse face f: eq. 1 / sec. 4 prediction; returns the rings when all
-// corners are inner (for the lifting).
-bool add_face_rule(const Complex& c, std::uint32_t f, std::uint32_t fp, std::vector<Triplet>& predict,
-                   std::array<std::uint32_t, 4>& valences) {
-  const std::uint32_t b = c.faces.offsets[f], m = c.faces.size(f);
-  std::vector<std::vector<std::uint32_t>> rings(m);
-  std::uint32_t l = 0;
-  for (std::uint32_t i = 0; i < m; ++i)
-    if (corner_ring(c, f, b + i, rings[i])) ++l;
-    else rings[i].clear();
-  if (l == 0) {  // no inner corner: no rule of the paper applies; the mean keeps it affine
-    for (std::uint32_t i = 0; i < m; ++i) predict.emplace_back(fp, c.faces.items[b + i], 1.0 / m);
-    return false;
+// Below this many entries a second thread costs more than it saves.
+constexpr std::size_t kConcurrentSortEntries = 1 << 16;
+
+// Runs a() and b(), at the same time on a second thread when `big` and parallel_threads() allow
+// (a std::async thread, not the pool: callers may run inside a parallel_for).
+template <class A, class B>
+void side_by_side(bool big, A a, B b) {
+  if (!big || parallel_threads() < 2) {
+    a();
+    b();
+    return;
   }
-  for (std::uint32_t i = 0; i < m; ++i) {
-    if (rings[i].empty()) continue;
-    const int n = static_cast<int>(rings[i].size());
-    predict.emplace_back(fp, c.faces.items[b + i], kSqrt2Alpha0 / l);
-    for (int j = 0; j < n; ++j) predict.emplace_back(fp, rings[i][j], sqrt2_face_alpha(n, j) / l);
-    if (i < 4) valences[i] = static_cast<std::uint32_t>(n);
-  }
-  return l == 4 && m == 4;
+  auto done = std::async(std::launch::async, a);
+  b();
+  done.get();  // rethrows a's exception, if any
 }
+
+// The face rules (eq. 1 / sec. 4) of one transition. Keeps what every face would otherwise
+// recompute or allocate: eq. 1's weights per valence (sqrt2_face_alpha's values, computed once
+// instead of four cos/sin per term) and the corner rings of the current face in reused buffers.
+class FaceRules {
+ public:
+  FaceRules(const Complex& c, const std::vector<std::uint8_t>& inner) : c_(c), inner_(inner) {}
+
+  // Face point `fp` of coarse face f. Returns true when f is a quad with 4 inner corners (the
+  // lifting then uses the table), with their valences in `valences`.
+  bool add(std::uint32_t f, std::uint32_t fp, std::vector<Entry>& predict, std::array<std::uint32_t, 4>& valences) {
+    const std::uint32_t b = c_.faces.offsets[f], m = c_.faces.size(f);
+    if (rings_.size() < m) rings_.resize(m);
+    std::uint32_t l = 0;
+    for (std::uint32_t i = 0; i < m; ++i)
+      if (corner_ring(c_, inner_, f, b + i, rings_[i])) ++l;
+      else rings_[i].clear();
+    if (l == 0) {  // no inner corner: no rule of the paper applies; the mean keeps it affine
+      for (std::uint32_t i = 0; i < m; ++i) predict.push_back(entry(fp, c_.faces.items[b + i], 1.0 / m));
+      return false;
+    }
+    for (std::uint32_t i = 0; i < m; ++i) {
+      const std::vector<std::uint32_t>& ring = rings_[i];
+      if (ring.empty()) continue;
+      const std::uint32_t n = static_cast<std::uint32_t>(ring.size());
+      const std::vector<double>& alpha = alphas(n);
+      predict.push_back(entry(fp, c_.faces.items[b + i], kSqrt2Alpha0 / l));
+      for (std::uint32_t j = 0; j < n; ++j) predict.push_back(entry(fp, ring[j], alpha[j] / l));
+      if (i < 4) valences[i] = n;
+    }
+    return l == 4 && m == 4;
+  }
+
+ private:
+  // sqrt2_face_alpha(n, j) for j = 0..n-1.
+  const std::vector<double>& alphas(std::uint32_t n) {
+    if (alphas_.size() <= n) alphas_.resize(n + 1);
+    std::vector<double>& a = alphas_[n];
+    if (a.empty())
+      for (std::uint32_t j = 0; j < n; ++j) a.push_back(sqrt2_face_alpha(int(n), int(j)));
+    return a;
+  }
+
+  const Complex& c_;
+  const std::vector<std::uint8_t>& inner_;
+  std::vector<std::vector<double>> alphas_;           // by valence
+  std::vector<std::vector<std::uint32_t>> rings_;     // per corner of the current face
+};
 
 // phi_0..phi_11 of quad f (docs/sqrt2.md, Figure 3): the corners, then across edge p_i p_{i+1}
 // the face running p_{i+1} -> p_i -> phi_{4+2i} -> phi_{5+2i}. A slot is kNone where that face
 // is missing or not a quad. Returns true when all 12 exist and are inner (the table case).
-bool find_phis(const Complex& c, std::uint32_t f, const std::vector<bool>& inner, std::array<std::uint32_t, 12>& phi) {
+bool find_phis(const Complex& c, std::uint32_t f, const std::vector<std::uint8_t>& inner, std::array<std::uint32_t, 12>& phi) {
   const std::uint32_t b = c.faces.offsets[f];
   phi.fill(kNone);
   for (std::uint32_t i = 0; i < 4; ++i) {
@@ -136,9 +190,9 @@ bool find_phis(const Complex& c, std::uint32_t f, const std::vector<bool>& inner
 // omega of the kept distinct vertices solve G omega = -H with the discrete inner products of
 // the actual masks (one primitive synthesis step: phi_a is 1 at a and P[n][a] at new point n),
 // G = I + P^T P and H_a = P[fp][a]. Rows of P by target: `rows`; columns: `cols`.
-void lift_near_curve(std::uint32_t fp, const std::array<std::uint32_t, 12>& phi, const std::vector<bool>& inner,
+void lift_near_curve(std::uint32_t fp, const std::array<std::uint32_t, 12>& phi, const std::vector<std::uint8_t>& inner,
                      const Sqrt2Substep& rows, const std::vector<std::uint32_t>& row_of, const Sqrt2Substep& cols,
-                     const std::vector<std::uint32_t>& col_of, std::vector<Triplet>& update) {
+                     const std::vector<std::uint32_t>& col_of, std::vector<Entry>& update) {
   static constexpr int kS[4][3] = {{0, 11, 4}, {1, 5, 6}, {2, 7, 8}, {3, 9, 10}};
   bool keep[12];
   for (int k = 0; k < 12; ++k) keep[k] = phi[k] != kNone && inner[phi[k]];
@@ -167,7 +221,7 @@ void lift_near_curve(std::uint32_t fp, const std::array<std::uint32_t, 12>& phi,
     }
   }
   const Eigen::VectorXd omega = G.ldlt().solve(-H);
-  for (int a = 0; a < n; ++a) update.emplace_back(vs[a], fp, omega[a]);
+  for (int a = 0; a < n; ++a) update.push_back(entry(vs[a], fp, omega[a]));
 }
 
 }  // namespace
@@ -184,18 +238,23 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
   t.num_fine = fine.num_vertices;
 
   // inner[v]: no curve edge at v (the fan check is done per corner in corner_ring).
-  std::vector<bool> inner(nv, true);
+  std::vector<std::uint8_t> inner(nv, 1);
   for (std::uint32_t e = 0; e < c.num_edges(); ++e)
-    if (is_curve(c, e)) inner[c.edge_verts[2 * e]] = inner[c.edge_verts[2 * e + 1]] = false;
+    if (is_curve(c, e)) inner[c.edge_verts[2 * e]] = inner[c.edge_verts[2 * e + 1]] = 0;
 
-  std::vector<Triplet> update, predict;
+  // Reserved for a quad mesh of valence 4 (5 terms per corner, 12 lifting terms per face point)
+  // plus the curve points, so the big arrays grow without copies in the common case.
+  std::vector<Entry> update, predict;
+  predict.reserve(20 * std::size_t(np) + 4 * std::size_t(nc));
+  update.reserve(12 * std::size_t(np) + 4 * std::size_t(nc));
+  FaceRules face_rules(c, inner);
   std::vector<std::uint32_t> near_curve;  // face points lifted by lift_near_curve below
   std::vector<std::array<std::uint32_t, 12>> near_phi;
   for (std::uint32_t k = 0; k < np; ++k) {
     const std::uint32_t f = ch.point_faces[k], fp = ch.first_face_point + k;
     std::array<std::uint32_t, 4> n{};
     std::array<std::uint32_t, 12> phi{};
-    const bool all_inner = add_face_rule(c, f, fp, predict, n);
+    const bool all_inner = face_rules.add(f, fp, predict, n);
     if (c.faces.size(f) != 4) {  // level-0 polygons: no lifting (the paper starts from quads)
       ++t.unlifted_face_points;
       continue;
@@ -207,7 +266,7 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
     }
     const auto omega = sqrt2_omega(int(n[0]), int(n[1]), int(n[2]), int(n[3]));
     for (int s = 0; s < 12; ++s)
-      if (omega[s] != 0.0) update.emplace_back(phi[s], fp, omega[s]);  // dropped valence-3 slots are exact 0
+      if (omega[s] != 0.0) update.push_back(entry(phi[s], fp, omega[s]));  // dropped valence-3 slots are exact 0
     ++t.lifted_face_points;
   }
 
@@ -220,62 +279,47 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
     const std::uint32_t a = s[0], p = s[1], q = s[2], b = s[3], x = nv + k;
     if (a != kNone && b != kNone) {
       const std::uint32_t v[4] = {a, p, q, b};
-      for (int i = 0; i < 4; ++i) predict.emplace_back(x, v[i], w4[i]), update.emplace_back(v[i], x, eta[i]);
+      for (int i = 0; i < 4; ++i) predict.push_back(entry(x, v[i], w4[i])), update.push_back(entry(v[i], x, eta[i]));
     } else if (a != kNone || b != kNone) {  // eq. 11 (b): (p0, p1, p2 = the curve end)
       const std::uint32_t v[3] = {a != kNone ? a : b, a != kNone ? p : q, a != kNone ? q : p};
-      for (int i = 0; i < 3; ++i) predict.emplace_back(x, v[i], w3[i]);
-      for (int i = 0; i < 2; ++i) update.emplace_back(v[i], x, etc[i]);
+      for (int i = 0; i < 3; ++i) predict.push_back(entry(x, v[i], w3[i]));
+      for (int i = 0; i < 2; ++i) update.push_back(entry(v[i], x, etc[i]));
     } else {  // a curve of one edge between two ends: no rule in the paper; the midpoint
-      predict.emplace_back(x, p, 0.5);
-      predict.emplace_back(x, q, 0.5);
+      predict.push_back(entry(x, p, 0.5));
+      predict.push_back(entry(x, q, 0.5));
     }
   }
-  Sqrt2Substep pred = make_substep(predict);
-  if (!near_curve.empty()) {
-    std::vector<Triplet> swapped;
+  // The sorts in make_substep take about half of the build; the two that do not wait for each
+  // other run side by side (each is still one std::sort, so the result does not change).
+  const bool big = predict.size() + update.size() >= kConcurrentSortEntries;
+  Sqrt2Substep pred, upd;
+  if (near_curve.empty()) {
+    side_by_side(big, [&] { pred = make_substep(std::move(predict)); }, [&] { upd = make_substep(std::move(update)); });
+  } else {
+    std::vector<Entry> swapped;  // the predict step by source: P's columns
     swapped.reserve(predict.size());
-    for (const auto& [tg, src, w] : predict) swapped.emplace_back(src, tg, w);
-    const Sqrt2Substep cols = make_substep(std::move(swapped));
+    for (const Entry& x : predict) swapped.push_back({x.key << 32 | x.key >> 32, x.weight});
+    Sqrt2Substep cols;
+    side_by_side(big, [&] { pred = make_substep(std::move(predict)); }, [&] { cols = make_substep(std::move(swapped)); });
     std::vector<std::uint32_t> row_of(t.num_fine, kNone), col_of(t.num_fine, kNone);
     for (std::uint32_t r = 0; r < pred.target.size(); ++r) row_of[pred.target[r]] = r;
     for (std::uint32_t r = 0; r < cols.target.size(); ++r) col_of[cols.target[r]] = r;
     for (std::size_t i = 0; i < near_curve.size(); ++i)
       lift_near_curve(near_curve[i], near_phi[i], inner, pred, row_of, cols, col_of, update);
     t.near_curve_face_points = static_cast<std::uint32_t>(near_curve.size());
+    upd = make_substep(std::move(update));  // after the near-curve terms were added
   }
-  t.steps.push_back(make_substep(std::move(update)));
+  t.steps.push_back(std::move(upd));
   t.steps.push_back(std::move(pred));
   return t;
 }
 
-namespace {
-
-void run_substep(const Sqrt2Substep& s, double* x, int ch, double sign, bool integer) {
-  const std::uint32_t rows = static_cast<std::uint32_t>(s.target.size());
-  parallel_for(rows, 512, [&](std::uint32_t begin, std::uint32_t end) {
-    std::vector<double> acc(ch);
-    for (std::uint32_t r = begin; r < end; ++r) {
-      std::fill(acc.begin(), acc.end(), 0.0);
-      for (std::uint32_t k = s.sources.offsets[r]; k < s.sources.offsets[r + 1]; ++k) {
-        const double w = s.weights[k];
-        const double* src = x + std::size_t(s.sources.items[k]) * ch;
-        for (int c = 0; c < ch; ++c) acc[c] += w * src[c];
-      }
-      double* dst = x + std::size_t(s.target[r]) * ch;
-      // Integer mode: the same rounded increment both ways, as core/lifting.cpp.
-      for (int c = 0; c < ch; ++c) dst[c] += sign * (integer ? std::floor(acc[c] + 0.5) : acc[c]);
-    }
-  });
-}
-
-}  // namespace
-
 void sqrt2_synthesize(const Sqrt2Transition& t, double* x, int channels, bool integer) {
-  for (const Sqrt2Substep& s : t.steps) run_substep(s, x, channels, 1.0, integer);
+  for (const Sqrt2Substep& s : t.steps) sqrt2_run_step(s, x, channels, 1.0, integer);
 }
 
 void sqrt2_analyze(const Sqrt2Transition& t, double* x, int channels, bool integer) {
-  for (auto it = t.steps.rbegin(); it != t.steps.rend(); ++it) run_substep(*it, x, channels, -1.0, integer);
+  for (auto it = t.steps.rbegin(); it != t.steps.rend(); ++it) sqrt2_run_step(*it, x, channels, -1.0, integer);
 }
 
 }  // namespace sublift

@@ -1,7 +1,7 @@
 #pragma once
 // One transition (level j -> j+1) of the interpolatory sqrt(2) wavelet transform (paper 001,
 // Wang & Ma, eq. 9-14), as explicit sparse lifting sub-steps built once from the refinement
-// (core/refine_sqrt2.h). GL-free; not yet wired into Hierarchy/Scheme.
+// (core/refine_sqrt2.h). GL-free; Scheme::Sqrt2 hierarchies (core/hierarchy.h) hold one per level.
 //
 // Layout: the fine level's vertex array [old vertices | curve points | face points], `channels`
 // doubles per vertex (x[v * channels + c]). After analysis the old vertices hold the coarse

@@ -14,7 +14,7 @@ namespace {
 
 constexpr const char* kHelp =
     "usage: sublift-cli subdivide IN --scheme linear|cubic|sqrt2 --levels N [--integer] -o OUT [--json]\n"
-    "  Subdivides the curve, surface or lattice IN N times (0..12) with Bertram's lifted B-spline\n"
+    "  Subdivides the curve, surface or lattice IN N times (0..12; sqrt2: 0..24) with Bertram's lifted B-spline\n"
     "  scheme (zero wavelet coefficients) and writes the finest level to OUT, vertices in the\n"
     "  engine's order (old vertices, then one per edge, face and cell of each level), which is\n"
     "  the order 'analyze' expects. sqrt2 (Wang & Ma's interpolatory sqrt(2) wavelets) takes\n"

@@ -12,12 +12,15 @@
 #include "core/file_io.h"
 #include "core/shape_io.h"
 #include "tests/io_test_util.h"
+#include "tests/cli_run.h"
 #include "tests/run_process.h"
 
 namespace fs = std::filesystem;
 using sublift::testing::ProcessResult;
 using sublift::testing::run_process;
 using sublift::testing::TempDir;
+using sublift::testing::move_vertex;
+using sublift::testing::relative_error;
 
 namespace {
 
@@ -37,38 +40,12 @@ void ok(const ProcessResult& r) {
 
 std::vector<double> positions(const std::string& path) { return sublift::read_shape(path).positions; }
 
-// Largest |a - b| relative to the largest |a|.
-double relative_error(const std::vector<double>& a, const std::vector<double>& b) {
-  EXPECT_EQ(a.size(), b.size());
-  double err = 0, scale = 0;
-  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
-    err = std::max(err, std::abs(a[i] - b[i]));
-    scale = std::max(scale, std::abs(a[i]));
-  }
-  return err / scale;
-}
 
 struct Input {
   std::string base;  // path
   std::string out_ext;
 };
 
-// `text` with the x coordinate of its k-th `v` line moved by dx.
-std::string move_vertex(const std::string& text, std::size_t k, double dx) {
-  std::istringstream in(text);
-  std::string out, line;
-  std::size_t seen = 0;
-  while (std::getline(in, line)) {
-    if (line.rfind("v ", 0) == 0 && seen++ == k) {
-      std::istringstream l(line.substr(2));
-      double x, y, z;
-      l >> x >> y >> z;
-      line = "v " + std::to_string(x + dx) + " " + std::to_string(y) + " " + std::to_string(z);
-    }
-    out += line + "\n";
-  }
-  return out;
-}
 
 // A curve with integer coordinates (open chain and closed loop).
 std::string integer_curve(const TempDir& dir) {

@@ -13,11 +13,14 @@
 #include "core/file_io.h"
 #include "core/shape_io.h"
 #include "tests/io_test_util.h"
+#include "tests/cli_run.h"
 #include "tests/run_process.h"
 
 using sublift::testing::ProcessResult;
 using sublift::testing::run_process;
 using sublift::testing::TempDir;
+using sublift::testing::move_vertex;
+using sublift::testing::relative_error;
 using nlohmann::json;
 
 namespace {
@@ -43,16 +46,6 @@ json ok(const std::vector<std::string>& args) {
 
 std::vector<double> positions(const std::string& path) { return sublift::read_shape(path).positions; }
 
-// Largest |a - b| relative to the largest |a|.
-double relative_error(const std::vector<double>& a, const std::vector<double>& b) {
-  EXPECT_EQ(a.size(), b.size());
-  double err = 0, scale = 0;
-  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
-    err = std::max(err, std::abs(a[i] - b[i]));
-    scale = std::max(scale, std::abs(a[i]));
-  }
-  return err / scale;
-}
 
 double largest_abs(const std::vector<double>& a) {
   double m = 0;
@@ -60,22 +53,6 @@ double largest_abs(const std::vector<double>& a) {
   return m;
 }
 
-// `text` with the x coordinate of its k-th `v` line moved by dx.
-std::string move_vertex(const std::string& text, std::size_t k, double dx) {
-  std::istringstream in(text);
-  std::string out, line;
-  std::size_t seen = 0;
-  while (std::getline(in, line)) {
-    if (line.rfind("v ", 0) == 0 && seen++ == k) {
-      std::istringstream l(line.substr(2));
-      double x, y, z;
-      l >> x >> y >> z;
-      line = "v " + std::to_string(x + dx) + " " + std::to_string(y) + " " + std::to_string(z);
-    }
-    out += line + "\n";
-  }
-  return out;
-}
 
 // Counts of a manifold surface as the sqrt(2) refinement rules act on them: S = sum of face
 // sizes, C = curve edges (boundary and crease), Sc = (curve edge, face beside it) pairs.

@@ -24,14 +24,9 @@ using sublift::testing::relative_error;
 
 namespace {
 
-const std::string kCli = SUBLIFT_CLI;
 const std::string kAssets = SUBLIFT_ASSETS_DIR;
 
-ProcessResult cli(const std::vector<std::string>& args) {
-  std::vector<std::string> argv{kCli};
-  argv.insert(argv.end(), args.begin(), args.end());
-  return run_process(argv, 60.0);
-}
+ProcessResult cli(const std::vector<std::string>& args) { return sublift::testing::run_cli(args); }
 
 void ok(const ProcessResult& r) {
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -25,14 +25,9 @@ using nlohmann::json;
 
 namespace {
 
-const std::string kCli = SUBLIFT_CLI;
 const std::string kAssets = SUBLIFT_ASSETS_DIR;
 
-ProcessResult cli(const std::vector<std::string>& args) {
-  std::vector<std::string> argv{kCli};
-  argv.insert(argv.end(), args.begin(), args.end());
-  return run_process(argv, 60.0);
-}
+ProcessResult cli(const std::vector<std::string>& args) { return sublift::testing::run_cli(args); }
 
 // Runs and expects exit code 0; the parsed stdout when it is JSON, else null.
 json ok(const std::vector<std::string>& args) {

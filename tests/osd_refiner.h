@@ -13,8 +13,9 @@ namespace sublift::fixtures {
 
 /// Refines `m` `levels` times with `scheme` (boundaries: edges only, i.e. smooth boundary
 /// curves, the convention Sublift's features follow). Returns null if OpenSubdiv refuses `m`.
+/// `full_topology`: the last level keeps its edges too (Far drops them by default).
 inline std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> osd_refiner(const Polygons& m, OpenSubdiv::Sdc::SchemeType scheme,
-                                                                     int levels) {
+                                                                     int levels, bool full_topology = false) {
   namespace Far = OpenSubdiv::Far;
   namespace Sdc = OpenSubdiv::Sdc;
   std::vector<int> sizes(m.faces.rows());
@@ -29,7 +30,9 @@ inline std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> osd_refiner(const Polyg
   opts.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
   using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
   std::unique_ptr<Far::TopologyRefiner> r(Factory::Create(desc, Factory::Options(scheme, opts)));
-  if (r) r->RefineUniform(Far::TopologyRefiner::UniformOptions(levels));
+  Far::TopologyRefiner::UniformOptions uniform(levels);
+  uniform.fullTopologyInLastLevel = full_topology;
+  if (r) r->RefineUniform(uniform);
   return r;
 }
 

@@ -10,8 +10,8 @@ namespace sublift {
 
 /// The sites of one sqrt(2) step: a curve point on its curve edge, a face point on its face.
 struct ChildSites {
-  std::uint32_t first_new = 0;            // = coarse vertex count
-  std::vector<std::uint32_t> site;        // per new vertex: coarse edge e, or num_edges + face
+  std::vector<std::uint32_t> site;        // per new vertex (index - coarse vertex count): coarse
+                                          // edge e, or num_edges + face
   std::vector<std::uint32_t> edge_child;  // per coarse edge: its new vertex or UINT32_MAX
   std::vector<std::uint32_t> face_child;  // per coarse face: its new vertex or UINT32_MAX
 };

@@ -48,14 +48,13 @@ namespace {
 
 ChildSites sites_of(const Complex& coarse, const Sqrt2Children& ch) {
   ChildSites s;
-  s.first_new = coarse.num_vertices;
   s.edge_child.assign(coarse.num_edges(), UINT32_MAX);
   s.face_child.assign(coarse.num_faces(), UINT32_MAX);
   const std::uint32_t nc = ch.curve_step ? static_cast<std::uint32_t>(ch.curve_edges.size()) : 0;
   s.site.reserve(nc + ch.point_faces.size());
   for (std::uint32_t k = 0; k < nc; ++k) {
     s.site.push_back(ch.curve_edges[k]);
-    s.edge_child[ch.curve_edges[k]] = s.first_new + k;
+    s.edge_child[ch.curve_edges[k]] = coarse.num_vertices + k;
   }
   for (std::uint32_t k = 0; k < ch.point_faces.size(); ++k) {
     s.site.push_back(coarse.num_edges() + ch.point_faces[k]);

@@ -17,6 +17,8 @@ int run_ffd(int argc, char** argv);
 int run_coefficients(int argc, char** argv);
 /// `experiment noise|fit|compress`: the papers' experiments (docs/experiments.md).
 int run_experiment(int argc, char** argv);
+/// `resample-sphere`: a star-shaped mesh sampled onto a subdivided octahedron (docs/resample_sphere.md).
+int run_resample_sphere(int argc, char** argv);
 
 /// `info` on a .sublift project (levels, per-level wavelet statistics).
 int info_project(const std::string& file, bool json);

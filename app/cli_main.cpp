@@ -40,6 +40,9 @@ constexpr const char* kUsage =
     "  experiment noise|fit|compress --scheme S --model BASE --levels J [--sigma X] [--json]\n"
     "                                        the papers' noise-filtering, fitting and\n"
     "                                        compression errors per level (docs/experiments.md)\n"
+    "  resample-sphere MESH --levels J -o OUT [--base-out BASE] [--json]\n"
+    "                                        sample a star-shaped closed mesh onto the octahedron\n"
+    "                                        split 1-to-4 J times, by rays from its centroid\n"
     "\n"
     "Meshes: .obj (with OpenSubdiv 't' tags; 'l' polylines are curves), .off, .ply (ascii and\n"
     "binary). Lattices: .lattice (Sublift's text format), .vtk (legacy unstructured grid).\n"
@@ -68,6 +71,7 @@ int main(int argc, char** argv) {
     if (cmd == "ffd") return cli::run_ffd(argc, argv);
     if (cmd == "coefficients") return cli::run_coefficients(argc, argv);
     if (cmd == "experiment") return cli::run_experiment(argc, argv);
+    if (cmd == "resample-sphere") return cli::run_resample_sphere(argc, argv);
     std::cerr << "sublift-cli: unknown command '" << cmd << "'\n\n" << kUsage;
     return 2;
   } catch (const cli::UsageError& e) {

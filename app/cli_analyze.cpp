@@ -17,8 +17,10 @@ namespace sublift::cli {
 namespace {
 
 constexpr const char* kHelp =
-    "usage: sublift-cli analyze FINE --base BASE --scheme linear|cubic|sqrt2 --levels N [--integer]\n"
+    "usage: sublift-cli analyze FINE --base BASE --scheme S --levels N [--integer] [--disc K]\n"
     "                           -o PROJECT.sublift [--json]\n"
+    "  S: linear | cubic | sqrt2 | linear-tri | butterfly | loop (the last three on triangle meshes;\n"
+    "  their wavelets are fitted over K-ring discs, K = 1, 2, 3, default 2: docs/triangle_wavelets.md).\n"
     "  Analyses FINE, a shape with the connectivity of BASE refined N times and its vertices in\n"
     "  the order 'subdivide' writes, into scaling and wavelet coefficients, and saves base,\n"
     "  features, scheme and every coefficient as a .sublift project (docs/file_formats.md).\n"
@@ -29,7 +31,7 @@ constexpr const char* kHelp =
 }  // namespace
 
 int run_analyze(int argc, char** argv) {
-  const Args a = parse_args(argc, argv, 2, {"-o", "--base", "--scheme", "--levels"},
+  const Args a = parse_args(argc, argv, 2, {"-o", "--base", "--scheme", "--levels", "--disc"},
                             {"--json", "--help", "--integer"});
   if (a.has("--help")) {
     std::cout << kHelp;
@@ -49,7 +51,7 @@ int run_analyze(int argc, char** argv) {
   check_refined_size(base.base, levels, scheme);
   Shape fine = read_shape(fine_path);
   std::cerr << fine.report.format(fine_path);
-  Hierarchy h = make_hierarchy(std::move(base.base), levels, scheme, 3, a.has("--integer"));
+  Hierarchy h = make_hierarchy(std::move(base.base), levels, scheme, 3, a.has("--integer"), 0, disc_option(a, scheme));
   if (const std::string why = connectivity_mismatch(h.levels.back(), fine.base); !why.empty())
     throw InputError(fine_path, 0, "is not " + *base_path + " refined " + std::to_string(levels) + " times: " + why);
   analyze(h, fine.positions);
@@ -60,6 +62,7 @@ int run_analyze(int argc, char** argv) {
       stats.push_back({{"level", s.level}, {"wavelet_max", s.wavelet_max}, {"wavelet_rms", s.wavelet_rms}});
     nlohmann::json j = {{"input", fine_path},   {"base", *base_path},     {"output", out},
                         {"scheme", scheme_name(scheme)}, {"integer", a.has("--integer")}, {"levels", levels},
+                        {"disc", h.disc},
                         {"vertices", h.num_vertices(levels)}, {"per_level", stats},
                         {"warnings", report_json(fine.report)}};
     std::cout << j.dump(2) << "\n";

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -16,6 +17,8 @@
 #include "app/cli_args.h"
 #include "app/cli_commands.h"
 #include "core/sqrt2_coefficients.h"
+#include "core/tri_local.h"
+#include "core/tri_wavelets.h"
 
 namespace sublift::cli {
 namespace {
@@ -30,7 +33,18 @@ constexpr const char* kHelp =
     "                            a slot dropped for a valence-3 corner is 0\n"
     "    --boundary a|b          eta of the boundary/crease wavelet (eq. 12): case a, lifted on\n"
     "                            p0..p3; case b (next to the curve end p2), lifted on p0, p1\n"
-    "  --json   {\"omega\": [12 numbers]} or {\"eta\": [4 or 2 numbers]}\n";
+    "  linear-tri | butterfly | loop  the k-disc wavelets of Lounsbery, DeRose & Warren (paper 004\n"
+    "    sec. 6.3) for an edge (a, b) whose first end a has valence N and every other vertex 6:\n"
+    "    psi = phi_new - sum_i alpha_i phi_i over the level-j vertices i within K rings of a or b,\n"
+    "    scaling functions equal to 1 at their own vertex, inner products exact (sec. 5)\n"
+    "    --valence N   3..16 (default 6)\n"
+    "    --disc K      1, 2 or 3 rings (default 2)\n"
+    "    order of the alpha: a, b, then breadth first, each vertex listing its neighbours\n"
+    "    counterclockwise starting from the vertex it was reached from (a from b, b from a);\n"
+    "    each entry also gives its ring and a drawing position (a at the origin, b at (1, 0),\n"
+    "    wedges of 360/N degrees)\n"
+    "  --json   {\"omega\": [12 numbers]} or {\"eta\": [4 or 2 numbers]}; the triangle schemes\n"
+    "           {\"alpha\": [...], \"disc\": [{\"ring\", \"x\", \"y\"}...], \"norm\", \"residual\"}\n";
 
 std::string num(double v) {
   char buf[32];
@@ -104,6 +118,64 @@ int run_sqrt2(const Args& a) {
   return 0;
 }
 
+int parse_int_option(const Args& a, const char* name, int fallback, int lo, int hi) {
+  const auto v = a.value(name);
+  if (!v) return fallback;
+  int x = 0;
+  const auto [p, ec] = std::from_chars(v->data(), v->data() + v->size(), x);
+  if (ec != std::errc() || p != v->data() + v->size() || x < lo || x > hi)
+    throw UsageError(std::string(name) + " must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi) +
+                     ", got '" + *v + "'");
+  return x;
+}
+
+int run_tri(const Args& a) {
+  const std::string name = *a.value("--scheme");
+  const TriScheme s = name == "loop" ? TriScheme::Loop : name == "butterfly" ? TriScheme::Butterfly : TriScheme::Linear;
+  const int n = parse_int_option(a, "--valence", 6, 3, 16);
+  const int k = parse_int_option(a, "--disc", 2, 1, 3);
+  TriWaveletBuilder b(s, k);
+  std::vector<double> xy;
+  const Complex disc = extraordinary_disc(n, b.edge_radius() + 3, &xy);
+  const TriRings r = build_tri_rings(disc);
+  std::uint32_t e = UINT32_MAX;
+  for (std::uint32_t x : disc.vertex_edges.row(0))
+    if (disc.edge_verts[2 * x] == 1 || disc.edge_verts[2 * x + 1] == 1) e = x;
+  // The edge runs a = 0 (valence n) -> b = 1 whatever its stored direction.
+  std::vector<std::uint32_t> d;
+  const EdgeWavelet& w = disc.edge_verts[2 * e] == 0 ? b.edge_wavelet(disc, r, e, &d)
+                                                    : throw std::logic_error("coefficients: edge stored backwards");
+  std::vector<int> ring(d.size(), 0);
+  {
+    const std::uint32_t seeds[2] = {0, 1}, starts[2] = {1, 0};
+    const LocalOrder o = local_order(r, seeds, starts, k);
+    for (std::size_t i = 0; i < d.size(); ++i) ring[i] = o.dist[i];
+  }
+  if (a.has("--json")) {
+    nlohmann::json j;
+    j["scheme"] = name;
+    j["valence"] = n;
+    j["disc"] = nlohmann::json::array();
+    for (std::size_t i = 0; i < d.size(); ++i)
+      j["disc"].push_back({{"ring", ring[i]}, {"x", xy[2 * d[i]]}, {"y", xy[2 * d[i] + 1]}});
+    j["k"] = k;
+    j["alpha"] = w.alpha;
+    j["norm"] = std::sqrt(std::max(0.0, w.norm2));
+    j["residual"] = w.residual;
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  std::cout << name << " k-disc wavelet, first end valence " << n << ", k = " << k << " (" << d.size()
+            << " scaling functions; ||psi|| = " << num(std::sqrt(std::max(0.0, w.norm2)))
+            << " with a level-j triangle of area 1)\n";
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "  alpha_%-3zu ring %d  at (% .3f, % .3f)  ", i, ring[i], xy[2 * d[i]], xy[2 * d[i] + 1]);
+    std::cout << buf << num(w.alpha[i]) << "\n";
+  }
+  return 0;
+}
+
 struct SchemeCommand {
   std::set<std::string> with_value;
   std::map<std::string, int> multi;
@@ -113,6 +185,9 @@ struct SchemeCommand {
 const std::map<std::string, SchemeCommand>& schemes() {
   static const std::map<std::string, SchemeCommand> s{
       {"sqrt2", {{"--boundary"}, {{"--valences", 4}}, run_sqrt2}},
+      {"linear-tri", {{"--valence", "--disc"}, {}, run_tri}},
+      {"butterfly", {{"--valence", "--disc"}, {}, run_tri}},
+      {"loop", {{"--valence", "--disc"}, {}, run_tri}},
   };
   return s;
 }

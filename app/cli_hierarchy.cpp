@@ -23,17 +23,31 @@ int levels_option(const Args& a, Scheme scheme) {
 
 Scheme scheme_option(const Args& a) {
   const auto v = a.value("--scheme");
-  if (!v) throw UsageError("missing --scheme linear|cubic|sqrt2");
-  if (*v == "linear") return Scheme::Linear;
-  if (*v == "cubic") return Scheme::Cubic;
-  if (*v == "sqrt2") return Scheme::Sqrt2;
-  throw UsageError("--scheme must be linear, cubic or sqrt2, got '" + *v + "'");
+  if (!v) throw UsageError("missing --scheme linear|cubic|sqrt2|linear-tri|butterfly|loop");
+  try {
+    return parse_scheme(*v);
+  } catch (const std::invalid_argument&) {
+    throw UsageError("--scheme must be linear, cubic, sqrt2, linear-tri, butterfly or loop, got '" + *v + "'");
+  }
+}
+
+int disc_option(const Args& a, Scheme scheme) {
+  const auto v = a.value("--disc");
+  if (!v) return 2;
+  if (!scheme_is_tri(scheme)) throw UsageError("--disc applies to the triangle schemes (linear-tri, butterfly, loop)");
+  if (*v != "1" && *v != "2" && *v != "3") throw UsageError("--disc must be 1, 2 or 3, got '" + *v + "'");
+  return *v == "1" ? 1 : *v == "2" ? 2 : 3;
 }
 
 void check_refined_size(const Complex& base, int levels, Scheme scheme) {
-  if (scheme == Scheme::Sqrt2 && base.dim != 2)
-    throw UsageError(std::string("the sqrt2 scheme refines surfaces only; this input is a ") +
+  if (scheme_has_transitions(scheme) && base.dim != 2)
+    throw UsageError("the " + scheme_name(scheme) + " scheme refines surfaces only; this input is a " +
                      (base.dim == 1 ? "curve" : "volume lattice") + " (use --scheme linear or cubic)");
+  if (scheme_is_tri(scheme))
+    for (std::uint32_t f = 0; f < base.num_faces(); ++f)
+      if (base.faces.size(f) != 3)
+        throw UsageError("the " + scheme_name(scheme) + " scheme needs a triangle mesh; face " + std::to_string(f) + " has " +
+                         std::to_string(base.faces.size(f)) + " corners (use linear, cubic or sqrt2 for polygon meshes)");
   const double n = predicted_level_counts(base, levels, scheme).back();
   if (n > kMaxOutputVertices) {
     char buf[160];

@@ -24,6 +24,8 @@ Scheme scheme_option(const Args& a);
 
 /// Throws UsageError when `levels` refinements of `base` would exceed kMaxOutputVertices, or
 /// when the scheme cannot refine this kind of complex (sqrt2 takes surfaces only).
+/// --disc K of the triangle schemes (default 2); refused for the other schemes.
+int disc_option(const Args& a, Scheme scheme);
 void check_refined_size(const Complex& base, int levels, Scheme scheme);
 
 /// The output path `-o OUT`, required; UsageError when missing or when `dim` cannot be written

@@ -22,7 +22,7 @@ constexpr const char* kUsage =
     "                                        wavelet statistics of a .sublift project\n"
     "  render FILE -o PNG [--size WxH]       render the mesh headless (shaded + wireframe)\n"
     "  convert IN -o OUT [--json]            rewrite a mesh as .obj/.off/.ply (17 digits)\n"
-    "  subdivide IN --scheme linear|cubic|sqrt2 --levels N [--integer] -o OUT\n"
+    "  subdivide IN --scheme S --levels N [--integer] -o OUT\n"
     "                                        subdivide a curve, surface or lattice N times\n"
     "  analyze FINE --base BASE --scheme S --levels N [--integer] -o PROJECT.sublift\n"
     "                                        wavelet coefficients of a finest-level shape\n"

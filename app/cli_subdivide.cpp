@@ -1,4 +1,4 @@
-// sublift-cli subdivide IN --scheme linear|cubic|sqrt2 --levels N [--integer] -o OUT [--json]
+// sublift-cli subdivide IN --scheme S --levels N [--integer] -o OUT [--json]
 #include <iostream>
 
 #include "app/cli_args.h"
@@ -13,13 +13,15 @@ namespace sublift::cli {
 namespace {
 
 constexpr const char* kHelp =
-    "usage: sublift-cli subdivide IN --scheme linear|cubic|sqrt2 --levels N [--integer] -o OUT [--json]\n"
+    "usage: sublift-cli subdivide IN --scheme S --levels N [--integer] -o OUT [--json]\n"
     "  Subdivides the curve, surface or lattice IN N times (0..12; sqrt2: 0..24) with Bertram's lifted B-spline\n"
     "  scheme (zero wavelet coefficients) and writes the finest level to OUT, vertices in the\n"
     "  engine's order (old vertices, then one per edge, face and cell of each level), which is\n"
     "  the order 'analyze' expects. sqrt2 (Wang & Ma's interpolatory sqrt(2) wavelets) takes\n"
     "  surfaces only, N in 0..24 (two of its levels make one 1-to-4 split); its new vertices\n"
-    "  are one per boundary or crease edge (even levels) and one per face. IN: .obj/.off/.ply surfaces, .obj with only 'l' polylines\n"
+    "  are one per boundary or crease edge (even levels) and one per face. linear-tri, butterfly\n"
+    "  and loop (Lounsbery, DeRose & Warren) split triangle meshes 1-to-4 (0..12; old vertices,\n"
+    "  then one per edge). IN: .obj/.off/.ply surfaces, .obj with only 'l' polylines\n"
     "  (curves), .lattice and .vtk lattices. OUT by extension: .obj/.off/.ply for surfaces,\n"
     "  .obj for curves, .lattice for lattices, .vtk for any. --integer rounds every lifting\n"
     "  term (lossless integer transform). Requests beyond 50 million vertices are refused.\n";

@@ -187,7 +187,7 @@ BasisFunction basis_function(const Complex& level_j, Scheme scheme, const BasisR
   out.support_per_level.push_back(count_nonzero(x.data(), nv));
   for (int l = 0; l < K; ++l) {
     const auto L = static_cast<std::size_t>(l);
-    if (r.dual && scheme == Scheme::Sqrt2) sqrt2_analyze_adjoint(h.sqrt2[L], x.data());
+    if (r.dual && scheme_has_transitions(scheme)) sqrt2_analyze_adjoint(h.sqrt2[L], x.data());
     else if (r.dual) lift_analyze_adjoint(h.levels[L], h.tables[L], scheme_program(scheme), x.data());
     else synthesize_transition(h, l, x.data(), 1, false);
     out.support_per_level.push_back(count_nonzero(x.data(), h.num_vertices(l + 1)));

@@ -8,7 +8,9 @@
 #include "core/level_counts.h"
 #include "core/refine.h"
 #include "core/refine_sqrt2.h"
+#include "core/refine_tri.h"
 #include "core/sqrt2_sparse.h"
+#include "core/tri_transform.h"
 
 namespace sublift {
 
@@ -17,6 +19,9 @@ std::string scheme_name(Scheme s) {
     case Scheme::Linear: return "linear";
     case Scheme::Cubic: return "cubic";
     case Scheme::Sqrt2: return "sqrt2";
+    case Scheme::LinearTri: return "linear-tri";
+    case Scheme::Butterfly: return "butterfly";
+    case Scheme::Loop: return "loop";
   }
   return "?";
 }
@@ -25,11 +30,16 @@ Scheme parse_scheme(const std::string& name) {
   if (name == "linear") return Scheme::Linear;
   if (name == "cubic") return Scheme::Cubic;
   if (name == "sqrt2") return Scheme::Sqrt2;
-  throw std::invalid_argument("unknown scheme '" + name + "' (expected linear, cubic or sqrt2)");
+  if (name == "linear-tri") return Scheme::LinearTri;
+  if (name == "butterfly") return Scheme::Butterfly;
+  if (name == "loop") return Scheme::Loop;
+  throw std::invalid_argument("unknown scheme '" + name +
+                              "' (expected linear, cubic, sqrt2, linear-tri, butterfly or loop)");
 }
 
 LiftProgram scheme_program(Scheme s) {
-  if (s == Scheme::Sqrt2) throw std::logic_error("the sqrt2 scheme has no lifting program (it uses Sqrt2Transition)");
+  if (scheme_has_transitions(s))
+    throw std::logic_error("the " + scheme_name(s) + " scheme has no lifting program (it uses explicit transitions)");
   return s == Scheme::Linear ? linear_program() : cubic_program();
 }
 
@@ -45,6 +55,10 @@ std::size_t Hierarchy::bytes() const {
 }
 
 namespace {
+
+TriScheme tri_scheme(Scheme s) {
+  return s == Scheme::Loop ? TriScheme::Loop : s == Scheme::Butterfly ? TriScheme::Butterfly : TriScheme::Linear;
+}
 
 ChildSites sites_of(const Complex& coarse, const Sqrt2Children& ch) {
   ChildSites s;
@@ -79,6 +93,29 @@ void append_level(Hierarchy& h, bool adjacency) {
     h.levels.push_back(std::move(step.fine));
     return;
   }
+  if (scheme_is_tri(h.scheme)) {
+    const double next = double(parent.num_vertices) + double(parent.num_edges());
+    if (next > 4.0e9) throw Error("level " + std::to_string(j + 1) + " would have more than 2^32 vertices");
+    Complex child = refine_tri(parent, adjacency);
+    TriTransitionResult r = build_tri_transition(parent, tri_scheme(h.scheme), h.disc);
+    ChildSites s;
+    const std::uint32_t nv = parent.num_vertices, ne = parent.num_edges();
+    s.site.resize(ne);
+    s.edge_child.resize(ne);
+    s.face_child.assign(parent.num_faces(), UINT32_MAX);
+    for (std::uint32_t e = 0; e < ne; ++e) {
+      s.site[e] = e;
+      s.edge_child[e] = nv + e;
+    }
+    // ||psi|| in units of a base face's area: a level-j face has 4^-j of it.
+    const double area = std::pow(0.25, j);
+    h.wavelet_norms.resize(std::size_t(nv) - h.levels.front().num_vertices);
+    for (double n2 : r.norm2) h.wavelet_norms.push_back(std::sqrt(std::max(0.0, n2 * area)));
+    h.sqrt2.push_back(std::move(r.transition));
+    h.sites.push_back(std::move(s));
+    h.levels.push_back(std::move(child));
+    return;
+  }
   const double next = double(parent.num_child_vertices());
   if (next > 4.0e9) throw Error("level " + std::to_string(j + 1) + " would have more than 2^32 vertices");
   h.tables.push_back(build_lift_tables(parent));
@@ -89,15 +126,17 @@ void append_level(Hierarchy& h, bool adjacency) {
 void pop_level(Hierarchy& h) {
   if (h.levels.size() < 2) throw Error("the hierarchy has no level to remove");
   h.levels.pop_back();
-  if (h.scheme == Scheme::Sqrt2) {
+  if (scheme_has_transitions(h.scheme)) {
     h.sqrt2.pop_back();
     h.sites.pop_back();
+    if (!h.wavelet_norms.empty())
+      h.wavelet_norms.resize(std::size_t(h.levels.back().num_vertices) - h.levels.front().num_vertices);
   } else {
     h.tables.pop_back();
   }
 }
 
-Hierarchy make_hierarchy(Complex base, int levels, Scheme scheme, int channels, bool integer, int first_level) {
+Hierarchy make_hierarchy(Complex base, int levels, Scheme scheme, int channels, bool integer, int first_level, int disc) {
   const int most = scheme == Scheme::Sqrt2 ? 32 : 16;
   if (levels < 0 || levels > most)
     throw Error("number of levels must be in 0.." + std::to_string(most) + ", got " + std::to_string(levels));
@@ -106,12 +145,20 @@ Hierarchy make_hierarchy(Complex base, int levels, Scheme scheme, int channels, 
     throw Error("the sqrt2 scheme refines surfaces only; this is a " +
                 std::string(base.dim == 1 ? "curve" : base.dim == 3 ? "volume lattice" : "complex") +
                 " (use linear or cubic)");
+  if (scheme_is_tri(scheme) && (base.dim != 2 || base.num_cells() != 0))
+    throw Error("the " + scheme_name(scheme) + " scheme refines triangle meshes only; this is a " +
+                std::string(base.dim == 1 ? "curve" : base.dim == 3 ? "volume lattice" : "complex") +
+                " (use linear or cubic)");
+  if (scheme == Scheme::Loop && integer)
+    throw Error("integer mode needs an interpolating scheme; loop's analysis solves a linear system (use butterfly or linear-tri)");
   if (first_level < 0) throw Error("the first sqrt(2) level must not be negative");
   Hierarchy h;
   h.scheme = scheme;
   h.integer = integer;
   h.channels = channels;
   h.first_level = scheme == Scheme::Sqrt2 ? first_level : 0;
+  if (disc < 1 || disc > 3) throw Error("the wavelet disc must have 1, 2 or 3 rings, got " + std::to_string(disc));
+  h.disc = disc;
   if (base.vertex_edges.rows() != base.num_vertices) build_adjacency(base);
   h.levels.reserve(static_cast<std::size_t>(levels) + 1);
   h.levels.push_back(std::move(base));
@@ -122,11 +169,12 @@ Hierarchy make_hierarchy(Complex base, int levels, Scheme scheme, int channels, 
 
 void synthesize_transition(const Hierarchy& h, int j, double* x, int channels, bool integer, bool wavelets_zero) {
   const auto J = static_cast<std::size_t>(j);
-  if (h.scheme == Scheme::Sqrt2) {
+  if (scheme_has_transitions(h.scheme)) {
     // The update sub-step (steps[0]) reads only wavelets.
     const Sqrt2Transition& t = h.sqrt2[J];
     if (!wavelets_zero) return sqrt2_synthesize(t, x, channels, integer);
     for (std::size_t k = 1; k < t.steps.size(); ++k) sqrt2_run_step(t.steps[k], x, channels, 1.0, integer);
+    if (t.smooth) loop_smooth(*t.smooth, x, channels);
     return;
   }
   const LiftProgram program = scheme_program(h.scheme);
@@ -140,11 +188,23 @@ void synthesize_transition(const Hierarchy& h, int j, double* x, int channels, b
 
 void analyze_transition(const Hierarchy& h, int j, double* x, int channels, bool integer) {
   const auto J = static_cast<std::size_t>(j);
-  if (h.scheme == Scheme::Sqrt2) return sqrt2_analyze(h.sqrt2[J], x, channels, integer);
+  if (scheme_has_transitions(h.scheme)) return sqrt2_analyze(h.sqrt2[J], x, channels, integer);
   lift_analyze(h.levels[J], h.tables[J], scheme_program(h.scheme), x, channels, integer);
 }
 
 std::vector<double> predicted_level_counts(const Complex& c, int levels, Scheme scheme, int first_level) {
+  if (scheme_is_tri(scheme)) {
+    // V' = V + E, E' = 2E + 3F, F' = 4F.
+    double v = c.num_vertices, e = c.num_edges(), f = c.num_faces();
+    std::vector<double> out{v};
+    for (int l = 1; l <= levels; ++l) {
+      v += e;
+      e = 2 * e + 3 * f;
+      f *= 4;
+      out.push_back(v);
+    }
+    return out;
+  }
   if (scheme != Scheme::Sqrt2) return predicted_vertex_counts(c, levels);
   std::vector<double> out{double(c.num_vertices)};
   if (first_level % 2 == 0) {
@@ -233,10 +293,12 @@ std::size_t keep_largest(Hierarchy& h, double fraction) {
   const int dim = h.levels.front().dim;
   // Each level multiplies the cell count by 2^dim (sqrt2: by 2).
   const double per_level = h.scheme == Scheme::Sqrt2 ? 1.0 : double(dim);
+  const std::uint32_t nv0 = h.num_vertices(0);
+  const bool exact = h.wavelet_norms.size() + nv0 == h.num_vertices(h.finest_level());
   for (int j = 0; j < h.finest_level(); ++j) {
     const double scale = std::pow(2.0, -0.5 * j * per_level);  // L2 norm of a level-j basis function
     for (std::uint32_t i = h.num_vertices(j); i < h.num_vertices(j + 1); ++i)
-      all.push_back({norm(&h.coeffs[std::size_t(i) * h.channels], h.channels) * scale, i});
+      all.push_back({norm(&h.coeffs[std::size_t(i) * h.channels], h.channels) * (exact ? h.wavelet_norms[i - nv0] : scale), i});
   }
   const auto keep = static_cast<std::size_t>(std::llround(fraction * double(all.size())));
   if (keep < all.size()) {

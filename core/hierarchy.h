@@ -20,15 +20,24 @@
 
 namespace sublift {
 
-enum class Scheme : std::uint8_t { Linear, Cubic, Sqrt2 };
+// LinearTri, Butterfly, Loop: the triangle-mesh schemes of Lounsbery, DeRose & Warren (paper
+// 004) on the 1-to-4 triangle split (refine_tri.h), wavelets on the edge midpoints [v | e].
+enum class Scheme : std::uint8_t { Linear, Cubic, Sqrt2, LinearTri, Butterfly, Loop };
 
-/// "linear" / "cubic" / "sqrt2"; parse throws std::invalid_argument on other names.
+/// "linear" / "cubic" / "sqrt2" / "linear-tri" / "butterfly" / "loop"; parse throws
+/// std::invalid_argument on other names.
 std::string scheme_name(Scheme s);
 Scheme parse_scheme(const std::string& name);
 /// The lifting program of the 1-to-4 schemes (Sqrt2 has explicit transitions instead).
 LiftProgram scheme_program(Scheme s);
-/// Whether the scheme interpolates (its limit passes through every control point): sqrt2.
-inline bool scheme_interpolates(Scheme s) { return s == Scheme::Sqrt2; }
+/// The triangle-mesh schemes of paper 004.
+inline bool scheme_is_tri(Scheme s) { return s == Scheme::LinearTri || s == Scheme::Butterfly || s == Scheme::Loop; }
+/// Schemes run by explicit sparse transitions (Hierarchy::sqrt2) instead of a lifting program.
+inline bool scheme_has_transitions(Scheme s) { return s == Scheme::Sqrt2 || scheme_is_tri(s); }
+/// Whether the scheme interpolates (its limit passes through every control point).
+inline bool scheme_interpolates(Scheme s) {
+  return s == Scheme::Sqrt2 || s == Scheme::LinearTri || s == Scheme::Butterfly;
+}
 /// How many of the scheme's levels make one 1-to-4 refinement: 2 for sqrt2, else 1.
 inline int scheme_levels_per_split(Scheme s) { return s == Scheme::Sqrt2 ? 2 : 1; }
 
@@ -39,10 +48,15 @@ struct Hierarchy {
   int channels = 3;
   std::vector<Complex> levels;      // 0..J; the last one without adjacency
   std::vector<LiftTables> tables;   // tables[j]: transition j -> j+1 (Linear, Cubic)
-  std::vector<Sqrt2Transition> sqrt2;  // sqrt2[j]: transition j -> j+1 (Sqrt2)
-  std::vector<ChildSites> sites;        // sites[j]: new vertices of level j+1 (Sqrt2)
+  std::vector<Sqrt2Transition> sqrt2;  // sqrt2[j]: transition j -> j+1 (Sqrt2 and the triangle schemes)
+  std::vector<ChildSites> sites;        // sites[j]: new vertices of level j+1 (same schemes)
+  int disc = 2;  // triangle schemes: the rings k of the k-disc wavelets (004 sec. 6.3)
   int first_level = 0;  // the sqrt(2) level index of levels[0] (odd levels keep their curves)
   std::vector<double> coeffs;       // num_vertices(J) * channels, layout above
+  // L2 norm of each wavelet (index v - nv_0 for the wavelet on fine vertex v), where the scheme
+  // knows it exactly (the triangle schemes, from exact inner products); empty otherwise, and
+  // then the area scaling 2^(-j * dim / 2) stands in (keep_largest).
+  std::vector<double> wavelet_norms;
 
   int finest_level() const { return static_cast<int>(levels.size()) - 1; }
   std::uint32_t num_vertices(int level) const { return levels[static_cast<std::size_t>(level)].num_vertices; }
@@ -52,8 +66,9 @@ struct Hierarchy {
 /// Builds levels 0..J of `base` (topology and lifting tables) with all coefficients zero.
 /// Sqrt2 needs a surface; `first_level` says which sqrt(2) level `base` is (a level-j complex
 /// taken out of a hierarchy refines as level j does: curves are refined after odd levels).
+/// `disc`: the k of the triangle schemes' k-disc wavelets (1, 2 or 3).
 Hierarchy make_hierarchy(Complex base, int levels, Scheme scheme, int channels, bool integer = false,
-                         int first_level = 0);
+                         int first_level = 0, int disc = 2);
 
 /// Appends level J+1 and transition J -> J+1 (the new level with its derived rows when
 /// `adjacency`; the old finest level gets them if it lacks them). Coefficients are not touched.

@@ -1,4 +1,5 @@
 #include "core/limit.h"
+#include "core/tri_transform.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -613,6 +614,12 @@ LimitStencils build_limit_stencils(const Hierarchy& h) {
     s.weights.assign(nv, 1.0);
     s.tangent_rows.offsets.assign(std::size_t(nv) + 1, 0);
     s.users = s.rows;
+    return s;
+  }
+  if (h.scheme == Scheme::Loop) {  // Loop's limit masks; normals from the faces (no tangent rows)
+    loop_limit_rows(fin, s.rows, s.weights);
+    s.tangent_rows.offsets.assign(std::size_t(nv) + 1, 0);
+    s.users = transpose(s.rows, nv);
     return s;
   }
   Complex copy;

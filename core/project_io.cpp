@@ -71,6 +71,7 @@ void write_project(const std::string& path, const Hierarchy& h, const ProjectExt
   j["version"] = 1;
   j["scheme"] = scheme_name(h.scheme);
   j["integer"] = h.integer;
+  if (scheme_is_tri(h.scheme)) j["disc"] = h.disc;
   j["levels"] = h.finest_level();
   j["channels"] = h.channels;
   j["dim"] = b.dim;
@@ -125,7 +126,7 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
     throw InputError(file, 2, "missing or over-long header line");
   nlohmann::json j;
   std::uint64_t V, E, F, C, SF, CF, N;
-  int levels, channels, dim;
+  int levels, channels, dim, disc = 2;
   bool integer;
   Scheme scheme;
   ProjectExtras extras;
@@ -140,6 +141,8 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
       throw InputError(file, 2, "unknown scheme '" + j.at("scheme").get<std::string>() + "'");
     }
     integer = j.at("integer").get<bool>();
+    disc = j.value("disc", 2);
+    if (disc < 1 || disc > 3) throw InputError(file, 2, "header 'disc' must be 1, 2 or 3, got " + std::to_string(disc));
     levels = j.at("levels").get<int>();
     channels = j.at("channels").get<int>();
     dim = j.at("dim").get<int>();
@@ -220,8 +223,9 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   check_csr(c.cell_faces, CF, F, "cell");
   if ((dim < 3 && C) || (dim < 2 && F) || (dim >= 2 && F == 0))
     throw InputError(file, 2, "counts do not fit a complex of dimension " + std::to_string(dim));
-  if (scheme == Scheme::Sqrt2 && dim != 2)
-    throw InputError(file, 2, "the sqrt2 scheme needs a surface (dim 2), the header says dim " + std::to_string(dim));
+  if (scheme_has_transitions(scheme) && dim != 2)
+    throw InputError(file, 2, "the " + scheme_name(scheme) + " scheme needs a surface (dim 2), the header says dim " +
+                                  std::to_string(dim));
   try {
     build_adjacency(c);
     validate(c);
@@ -243,7 +247,7 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
     if (!std::isfinite(coeffs[i])) throw InputError(file, 0, "coefficient " + std::to_string(i) + " is not finite");
   Hierarchy h;
   try {
-    h = make_hierarchy(std::move(c), levels, scheme, channels, integer);
+    h = make_hierarchy(std::move(c), levels, scheme, channels, integer, 0, disc);
   } catch (const TopologyError& e) {  // sqrt2 needs consistently oriented faces
     throw InputError(file, 0, std::string("base complex: ") + e.what());
   }

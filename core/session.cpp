@@ -82,18 +82,18 @@ void Session::resynthesize_one(int l) {
 }
 
 const ChildSites* Session::sites(int l) const {
-  return h_.scheme == Scheme::Sqrt2 ? &h_.sites[static_cast<std::size_t>(l)] : nullptr;
+  return scheme_has_transitions(h_.scheme) ? &h_.sites[static_cast<std::size_t>(l)] : nullptr;
 }
 
 void Session::synthesize_sparse(int l, SparseDelta& d) {
   const auto L = static_cast<std::size_t>(l);
-  if (h_.scheme == Scheme::Sqrt2) return sqrt2_synthesize_sparse(h_.sqrt2[L], sqrt2_index_[L], d);
+  if (scheme_has_transitions(h_.scheme)) return sqrt2_synthesize_sparse(h_.sqrt2[L], sqrt2_index_[L], d);
   lift_synthesize_sparse(h_.levels[L], h_.tables[L], scheme_program(h_.scheme), d);
 }
 
 void Session::analyze_sparse(int l, SparseDelta& d) {
   const auto L = static_cast<std::size_t>(l);
-  if (h_.scheme == Scheme::Sqrt2) return sqrt2_analyze_sparse(h_.sqrt2[L], sqrt2_index_[L], d);
+  if (scheme_has_transitions(h_.scheme)) return sqrt2_analyze_sparse(h_.sqrt2[L], sqrt2_index_[L], d);
   lift_analyze_sparse(h_.levels[L], h_.tables[L], scheme_program(h_.scheme), d);
 }
 
@@ -444,7 +444,7 @@ OpReport Session::set_gain(int level, double factor) {
 
 void Session::add_level() {
   append_level(h_, true);
-  if (h_.scheme == Scheme::Sqrt2) sqrt2_index_.push_back(build_sqrt2_sparse_index(h_.sqrt2.back()));
+  if (scheme_has_transitions(h_.scheme)) sqrt2_index_.push_back(build_sqrt2_sparse_index(h_.sqrt2.back()));
   const std::size_t n = std::size_t(h_.levels.back().num_vertices) * 3;
   h_.coeffs.resize(n, 0.0);
   if (!local_.empty()) local_.resize(n, 0.0);

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/parallel.h"
+#include "core/tri_transform.h"
 
 namespace sublift {
 
@@ -62,9 +63,11 @@ void sparse_step(const Sqrt2Substep& s, const Csr& rev, double sign, SparseDelta
 
 void sqrt2_synthesize_sparse(const Sqrt2Transition& t, const Sqrt2SparseIndex& index, SparseDelta& d) {
   for (std::size_t k = 0; k < t.steps.size(); ++k) sparse_step(t.steps[k], index.rows_of_source[k], 1.0, d);
+  if (t.smooth) loop_smooth_sparse(*t.smooth, d);
 }
 
 void sqrt2_analyze_sparse(const Sqrt2Transition& t, const Sqrt2SparseIndex& index, SparseDelta& d) {
+  if (t.smooth) loop_unsmooth_sparse(*t.smooth, d);
   for (std::size_t k = t.steps.size(); k-- > 0;) sparse_step(t.steps[k], index.rows_of_source[k], -1.0, d);
 }
 
@@ -75,6 +78,8 @@ void sqrt2_analyze_adjoint(const Sqrt2Transition& t, double* y) {
       if (yt == 0.0) continue;
       for (std::uint32_t k = s.sources.offsets[r]; k < s.sources.offsets[r + 1]; ++k) y[s.sources.items[k]] -= s.weights[k] * yt;
     }
+  // Analysis starts with Loop's solve, so its adjoint comes last.
+  if (t.smooth) loop_unsmooth_adjoint(*t.smooth, y);
 }
 
 }  // namespace sublift

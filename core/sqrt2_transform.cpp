@@ -1,4 +1,5 @@
 #include "core/sqrt2_transform.h"
+#include "core/tri_transform.h"
 
 #include <algorithm>
 #include <array>
@@ -316,9 +317,11 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
 
 void sqrt2_synthesize(const Sqrt2Transition& t, double* x, int channels, bool integer) {
   for (const Sqrt2Substep& s : t.steps) sqrt2_run_step(s, x, channels, 1.0, integer);
+  if (t.smooth) loop_smooth(*t.smooth, x, channels);
 }
 
 void sqrt2_analyze(const Sqrt2Transition& t, double* x, int channels, bool integer) {
+  if (t.smooth) loop_unsmooth(*t.smooth, x, channels);
   for (auto it = t.steps.rbegin(); it != t.steps.rend(); ++it) sqrt2_run_step(*it, x, channels, -1.0, integer);
 }
 

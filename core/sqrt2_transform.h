@@ -29,6 +29,7 @@
 //     of level-0 non-quads are not lifted. Curve points lift with eta: case (a) a, p, q, b;
 //     case (b) the two points away from the curve end; none for the midpoint rule.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/complex.h"
@@ -45,6 +46,10 @@ struct Sqrt2Substep {
   std::vector<double> weights;  // aligned with sources.items
 };
 
+/// Loop's old-vertex rule (the triangle schemes, core/tri_transform.h): synthesis ends with
+/// old = P_oo old, analysis begins with the sparse solve of it. Opaque here.
+struct LoopSmoothing;
+
 struct Sqrt2Transition {
   std::uint32_t num_coarse = 0;          // old vertices (fine indices 0..num_coarse-1)
   std::uint32_t num_fine = 0;
@@ -52,6 +57,7 @@ struct Sqrt2Transition {
   std::uint32_t lifted_face_points = 0;      // face points lifted with the omega table
   std::uint32_t near_curve_face_points = 0;  // lifted with a local solve (sec. 4)
   std::uint32_t unlifted_face_points = 0;    // left primitive (level-0 polygons)
+  std::shared_ptr<const LoopSmoothing> smooth;  // Loop only (triangle schemes); else null
 };
 
 /// Builds the sub-steps of the step coarse -> fine described by `children` (refine_sqrt2's

@@ -242,7 +242,8 @@ TEST(CliHierarchy, UsageErrorsExitWithTwo) {
   const std::string cube = kAssets + "/cube.obj", out = dir.file("o.obj");
   const std::vector<std::vector<std::string>> bad = {
       {"subdivide", cube, "--levels", "2", "-o", out},                                  // no scheme
-      {"subdivide", cube, "--scheme", "loop", "--levels", "2", "-o", out},              // unknown scheme
+      {"subdivide", cube, "--scheme", "catmark", "--levels", "2", "-o", out},           // unknown scheme
+      {"subdivide", cube, "--scheme", "loop", "--levels", "2", "-o", out},              // quads for a triangle scheme
       {"subdivide", cube, "--scheme", "cubic", "-o", out},                              // no levels
       {"subdivide", cube, "--scheme", "cubic", "--levels", "13", "-o", out},            // too many
       {"subdivide", cube, "--scheme", "cubic", "--levels", "x", "-o", out},
@@ -262,7 +263,8 @@ TEST(CliHierarchy, UsageErrorsExitWithTwo) {
     EXPECT_EQ(r.exit_code, 2) << joined << "\n" << r.err;
     EXPECT_NE(r.err.find("sublift-cli " + args[0]), std::string::npos) << r.err;
   }
-  const ProcessResult big = cli(bad[8]);
+  const ProcessResult big = cli(bad[9]);
+  EXPECT_NE(cli(bad[2]).err.find("needs a triangle mesh; face 0 has 4 corners"), std::string::npos);
   EXPECT_NE(big.err.find("more than the limit"), std::string::npos) << big.err;
   EXPECT_FALSE(fs::exists(dir.file("o.vtk")));
 }

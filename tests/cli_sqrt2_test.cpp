@@ -408,7 +408,7 @@ TEST(CliSqrt2, UsageErrorsExplainWhatIsWrong) {
       {{"subdivide", cube, "--scheme", "sqrt2", "--levels", "25", "-o", dir.file("o.obj")}, {"0..24", "'25'"}},
       {{"subdivide", cube, "--scheme", "cubic", "--levels", "13", "-o", dir.file("o.obj")}, {"0..12", "'13'"}},
       {{"subdivide", cube, "--scheme", "sqrt3", "--levels", "2", "-o", dir.file("o.obj")},
-       {"linear, cubic or sqrt2", "'sqrt3'"}},
+       {"linear, cubic, sqrt2", "'sqrt3'"}},
       // In range, but the cube at level 24 has 2 + 6 * 2^24 vertices: refused before allocating.
       {{"subdivide", cube, "--scheme", "sqrt2", "--levels", "24", "-o", dir.file("o.obj")}, {"more than the limit"}},
   };

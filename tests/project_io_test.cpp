@@ -122,7 +122,7 @@ TEST(ProjectIo, RefusesBadMagicVersionAndHeader) {
     return s.replace(at, from.size(), to);
   };
   EXPECT_NE(error_of(with("\"levels\":1", "\"levels\":13")).find("levels 13 outside"), std::string::npos);
-  EXPECT_NE(error_of(with("\"scheme\":\"cubic\"", "\"scheme\":\"loop\"")).find("unknown scheme 'loop'"), std::string::npos);
+  EXPECT_NE(error_of(with("\"scheme\":\"cubic\"", "\"scheme\":\"catmark\"")).find("unknown scheme 'catmark'"), std::string::npos);
   EXPECT_NE(error_of(with("\"channels\":3", "\"channels\":0")).find("channels 0"), std::string::npos);
   EXPECT_NE(error_of(with("\"dim\":3", "\"dim\":4")).find("dim 4"), std::string::npos);
 }

@@ -1,0 +1,231 @@
+#include "core/tri_transform.h"
+
+#include <algorithm>
+#include <array>
+#include <unordered_map>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <string>
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/Sparse>
+
+#include "core/errors.h"
+#include "core/tri_local.h"
+#include "core/tri_wavelets.h"
+
+namespace sublift {
+
+struct LoopSmoothing {
+  std::uint32_t nv = 0;
+  Csr rows;
+  std::vector<double> weights;
+  Csr readers;  // per old vertex: the rows that read it
+  Eigen::SparseMatrix<double, Eigen::RowMajor> P;
+};
+
+namespace {
+
+std::mutex builders_mutex;
+std::map<std::pair<int, int>, std::unique_ptr<TriWaveletBuilder>>& builders() {
+  static std::map<std::pair<int, int>, std::unique_ptr<TriWaveletBuilder>> b;
+  return b;
+}
+
+}  // namespace
+
+TriTransitionResult build_tri_transition(const Complex& coarse, TriScheme s, int disc) {
+  const TriRings rings = build_tri_rings(coarse);
+  const TriStencils st = build_tri_stencils(coarse, s);
+  const std::uint32_t nv = coarse.num_vertices, ne = coarse.num_edges();
+  TriTransitionResult out;
+  Sqrt2Transition& t = out.transition;
+  t.num_coarse = nv;
+  t.num_fine = nv + ne;
+  out.norm2.resize(ne);
+
+  // Update: old vertex i gets -alpha_{i,m} d_m; gathered as (i, m, w) and sorted by i.
+  struct Entry {
+    std::uint32_t i, m;
+    double w;
+  };
+  std::vector<Entry> update;
+  {
+    const std::lock_guard<std::mutex> lock(builders_mutex);
+    auto& slot = builders()[{static_cast<int>(s), disc}];
+    if (!slot) slot = std::make_unique<TriWaveletBuilder>(s, disc);
+    TriWaveletBuilder& b = *slot;
+    const int R = b.signature_radius();
+    const std::vector<std::uint8_t> dist = distance_to_irregular(coarse, rings, R + 1);
+    std::vector<std::uint32_t> d;
+    for (std::uint32_t e = 0; e < ne; ++e) {
+      const std::uint32_t a = coarse.edge_verts[2 * e], c = coarse.edge_verts[2 * e + 1];
+      const bool regular = std::min(dist[a], dist[c]) > R;
+      out.irregular_edges += regular ? 0 : 1;
+      const EdgeWavelet& w = b.edge_wavelet(coarse, rings, e, &d, regular);
+      if (w.alpha.size() != d.size()) throw std::logic_error("tri_transform: disc and alpha sizes differ");
+      for (std::size_t k = 0; k < d.size(); ++k)
+        if (w.alpha[k] != 0.0) update.push_back({d[k], nv + e, -w.alpha[k]});
+      out.norm2[e] = w.norm2;
+      out.max_residual = std::max(out.max_residual, w.residual);
+    }
+  }
+  std::sort(update.begin(), update.end(), [](const Entry& x, const Entry& y) { return x.i != y.i ? x.i < y.i : x.m < y.m; });
+  Sqrt2Substep up;
+  for (std::size_t k = 0; k < update.size();) {
+    up.target.push_back(update[k].i);
+    for (const std::uint32_t i = update[k].i; k < update.size() && update[k].i == i; ++k) {
+      up.sources.items.push_back(update[k].m);
+      up.weights.push_back(update[k].w);
+    }
+    up.sources.offsets.push_back(static_cast<std::uint32_t>(up.sources.items.size()));
+  }
+  Sqrt2Substep predict;
+  predict.target.resize(ne);
+  for (std::uint32_t e = 0; e < ne; ++e) predict.target[e] = nv + e;
+  predict.sources = st.new_rows;
+  predict.weights = st.new_weights;
+  t.steps.push_back(std::move(up));
+  t.steps.push_back(std::move(predict));
+
+  if (st.old_rows.rows() != 0) {
+    auto m = std::make_shared<LoopSmoothing>();
+    m->nv = nv;
+    m->rows = st.old_rows;
+    m->weights = st.old_weights;
+    m->readers = transpose(m->rows, nv);
+    std::vector<Eigen::Triplet<double>> trip;
+    trip.reserve(m->weights.size());
+    for (std::uint32_t i = 0; i < nv; ++i)
+      for (std::uint32_t q = m->rows.offsets[i]; q < m->rows.offsets[i + 1]; ++q)
+        trip.emplace_back(static_cast<int>(i), static_cast<int>(m->rows.items[q]), m->weights[q]);
+    m->P.resize(static_cast<int>(nv), static_cast<int>(nv));
+    m->P.setFromTriplets(trip.begin(), trip.end());
+    t.smooth = std::move(m);
+  }
+  return out;
+}
+
+void loop_smooth(const LoopSmoothing& m, double* x, int channels) {
+  std::vector<double> u(x, x + std::size_t(m.nv) * channels);
+  for (std::uint32_t i = 0; i < m.nv; ++i)
+    for (int c = 0; c < channels; ++c) {
+      double s = 0;
+      for (std::uint32_t q = m.rows.offsets[i]; q < m.rows.offsets[i + 1]; ++q)
+        s += m.weights[q] * u[std::size_t(m.rows.items[q]) * channels + c];
+      x[std::size_t(i) * channels + c] = s;
+    }
+}
+
+namespace {
+
+template <class Matrix>
+void solve_channels(const Matrix& A, std::uint32_t nv, double* x, int channels, const char* what) {
+  Eigen::BiCGSTAB<Matrix, Eigen::DiagonalPreconditioner<double>> solver;
+  solver.setTolerance(1e-15);
+  solver.setMaxIterations(1000);
+  solver.compute(A);
+  Eigen::VectorXd b(nv), u(nv);
+  for (int c = 0; c < channels; ++c) {
+    for (std::uint32_t i = 0; i < nv; ++i) b(i) = x[std::size_t(i) * channels + c];
+    if (b.squaredNorm() == 0) continue;
+    u = solver.solve(b);
+    const double rel = (A * u - b).norm() / b.norm();
+    if (!(rel < 1e-12))
+      throw Error(std::string("Loop analysis: the sparse solve of the vertex rule did not converge (") + what +
+                  ", relative residual " + std::to_string(rel) + ")");
+    for (std::uint32_t i = 0; i < nv; ++i) x[std::size_t(i) * channels + c] = u(i);
+  }
+}
+
+}  // namespace
+
+void loop_unsmooth(const LoopSmoothing& m, double* x, int channels) { solve_channels(m.P, m.nv, x, channels, "P"); }
+
+void loop_unsmooth_adjoint(const LoopSmoothing& m, double* y) {
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> Pt = m.P.transpose();
+  solve_channels(Pt, m.nv, y, 1, "P^T");
+}
+
+void loop_smooth_sparse(const LoopSmoothing& m, SparseDelta& d) {
+  std::unordered_map<std::uint32_t, std::array<double, 3>> du;
+  for (std::uint32_t v : d.list)
+    if (v < m.nv) {
+      double* x = d.x.data() + std::size_t(v) * 3;
+      du[v] = {x[0], x[1], x[2]};
+      x[0] = x[1] = x[2] = 0.0;
+    }
+  std::vector<std::uint32_t> rows;
+  for (const auto& [k, value] : du)
+    for (std::uint32_t i : m.readers.row(k)) rows.push_back(i);
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  for (std::uint32_t i : rows) {
+    double acc[3] = {0, 0, 0};
+    for (std::uint32_t q = m.rows.offsets[i]; q < m.rows.offsets[i + 1]; ++q)
+      if (const auto it = du.find(m.rows.items[q]); it != du.end())
+        for (int c = 0; c < 3; ++c) acc[c] += m.weights[q] * it->second[static_cast<std::size_t>(c)];
+    double* x = d.at(i);
+    for (int c = 0; c < 3; ++c) x[c] = acc[c];
+  }
+}
+
+void loop_unsmooth_sparse(const LoopSmoothing& m, SparseDelta& d) {
+  std::vector<double> b(std::size_t(m.nv) * 3, 0.0);
+  bool any = false;
+  for (std::uint32_t v : d.list)
+    if (v < m.nv) {
+      for (int c = 0; c < 3; ++c) b[std::size_t(v) * 3 + c] = d.x[std::size_t(v) * 3 + c];
+      any = true;
+    }
+  if (!any) return;
+  loop_unsmooth(m, b.data(), 3);
+  for (std::uint32_t i = 0; i < m.nv; ++i) {
+    const double* u = b.data() + std::size_t(i) * 3;
+    if (u[0] == 0.0 && u[1] == 0.0 && u[2] == 0.0 && !d.in_list[i]) continue;
+    double* x = d.at(i);
+    for (int c = 0; c < 3; ++c) x[c] = u[c];
+  }
+}
+
+void loop_limit_rows(const Complex& c, Csr& rows, std::vector<double>& weights) {
+  const std::uint32_t nv = c.num_vertices, ne = c.num_edges();
+  std::vector<std::uint8_t> faces_of_edge(ne, 0);
+  for (std::uint32_t e : c.face_edges.items) faces_of_edge[e] = static_cast<std::uint8_t>(std::min(2, faces_of_edge[e] + 1));
+  const Csr vertex_edges = transpose_pairs(c.edge_verts, nv);
+  rows.clear();
+  weights.clear();
+  std::vector<std::uint32_t> feature;
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    feature.clear();
+    const auto edges = vertex_edges.row(v);
+    const auto other = [&](std::uint32_t e) { return c.edge_verts[2 * e] == v ? c.edge_verts[2 * e + 1] : c.edge_verts[2 * e]; };
+    for (std::uint32_t e : edges)
+      if (faces_of_edge[e] < 2 || (!c.edge_dim.empty() && c.edge_dim[e] == 1)) feature.push_back(e);
+    const bool corner = feature.size() > 2 || edges.empty() || (!c.vertex_dim.empty() && c.vertex_dim[v] == 0);
+    rows.items.push_back(v);
+    if (corner) {
+      weights.push_back(1.0);
+    } else if (feature.size() == 2) {
+      weights.push_back(2.0 / 3.0);
+      for (std::uint32_t e : feature) {
+        rows.items.push_back(other(e));
+        weights.push_back(1.0 / 6.0);
+      }
+    } else {
+      const double n = double(edges.size());
+      const double t = 0.375 + 0.25 * std::cos(2 * M_PI / n);
+      const double beta = (0.625 - t * t) / n;
+      const double g = 1.0 / (3.0 / (8.0 * beta) + n);
+      weights.push_back(1.0 - n * g);
+      for (std::uint32_t e : edges) {
+        rows.items.push_back(other(e));
+        weights.push_back(g);
+      }
+    }
+    rows.offsets.push_back(static_cast<std::uint32_t>(rows.items.size()));
+  }
+}
+
+}  // namespace sublift

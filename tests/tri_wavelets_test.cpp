@@ -1,0 +1,265 @@
+// Exact face-by-face inner products (core/tri_gram.h) and the k-disc wavelets of paper 004
+// (core/tri_wavelets.h).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <array>
+#include <map>
+
+#include "core/complex_build.h"
+#include "core/inner_products.h"
+#include "core/refine_tri.h"
+#include "core/tri_gram.h"
+#include "core/tri_local.h"
+#include "core/tri_rules.h"
+#include "core/tri_wavelets.h"
+
+using namespace sublift;
+
+namespace {
+
+// A flat torus of w x h lattice cells, every vertex of valence 6; vertex (i, j) = i + w j, the
+// triangles of inner_products.h's lattice ({(i,j),(i+1,j),(i,j+1)}, {(i+1,j),(i+1,j+1),(i,j+1)}).
+Complex regular_torus(int w, int h) {
+  Csr faces;
+  const auto v = [&](int i, int j) { return static_cast<std::uint32_t>(((i + w) % w) + w * ((j + h) % h)); };
+  const auto tri = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    faces.items.insert(faces.items.end(), {a, b, c});
+    faces.offsets.push_back(static_cast<std::uint32_t>(faces.items.size()));
+  };
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      tri(v(i, j), v(i + 1, j), v(i, j + 1));
+      tri(v(i + 1, j), v(i + 1, j + 1), v(i, j + 1));
+    }
+  return complex_from_polygons(static_cast<std::uint32_t>(w * h), faces);
+}
+
+// All pairwise inner products of a mesh's scaling functions, face by face.
+std::map<std::pair<std::uint32_t, std::uint32_t>, double> assemble(FaceGramCache& cache, const Complex& c) {
+  const TriRings r = build_tri_rings(c);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, double> g;
+  for (std::uint32_t f = 0; f < c.num_faces(); ++f) {
+    const auto fg = cache.face_gram(c, r, f);
+    for (std::size_t p = 0; p < fg.verts.size(); ++p)
+      for (std::size_t q = 0; q < fg.verts.size(); ++q)
+        g[{fg.verts[p], fg.verts[q]}] += (*fg.G)(static_cast<int>(p), static_cast<int>(q));
+  }
+  return g;
+}
+
+ip::RegularScheme regular(TriScheme s) {
+  return s == TriScheme::Loop ? ip::RegularScheme::Loop
+         : s == TriScheme::Butterfly ? ip::RegularScheme::Butterfly : ip::RegularScheme::Linear;
+}
+
+}  // namespace
+
+// On the regular lattice the face-by-face Grams must sum to the lattice solution I(d) of
+// core/inner_products (a different solver: one unknown per offset, Dahmen-Micchelli style).
+TEST(TriGram, RegularTorusEqualsLatticeSolution) {
+  const int w = 16, h = 16;
+  const Complex torus = regular_torus(w, h);
+  for (TriScheme s : {TriScheme::Linear, TriScheme::Loop, TriScheme::Butterfly}) {
+    SCOPED_TRACE(static_cast<int>(s));
+    FaceGramCache cache(s);
+    const auto g = assemble(cache, torus);
+    const ip::LatticeInnerProducts& lat = ip::cached_inner_products({regular(s), 6});
+    EXPECT_LE(cache.last_change(), 1e-16);
+    double worst = 0;
+    for (int dj = -5; dj <= 5; ++dj)
+      for (int di = -5; di <= 5; ++di) {
+        const std::uint32_t a = static_cast<std::uint32_t>(3 + w * 4);
+        const std::uint32_t b = static_cast<std::uint32_t>(((3 + di + w) % w) + w * ((4 + dj + h) % h));
+        const auto it = g.find({a, b});
+        const double ours = it == g.end() ? 0.0 : it->second;
+        worst = std::max(worst, std::abs(ours - lat.at({di, dj})));
+      }
+    EXPECT_LT(worst, 1e-14);
+    // One type only: every face of a regular mesh looks the same.
+    EXPECT_LE(cache.num_types(), 2u);
+  }
+}
+
+// Around an extraordinary vertex: the inner products sum to the area (partition of unity),
+// are symmetric, and the n wedges give the same numbers (rotational symmetry).
+TEST(TriGram, ExtraordinaryVertexSymmetricAndSumsToArea) {
+  for (TriScheme s : {TriScheme::Loop, TriScheme::Butterfly}) {
+    for (int n : {3, 4, 5, 7, 9}) {
+      SCOPED_TRACE(std::to_string(static_cast<int>(s)) + " valence " + std::to_string(n));
+      const Complex disc = extraordinary_disc(n, 14);
+      FaceGramCache cache(s);
+      const TriRings r = build_tri_rings(disc);
+      // Faces around the centre: vertex 0's fan.
+      double total = 0;
+      std::vector<double> self_of_spoke;
+      std::map<std::pair<std::uint32_t, std::uint32_t>, double> g;
+      for (std::uint32_t f : disc.vertex_faces.row(0)) {
+        const auto fg = cache.face_gram(disc, r, f);
+        total += fg.G->sum();
+        EXPECT_LT((*fg.G - fg.G->transpose()).cwiseAbs().maxCoeff(), 1e-15);
+        for (std::size_t p = 0; p < fg.verts.size(); ++p)
+          for (std::size_t q = 0; q < fg.verts.size(); ++q)
+            g[{fg.verts[p], fg.verts[q]}] += (*fg.G)(static_cast<int>(p), static_cast<int>(q));
+      }
+      EXPECT_NEAR(total, n, 1e-13);
+      // <phi_0, phi_spoke> is the same for each spoke (the fan's faces are one type rotated).
+      const auto ring = r.ring.row(0);
+      const auto at = [&](std::uint32_t x, std::uint32_t y) { return g[std::make_pair(x, y)]; };
+      for (std::uint32_t k = 1; k < ring.size(); ++k) EXPECT_NEAR(at(0, ring[k]), at(0, ring[0]), 1e-15);
+      EXPECT_LT(cache.last_change(), 1e-16);
+    }
+  }
+}
+
+// The k-disc wavelet is orthogonal to every scaling function of its disc (by construction, to
+// rounding) and has a positive norm; with n = 6 it equals the regular one.
+TEST(TriWavelets, OrthogonalToItsDiscAndRegularAtValenceSix) {
+  for (TriScheme s : {TriScheme::Linear, TriScheme::Loop, TriScheme::Butterfly}) {
+    for (int k : {1, 2, 3}) {
+      TriWaveletBuilder b(s, k);
+      for (int n : {3, 4, 6, 8}) {
+        SCOPED_TRACE(std::to_string(static_cast<int>(s)) + " k " + std::to_string(k) + " n " + std::to_string(n));
+        const Complex disc = extraordinary_disc(n, b.edge_radius() + 3);
+        const TriRings r = build_tri_rings(disc);
+        std::uint32_t e = UINT32_MAX;
+        for (std::uint32_t x : disc.vertex_edges.row(0))
+          if (disc.edge_verts[2 * x] == 1 || disc.edge_verts[2 * x + 1] == 1) e = x;
+        ASSERT_NE(e, UINT32_MAX);
+        std::vector<std::uint32_t> d;
+        const EdgeWavelet& w = b.edge_wavelet(disc, r, e, &d);
+        EXPECT_EQ(w.alpha.size(), d.size());
+        EXPECT_LT(w.residual, 1e-12);
+        EXPECT_GT(w.norm2, 0.0);
+        EXPECT_LT(w.norm2, w.self);
+      }
+    }
+  }
+}
+
+// The face-by-face solution at an extraordinary vertex against numerical integration: the
+// level-K control values of phi_a, phi_b (subdivision of a unit coefficient with the library's
+// stencils) integrated as piecewise-linear functions over the descendants of the centre's fan,
+// then Richardson extrapolation. Butterfly interpolates, so the error is the piecewise-linear
+// one: K = 3, 4, 5 with ratios 1/4, 1/16. Loop's control values approach the limit like
+// lambda^K next to the extraordinary vertex (lambda = 3/8 + cos(2 pi / n) / 4, its subdominant
+// eigenvalue), over an area 4^-K: K = 3..6 with ratios 1/4, lambda/4, 1/16.
+TEST(TriGram, ExtraordinaryVertexMatchesNumericalIntegration) {
+  for (TriScheme s : {TriScheme::Loop, TriScheme::Butterfly}) {
+    for (int n : {3, 5, 8}) {
+      SCOPED_TRACE(std::to_string(static_cast<int>(s)) + " valence " + std::to_string(n));
+      const bool loop = s == TriScheme::Loop;
+      const Complex disc = extraordinary_disc(n, loop ? 4 : 6);
+      const TriRings r = build_tri_rings(disc);
+      FaceGramCache cache(s);
+      std::vector<std::uint32_t> fan(disc.vertex_faces.row(0).begin(), disc.vertex_faces.row(0).end());
+      std::map<std::pair<std::uint32_t, std::uint32_t>, double> exact;
+      for (std::uint32_t f : fan) {
+        const auto fg = cache.face_gram(disc, r, f);
+        for (std::size_t p = 0; p < fg.verts.size(); ++p)
+          for (std::size_t q = 0; q < fg.verts.size(); ++q)
+            exact[std::make_pair(fg.verts[p], fg.verts[q])] += (*fg.G)(static_cast<int>(p), static_cast<int>(q));
+      }
+      const std::uint32_t spoke = r.ring.row(0)[0], next = r.ring.row(0)[1];
+      const std::uint32_t outer = r.ring.row(spoke)[3];  // a vertex two rings out
+      const std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs = {
+          {0, 0}, {0, spoke}, {spoke, spoke}, {spoke, next}, {spoke, outer}, {0, outer}};
+      // Level-K values of all functions in `pairs` at once (one channel each).
+      std::vector<std::uint32_t> funcs = {0, spoke, next, outer};
+      const int nf = static_cast<int>(funcs.size());
+      std::vector<std::vector<double>> estimates(pairs.size());
+      Complex level = disc;
+      std::vector<double> values(static_cast<std::size_t>(disc.num_vertices) * nf, 0.0);
+      for (int i = 0; i < nf; ++i) values[static_cast<std::size_t>(funcs[static_cast<std::size_t>(i)]) * nf + i] = 1.0;
+      for (int K = 1; K <= 6; ++K) {
+        const TriStencils st = build_tri_stencils(level, s);
+        values = subdivide_tri(st, values.data(), level.num_vertices, nf);
+        level = refine_tri(level);
+        if (K < 3) continue;
+        const double area = std::pow(0.25, K);
+        const std::size_t per = std::size_t{1} << (2 * K);
+        for (std::size_t pi = 0; pi < pairs.size(); ++pi) {
+          int ia = 0, ib = 0;
+          for (int i = 0; i < nf; ++i) {
+            if (funcs[static_cast<std::size_t>(i)] == pairs[pi].first) ia = i;
+            if (funcs[static_cast<std::size_t>(i)] == pairs[pi].second) ib = i;
+          }
+          double sum = 0;
+          for (std::uint32_t f : fan)
+            for (std::size_t t = f * per; t < (f + 1) * per; ++t) {
+              const auto row = level.faces.row(t);
+              double uu = 0, su = 0, sv = 0;
+              for (std::uint32_t v : row) {
+                const double u = values[std::size_t{v} * nf + ia], w = values[std::size_t{v} * nf + ib];
+                uu += u * w;
+                su += u;
+                sv += w;
+              }
+              sum += area / 12.0 * (uu + su * sv);
+            }
+          estimates[pi].push_back(sum);
+        }
+      }
+      for (std::size_t pi = 0; pi < pairs.size(); ++pi) {
+        std::vector<double> e = estimates[pi];
+        const double lambda = 0.375 + 0.25 * std::cos(2 * M_PI / n);
+        const std::vector<double> ratios = {0.25, loop ? lambda / 4 : 0.125, 1.0 / 16};
+        for (double q : ratios) {
+          for (std::size_t i = 0; i + 1 < e.size(); ++i) e[i] = (e[i + 1] - q * e[i]) / (1 - q);
+          e.pop_back();
+        }
+        const double rich = e[0];
+        const double ex = exact[pairs[pi]];
+        EXPECT_NEAR(rich, ex, 1e-6) << "pair " << pairs[pi].first << "," << pairs[pi].second << " finest raw " << estimates[pi].back();
+      }
+    }
+  }
+}
+
+// Linear k-disc wavelets against an independent computation: the hat functions' Gram matrices in
+// closed form (ip::polyhedral_matrix, 004 Figure 4) on level j and on level j+1 (area 1/4), the
+// right-hand side pulled back through the midpoint rule, and a dense solve.
+TEST(TriWavelets, LinearEqualsClosedFormPolyhedralSolve) {
+  for (int n : {3, 5, 6, 7}) {
+    for (int k : {1, 2}) {
+      SCOPED_TRACE("valence " + std::to_string(n) + " k " + std::to_string(k));
+      TriWaveletBuilder b(TriScheme::Linear, k);
+      const Complex disc = extraordinary_disc(n, b.edge_radius() + 3);
+      const TriRings r = build_tri_rings(disc);
+      std::uint32_t e = UINT32_MAX;
+      for (std::uint32_t x : disc.vertex_edges.row(0))
+        if (disc.edge_verts[2 * x + 1] == 1) e = x;
+      ASSERT_NE(e, UINT32_MAX);
+      std::vector<std::uint32_t> d;
+      const EdgeWavelet& w = b.edge_wavelet(disc, r, e, &d);
+      // Closed form.
+      const auto tris = [](const Complex& c) {
+        std::vector<std::array<std::uint32_t, 3>> t;
+        for (std::uint32_t f = 0; f < c.num_faces(); ++f) {
+          const auto row = c.faces.row(f);
+          t.push_back({row[0], row[1], row[2]});
+        }
+        return t;
+      };
+      const std::size_t nv = disc.num_vertices;
+      const std::vector<double> I0 = ip::polyhedral_matrix(nv, tris(disc), 1.0);
+      const Complex fine = refine_tri(disc);
+      const std::size_t nf = fine.num_vertices;
+      const std::vector<double> I1 = ip::polyhedral_matrix(nf, tris(fine), 0.25);
+      const std::uint32_t m = static_cast<std::uint32_t>(nv) + e;
+      Eigen::MatrixXd G(d.size(), d.size());
+      Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<int>(d.size()));
+      for (std::size_t p = 0; p < d.size(); ++p) {
+        for (std::size_t q = 0; q < d.size(); ++q) G(static_cast<int>(p), static_cast<int>(q)) = I0[d[p] * nv + d[q]];
+        // phi_i^j = phi_i^{j+1} + 1/2 sum over edges (i, x) of phi_{mid}^{j+1}.
+        double v = I1[std::size_t(d[p]) * nf + m];
+        for (std::uint32_t x = 0; x < disc.num_edges(); ++x)
+          if (disc.edge_verts[2 * x] == d[p] || disc.edge_verts[2 * x + 1] == d[p]) v += 0.5 * I1[(nv + x) * nf + m];
+        rhs(static_cast<int>(p)) = v;
+      }
+      const Eigen::VectorXd alpha = G.ldlt().solve(rhs);
+      ASSERT_EQ(w.alpha.size(), d.size());
+      for (std::size_t p = 0; p < d.size(); ++p) EXPECT_NEAR(w.alpha[p], alpha(static_cast<int>(p)), 1e-13) << p;
+    }
+  }
+}

@@ -96,8 +96,13 @@ void append_level(Hierarchy& h, bool adjacency) {
   if (scheme_is_tri(h.scheme)) {
     const double next = double(parent.num_vertices) + double(parent.num_edges());
     if (next > 4.0e9) throw Error("level " + std::to_string(j + 1) + " would have more than 2^32 vertices");
-    Complex child = refine_tri(parent, adjacency);
-    TriTransitionResult r = build_tri_transition(parent, tri_scheme(h.scheme), h.disc);
+    // The wavelets read the child's neighbourhoods too; its derived rows go again if not wanted.
+    Complex child = refine_tri(parent, true);
+    TriTransitionResult r = build_tri_transition(parent, child, tri_scheme(h.scheme), h.disc);
+    if (!adjacency)
+      for (Csr* rows : {&child.vertex_edges, &child.vertex_faces, &child.vertex_cells, &child.edge_faces, &child.edge_cells,
+                        &child.face_cells, &child.cell_verts, &child.cell_edges})
+        *rows = Csr{};
     ChildSites s;
     const std::uint32_t nv = parent.num_vertices, ne = parent.num_edges();
     s.site.resize(ne);

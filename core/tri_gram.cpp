@@ -1,6 +1,8 @@
 #include "core/tri_gram.h"
 
 #include <cmath>
+#include <functional>
+#include <unordered_map>
 #include <stdexcept>
 
 #include "core/refine_tri.h"
@@ -93,34 +95,78 @@ int FaceGramCache::type_of(const Complex& c, const TriRings& r, std::uint32_t f,
 }
 
 void FaceGramCache::solve_pending() {
-  for (int t : pending_) {
+  // Most new types depend on others without a cycle (faces near several extraordinary vertices
+  // or features, which become simpler under subdivision): they are evaluated once, children
+  // first. Only the strongly connected parts (self-similar corners, the regular type) need
+  // sweeps. Tarjan's algorithm yields the components children first.
+  const auto eval = [&](int t) {
     Type& ty = types_[static_cast<std::size_t>(t)];
-    ty.G = Eigen::MatrixXd::Constant(ty.n, ty.n, 1.0 / (double(ty.n) * ty.n));
-  }
-  last_sweeps_ = 0;
-  double prev = 1e300;
-  for (int sweep = 0; sweep < 400; ++sweep) {
-    double change = 0;
-    for (int t : pending_) {
-      Type& ty = types_[static_cast<std::size_t>(t)];
-      Eigen::MatrixXd G = Eigen::MatrixXd::Zero(ty.n, ty.n);
-      for (int k = 0; k < 4; ++k) {
-        const Eigen::MatrixXd& S = ty.S[static_cast<std::size_t>(k)];
-        G.noalias() += S.transpose() * types_[static_cast<std::size_t>(ty.child[static_cast<std::size_t>(k)])].G * S;
-      }
-      G *= 0.25;
-      G = 0.5 * (G + G.transpose());
-      G /= G.sum();  // the functions sum to 1 on the face: entries sum to its area
-      change = std::max(change, (G - ty.G).cwiseAbs().maxCoeff());
-      ty.G = std::move(G);
+    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(ty.n, ty.n);
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::MatrixXd& S = ty.S[static_cast<std::size_t>(k)];
+      G.noalias() += S.transpose() * types_[static_cast<std::size_t>(ty.child[static_cast<std::size_t>(k)])].G * S;
     }
-    last_sweeps_ = sweep + 1;
-    last_change_ = change;
-    // Converged to rounding: the change stops shrinking once it is a few ulps of the entries.
-    if (change < 1e-16 || (sweep > 40 && change >= 0.5 * prev)) break;
-    prev = change;
-  }
-  for (int t : pending_) types_[static_cast<std::size_t>(t)].solved = true;
+    G *= 0.25;
+    G = 0.5 * (G + G.transpose());
+    G /= G.sum();  // the functions sum to 1 on the face: entries sum to its area
+    const double change = (G - ty.G).cwiseAbs().maxCoeff();
+    ty.G = std::move(G);
+    return change;
+  };
+  std::unordered_map<int, int> index, low;
+  std::vector<int> stack;
+  std::unordered_map<int, bool> on_stack;
+  int counter = 0;
+  last_sweeps_ = 0;
+  last_change_ = 0;
+  std::function<void(int)> visit = [&](int t) {
+    index[t] = low[t] = counter++;
+    stack.push_back(t);
+    on_stack[t] = true;
+    for (int c : types_[static_cast<std::size_t>(t)].child) {
+      if (types_[static_cast<std::size_t>(c)].solved) continue;
+      if (!index.count(c)) {
+        visit(c);
+        low[t] = std::min(low[t], low[c]);
+      } else if (on_stack[c]) {
+        low[t] = std::min(low[t], index[c]);
+      }
+    }
+    if (low[t] != index[t]) return;
+    std::vector<int> comp;
+    int x;
+    do {
+      x = stack.back();
+      stack.pop_back();
+      on_stack[x] = false;
+      comp.push_back(x);
+    } while (x != t);
+    for (int y : comp) {
+      Type& ty = types_[static_cast<std::size_t>(y)];
+      ty.G = Eigen::MatrixXd::Constant(ty.n, ty.n, 1.0 / (double(ty.n) * ty.n));
+    }
+    bool cyclic = comp.size() > 1;
+    for (int c : types_[static_cast<std::size_t>(t)].child) cyclic |= c == t;
+    if (!cyclic) {
+      eval(t);
+    } else {
+      double prev = 1e300;
+      for (int sweep = 0; sweep < 400; ++sweep) {
+        double change = 0;
+        for (int y : comp) change = std::max(change, eval(y));
+        last_sweeps_ = std::max(last_sweeps_, sweep + 1);
+        // Converged to rounding: the change stops shrinking once it is a few ulps of the entries.
+        if (change < 1e-16 || (sweep > 40 && change >= 0.5 * prev)) {
+          last_change_ = std::max(last_change_, change);
+          break;
+        }
+        prev = change;
+      }
+    }
+    for (int y : comp) types_[static_cast<std::size_t>(y)].solved = true;
+  };
+  for (int t : pending_)
+    if (!types_[static_cast<std::size_t>(t)].solved && !index.count(t)) visit(t);
   pending_.clear();
 }
 

@@ -35,9 +35,15 @@ std::map<std::pair<int, int>, std::unique_ptr<TriWaveletBuilder>>& builders() {
 
 }  // namespace
 
-TriTransitionResult build_tri_transition(const Complex& coarse, TriScheme s, int disc) {
+TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, TriScheme s, int disc) {
   const TriRings rings = build_tri_rings(coarse);
   const TriStencils st = build_tri_stencils(coarse, s);
+  std::unique_ptr<TriRings> fine_rings;  // built when an edge first needs its neighbourhood
+  TriLevel level;
+  level.coarse = &coarse;
+  level.coarse_rings = &rings;
+  level.fine = &fine;
+  level.stencils = &st;
   const std::uint32_t nv = coarse.num_vertices, ne = coarse.num_edges();
   TriTransitionResult out;
   Sqrt2Transition& t = out.transition;
@@ -63,7 +69,15 @@ TriTransitionResult build_tri_transition(const Complex& coarse, TriScheme s, int
       const std::uint32_t a = coarse.edge_verts[2 * e], c = coarse.edge_verts[2 * e + 1];
       const bool regular = std::min(dist[a], dist[c]) > R;
       out.irregular_edges += regular ? 0 : 1;
-      const EdgeWavelet& w = b.edge_wavelet(coarse, rings, e, &d, regular);
+      if (!regular && !fine_rings) {
+        fine_rings = std::make_unique<TriRings>(build_tri_rings(fine));
+        level.fine_rings = fine_rings.get();
+      }
+      if (!fine_rings && !b.has_regular()) {
+        fine_rings = std::make_unique<TriRings>(build_tri_rings(fine));
+        level.fine_rings = fine_rings.get();
+      }
+      const EdgeWavelet& w = b.edge_wavelet(level, e, &d, regular);
       if (w.alpha.size() != d.size()) throw std::logic_error("tri_transform: disc and alpha sizes differ");
       for (std::size_t k = 0; k < d.size(); ++k)
         if (w.alpha[k] != 0.0) update.push_back({d[k], nv + e, -w.alpha[k]});
@@ -71,14 +85,23 @@ TriTransitionResult build_tri_transition(const Complex& coarse, TriScheme s, int
       out.max_residual = std::max(out.max_residual, w.residual);
     }
   }
-  std::sort(update.begin(), update.end(), [](const Entry& x, const Entry& y) { return x.i != y.i ? x.i < y.i : x.m < y.m; });
+  // Rows by old vertex: a counting sort (entries of one row stay in edge order).
+  std::vector<std::uint32_t> start(std::size_t(nv) + 1, 0);
+  for (const Entry& x : update) ++start[x.i + 1];
+  for (std::uint32_t i = 0; i < nv; ++i) start[i + 1] += start[i];
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  std::vector<std::uint32_t> items(update.size());
+  std::vector<double> weights(update.size());
+  for (const Entry& x : update) {
+    items[fill[x.i]] = x.m;
+    weights[fill[x.i]++] = x.w;
+  }
   Sqrt2Substep up;
-  for (std::size_t k = 0; k < update.size();) {
-    up.target.push_back(update[k].i);
-    for (const std::uint32_t i = update[k].i; k < update.size() && update[k].i == i; ++k) {
-      up.sources.items.push_back(update[k].m);
-      up.weights.push_back(update[k].w);
-    }
+  for (std::uint32_t i = 0; i < nv; ++i) {
+    if (start[i] == start[i + 1]) continue;
+    up.target.push_back(i);
+    up.sources.items.insert(up.sources.items.end(), items.begin() + start[i], items.begin() + start[i + 1]);
+    up.weights.insert(up.weights.end(), weights.begin() + start[i], weights.begin() + start[i + 1]);
     up.sources.offsets.push_back(static_cast<std::uint32_t>(up.sources.items.size()));
   }
   Sqrt2Substep predict;

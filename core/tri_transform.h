@@ -32,9 +32,10 @@ struct TriTransitionResult {
   std::size_t irregular_edges = 0;  // edges whose wavelet needed their own neighbourhood
 };
 
-/// Builds the sub-steps for the 1-to-4 split of `coarse` (derived rows needed) with k-disc
-/// wavelets. Uses a process-wide cache of face and edge types per (scheme, disc).
-TriTransitionResult build_tri_transition(const Complex& coarse, TriScheme s, int disc);
+/// Builds the sub-steps for the 1-to-4 split of `coarse` into `fine` (= refine_tri(coarse); both
+/// with derived rows) with k-disc wavelets. Uses a process-wide cache of face and edge types per
+/// (scheme, disc).
+TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, TriScheme s, int disc);
 
 /// x_old <- P_oo x_old (the first nv vertices, `channels` per vertex).
 void loop_smooth(const LoopSmoothing& m, double* x, int channels);

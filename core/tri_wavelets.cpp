@@ -28,12 +28,6 @@ int TriWaveletBuilder::signature_radius() const {
 
 namespace {
 
-std::uint32_t edge_between(const Complex& c, std::uint32_t a, std::uint32_t b) {
-  for (std::uint32_t e : c.vertex_edges.row(a))
-    if (c.edge_verts[2 * e] == b || c.edge_verts[2 * e + 1] == b) return e;
-  return UINT32_MAX;
-}
-
 // Adds the stencil row of fine vertex v (coarse patch labels) to `out` scaled by s.
 template <class F>
 void for_stencil(const TriStencils& st, std::uint32_t nvp, std::uint32_t v, F&& f) {
@@ -53,42 +47,55 @@ void for_stencil(const TriStencils& st, std::uint32_t nvp, std::uint32_t v, F&& 
 
 }  // namespace
 
-EdgeWavelet TriWaveletBuilder::compute(const Complex& c, const TriRings& r, std::uint32_t e) {
+EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
   const TriGramRadii& g = gram_.radii();
+  const Complex& c = *lv.coarse;
+  const Complex& fine = *lv.fine;
+  const TriStencils& st = *lv.stencils;
   const std::uint32_t a = c.edge_verts[2 * e], b = c.edge_verts[2 * e + 1];
   const std::uint32_t seeds[2] = {a, b}, starts[2] = {b, a};
-  const LocalOrder order = local_order(r, seeds, starts, edge_radius());
-  const Complex patch = local_patch(c, order);
-  const TriRings pr = build_tri_rings(patch);
+  // D and the vertices whose faces touch D's supports.
+  const LocalOrder order = local_order(*lv.coarse_rings, seeds, starts, disc_ + g.support);
   std::uint32_t nd = 0;
   while (nd < order.dist.size() && order.dist[nd] <= disc_) ++nd;
+  std::unordered_map<std::uint32_t, std::uint32_t> label;
+  label.reserve(nd * 2);
+  for (std::uint32_t l = 0; l < nd; ++l) label.emplace(order.vertex[l], l);
+  const auto in_disc = [&](std::uint32_t v) {
+    const auto it = label.find(v);
+    return it == label.end() ? UINT32_MAX : it->second;
+  };
+  const auto gram_of = [&](std::unordered_map<std::uint32_t, FaceGramCache::FaceGram>& memo, const Complex& mesh,
+                           const TriRings& rings, std::uint32_t f) -> const FaceGramCache::FaceGram& {
+    auto it = memo.find(f);
+    if (it == memo.end()) it = memo.emplace(f, gram_.face_gram(mesh, rings, f)).first;
+    return it->second;
+  };
 
   // Left side: <phi_i^j, phi_l^j> over the level-j faces that touch D's supports.
+  std::vector<std::uint32_t> faces;
+  for (std::uint32_t v : order.vertex)
+    for (std::uint32_t f : c.vertex_faces.row(v)) faces.push_back(f);
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nd, nd);
-  const int reach = disc_ + g.support;
-  for (std::uint32_t f = 0; f < patch.num_faces(); ++f) {
-    const auto row = patch.faces.row(f);
-    bool near = false;
-    for (std::uint32_t v : row) near |= order.dist[v] <= reach;
-    if (!near) continue;
-    const auto fg = gram_.face_gram(patch, pr, f);
-    for (std::size_t p = 0; p < fg.verts.size(); ++p) {
-      if (fg.verts[p] >= nd) continue;
-      for (std::size_t q = 0; q < fg.verts.size(); ++q)
-        if (fg.verts[q] < nd) G(fg.verts[p], fg.verts[q]) += (*fg.G)(static_cast<int>(p), static_cast<int>(q));
+  std::vector<std::uint32_t> idx;
+  for (std::uint32_t f : faces) {
+    const auto& fg = gram_of(lv.coarse_faces, c, *lv.coarse_rings, f);
+    idx.resize(fg.verts.size());
+    for (std::size_t p = 0; p < fg.verts.size(); ++p) idx[p] = in_disc(fg.verts[p]);
+    for (std::size_t p = 0; p < idx.size(); ++p) {
+      if (idx[p] == UINT32_MAX) continue;
+      for (std::size_t q = 0; q < idx.size(); ++q)
+        if (idx[q] != UINT32_MAX) G(idx[p], idx[q]) += (*fg.G)(static_cast<int>(p), static_cast<int>(q));
     }
   }
 
   // Right side: <phi_c^{j+1}, phi_m^{j+1}> over the level-(j+1) faces around m, pulled back.
-  const Complex fine = refine_tri(patch);
-  const TriStencils st = build_tri_stencils(patch, gram_.scheme());
-  const TriRings fr = build_tri_rings(fine);
-  const std::uint32_t nvp = patch.num_vertices;
-  const std::uint32_t pe = edge_between(patch, 0, 1);
-  if (pe == UINT32_MAX) throw std::logic_error("tri_wavelets: the edge is missing from its patch");
-  const std::uint32_t m = nvp + pe;
-  const std::uint32_t mseed[1] = {m}, mstart[1] = {fr.ring.row(m)[0]};
-  const LocalOrder around_m = local_order(fr, mseed, mstart, g.support);
+  const std::uint32_t nv = c.num_vertices;
+  const std::uint32_t m = nv + e;
+  const std::uint32_t mseed[1] = {m}, mstart[1] = {lv.fine_rings->ring.row(m)[0]};
+  const LocalOrder around_m = local_order(*lv.fine_rings, mseed, mstart, g.support);
   std::vector<std::uint32_t> fine_faces;
   for (std::uint32_t v : around_m.vertex)
     for (std::uint32_t f : fine.vertex_faces.row(v)) fine_faces.push_back(f);
@@ -96,18 +103,17 @@ EdgeWavelet TriWaveletBuilder::compute(const Complex& c, const TriRings& r, std:
   fine_faces.erase(std::unique(fine_faces.begin(), fine_faces.end()), fine_faces.end());
   std::unordered_map<std::uint32_t, double> with_m;  // fine vertex c -> <phi_c, phi_m>
   for (std::uint32_t f : fine_faces) {
-    const auto fg = gram_.face_gram(fine, fr, f);
+    const auto& fg = gram_of(lv.fine_faces, fine, *lv.fine_rings, f);
     int im = -1;
     for (std::size_t p = 0; p < fg.verts.size(); ++p)
       if (fg.verts[p] == m) im = static_cast<int>(p);
     if (im < 0) continue;
-    for (std::size_t p = 0; p < fg.verts.size(); ++p)
-      with_m[fg.verts[p]] += 0.25 * (*fg.G)(static_cast<int>(p), im);
+    for (std::size_t p = 0; p < fg.verts.size(); ++p) with_m[fg.verts[p]] += 0.25 * (*fg.G)(static_cast<int>(p), im);
   }
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nd);
   for (const auto& [cv, value] : with_m)
-    for_stencil(st, nvp, cv, [&](std::uint32_t i, double w) {
-      if (i < nd) rhs(i) += w * value;
+    for_stencil(st, nv, cv, [&](std::uint32_t i, double w) {
+      if (const std::uint32_t l = in_disc(i); l != UINT32_MAX) rhs(l) += w * value;
     });
 
   EdgeWavelet out;
@@ -120,8 +126,10 @@ EdgeWavelet TriWaveletBuilder::compute(const Complex& c, const TriRings& r, std:
   return out;
 }
 
-const EdgeWavelet& TriWaveletBuilder::edge_wavelet(const Complex& c, const TriRings& r, std::uint32_t e,
-                                                   std::vector<std::uint32_t>* disc_out, bool regular_hint) {
+const EdgeWavelet& TriWaveletBuilder::edge_wavelet(TriLevel& lv, std::uint32_t e, std::vector<std::uint32_t>* disc_out,
+                                                   bool regular_hint) {
+  const Complex& c = *lv.coarse;
+  const TriRings& r = *lv.coarse_rings;
   const std::uint32_t a = c.edge_verts[2 * e], b = c.edge_verts[2 * e + 1];
   const std::uint32_t seeds[2] = {a, b}, starts[2] = {b, a};
   if (regular_hint && regular_) {
@@ -136,10 +144,23 @@ const EdgeWavelet& TriWaveletBuilder::edge_wavelet(const Complex& c, const TriRi
   }
   std::string sig = local_signature(c, r, order, signature_radius());
   auto it = edges_.find(sig);
-  if (it == edges_.end())
-    it = edges_.emplace(std::move(sig), std::make_unique<EdgeWavelet>(compute(c, r, e))).first;
+  if (it == edges_.end()) it = edges_.emplace(std::move(sig), std::make_unique<EdgeWavelet>(compute(lv, e))).first;
   if (regular_hint) regular_ = std::make_unique<EdgeWavelet>(*it->second);
   return *it->second;
+}
+
+const EdgeWavelet& TriWaveletBuilder::edge_wavelet(const Complex& c, const TriRings& r, std::uint32_t e,
+                                                   std::vector<std::uint32_t>* disc_out) {
+  const Complex fine = refine_tri(c);
+  const TriRings fr = build_tri_rings(fine);
+  const TriStencils st = build_tri_stencils(c, gram_.scheme());
+  TriLevel lv;
+  lv.coarse = &c;
+  lv.coarse_rings = &r;
+  lv.fine = &fine;
+  lv.fine_rings = &fr;
+  lv.stencils = &st;
+  return edge_wavelet(lv, e, disc_out);
 }
 
 std::vector<std::uint8_t> distance_to_irregular(const Complex& c, const TriRings& r, int cap) {

@@ -40,6 +40,17 @@ struct EdgeWavelet {
   double self = 0;             // <phi_m, phi_m> (level-j face area 1)
 };
 
+/// One level and its 1-to-4 refinement, as the wavelets of that step read them; the face Grams
+/// found on either mesh are kept per face (faces near many irregular edges are asked often).
+struct TriLevel {
+  const Complex* coarse = nullptr;  // derived rows needed
+  const TriRings* coarse_rings = nullptr;
+  const Complex* fine = nullptr;    // refine_tri(*coarse), derived rows needed
+  const TriRings* fine_rings = nullptr;
+  const TriStencils* stencils = nullptr;  // build_tri_stencils(*coarse, scheme)
+  std::unordered_map<std::uint32_t, FaceGramCache::FaceGram> coarse_faces, fine_faces;
+};
+
 class TriWaveletBuilder {
  public:
   TriWaveletBuilder(TriScheme s, int disc);
@@ -51,15 +62,20 @@ class TriWaveletBuilder {
   /// supports of its functions and the faces' own signatures.
   int signature_radius() const;
 
-  /// The wavelet of edge e of `c` (rings r). `disc_out` receives D as vertices of c.
+  /// The wavelet of coarse edge e of `level`. `disc_out` receives D as coarse vertices.
+  /// `regular_hint`: the caller knows no irregular vertex lies within signature_radius().
+  const EdgeWavelet& edge_wavelet(TriLevel& level, std::uint32_t e, std::vector<std::uint32_t>* disc_out,
+                                  bool regular_hint = false);
+  /// The same for one edge of a small mesh (refines it on each call: tables, tests).
   const EdgeWavelet& edge_wavelet(const Complex& c, const TriRings& r, std::uint32_t e,
-                                  std::vector<std::uint32_t>* disc_out, bool regular_hint = false);
+                                  std::vector<std::uint32_t>* disc_out);
 
   FaceGramCache& gram() { return gram_; }
+  bool has_regular() const { return regular_ != nullptr; }
   std::size_t cached_edges() const { return edges_.size(); }
 
  private:
-  EdgeWavelet compute(const Complex& c, const TriRings& r, std::uint32_t e);
+  EdgeWavelet compute(TriLevel& level, std::uint32_t e);
 
   int disc_;
   FaceGramCache gram_;

@@ -99,6 +99,21 @@ bf += [(r * 4 + k, r * 4 + (k + 1) % 4, (r + 1) * 4 + (k + 1) % 4, (r + 1) * 4 +
 tags = "".join("t crease 2/1/0 %d %d 10\n" % (4 + k, 4 + (k + 1) % 4) for k in range(4))
 write("crease_loop.obj", "Box with a tagged crease loop (t crease) around the ring at height -1/3", bv, bf, tags)
 
+# Triangle meshes for the schemes of paper 004 (linear-tri, butterfly, loop).
+ov = [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]
+of = [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)]
+write("octahedron.obj", "Octahedron: 6 vertices of valence 4 (extraordinary for triangles), 8 triangles", ov, of)
+# An open 5 x 4 grid of squares cut into triangles along alternating diagonals, a bump in z,
+# the inner row y = 2 tagged as a crease from boundary to boundary.
+tv = [(i, j, 0.25 * math.sin(1.3 * i) * math.cos(0.9 * j)) for j in range(5) for i in range(6)]
+tf = []
+for j in range(4):
+    for i in range(5):
+        a0, a1, a2, a3 = i + 6 * j, i + 1 + 6 * j, i + 1 + 6 * (j + 1), i + 6 * (j + 1)
+        tf += [(a0, a1, a2), (a0, a2, a3)] if (i + j) % 2 == 0 else [(a0, a1, a3), (a1, a2, a3)]
+ttags = "".join("t crease 2/1/0 %d %d 10\n" % (12 + i, 13 + i) for i in range(5))
+write("tri_crease_grid.obj", "Open 5 x 4 grid of triangles (alternating diagonals), the row y = 2 tagged as a crease", tv, tf, ttags)
+
 # ---- Curves and lattices (formats: docs/file_formats.md) ----
 
 # Curves: an open polyline (a quarter helix) and a closed one (an octagon), OBJ 'l' lines.

@@ -116,6 +116,13 @@ Hierarchy boundary_sqrt2() { return from_asset("quad_grid_boundary.obj", 3, Sche
 Hierarchy crease_sqrt2() { return from_asset("crease_loop.obj", 4, Scheme::Sqrt2); }
 Hierarchy dart_sqrt2() { return from_asset("crease_dart_flat.obj", 3, Scheme::Sqrt2); }
 Hierarchy mixed_sqrt2() { return from_asset("mixed_polygons.obj", 4, Scheme::Sqrt2); }
+// The triangle schemes (paper 004): the same explicit transitions; Loop adds its vertex rule
+// (local in synthesis, a global solve in analysis).
+Hierarchy octa_butterfly() { return from_asset("octahedron.obj", 3, Scheme::Butterfly); }
+Hierarchy grid_butterfly() { return from_asset("tri_crease_grid.obj", 2, Scheme::Butterfly); }
+Hierarchy octa_loop() { return from_asset("octahedron.obj", 3, Scheme::Loop); }
+Hierarchy grid_loop() { return from_asset("tri_crease_grid.obj", 2, Scheme::Loop); }
+Hierarchy grid_linear_tri() { return from_asset("tri_crease_grid.obj", 2, Scheme::LinearTri); }
 
 INSTANTIATE_TEST_SUITE_P(Shapes, LocalEqualsFull,
                          ::testing::Values(Case{"torus_cubic", torus_cubic}, Case{"torus_linear", torus_linear},
@@ -126,12 +133,15 @@ INSTANTIATE_TEST_SUITE_P(Shapes, LocalEqualsFull,
                                            Case{"block_linear", block_linear}, Case{"curve_cubic", curve_cubic},
                                            Case{"torus_sqrt2", torus_sqrt2}, Case{"boundary_sqrt2", boundary_sqrt2},
                                            Case{"crease_sqrt2", crease_sqrt2}, Case{"dart_sqrt2", dart_sqrt2},
-                                           Case{"mixed_sqrt2", mixed_sqrt2}),
+                                           Case{"mixed_sqrt2", mixed_sqrt2}, Case{"octa_butterfly", octa_butterfly},
+                                           Case{"grid_butterfly", grid_butterfly}, Case{"octa_loop", octa_loop},
+                                           Case{"grid_loop", grid_loop}, Case{"grid_linear_tri", grid_linear_tri}),
                          [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Session, LocalFramesLocalEqualsFull) {
   for (Hierarchy (*make)() :
-       {torus_cubic, crease_cubic, mixed_cubic, boundary_cubic, torus_sqrt2, crease_sqrt2, dart_sqrt2, mixed_sqrt2}) {
+       {torus_cubic, crease_cubic, mixed_cubic, boundary_cubic, torus_sqrt2, crease_sqrt2, dart_sqrt2, mixed_sqrt2,
+        octa_butterfly, grid_loop}) {
     const Hierarchy h = make();
     for (int level = 0; level <= h.finest_level(); ++level) {
       Session local(h), full(h);

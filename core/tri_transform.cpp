@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <unordered_map>
 #include <cmath>
 #include <map>
@@ -12,6 +13,7 @@
 #include <Eigen/Sparse>
 
 #include "core/errors.h"
+#include "core/parallel.h"
 #include "core/tri_local.h"
 #include "core/tri_wavelets.h"
 
@@ -51,12 +53,14 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
   t.num_fine = nv + ne;
   out.norm2.resize(ne);
 
-  // Update: old vertex i gets -alpha_{i,m} d_m; gathered as (i, m, w) and sorted by i.
-  struct Entry {
-    std::uint32_t i, m;
-    double w;
-  };
-  std::vector<Entry> update;
+  // Update: old vertex i gets -alpha_{i,m} d_m. Per edge its disc D (coarse vertices) and
+  // alpha; irregular edges are solved (or found cached) under the builders' lock, the regular
+  // ones, nearly all of a fine level, share one alpha and only list their disc, in parallel.
+  std::vector<std::uint8_t> regular(ne, 0);
+  std::vector<std::uint32_t> offset(std::size_t(ne) + 1, 0);
+  std::vector<std::uint32_t> disc_items;
+  std::vector<double> alpha_items;
+  std::vector<double> regular_alpha;
   {
     const std::lock_guard<std::mutex> lock(builders_mutex);
     auto& slot = builders()[{static_cast<int>(s), disc}];
@@ -64,39 +68,87 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
     TriWaveletBuilder& b = *slot;
     const int R = b.signature_radius();
     const std::vector<std::uint8_t> dist = distance_to_irregular(coarse, rings, R + 1);
+    for (std::uint32_t e = 0; e < ne; ++e)
+      regular[e] = std::min(dist[coarse.edge_verts[2 * e]], dist[coarse.edge_verts[2 * e + 1]]) > R ? 1 : 0;
+    const auto need_fine_rings = [&] {
+      if (fine_rings) return;
+      fine_rings = std::make_unique<TriRings>(build_tri_rings(fine));
+      level.fine_rings = fine_rings.get();
+    };
+    // The regular wavelet (computed on the first regular edge unless cached).
+    const EdgeWavelet* reg = nullptr;
+    for (std::uint32_t e = 0; e < ne && !reg; ++e)
+      if (regular[e]) {
+        if (!b.has_regular()) need_fine_rings();
+        reg = &b.edge_wavelet(level, e, nullptr, true);
+        regular_alpha = reg->alpha;
+      }
     std::vector<std::uint32_t> d;
     for (std::uint32_t e = 0; e < ne; ++e) {
-      const std::uint32_t a = coarse.edge_verts[2 * e], c = coarse.edge_verts[2 * e + 1];
-      const bool regular = std::min(dist[a], dist[c]) > R;
-      out.irregular_edges += regular ? 0 : 1;
-      if (!regular && !fine_rings) {
-        fine_rings = std::make_unique<TriRings>(build_tri_rings(fine));
-        level.fine_rings = fine_rings.get();
+      if (regular[e]) {
+        offset[e + 1] = static_cast<std::uint32_t>(regular_alpha.size());
+        out.norm2[e] = reg->norm2;
+        out.max_residual = std::max(out.max_residual, reg->residual);
+        continue;
       }
-      if (!fine_rings && !b.has_regular()) {
-        fine_rings = std::make_unique<TriRings>(build_tri_rings(fine));
-        level.fine_rings = fine_rings.get();
-      }
-      const EdgeWavelet& w = b.edge_wavelet(level, e, &d, regular);
+      ++out.irregular_edges;
+      need_fine_rings();
+      const EdgeWavelet& w = b.edge_wavelet(level, e, &d, false);
       if (w.alpha.size() != d.size()) throw std::logic_error("tri_transform: disc and alpha sizes differ");
-      for (std::size_t k = 0; k < d.size(); ++k)
-        if (w.alpha[k] != 0.0) update.push_back({d[k], nv + e, -w.alpha[k]});
+      offset[e + 1] = static_cast<std::uint32_t>(d.size());
+      disc_items.insert(disc_items.end(), d.begin(), d.end());
+      alpha_items.insert(alpha_items.end(), w.alpha.begin(), w.alpha.end());
       out.norm2[e] = w.norm2;
       out.max_residual = std::max(out.max_residual, w.residual);
     }
   }
+  // Flat per-edge lists: irregular edges' entries move into place, regular ones are listed.
+  for (std::uint32_t e = 0; e < ne; ++e) offset[e + 1] += offset[e];
+  std::vector<std::uint32_t> disc_of(offset[ne]);
+  std::vector<double> alpha_of(offset[ne]);
+  {
+    std::size_t k = 0;
+    for (std::uint32_t e = 0; e < ne; ++e)
+      if (!regular[e]) {
+        std::copy_n(disc_items.begin() + static_cast<std::ptrdiff_t>(k), offset[e + 1] - offset[e], disc_of.begin() + offset[e]);
+        std::copy_n(alpha_items.begin() + static_cast<std::ptrdiff_t>(k), offset[e + 1] - offset[e], alpha_of.begin() + offset[e]);
+        k += offset[e + 1] - offset[e];
+      }
+  }
+  const int k_disc = disc;
+  std::atomic<bool> mismatch{false};
+  parallel_for(ne, 4096, [&](std::uint32_t begin, std::uint32_t end) {
+    for (std::uint32_t e = begin; e < end; ++e) {
+      if (!regular[e]) continue;
+      const std::uint32_t seeds[2] = {coarse.edge_verts[2 * e], coarse.edge_verts[2 * e + 1]};
+      const std::uint32_t starts[2] = {seeds[1], seeds[0]};
+      const LocalOrder o = local_order(rings, seeds, starts, k_disc);
+      if (o.vertex.size() != offset[e + 1] - offset[e]) {
+        mismatch = true;
+        continue;
+      }
+      std::copy(o.vertex.begin(), o.vertex.end(), disc_of.begin() + offset[e]);
+      std::copy(regular_alpha.begin(), regular_alpha.end(), alpha_of.begin() + offset[e]);
+    }
+  });
+  if (mismatch) throw std::logic_error("tri_transform: a regular edge's disc has an unexpected size");
   // Rows by old vertex: a counting sort (entries of one row stay in edge order).
   std::vector<std::uint32_t> start(std::size_t(nv) + 1, 0);
-  for (const Entry& x : update) ++start[x.i + 1];
+  for (std::uint32_t i : disc_of) ++start[i + 1];
   for (std::uint32_t i = 0; i < nv; ++i) start[i + 1] += start[i];
   std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-  std::vector<std::uint32_t> items(update.size());
-  std::vector<double> weights(update.size());
-  for (const Entry& x : update) {
-    items[fill[x.i]] = x.m;
-    weights[fill[x.i]++] = x.w;
-  }
+  std::vector<std::uint32_t> items(disc_of.size());
+  std::vector<double> weights(disc_of.size());
+  for (std::uint32_t e = 0; e < ne; ++e)
+    for (std::uint32_t q = offset[e]; q < offset[e + 1]; ++q) {
+      const std::uint32_t i = disc_of[q];
+      items[fill[i]] = nv + e;
+      weights[fill[i]++] = -alpha_of[q];
+    }
   Sqrt2Substep up;
+  up.target.reserve(nv);
+  up.sources.items.reserve(items.size());
+  up.weights.reserve(items.size());
   for (std::uint32_t i = 0; i < nv; ++i) {
     if (start[i] == start[i + 1]) continue;
     up.target.push_back(i);

@@ -19,6 +19,8 @@ int run_coefficients(int argc, char** argv);
 int run_experiment(int argc, char** argv);
 /// `resample-sphere`: a star-shaped mesh sampled onto a subdivided octahedron (docs/resample_sphere.md).
 int run_resample_sphere(int argc, char** argv);
+/// `compress`: drop the smallest wavelets of a project (docs/compression.md).
+int run_compress(int argc, char** argv);
 
 /// `info` on a .sublift project (levels, per-level wavelet statistics).
 int info_project(const std::string& file, bool json);

@@ -29,6 +29,9 @@ constexpr const char* kUsage =
     "  synthesize PROJECT [--level L] [--keep F] -o OUT\n"
     "                                        control net of level L, optionally keeping only\n"
     "                                        the largest fraction F of the wavelets\n"
+    "  compress PROJECT (--keep F | --threshold T | --linf E) [--region SPEC] [--raw] -o OUT\n"
+    "                                        drop the smallest wavelets: a fraction, a threshold\n"
+    "                                        or an L-infinity error bound (docs/compression.md)\n"
     "  edit PROJECT --level L --vertex I [--falloff R] --delta DX DY DZ [--local-frames] -o OUT\n"
     "                                        move control points of level L, fine detail kept\n"
     "  basis IN [--scheme S] --level J (--vertex I | --wavelet I) [--dual] [--levels K] -o OUT\n"
@@ -72,6 +75,7 @@ int main(int argc, char** argv) {
     if (cmd == "coefficients") return cli::run_coefficients(argc, argv);
     if (cmd == "experiment") return cli::run_experiment(argc, argv);
     if (cmd == "resample-sphere") return cli::run_resample_sphere(argc, argv);
+    if (cmd == "compress") return cli::run_compress(argc, argv);
     std::cerr << "sublift-cli: unknown command '" << cmd << "'\n\n" << kUsage;
     return 2;
   } catch (const cli::UsageError& e) {

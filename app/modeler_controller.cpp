@@ -165,7 +165,7 @@ const PickIndex& ModelerController::pick_index() {
   const PickView v = pick_view();
   if (pick_dirty_ || v.view_proj != pick_matrix_ || clip_now_ != pick_clip_ || display.xray != pick_xray_) {
     // Points the clipping plane removed from view cannot be picked either.
-    const auto xyz = model.session().positions(model.level());
+    const auto xyz = model.net_positions();  // as drawn (compressed while that view is on)
     pick_visible_.clear();
     if (clip_now_ != glm::vec4(0.0f)) {
       pick_visible_.resize(xyz.size() / 3);
@@ -276,6 +276,7 @@ void ModelerController::run_command(ModelerCommandType type) {
       case ModelerCommandType::GrabCancel: model.cancel_drag(); break;
     }
   } catch (const std::exception& e) {
+    if (!model.dragging()) grab_ = GrabState{};  // a refused grab (compression view) ends here
     fail(e, "");
   }
   pick_dirty_ = stats_dirty_ = true;
@@ -486,6 +487,26 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
   } catch (const std::exception& e) {
     fail(e, "");
   }
+  try {
+    if (r.compress_fraction) {
+      compress_fraction_ = *r.compress_fraction;
+      model.set_compression(compress_fraction_);
+      pick_dirty_ = true;
+    }
+    if (r.compress_apply) {
+      const std::size_t kept = model.compression_on() ? model.compression().kept : 0;
+      model.apply_compression();
+      error.clear();
+      message = "Applied the compression (" + std::to_string(kept) + " wavelets kept); Undo restores the full shape";
+      pick_dirty_ = stats_dirty_ = true;
+    }
+    if (r.compress_off) {
+      model.compression_off();
+      pick_dirty_ = true;
+    }
+  } catch (const std::exception& e) {
+    fail(e, "Compression: ");
+  }
   if (r.open) open(*r.open);
   if (r.load_model) load_model(*r.load_model);
   if (r.export_model) {
@@ -548,6 +569,21 @@ void ModelerController::fill_ffd_data(FfdPanelData& p) const {
     p.moved = f->last_moved;
     p.deform_ms = f->last_deform_ms;
   }
+}
+
+void ModelerController::fill_compression_data(CompressionPanelData& c) const {
+  const Session& s = model.session();
+  c.on = model.compression_on();
+  c.fraction = compress_fraction_;
+  c.total = s.num_vertices(s.finest_level()) - s.num_vertices(0);
+  if (!c.on) return;
+  const CompressionReadout& r = model.compression();
+  c.fraction = r.fraction;
+  c.kept = r.kept;
+  c.total = r.total;
+  c.l2_error = r.l2_error;
+  c.linf_error = r.linf_error;
+  c.ms = r.ms;
 }
 
 void ModelerController::fill_basis_data(BasisPanelData& b) const {
@@ -639,6 +675,7 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     d.colour_level = model.colour_level();
     d.dirty = s.dirty();
     fill_basis_data(d.basis);
+    fill_compression_data(d.compression);
   }
   fill_ffd_data(d.ffd);
   d.error = error;
@@ -658,6 +695,11 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
       char soft[48];
       std::snprintf(soft, sizeof soft, "   soft %.3g", d.soft_radius);
       left += soft;
+    }
+    if (model.compression_on()) {
+      char shown[48];
+      std::snprintf(shown, sizeof shown, "   COMPRESSED %.3g%%", 100.0 * model.compression().fraction);
+      left += shown;
     }
     if (grab_.active) {
       left += "   GRAB " + std::string(grab_.axis < 0 ? "free" : (grab_.axis == 0 ? "X" : grab_.axis == 1 ? "Y" : "Z"));

@@ -87,6 +87,8 @@ class ModelerController {
   void fill_basis_data(BasisPanelData& b) const;
   /// The FFD section's data (model, binding report, last deformation).
   void fill_ffd_data(FfdPanelData& p) const;
+  /// The Compression section's data (the view's readout, or the wavelet count while off).
+  void fill_compression_data(CompressionPanelData& c) const;
   /// Loads a model for free-form deformation; errors go to `error` like other actions.
   void load_model(const std::string& path);
 
@@ -143,6 +145,7 @@ class ModelerController {
   std::vector<LevelInfo> level_cache_;
   std::vector<std::string> recent_;
   BasisSettings basis_request_;  // the Basis section's settings while the mode is off
+  double compress_fraction_ = 1.0;  // the Compression slider's last value
 };
 
 }  // namespace sublift

@@ -72,6 +72,7 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
 }
 
 void ModelerState::install(std::unique_ptr<Session> session) {
+  compress_.reset();  // ranked the old session's wavelets
   session_ = std::move(session);
   ++serial_;
   dragging_ = false;
@@ -172,10 +173,16 @@ void ModelerState::refresh_basis() {
 
 void ModelerState::set_scheme(Scheme scheme) {
   ffd_check_free("changing the scheme");
+  check_unlocked("changing the scheme");
   const Hierarchy& old = session_->hierarchy();
-  if (scheme == Scheme::Sqrt2 && old.levels.front().dim != 2)
-    throw Error(std::string("the sqrt2 scheme refines surfaces only; this is a ") +
+  if (scheme_has_transitions(scheme) && old.levels.front().dim != 2)
+    throw Error("the " + scheme_name(scheme) + " scheme refines surfaces only; this is a " +
                 (old.levels.front().dim == 1 ? "curve" : "volume lattice") + " (use linear or cubic)");
+  if (scheme_is_tri(scheme))
+    for (std::uint32_t f = 0; f < old.levels.front().num_faces(); ++f)
+      if (old.levels.front().faces.size(f) != 3)
+        throw Error("the " + scheme_name(scheme) + " scheme needs a triangle mesh; face " + std::to_string(f) + " has " +
+                    std::to_string(old.levels.front().faces.size(f)) + " corners");
   const auto base_positions = session_->positions(0);
   // The same finest resolution: two sqrt(2) levels make one 1-to-4 split.
   const int from = scheme_levels_per_split(old.scheme), to = scheme_levels_per_split(scheme);
@@ -196,6 +203,7 @@ void ModelerState::set_level(int level) {
   level = std::clamp(level, 0, session_->finest_level());
   if (level == level_) return;
   level_ = level;
+  refresh_compression_net();
   selection_.clear();
   hover_ = -1;
   update_.topology = true;  // the function keeps its own level
@@ -204,12 +212,14 @@ void ModelerState::set_level(int level) {
 
 void ModelerState::subdivide() {
   ffd_check_free("subdividing the lattice");
+  check_unlocked("subdividing");
   session_->subdivide();
   after_operation();
 }
 
 bool ModelerState::undo() {
   if (dragging_) return false;
+  check_unlocked("undo");
   const bool done = session_->undo();
   if (done) after_operation();
   return done;
@@ -217,19 +227,25 @@ bool ModelerState::undo() {
 
 bool ModelerState::redo() {
   if (dragging_) return false;
+  check_unlocked("redo");
   const bool done = session_->redo();
   if (done) after_operation();
   return done;
 }
 
 void ModelerState::jump_to(std::size_t position) {
+  check_unlocked("jumping in the history");
   while (session_->undo_position() > position && undo()) {}
   while (session_->undo_position() < position && redo()) {}
 }
 
-void ModelerState::begin_gain(int level) { session_->begin_edit("Gain " + std::to_string(level)); }
+void ModelerState::begin_gain(int level) {
+  check_unlocked("changing a gain");
+  session_->begin_edit("Gain " + std::to_string(level));
+}
 
 void ModelerState::set_gain(int level, double factor) {
+  check_unlocked("changing a gain");
   session_->set_gain(level, factor);
   after_operation();
 }
@@ -241,6 +257,7 @@ void ModelerState::set_local_frames(bool local) {
 }
 
 void ModelerState::begin_drag(const std::string& label) {
+  check_unlocked("moving control points");
   if (dragging_) end_drag();
   drag_undo_position_ = session_->undo_position();
   drag_weights_ = soft_selection(session_->positions(level_), selection_, soft_radius_);
@@ -477,6 +494,7 @@ void ModelerState::set_basis(const BasisSettings& settings_in) {
     return;
   }
   BasisSettings settings = settings_in;
+  if (compress_) compression_off();  // both replace the surface: the newer request wins
   if (settings.level < 0) settings.level = level_;
   if (settings.level > session_->finest_level()) {
     basis_off();
@@ -574,7 +592,7 @@ void ModelerState::wrap_model_in_box(int nx, int ny, int nz, double margin) {
   const Shape box = box_lattice_around(shape, nx, ny, nz, margin);
   // A box lattice is a volume: sqrt2 (surfaces only) falls back to cubic.
   const Scheme current = session_ ? session_->hierarchy().scheme : Scheme::Cubic;
-  const Scheme scheme = current == Scheme::Sqrt2 ? Scheme::Cubic : current;
+  const Scheme scheme = scheme_has_transitions(current) ? Scheme::Cubic : current;
   Hierarchy h = make_hierarchy(box.base, kDefaultLevels, scheme, 3);
   set_base(h, box.positions);
   install(std::make_unique<Session>(std::move(h)));
@@ -614,6 +632,111 @@ void ModelerState::remove_model() {
 void ModelerState::export_model(const std::string& path) const {
   if (!ffd_) throw Error("export model: no model loaded");
   sublift::export_model(ffd_->model, ffd_->positions, path);
+}
+
+// ---- compression view ---------------------------------------------------------------------------
+
+void ModelerState::check_unlocked(const char* what) const {
+  if (compress_)
+    throw Error(std::string("the compression view is on: Apply it or turn it Off before ") + what);
+}
+
+std::span<const double> ModelerState::net_positions() const {
+  if (compress_) return compress_->net;
+  return session_->positions(level_);
+}
+
+void ModelerState::refresh_compression_net() {
+  if (!compress_) return;
+  CompressionView& v = *compress_;
+  if (v.full) {
+    const auto p = session_->positions(level_);
+    v.net.assign(p.begin(), p.end());
+  } else {
+    v.net = synthesize_coefficients(session_->hierarchy(), v.coeffs, session_->gains(), level_);
+  }
+  update_.topology = true;
+}
+
+void ModelerState::set_compression(double fraction) {
+  if (!session_) throw Error("compression: no model is open");
+  if (!(fraction >= 0.0 && fraction <= 1.0)) throw Error("compression: the kept fraction must be in 0..1");
+  if (dragging_) throw Error("compression: finish the drag first");
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!compress_) {
+    CompressOptions options;
+    options.gains.assign(session_->gains().begin(), session_->gains().end());
+    auto view = std::make_unique<CompressionView>(CompressionView{Compressor(session_->hierarchy(), options), {}, false, {}, {}, {}, {}, {}});
+    basis_off();  // the compressed surface replaces the function
+    compress_ = std::move(view);
+  }
+  CompressionView& v = *compress_;
+  const std::size_t keep = v.compressor.count_for_fraction(fraction);
+  Compression c = v.compressor.evaluate(keep);
+  v.full = keep == v.compressor.candidates();
+  v.coeffs = std::move(c.coeffs);
+  v.finest = std::move(c.finest);
+  if (v.full) {  // nothing removed: the session's own shape, bit for bit
+    v.limit = limit_;
+    v.normals = normals_;
+  } else {
+    v.limit.assign(limit_.size(), 0.0);
+    v.normals.assign(normals_.size(), 0.0);
+    eval_limit(stencils_, v.finest.data(), v.limit.data());
+    if (faces_.rows() > 0) sublift::limit_normals(stencils_, faces_, v.finest.data(), v.limit.data(), v.normals.data());
+  }
+  v.readout.fraction = fraction;
+  v.readout.kept = c.kept;
+  v.readout.total = c.total;
+  v.readout.l2_error = c.l2_error;
+  v.readout.linf_error = c.linf_error;
+  refresh_compression_net();
+  v.readout.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void ModelerState::compression_off() {
+  if (!compress_) return;
+  compress_.reset();
+  update_.topology = true;
+}
+
+void ModelerState::apply_compression() {
+  if (!compress_) throw Error("compression: nothing to apply (show a compressed shape first)");
+  const CompressionView& v = *compress_;
+  const int J = session_->finest_level();
+  // The finest control net moves onto the compressed one, one axis at a time (a move takes one
+  // delta, weighted per vertex); the fold-back then stores the compressed wavelets.
+  const auto now = session_->positions(J);
+  std::vector<std::uint32_t> vertices[3];
+  std::vector<double> weights[3];
+  for (std::uint32_t p = 0; p < session_->num_vertices(J); ++p) {
+    for (int c = 0; c < 3; ++c) {
+      const double d = v.finest[3 * std::size_t(p) + c] - now[3 * std::size_t(p) + c];
+      if (d == 0.0) continue;
+      vertices[c].push_back(p);
+      weights[c].push_back(d);
+    }
+  }
+  char label[64];
+  std::snprintf(label, sizeof label, "Compress %.4g%%", 100.0 * v.readout.fraction);
+  std::unique_ptr<CompressionView> view = std::move(compress_);  // unlocked for the moves
+  session_->begin_edit(label);
+  try {
+    for (int c = 0; c < 3; ++c) {
+      if (vertices[c].empty()) continue;
+      double delta[3] = {0.0, 0.0, 0.0};
+      delta[c] = 1.0;
+      session_->move(J, vertices[c], weights[c], delta);
+      after_operation();
+    }
+  } catch (...) {
+    session_->cancel_edit();
+    after_operation();
+    compress_ = std::move(view);
+    throw;
+  }
+  session_->end_edit();
+  update_.topology = true;
 }
 
 ViewUpdate ModelerState::take_view_update() {

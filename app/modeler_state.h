@@ -16,11 +16,13 @@
 // |w| of the level, so 0..1 maps onto viridis.
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "app/basis_view_state.h"
 #include "app/ffd_view_state.h"
+#include "core/compress.h"
 #include "core/csr.h"
 #include "core/hierarchy.h"
 #include "core/limit.h"
@@ -38,6 +40,14 @@ struct ViewUpdate {
   bool basis = false;                  // the basis-function display changed (on, off, new values)
   bool model_topology = false;         // FFD: a model was loaded or removed
   bool model = false;                  // FFD: the model's positions and normals changed
+};
+
+/// The compression view's numbers (docs/compression.md).
+struct CompressionReadout {
+  double fraction = 1.0;                     // kept fraction asked for, 0..1
+  std::size_t kept = 0, total = 0;           // wavelets kept / in all
+  double l2_error = 0.0, linf_error = 0.0;   // vs the full shape, / its bounding-box diagonal
+  double ms = 0.0;                           // the last synthesis, limit and normals
 };
 
 /// Per-level numbers for the panel.
@@ -121,8 +131,9 @@ class ModelerState {
   std::vector<LevelRow> level_rows() const;
 
   const Csr& surface_faces() const { return faces_; }
-  const std::vector<double>& limit_positions() const { return limit_; }
-  const std::vector<double>& limit_normals() const { return normals_; }
+  /// The finest limit surface shown (the compressed one while the compression view is on).
+  const std::vector<double>& limit_positions() const { return compress_ ? compress_->limit : limit_; }
+  const std::vector<double>& limit_normals() const { return compress_ ? compress_->normals : normals_; }
   /// Edges of the current level as vertex pairs, with feature classes for the net renderer.
   const std::vector<std::uint32_t>& net_edges() const;
   std::vector<std::uint8_t> net_edge_features() const;
@@ -153,6 +164,27 @@ class ModelerState {
   void pin_basis();
   void clear_pin();
   const BasisDisplay* pinned() const { return pinned_.get(); }
+
+  // ---- compression view (docs/compression.md) ------------------------------------------------
+  /// Shows the shape synthesised from the largest `fraction` (0..1) of the wavelets (ranked
+  /// once when the view turns on, with the session's gains; the session is not changed): the
+  /// limit surface and the edit level's net are the compressed ones. While it is on the shape is
+  /// locked: moves, grabs, subdivide, gains, scheme changes, undo, redo and history jumps throw
+  /// Error ("Apply or Off first"); levels, selection, display and camera still work; Save and
+  /// Export write the full shape. Opening a file or turning the basis mode on turns it off.
+  /// Throws Error outside 0..1.
+  void set_compression(double fraction);
+  /// Back to the full shape (nothing changes when the view is off).
+  void compression_off();
+  /// Makes the shown compression one undoable edit ("Compress 20%": the finest control net moved
+  /// onto the compressed one, folded back into every level) and turns the view off. Throws
+  /// Error when the view is off, or when a detail gain is 0 (as any edit at the finest level).
+  void apply_compression();
+  bool compression_on() const { return compress_ != nullptr; }
+  /// The view's numbers (only while compression_on()).
+  const CompressionReadout& compression() const { return compress_->readout; }
+  /// The edit level's control net as shown: the compressed one while the view is on.
+  std::span<const double> net_positions() const;
 
   // ---- free-form deformation (issue 6, app/ffd_view_state.h) -------------------------------
   /// Imports a model (.gltf/.glb/.obj/.ply/.off) and binds it to the open lattice; with no
@@ -222,6 +254,19 @@ class ModelerState {
   void follow_selection();
   void basis_off();
   void refresh_basis();  // recomputes a stale function (after edits of the shape)
+
+  // The compression view: the ranking of the session's wavelets, built when the view turns on,
+  // and the shape of the current fraction (finest net, its limit and normals, the edit level's
+  // net). `full`: every wavelet kept, so the session's own shape is shown.
+  struct CompressionView {
+    Compressor compressor;
+    CompressionReadout readout;
+    bool full = false;
+    std::vector<double> coeffs, finest, limit, normals, net;
+  };
+  std::unique_ptr<CompressionView> compress_;
+  void check_unlocked(const char* what) const;  // throws while the compression view is on
+  void refresh_compression_net();
 };
 
 /// True when `path` names a `.sublift` project (by extension, any case).

@@ -55,7 +55,7 @@ void ModelerView::sync(ModelerState& state) {
     }
     net_.set_topology(state.net_edges(), state.net_edge_features(), state.net_vertex_features(),
                       state.session().num_vertices(state.level()));
-    net_.set_positions(state.session().positions(state.level()));
+    net_.set_positions(state.net_positions());  // compressed while the compression view is on
     u.state = u.scalar = true;
   } else {
     if (!u.surface.empty()) {
@@ -65,7 +65,7 @@ void ModelerView::sync(ModelerState& state) {
         curve_.update_positions(state.limit_positions(), u.surface);
       }
     }
-    if (!u.net.empty()) net_.update_positions(state.session().positions(state.level()), u.net);
+    if (!u.net.empty()) net_.update_positions(state.net_positions(), u.net);
   }
   if (u.state) net_.set_state(state.net_state(), state.net_soft());
   if (u.basis || (u.topology && state.basis_on()) || (state.basis_on() && !u.net.empty())) {

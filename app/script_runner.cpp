@@ -133,12 +133,12 @@ void ScriptRunner::run_line(ModelerState& state, ModelerDisplay* display, const 
       throw ScriptError(std::string("usage: ") + usage);
     }
   } else if (c == "scheme") {
-    expect_args(w, 1, "scheme linear|cubic|sqrt2");
+    expect_args(w, 1, "scheme linear|cubic|sqrt2|linear-tri|butterfly|loop");
     Scheme s;
     try {
       s = parse_scheme(w[1]);
     } catch (const std::exception&) {
-      throw ScriptError("unknown scheme '" + w[1] + "' (linear, cubic or sqrt2)");
+      throw ScriptError("unknown scheme '" + w[1] + "' (linear, cubic, sqrt2, linear-tri, butterfly or loop)");
     }
     state.set_scheme(s);
   } else if (c == "subdivide") {
@@ -309,6 +309,19 @@ void ScriptRunner::run_line(ModelerState& state, ModelerDisplay* display, const 
     b.index = static_cast<std::uint32_t>(index);
     b.level = state.level();
     state.set_basis(b);
+  } else if (c == "compress") {
+    const char* usage = "compress keep F | compress apply | compress off";
+    if (w.size() == 3 && w[1] == "keep") {
+      const double f = number(w[2], "F");
+      if (f < 0.0 || f > 1.0) throw ScriptError("compress keep F needs F in 0..1, got " + w[2]);
+      state.set_compression(f);
+    } else if (w.size() == 2 && w[1] == "apply") {
+      state.apply_compression();
+    } else if (w.size() == 2 && w[1] == "off") {
+      state.compression_off();
+    } else {
+      throw ScriptError(std::string("usage: ") + usage);
+    }
   } else if (c == "display") {
     expect_args(w, 2, "display smooth|wireframe|net|xray|depth_cue|clip|ortho on|off");
     if (w[2] != "on" && w[2] != "off") throw ScriptError("display takes 'on' or 'off', got '" + w[2] + "'");

@@ -14,6 +14,8 @@
 //   basis follow on|off (a selected point picks the function) | basis pin | basis unpin
 //   model PATH (load a model for FFD; bound at once to an open lattice)
 //   ffd box NX NY NZ [MARGIN] | ffd bind [nearest] | ffd unbind | ffd remove | ffd export PATH
+//   compress keep F (show the largest fraction F in 0..1 of the wavelets; the shape is locked
+//   until) compress apply (one undoable edit) | compress off (docs/compression.md)
 // The runner executes commands until one needs a rendered frame (screenshot) or the script
 // ends; the app draws and saves the frame, then calls next() again.
 #include <string>

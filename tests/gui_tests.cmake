@@ -49,3 +49,18 @@ add_executable(modeler_controller_test ${CMAKE_CURRENT_LIST_DIR}/modeler_control
 target_link_libraries(modeler_controller_test PRIVATE sublift_modeler GTest::gtest_main)
 target_compile_definitions(modeler_controller_test PRIVATE SUBLIFT_ASSETS_DIR="${PROJECT_SOURCE_DIR}/assets")
 gtest_discover_tests(modeler_controller_test DISCOVERY_MODE PRE_TEST)
+
+# The modeler's compression view (docs/compression.md): on the controller, and `sublift --script`
+# under Xvfb with screenshots (PNGs in modeler_compress_gui_out/).
+add_executable(modeler_compress_test ${CMAKE_CURRENT_LIST_DIR}/modeler_compress_test.cpp)
+target_link_libraries(modeler_compress_test PRIVATE sublift_modeler GTest::gtest_main)
+target_compile_definitions(modeler_compress_test PRIVATE SUBLIFT_ASSETS_DIR="${PROJECT_SOURCE_DIR}/assets")
+gtest_discover_tests(modeler_compress_test DISCOVERY_MODE PRE_TEST)
+add_executable(modeler_compress_gui_test ${CMAKE_CURRENT_LIST_DIR}/modeler_compress_gui_test.cpp)
+target_link_libraries(modeler_compress_gui_test PRIVATE sublift_core PkgConfig::STB GTest::gtest_main)
+target_compile_definitions(modeler_compress_gui_test PRIVATE
+  SUBLIFT_GUI_EXE="$<TARGET_FILE:sublift>"
+  SUBLIFT_ASSETS_DIR="${PROJECT_SOURCE_DIR}/assets"
+  SUBLIFT_TEST_OUT_DIR="${CMAKE_CURRENT_BINARY_DIR}/modeler_compress_gui_out")
+add_dependencies(modeler_compress_gui_test sublift)
+gtest_discover_tests(modeler_compress_gui_test DISCOVERY_MODE PRE_TEST PROPERTIES TIMEOUT 120 LABELS gui)

@@ -75,14 +75,17 @@ void draw_file_section(const ModelerPanelData& d, FileFields& f, ModelerPanelReq
 
 void draw_levels_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   if (!section("Hierarchy")) return;
-  const char* schemes[] = {"linear", "cubic", "sqrt2"};  // Scheme's order
+  const char* schemes[] = {"linear", "cubic", "sqrt2", "linear-tri", "butterfly", "loop"};  // Scheme's order
   int scheme = d.scheme;
   ImGui::SetNextItemWidth(120.0f);
-  if (ImGui::Combo("Scheme", &scheme, schemes, 3) && scheme != d.scheme) r.scheme = scheme;
+  if (ImGui::Combo("Scheme", &scheme, schemes, 6) && scheme != d.scheme) r.scheme = scheme;
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("linear / cubic: Bertram's lifted B-spline wavelets (1-to-4 per level)\n"
                       "sqrt2: Wang & Ma's interpolatory sqrt(2) wavelets (surfaces; 2x faces per level,\n"
-                      "the limit passes through every control point)");
+                      "the limit passes through every control point)\n"
+                      "linear-tri / butterfly / loop: Lounsbery, DeRose & Warren's triangle-mesh wavelets\n"
+                      "(triangle meshes; k-disc wavelets with exact inner products; butterfly interpolates,\n"
+                      "loop's analysis solves a sparse system)");
   int level = d.level;
   ImGui::SetNextItemWidth(120.0f);
   if (ImGui::SliderInt("Edit level", &level, 0, std::max(d.finest, 0)) && level != d.level) r.level = level;
@@ -391,6 +394,42 @@ void draw_ffd_section(const ModelerPanelData& d, FileFields& f, ModelerPanelRequ
   }
 }
 
+// Compression (docs/compression.md): a live preview of the shape from the largest fraction of
+// its wavelets, with what it costs; Apply makes it an undoable edit, Off shows the full shape.
+void draw_compression_section(const CompressionPanelData& c, ModelerPanelRequests& r) {
+  if (!section("Compression", c.on)) return;
+  ImGui::TextColored(kMuted, "Kept fraction of the wavelets (largest first)");
+  float f = static_cast<float>(c.fraction);
+  ImGui::SetNextItemWidth(170.0f);
+  if (ImGui::SliderFloat("##compress_keep", &f, 0.0f, 1.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp)) {
+    r.compress_fraction = std::clamp(static_cast<double>(f), 0.0, 1.0);
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("drag to preview; Ctrl+click or the box to type a value");
+  ImGui::SameLine();
+  float typed = static_cast<float>(c.fraction);
+  ImGui::SetNextItemWidth(70.0f);
+  if (ImGui::InputFloat("##compress_typed", &typed, 0.0f, 0.0f, "%.4f", ImGuiInputTextFlags_EnterReturnsTrue)) {
+    r.compress_fraction = std::clamp(static_cast<double>(typed), 0.0, 1.0);
+  }
+  ImGui::BeginDisabled(!c.on);
+  if (ImGui::Button("Apply")) r.compress_apply = true;
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("make the compressed shape an edit (undoable)");
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Off")) r.compress_off = true;
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("back to the full shape");
+  ImGui::EndDisabled();
+  if (c.on) {
+    ImGui::Text("kept %zu / %zu wavelets (%.1f%%)", c.kept, c.total,
+                c.total > 0 ? 100.0 * static_cast<double>(c.kept) / static_cast<double>(c.total) : 100.0);
+    ImGui::Text("error L2 %.3g, L-inf %.3g of the diagonal", c.l2_error, c.linf_error);
+    ImGui::TextColored(kWarning, "preview: Apply to edit, Off for the full shape");
+  } else {
+    ImGui::TextColored(kMuted, "%zu wavelets; move the slider to preview", c.total);
+  }
+}
+
 void draw_history_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   if (!section("History")) return;
   ImGui::BeginDisabled(d.undo_position == 0);
@@ -490,6 +529,7 @@ ModelerPanelRequests draw_modeler_panel(const ModelerPanelData& d, ModelerDispla
     draw_detail_section(d, r);
     draw_ffd_section(d, fields, r);
     draw_basis_section(d, r);
+    draw_compression_section(d.compression, r);
     draw_history_section(d, r);
     draw_display_section(d, display);
     r.camera = draw_view_buttons();

@@ -1,6 +1,6 @@
 #pragma once
 // The modeler's ImGui panel (edit level, per-level table, detail equalizer, frames, colouring,
-// basis functions, history, files, display, timing) and its modal prompts. Plain data in, requests out: the app
+// basis functions, compression, history, files, display, timing) and its modal prompts. Plain data in, requests out: the app
 // applies them to its ModelerState (ui knows nothing of app or render, DESIGN.md).
 #include <cstddef>
 #include <cstdint>
@@ -84,6 +84,15 @@ struct FfdPanelData {
   std::size_t moved = 0;           // model vertices the last lattice operation recomputed
 };
 
+/// The Compression section (docs/compression.md): the kept fraction and what it costs.
+struct CompressionPanelData {
+  bool on = false;                    // the compressed shape is shown
+  double fraction = 1.0;              // slider value (the last one asked for while off)
+  std::size_t kept = 0, total = 0;    // wavelets kept / in all (total also while off)
+  double l2_error = 0.0, linf_error = 0.0;  // relative to the bounding-box diagonal
+  double ms = 0.0;
+};
+
 /// The Basis section's settings after the user changed one (all of them, as in BasisPanelData).
 struct BasisPanelRequest {
   bool on = false;
@@ -124,6 +133,7 @@ struct ModelerPanelData {
   std::vector<std::string> recent;    // recently opened files, newest first
   BasisPanelData basis;
   FfdPanelData ffd;
+  CompressionPanelData compression;
 };
 
 /// Text fields the panel edits in place (paths typed by the user).
@@ -156,6 +166,9 @@ struct ModelerPanelRequests {
   std::optional<std::string> load_model, export_model;
   bool wrap_box = false, unbind = false, remove_model = false;
   std::optional<int> bind;  // the outside mode: 0 stay, 1 nearest
+  // Compression: show the largest fraction of the wavelets, make it an edit, back to the full shape.
+  std::optional<double> compress_fraction;
+  bool compress_apply = false, compress_off = false;
   CameraAction camera;
 };
 

@@ -1,0 +1,159 @@
+// sublift-cli compress (docs/compression.md): JSON fields, the output by extension (a project
+// that reopens to the compressed coefficients, a mesh equal to its finest level), the command
+// equal to core's Compressor and to `synthesize --keep`, the gains of a project, usage and input
+// errors.
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "core/complex_build.h"
+#include "core/compress.h"
+#include "core/hierarchy.h"
+#include "core/project_io.h"
+#include "core/shape_io.h"
+#include "core/shapes.h"
+#include "tests/cli_run.h"
+#include "tests/io_test_util.h"
+#include "tests/test_shapes.h"
+
+namespace sublift {
+namespace {
+
+using testing::ProcessResult;
+using testing::TempDir;
+
+ProcessResult cli(const std::vector<std::string>& args) { return testing::run_cli(args); }
+
+// A torus project with detail at every level.
+Hierarchy project_hierarchy() {
+  const SurfaceMesh m = make_quad_torus(12, 8);
+  Hierarchy h = make_hierarchy(complex_from_surface_mesh(m), 3, Scheme::Cubic, 3);
+  set_base(h, flatten_positions(m));
+  std::vector<double> fine = synthesize(h, 3);
+  const std::vector<double> r = testing::random_values(fine.size(), 11, -0.02, 0.02);
+  for (std::size_t i = 0; i < fine.size(); ++i) fine[i] += r[i];
+  analyze(h, fine);
+  return h;
+}
+
+TEST(CliCompress, JsonFieldsAndProjectOutputMatchCore) {
+  TempDir dir("sublift_cli_compress_json");
+  const Hierarchy h = project_hierarchy();
+  write_project(dir.file("in.sublift"), h);
+  const Compressor core(h);
+  struct Mode {
+    const char* option;
+    const char* name;
+    double value;
+    CompressMode mode;
+  };
+  for (const Mode& m : {Mode{"--keep", "keep", 0.2, CompressMode::Keep},
+                        Mode{"--threshold", "threshold", 5e-4, CompressMode::Threshold},
+                        Mode{"--linf", "linf", 0.01, CompressMode::Linf}}) {
+    SCOPED_TRACE(m.name);
+    const ProcessResult r = cli({"compress", dir.file("in.sublift"), m.option, std::to_string(m.value), "-o",
+                                 dir.file("out.sublift"), "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    for (const char* key : {"kept", "total", "l2_error", "linf_error", "mode", "value"}) EXPECT_TRUE(j.contains(key)) << key;
+    const Compression c = core.run(m.mode, m.value);
+    EXPECT_EQ(j["mode"], m.name);
+    EXPECT_DOUBLE_EQ(j["value"].get<double>(), m.value);
+    EXPECT_EQ(j["kept"].get<std::size_t>(), c.kept);
+    EXPECT_EQ(j["total"].get<std::size_t>(), h.num_vertices(3) - h.num_vertices(0));
+    EXPECT_DOUBLE_EQ(j["l2_error"].get<double>(), c.l2_error);
+    EXPECT_DOUBLE_EQ(j["linf_error"].get<double>(), c.linf_error);
+    EXPECT_GT(c.kept, 0u);
+    EXPECT_LT(c.kept, c.total);
+    if (m.mode == CompressMode::Linf) {
+      EXPECT_LE(j["linf_error"].get<double>(), m.value);
+    }
+    // The project reopens with exactly the compressed coefficients.
+    const Hierarchy out = read_project(dir.file("out.sublift"));
+    EXPECT_EQ(out.coeffs, c.coeffs);
+  }
+}
+
+TEST(CliCompress, MeshOutputIsTheFinestLevelAndEqualsSynthesizeKeep) {
+  TempDir dir("sublift_cli_compress_mesh");
+  const Hierarchy h = project_hierarchy();
+  write_project(dir.file("in.sublift"), h);
+  ASSERT_EQ(cli({"compress", dir.file("in.sublift"), "--keep", "0.1", "-o", dir.file("c.sublift")}).exit_code, 0);
+  ASSERT_EQ(cli({"compress", dir.file("in.sublift"), "--keep", "0.1", "-o", dir.file("c.obj")}).exit_code, 0);
+  ASSERT_EQ(cli({"synthesize", dir.file("in.sublift"), "--keep", "0.1", "-o", dir.file("s.obj")}).exit_code, 0);
+  // The mesh is the compressed project's finest level, to 17 digits...
+  const Shape mesh = read_shape(dir.file("c.obj"));
+  const std::vector<double> fine = synthesize(read_project(dir.file("c.sublift")), 3);
+  EXPECT_EQ(mesh.positions, fine);
+  // ... and what `synthesize --keep` writes: the same ranking and rounding.
+  EXPECT_EQ(read_shape(dir.file("s.obj")).positions, mesh.positions);
+  // A human summary without --json.
+  const ProcessResult r = cli({"compress", dir.file("in.sublift"), "--keep", "0.5", "-o", dir.file("c2.ply")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("kept 3024 of 6048 wavelets"), std::string::npos) << r.out;
+  EXPECT_EQ(read_shape(dir.file("c2.ply")).positions.size(), fine.size());
+}
+
+TEST(CliCompress, RegionRawAndGains) {
+  TempDir dir("sublift_cli_compress_region");
+  const Hierarchy h = project_hierarchy();
+  ProjectExtras extras;
+  extras.gains = {1.0, 0.5, 1.5};
+  extras.current_level = 2;
+  write_project(dir.file("in.sublift"), h, extras);
+  const ProcessResult r = cli({"compress", dir.file("in.sublift"), "--keep", "0", "--region", "sphere:1,0,0,0.6",
+                               "--raw", "-o", dir.file("out.sublift"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  CompressOptions o;
+  o.region = parse_region("sphere:1,0,0,0.6");
+  o.normalise = false;
+  o.gains = extras.gains;
+  const Compressor core(h, o);
+  EXPECT_EQ(j["kept"].get<std::size_t>(), core.total() - core.candidates());
+  EXPECT_GT(j["kept"].get<std::size_t>(), 0u);
+  EXPECT_EQ(j["normalise"], false);
+  ProjectExtras back;
+  const Hierarchy out = read_project(dir.file("out.sublift"), &back);
+  EXPECT_EQ(out.coeffs, core.evaluate(0).coeffs);
+  EXPECT_EQ(back.gains, extras.gains);  // the session state goes along
+  EXPECT_EQ(back.current_level, 2);
+}
+
+TEST(CliCompress, UsageAndInputErrors) {
+  TempDir dir("sublift_cli_compress_errors");
+  write_project(dir.file("in.sublift"), project_hierarchy());
+  const std::string in = dir.file("in.sublift"), out = dir.file("out.obj");
+  struct Case {
+    std::vector<std::string> args;
+    int code;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {{"compress", in, "--keep", "0.2", "--linf", "0.01", "-o", out}, 2, "exactly one of"},
+      {{"compress", in, "--keep", "0.2", "--threshold", "0.01", "-o", out}, 2, "exactly one of"},
+      {{"compress", in, "-o", out}, 2, "exactly one of"},
+      {{"compress", in, "--keep", "1.5", "-o", out}, 2, "--keep must be a fraction in 0..1"},
+      {{"compress", in, "--keep", "-0.1", "-o", out}, 2, "--keep must be a fraction in 0..1"},
+      {{"compress", in, "--keep", "half", "-o", out}, 2, "--keep needs a number"},
+      {{"compress", in, "--linf", "-1", "-o", out}, 2, "must not be negative"},
+      {{"compress", in, "--keep", "0.5"}, 2, "missing -o"},
+      {{"compress", in, "--keep", "0.5", "--region", "cube:1", "-o", out}, 2, "--region"},
+      {{"compress", in, "--keep", "0.5", "-o", dir.file("out.xyz")}, 2, ""},
+      {{"compress", dir.file("missing.sublift"), "--keep", "0.5", "-o", out}, 1, "missing.sublift"},
+      {{"compress", "--keep", "0.5", "-o", out}, 2, "PROJECT"},
+  };
+  for (const Case& c : cases) {
+    const ProcessResult r = cli(c.args);
+    EXPECT_EQ(r.exit_code, c.code) << c.args[2] << " " << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(out));
+  const ProcessResult help = cli({"compress", "--help"});
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("--threshold T"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sublift

@@ -1,0 +1,330 @@
+// Wavelet compression (core/compress.h, docs/compression.md) on hierarchies with real detail
+// (tests/compress_fixture.h: a bundled shape refined J times, bent by smooth waves of three
+// lengths and roughened by a little Gaussian noise, then analysed). Checks the error measures
+// against their definition, the ranking against keep_largest and an independent recomputation
+// of |w| 2^(-j dim / 2), the three modes, regions and the session's gains.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "core/bounds.h"
+#include "core/compress.h"
+#include "core/errors.h"
+#include "core/experiments.h"
+#include "core/session.h"
+#include "core/shape_io.h"
+#include "tests/compress_fixture.h"
+
+using namespace sublift;
+
+namespace {
+
+const std::string kAssets = SUBLIFT_ASSETS_DIR;
+
+Hierarchy detailed(const std::string& asset, Scheme scheme, int levels) {
+  return sublift::testing::detailed_hierarchy(kAssets + "/" + asset, scheme, levels);
+}
+
+struct Case {
+  const char* name;
+  const char* asset;
+  Scheme scheme;
+  int levels;
+};
+
+// Every scheme on a surface, and a lattice; about 5-6 k finest vertices each.
+const Case kCases[] = {
+    {"linear_torus", "torus_quad.obj", Scheme::Linear, 3},
+    {"cubic_torus", "torus_quad.obj", Scheme::Cubic, 3},
+    {"sqrt2_torus", "torus_quad.obj", Scheme::Sqrt2, 6},
+    {"cubic_lattice", "hex_block_4.lattice", Scheme::Cubic, 2},
+};
+
+// |p - q| over finest vertices: the definition of the errors, written out again.
+void reference_errors(const std::vector<double>& a, const std::vector<double>& ref, double& rms, double& max) {
+  const double d = bbox_diagonal(ref);
+  double s = 0;
+  max = 0;
+  for (std::size_t i = 0; i < a.size(); i += 3) {
+    const double e = std::hypot(a[i] - ref[i], a[i + 1] - ref[i + 1], a[i + 2] - ref[i + 2]);
+    s += e * e;
+    max = std::max(max, e);
+  }
+  rms = std::sqrt(s / double(a.size() / 3)) / d;
+  max /= d;
+}
+
+// Level of the wavelet on fine vertex v.
+int level_of(const Hierarchy& h, std::uint32_t v) {
+  int j = 0;
+  while (v >= h.num_vertices(j + 1)) ++j;
+  return j;
+}
+
+// The wavelets a compression zeroed that were not zero before.
+std::set<std::uint32_t> zeroed(const Hierarchy& h, const std::vector<double>& c) {
+  std::set<std::uint32_t> out;
+  for (std::uint32_t v = h.num_vertices(0); v < h.num_vertices(h.finest_level()); ++v) {
+    const double* a = &h.coeffs[3 * std::size_t(v)];
+    const double* b = &c[3 * std::size_t(v)];
+    if ((a[0] != 0 || a[1] != 0 || a[2] != 0) && b[0] == 0 && b[1] == 0 && b[2] == 0) out.insert(v);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(Compress, L2ErrorNonIncreasingAlongFractionsAndZeroAtOne) {
+  for (const Case& k : kCases) {
+    SCOPED_TRACE(k.name);
+    const Hierarchy h = detailed(k.asset, k.scheme, k.levels);
+    const Compressor c(h);
+    const std::vector<double> full = synthesize(h, h.finest_level());
+    EXPECT_EQ(c.total(), h.num_vertices(h.finest_level()) - h.num_vertices(0));
+    EXPECT_EQ(c.candidates(), c.total());
+    double previous = HUGE_VAL;
+    for (const double f : {0.0, 0.01, 0.05, 0.2, 0.5, 1.0}) {
+      const Compression r = c.evaluate(c.count_for_fraction(f));
+      EXPECT_EQ(r.kept, static_cast<std::size_t>(std::llround(f * double(c.total()))));
+      double rms = 0, max = 0;
+      reference_errors(r.finest, full, rms, max);
+      EXPECT_NEAR(r.l2_error, rms, 1e-12 * (1 + rms)) << f;
+      EXPECT_NEAR(r.linf_error, max, 1e-12 * (1 + max)) << f;
+      EXPECT_LE(r.l2_error, previous) << "fraction " << f;
+      EXPECT_LE(r.l2_error, r.linf_error);
+      previous = r.l2_error;
+    }
+    const Compression all = c.evaluate(c.candidates());
+    EXPECT_EQ(all.l2_error, 0.0);
+    EXPECT_EQ(all.linf_error, 0.0);
+    EXPECT_EQ(all.finest, full);  // bit for bit: the same synthesis
+    EXPECT_GT(c.evaluate(0).l2_error, 1e-3) << "the fixture has no real detail";
+  }
+}
+
+TEST(Compress, KeepSelectsWhatKeepLargestSelectsAndIsProgressive) {
+  for (const Case& k : kCases) {
+    SCOPED_TRACE(k.name);
+    const Hierarchy h = detailed(k.asset, k.scheme, k.levels);
+    const Compressor c(h);
+    std::set<std::uint32_t> before = zeroed(h, c.coefficients(0));
+    for (const double f : {0.01, 0.05, 0.2, 0.5}) {
+      Hierarchy copy = h;
+      const std::size_t kept = keep_largest(copy, f);
+      const std::vector<double> mine = c.coefficients(c.count_for_fraction(f));
+      EXPECT_EQ(c.count_for_fraction(f), kept);
+      EXPECT_EQ(std::memcmp(mine.data(), copy.coeffs.data(), mine.size() * sizeof(double)), 0) << f;
+      // Keeping more keeps a superset: what is zeroed now was zeroed at every smaller fraction.
+      const std::set<std::uint32_t> now = zeroed(h, mine);
+      EXPECT_TRUE(std::includes(before.begin(), before.end(), now.begin(), now.end())) << f;
+      EXPECT_LT(now.size(), before.size());
+      before = now;
+    }
+    // The magnitudes are non-increasing along the ranking.
+    EXPECT_TRUE(std::is_sorted(c.magnitudes().rbegin(), c.magnitudes().rend()));
+  }
+}
+
+TEST(Compress, ThresholdKeepsExactlyTheWaveletsAboveIt) {
+  for (const Case& k : kCases) {
+    SCOPED_TRACE(k.name);
+    const Hierarchy h = detailed(k.asset, k.scheme, k.levels);
+    const Compressor c(h);
+    const double diagonal = bbox_diagonal(synthesize(h, h.finest_level()));
+    EXPECT_DOUBLE_EQ(c.diagonal(), diagonal);
+    // Independently: |w| 2^(-j dim / 2) (sqrt2: 2^(-j / 2)), the L2 norm of a level-j wavelet.
+    const double per_level = k.scheme == Scheme::Sqrt2 ? 1.0 : double(h.levels.front().dim);
+    std::vector<double> magnitude;  // by fine vertex v - nv_0
+    for (std::uint32_t v = h.num_vertices(0); v < h.num_vertices(h.finest_level()); ++v) {
+      const double* w = &h.coeffs[3 * std::size_t(v)];
+      magnitude.push_back(std::hypot(w[0], w[1], w[2]) * std::pow(2.0, -0.5 * level_of(h, v) * per_level));
+    }
+    std::vector<double> sorted = magnitude;
+    std::sort(sorted.begin(), sorted.end());
+    // Thresholds between the 10%, 50% and 90% quantiles and their neighbours.
+    for (const double q : {0.1, 0.5, 0.9}) {
+      const std::size_t at = static_cast<std::size_t>(q * double(sorted.size()));
+      const double t = 0.5 * (sorted[at] + sorted[at + 1]) / diagonal;
+      const std::vector<double> kept = c.coefficients(c.count_for_threshold(t));
+      std::size_t expect_kept = 0;
+      for (std::uint32_t v = h.num_vertices(0); v < h.num_vertices(h.finest_level()); ++v) {
+        const double* w = &h.coeffs[3 * std::size_t(v)];
+        const double m = magnitude[v - h.num_vertices(0)];
+        const bool keep = m >= t * diagonal;
+        expect_kept += keep;
+        if (std::abs(m - t * diagonal) < 1e-12 * diagonal) continue;  // a tie within round-off
+        const double* got = &kept[3 * std::size_t(v)];
+        if (keep) {
+          EXPECT_TRUE(got[0] == w[0] && got[1] == w[1] && got[2] == w[2]) << "wavelet " << v << " dropped at T " << t;
+        } else {
+          EXPECT_TRUE(got[0] == 0 && got[1] == 0 && got[2] == 0) << "wavelet " << v << " kept at T " << t;
+        }
+      }
+      EXPECT_EQ(c.count_for_threshold(t), expect_kept);
+      EXPECT_GT(expect_kept, 0u);
+      EXPECT_LT(expect_kept, c.total());
+    }
+    EXPECT_EQ(c.count_for_threshold(0.0), c.total());
+    EXPECT_THROW(c.count_for_threshold(-1.0), Error);
+  }
+}
+
+TEST(Compress, LinfRespectsTheBoundAndOneMoreRemovalBreaksIt) {
+  for (const Case& k : kCases) {
+    SCOPED_TRACE(k.name);
+    const Hierarchy h = detailed(k.asset, k.scheme, k.levels);
+    const Compressor c(h);
+    const double at_zero = c.evaluate(0).linf_error;
+    for (const double e : {0.05 * at_zero, 0.3 * at_zero, 0.7 * at_zero}) {
+      const std::size_t n = c.count_for_linf(e);
+      const Compression r = c.evaluate(n);
+      EXPECT_LE(r.linf_error, e);
+      ASSERT_GT(n, 0u);
+      EXPECT_GT(c.evaluate(n - 1).linf_error, e) << "one more removal along the ranking still keeps the bound";
+      EXPECT_EQ(c.run(CompressMode::Linf, e).kept, r.kept);
+    }
+    EXPECT_EQ(c.count_for_linf(at_zero), 0u);  // the bound holds with nothing kept
+    EXPECT_EQ(c.evaluate(c.count_for_linf(0.0)).linf_error, 0.0);
+    EXPECT_THROW(c.count_for_linf(-1e-3), Error);
+  }
+}
+
+TEST(Compress, RegionLeavesWaveletsOutsideUntouchedBitForBit) {
+  for (const Case& k : kCases) {
+    SCOPED_TRACE(k.name);
+    const Hierarchy h = detailed(k.asset, k.scheme, k.levels);
+    const std::vector<double> fine = synthesize(h, h.finest_level());
+    const auto box = bounding_box(fine.data(), fine.size() / 3);
+    // A sphere around the bounding box's upper corner region: part of the shape inside.
+    Region region;
+    region.kind = Region::Kind::Sphere;
+    for (std::size_t a = 0; a < 3; ++a) region.centre[a] = box[1][a];
+    region.radius = 0.6 * bbox_diagonal(fine);
+    CompressOptions options;
+    options.region = region;
+    const Compressor c(h, options);
+    ASSERT_GT(c.candidates(), 0u);
+    ASSERT_LT(c.candidates(), c.total());
+    for (const double f : {0.0, 0.3}) {
+      const Compression r = c.evaluate(c.count_for_fraction(f));
+      EXPECT_EQ(r.kept, c.total() - c.candidates() + static_cast<std::size_t>(std::llround(f * double(c.candidates()))));
+      // Scaling coefficients are never touched.
+      EXPECT_EQ(std::memcmp(r.coeffs.data(), h.coeffs.data(), 3 * h.num_vertices(0) * sizeof(double)), 0);
+      std::size_t inside = 0;
+      for (int j = 0; j < h.finest_level(); ++j) {
+        // Where a level-j wavelet lives: its vertex on level j+1, synthesised independently.
+        const std::vector<double> net = synthesize(h, j + 1);
+        for (std::uint32_t v = h.num_vertices(j); v < h.num_vertices(j + 1); ++v) {
+          const double* w = &h.coeffs[3 * std::size_t(v)];
+          const double* got = &r.coeffs[3 * std::size_t(v)];
+          const double* p = &net[3 * std::size_t(v)];
+          const double d = std::hypot(p[0] - region.centre[0], p[1] - region.centre[1], p[2] - region.centre[2]);
+          if (d > region.radius) {
+            EXPECT_EQ(std::memcmp(got, w, 3 * sizeof(double)), 0) << "wavelet " << v << " outside changed";
+          } else {
+            ++inside;
+            const bool zero = got[0] == 0 && got[1] == 0 && got[2] == 0;
+            EXPECT_TRUE(zero || std::memcmp(got, w, 3 * sizeof(double)) == 0) << v;
+            if (f == 0.0) {
+              EXPECT_TRUE(zero) << "wavelet " << v << " inside kept at fraction 0";
+            }
+          }
+        }
+      }
+      EXPECT_EQ(inside, c.candidates());
+    }
+  }
+}
+
+TEST(Compress, RawMagnitudeRanksDifferentlyOnAMultiLevelHierarchy) {
+  const Hierarchy h = detailed("torus_quad.obj", Scheme::Cubic, 3);
+  const Compressor normalised(h);
+  CompressOptions raw_options;
+  raw_options.normalise = false;
+  const Compressor raw(h, raw_options);
+  ASSERT_EQ(normalised.candidates(), raw.candidates());
+  EXPECT_FALSE(std::equal(normalised.order().begin(), normalised.order().end(), raw.order().begin()));
+  // Raw: sorted by the plain Euclidean norm of the coefficient vector.
+  for (std::size_t k = 0; k < raw.candidates(); ++k) {
+    const double* w = &h.coeffs[3 * std::size_t(raw.order()[k])];
+    EXPECT_NEAR(raw.magnitudes()[k], std::hypot(w[0], w[1], w[2]), 1e-15 * (1 + raw.magnitudes()[k]));
+  }
+  // The difference shows in the levels kept: the raw ranking keeps finer wavelets (their size
+  // is not weighed down by 2^(-j) for their smaller support).
+  const std::size_t n = normalised.count_for_fraction(0.2);
+  auto level_sum = [&](const Compressor& c) {
+    std::size_t sum = 0;
+    for (std::size_t k = 0; k < n; ++k) sum += static_cast<std::size_t>(level_of(h, c.order()[k]));
+    return sum;
+  };
+  EXPECT_GT(level_sum(raw), level_sum(normalised));
+}
+
+TEST(Compress, UsesTheHierarchysExactWaveletNormsWhenItHasThem) {
+  Hierarchy h = detailed("torus_quad.obj", Scheme::Linear, 2);
+  const std::vector<double> area = wavelet_l2_norms(h);
+  ASSERT_EQ(area.size(), h.num_vertices(2) - h.num_vertices(0));
+  EXPECT_EQ(area.front(), 1.0);   // level 0
+  EXPECT_EQ(area.back(), 0.5);    // level 1 of a surface: 2^(-1 * 2 / 2)
+  // Norms that favour exactly one wavelet put it first.
+  h.wavelet_norms.assign(area.size(), 1e-6);
+  const std::uint32_t favourite = h.num_vertices(1) + 5;
+  h.wavelet_norms[favourite - h.num_vertices(0)] = 1e6;
+  const Compressor c(h);
+  EXPECT_EQ(c.order().front(), favourite);
+  EXPECT_EQ(wavelet_l2_norms(h), h.wavelet_norms);
+  h.wavelet_norms.pop_back();
+  EXPECT_THROW(wavelet_l2_norms(h), Error);
+  EXPECT_THROW(Compressor{h}, Error);
+}
+
+TEST(Compress, GainsGiveTheSessionsShapeAndScaleTheRanking) {
+  const Hierarchy h = detailed("torus_quad.obj", Scheme::Cubic, 3);
+  const std::vector<double> gains{1.0, 0.5, 2.0};
+  const Session session(h, gains);
+  CompressOptions options;
+  options.gains = gains;
+  const Compressor c(h, options);
+  const auto shown = session.positions(3);
+  ASSERT_EQ(c.reference().size(), shown.size());
+  for (std::size_t i = 0; i < shown.size(); ++i) EXPECT_NEAR(c.reference()[i], shown[i], 1e-12);
+  // Stored coefficients come back without gains, only the removed ones zero.
+  const std::vector<double> coeffs = c.coefficients(c.candidates());
+  EXPECT_EQ(coeffs, h.coeffs);
+  EXPECT_EQ(c.evaluate(c.candidates()).l2_error, 0.0);
+  options.gains = {1.0, 2.0};
+  EXPECT_THROW(Compressor(h, options), Error);
+}
+
+TEST(Compress, ErrorsAndThresholdsAreScaleFree) {
+  Hierarchy h = detailed("torus_quad.obj", Scheme::Sqrt2, 4);
+  Hierarchy big = h;
+  for (double& x : big.coeffs) x *= 1000.0;
+  const Compressor a(h), b(big);
+  EXPECT_EQ(a.count_for_threshold(1e-3), b.count_for_threshold(1e-3));
+  const Compression ra = a.evaluate(a.count_for_fraction(0.1)), rb = b.evaluate(b.count_for_fraction(0.1));
+  EXPECT_NEAR(ra.l2_error, rb.l2_error, 1e-12);
+  EXPECT_NEAR(ra.linf_error, rb.linf_error, 1e-12);
+}
+
+TEST(Compress, ParsesRegions) {
+  const Region box = parse_region("box:1,2,3,-1,0,0.5");
+  EXPECT_EQ(box.kind, Region::Kind::Box);
+  EXPECT_EQ(box.lo, (std::array<double, 3>{-1, 0, 0.5}));
+  EXPECT_EQ(box.hi, (std::array<double, 3>{1, 2, 3}));
+  const double in[3] = {0, 1, 1}, out[3] = {0, 1, 4};
+  EXPECT_TRUE(box.contains(in));
+  EXPECT_FALSE(box.contains(out));
+  const Region s = parse_region("sphere:0,0,0,2");
+  EXPECT_EQ(s.kind, Region::Kind::Sphere);
+  EXPECT_TRUE(s.contains(in));
+  EXPECT_FALSE(s.contains(out));
+  for (const char* bad : {"box:1,2,3", "sphere:0,0,0,-1", "cube:0,0,0,1", "sphere:0,0,x,1", "box", "sphere:0,0,0,1,"})
+    EXPECT_THROW(parse_region(bad), Error) << bad;
+  const Hierarchy h = detailed("torus_quad.obj", Scheme::Linear, 1);
+  EXPECT_THROW(Compressor(h).count_for_fraction(1.5), Error);
+  EXPECT_EQ(compress_mode_name(CompressMode::Linf), "linf");
+}

@@ -636,6 +636,46 @@ TEST(ModelerControllerTest, Sqrt2SchemeFromTheMenu) {
   EXPECT_EQ(lattice.app.model.session().hierarchy().scheme, Scheme::Cubic);
 }
 
+// The triangle schemes of paper 004 from the Scheme menu: drags keep the shown surface equal
+// to a fresh evaluation, butterfly shows its finest net (it interpolates), Loop its limit
+// masks; a quad mesh refuses them with the face named.
+TEST(ModelerControllerTest, TriangleSchemesFromTheMenu) {
+  Fixture f("octahedron.obj");
+  ModelerState& m = f.app.model;
+  for (int choice : {4, 5, 3}) {  // butterfly, loop, linear-tri
+    ModelerPanelRequests req;
+    req.scheme = choice;
+    f.app.apply_panel_requests(req);
+    if (m.session().hierarchy().scheme != static_cast<Scheme>(choice)) m.set_scheme(static_cast<Scheme>(choice));
+    ASSERT_EQ(m.session().hierarchy().scheme, static_cast<Scheme>(choice)) << f.app.error;
+    for (int level : {0, 1}) {
+      m.set_level(level);
+      m.set_selection({2});
+      m.begin_drag("Drag");
+      const double total[3] = {0.05, 0.1, -0.02};
+      m.drag_to(total);
+      m.end_drag();
+      expect_shown_equals_fresh(f);
+    }
+    const auto net = m.session().positions(m.session().finest_level());
+    const auto shown = m.limit_positions();
+    ASSERT_EQ(shown.size(), net.size());
+    double differs = 0;
+    for (std::size_t i = 0; i < net.size(); ++i) differs = std::max(differs, std::abs(shown[i] - net[i]));
+    if (static_cast<Scheme>(choice) == Scheme::Loop) {
+      EXPECT_GT(differs, 1e-3);
+    } else {
+      EXPECT_EQ(differs, 0.0);
+    }
+  }
+  Fixture quads("quad_grid_boundary.obj");
+  ModelerPanelRequests to_loop;
+  to_loop.scheme = 5;
+  quads.app.apply_panel_requests(to_loop);
+  EXPECT_NE(quads.app.error.find("needs a triangle mesh; face 0 has 4 corners"), std::string::npos) << quads.app.error;
+  EXPECT_EQ(quads.app.model.session().hierarchy().scheme, Scheme::Cubic);
+}
+
 TEST(ModelerControllerTest, BasisScriptCommands) {
   ModelerState m;
   const std::string torus = std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj";

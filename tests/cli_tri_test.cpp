@@ -30,15 +30,15 @@ TEST(CliTri, ResampledScanAnalysesAndSynthesisesBack) {
   if (!std::filesystem::exists(scan)) GTEST_SKIP() << "no third-party data at " << scan << " (SUBLIFT_SHARED_DATA)";
   TempDir dir("sublift_cli_tri");
   const std::string fine = dir.file("fine.obj"), base = dir.file("base.obj");
-  json_of({"resample-sphere", scan.string(), "--levels", "4", "-o", fine, "--base-out", base, "--json"});
+  json_of({"resample-sphere", scan.string(), "--levels", "3", "-o", fine, "--base-out", base, "--json"});
   const Shape original = read_shape(fine);
   for (const char* scheme : {"linear-tri", "butterfly", "loop"}) {
     SCOPED_TRACE(scheme);
     const std::string project = dir.file(std::string(scheme) + ".sublift"), back = dir.file(std::string(scheme) + ".obj");
-    const auto a = json_of({"analyze", fine, "--base", base, "--scheme", scheme, "--levels", "4", "-o", project, "--json"});
+    const auto a = json_of({"analyze", fine, "--base", base, "--scheme", scheme, "--levels", "3", "-o", project, "--json"});
     EXPECT_EQ(a["scheme"], scheme);
     EXPECT_EQ(a["disc"], 2);
-    EXPECT_EQ(a["vertices"], 1026);
+    EXPECT_EQ(a["vertices"], 258);
     const ProcessResult s = run_cli({"synthesize", project, "-o", back});
     ASSERT_EQ(s.exit_code, 0) << s.err;
     const Shape again = read_shape(back);

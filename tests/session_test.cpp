@@ -117,9 +117,10 @@ Hierarchy crease_sqrt2() { return from_asset("crease_loop.obj", 4, Scheme::Sqrt2
 Hierarchy dart_sqrt2() { return from_asset("crease_dart_flat.obj", 3, Scheme::Sqrt2); }
 Hierarchy mixed_sqrt2() { return from_asset("mixed_polygons.obj", 4, Scheme::Sqrt2); }
 // The triangle schemes (paper 004): the same explicit transitions; Loop adds its vertex rule
-// (local in synthesis, a global solve in analysis).
+// (local in synthesis, a global solve in analysis). Butterfly on the creased grid is left out:
+// its many boundary and crease neighbourhood types cost minutes under AddressSanitizer, and the
+// sparse paths are the same code for the three schemes.
 Hierarchy octa_butterfly() { return from_asset("octahedron.obj", 3, Scheme::Butterfly); }
-Hierarchy grid_butterfly() { return from_asset("tri_crease_grid.obj", 2, Scheme::Butterfly); }
 Hierarchy octa_loop() { return from_asset("octahedron.obj", 3, Scheme::Loop); }
 Hierarchy grid_loop() { return from_asset("tri_crease_grid.obj", 2, Scheme::Loop); }
 Hierarchy grid_linear_tri() { return from_asset("tri_crease_grid.obj", 2, Scheme::LinearTri); }
@@ -134,7 +135,7 @@ INSTANTIATE_TEST_SUITE_P(Shapes, LocalEqualsFull,
                                            Case{"torus_sqrt2", torus_sqrt2}, Case{"boundary_sqrt2", boundary_sqrt2},
                                            Case{"crease_sqrt2", crease_sqrt2}, Case{"dart_sqrt2", dart_sqrt2},
                                            Case{"mixed_sqrt2", mixed_sqrt2}, Case{"octa_butterfly", octa_butterfly},
-                                           Case{"grid_butterfly", grid_butterfly}, Case{"octa_loop", octa_loop},
+                                           Case{"octa_loop", octa_loop},
                                            Case{"grid_loop", grid_loop}, Case{"grid_linear_tri", grid_linear_tri}),
                          [](const auto& info) { return std::string(info.param.name); });
 

@@ -73,18 +73,7 @@ int FaceGramCache::type_of(const Complex& c, const TriRings& r, std::uint32_t f,
           throw std::logic_error("tri_gram: N(f) does not close under subdivision (support radius too small)");
         S(i, static_cast<int>(a)) += w;
       };
-      if (v < nvp) {
-        if (st.old_rows.rows() == 0) {
-          add(v, 1.0);
-        } else {
-          for (std::uint32_t q = st.old_rows.offsets[v]; q < st.old_rows.offsets[v + 1]; ++q)
-            add(st.old_rows.items[q], st.old_weights[q]);
-        }
-      } else {
-        const std::uint32_t e = v - nvp;
-        for (std::uint32_t q = st.new_rows.offsets[e]; q < st.new_rows.offsets[e + 1]; ++q)
-          add(st.new_rows.items[q], st.new_weights[q]);
-      }
+      for_each_stencil_weight(st, nvp, v, add);
     }
     Type& t = types_[static_cast<std::size_t>(id)];
     t.child[static_cast<std::size_t>(k)] = ct;

@@ -109,4 +109,18 @@ TriStencils build_tri_stencils(const Complex& coarse, TriScheme s);
 /// rows.
 std::vector<double> subdivide_tri(const TriStencils& st, const double* coarse, std::uint32_t nv, int channels);
 
+/// Calls f(coarse vertex, weight) for each term of fine vertex v's row (nv coarse vertices; an
+/// old vertex of an interpolating scheme is itself with weight 1).
+template <class F>
+void for_each_stencil_weight(const TriStencils& st, std::uint32_t nv, std::uint32_t v, F&& f) {
+  if (v < nv && st.old_rows.rows() == 0) {
+    f(v, 1.0);
+    return;
+  }
+  const Csr& rows = v < nv ? st.old_rows : st.new_rows;
+  const std::vector<double>& w = v < nv ? st.old_weights : st.new_weights;
+  const std::uint32_t r = v < nv ? v : v - nv;
+  for (std::uint32_t q = rows.offsets[r]; q < rows.offsets[r + 1]; ++q) f(rows.items[q], w[q]);
+}
+
 }  // namespace sublift

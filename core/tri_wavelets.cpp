@@ -26,27 +26,6 @@ int TriWaveletBuilder::signature_radius() const {
   return disc_ + g.support + g.signature;
 }
 
-namespace {
-
-// Adds the stencil row of fine vertex v (coarse patch labels) to `out` scaled by s.
-template <class F>
-void for_stencil(const TriStencils& st, std::uint32_t nvp, std::uint32_t v, F&& f) {
-  if (v < nvp) {
-    if (st.old_rows.rows() == 0) {
-      f(v, 1.0);
-    } else {
-      for (std::uint32_t q = st.old_rows.offsets[v]; q < st.old_rows.offsets[v + 1]; ++q)
-        f(st.old_rows.items[q], st.old_weights[q]);
-    }
-    return;
-  }
-  const std::uint32_t e = v - nvp;
-  for (std::uint32_t q = st.new_rows.offsets[e]; q < st.new_rows.offsets[e + 1]; ++q)
-    f(st.new_rows.items[q], st.new_weights[q]);
-}
-
-}  // namespace
-
 EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
   const TriGramRadii& g = gram_.radii();
   const Complex& c = *lv.coarse;
@@ -112,7 +91,7 @@ EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
   }
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nd);
   for (const auto& [cv, value] : with_m)
-    for_stencil(st, nv, cv, [&](std::uint32_t i, double w) {
+    for_each_stencil_weight(st, nv, cv, [&](std::uint32_t i, double w) {
       if (const std::uint32_t l = in_disc(i); l != UINT32_MAX) rhs(l) += w * value;
     });
 

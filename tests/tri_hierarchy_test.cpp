@@ -143,8 +143,9 @@ TEST(TriHierarchy, ZeroDetailsAreThePureSubdivision) {
         std::vector<double> fine = subdivide_tri(st, x.data(), level.num_vertices, 3);
         const std::vector<double> ours = synthesize(h, l);
         EXPECT_LT(max_abs_diff(ours, fine), 1e-14) << "level " << l;
-        if (scheme_interpolates(s))
+        if (scheme_interpolates(s)) {
           for (std::size_t i = 0; i < x.size(); ++i) ASSERT_EQ(ours[i], x[i]) << "level " << l << " value " << i;
+        }
         x = std::move(fine);
         level = refine_tri(level);
       }

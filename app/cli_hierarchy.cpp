@@ -23,11 +23,15 @@ int levels_option(const Args& a, Scheme scheme) {
 
 Scheme scheme_option(const Args& a) {
   const auto v = a.value("--scheme");
-  if (!v) throw UsageError("missing --scheme linear|cubic|sqrt2|linear-tri|butterfly|loop");
+  if (!v) {
+    std::string names;
+    for (const SchemeInfo& s : all_schemes()) names += (names.empty() ? "" : "|") + std::string(s.name);
+    throw UsageError("missing --scheme " + names);
+  }
   try {
     return parse_scheme(*v);
   } catch (const std::invalid_argument&) {
-    throw UsageError("--scheme must be linear, cubic, sqrt2, linear-tri, butterfly or loop, got '" + *v + "'");
+    throw UsageError("--scheme must be " + scheme_names_list() + ", got '" + *v + "'");
   }
 }
 
@@ -40,10 +44,10 @@ int disc_option(const Args& a, Scheme scheme) {
 }
 
 void check_refined_size(const Complex& base, int levels, Scheme scheme) {
-  if (scheme_has_transitions(scheme) && base.dim != 2)
+  if (scheme_info(scheme).surfaces_only && base.dim != 2)
     throw UsageError("the " + scheme_name(scheme) + " scheme refines surfaces only; this input is a " +
                      (base.dim == 1 ? "curve" : "volume lattice") + " (use --scheme linear or cubic)");
-  if (scheme_is_tri(scheme))
+  if (scheme_info(scheme).triangles_only)
     for (std::uint32_t f = 0; f < base.num_faces(); ++f)
       if (base.faces.size(f) != 3)
         throw UsageError("the " + scheme_name(scheme) + " scheme needs a triangle mesh; face " + std::to_string(f) + " has " +

@@ -175,10 +175,10 @@ void ModelerState::set_scheme(Scheme scheme) {
   ffd_check_free("changing the scheme");
   check_unlocked("changing the scheme");
   const Hierarchy& old = session_->hierarchy();
-  if (scheme_has_transitions(scheme) && old.levels.front().dim != 2)
+  if (scheme_info(scheme).surfaces_only && old.levels.front().dim != 2)
     throw Error("the " + scheme_name(scheme) + " scheme refines surfaces only; this is a " +
                 (old.levels.front().dim == 1 ? "curve" : "volume lattice") + " (use linear or cubic)");
-  if (scheme_is_tri(scheme))
+  if (scheme_info(scheme).triangles_only)
     for (std::uint32_t f = 0; f < old.levels.front().num_faces(); ++f)
       if (old.levels.front().faces.size(f) != 3)
         throw Error("the " + scheme_name(scheme) + " scheme needs a triangle mesh; face " + std::to_string(f) + " has " +
@@ -592,7 +592,7 @@ void ModelerState::wrap_model_in_box(int nx, int ny, int nz, double margin) {
   const Shape box = box_lattice_around(shape, nx, ny, nz, margin);
   // A box lattice is a volume: sqrt2 (surfaces only) falls back to cubic.
   const Scheme current = session_ ? session_->hierarchy().scheme : Scheme::Cubic;
-  const Scheme scheme = scheme_has_transitions(current) ? Scheme::Cubic : current;
+  const Scheme scheme = scheme_info(current).surfaces_only ? Scheme::Cubic : current;
   Hierarchy h = make_hierarchy(box.base, kDefaultLevels, scheme, 3);
   set_base(h, box.positions);
   install(std::make_unique<Session>(std::move(h)));

@@ -26,7 +26,7 @@
 #include "bench/bench_timing.h"
 #include "core/complex_build.h"
 #include "core/hierarchy.h"
-#include "core/lifting.h"
+#include "core/engine/executor.h"
 #include "core/parallel.h"
 #include "core/refine_sqrt2.h"
 #include "core/sqrt2_transform.h"
@@ -163,17 +163,20 @@ void BM_Sqrt2Synthesis(benchmark::State& st, const Size* sz, int threads) {
   const Sqrt2Chain& c = sqrt2_chain(*sz);
   set_threads(threads);
   time_levels(st, "sqrt2 " + sz->name + (threads == 1 ? " 1thr" : ""), c.coeffs, sz->J,
-              [&](int j, double* x) { sqrt2_synthesize(c.transitions[std::size_t(j)], x, 3, false); });
+              [&](int j, double* x) {
+                // sqrt(2) transitions are Weighted steps only: they read no complex.
+                static const Complex no_parent;
+                run_synthesis(c.transitions[std::size_t(j)].transition, no_parent, x, 3, false);
+              });
   set_threads(0);
   st.counters["final_quads"] = c.quads.back();
 }
 
 void BM_CubicSynthesis(benchmark::State& st, const Size* sz, int threads) {
   const CubicChain& c = cubic_chain(*sz);
-  const LiftProgram prog = scheme_program(Scheme::Cubic);
   set_threads(threads);
   time_levels(st, "cubic " + sz->name + (threads == 1 ? " 1thr" : ""), c.h.coeffs, sz->L, [&](int j, double* x) {
-    lift_synthesize(c.h.levels[std::size_t(j)], c.h.tables[std::size_t(j)], prog, x, 3, false);
+    run_synthesis(c.h.transitions[std::size_t(j)], c.h.levels[std::size_t(j)], x, 3, false);
   });
   set_threads(0);
   st.counters["final_quads"] = c.quads.back();

@@ -37,7 +37,8 @@
 
 #include "core/complex_build.h"
 #include "core/hierarchy.h"
-#include "core/lifting.h"
+#include "core/engine/executor.h"
+#include "core/parallel.h"
 #include "tests/mesh_fixtures.h"
 #include "tests/osd_refiner.h"
 
@@ -211,12 +212,11 @@ void time_in_place(benchmark::State& st, const std::vector<double>& init, Body b
 
 void BM_SubliftSynthesis(benchmark::State& st, const Input* in, int threads) {
   const Hierarchy h = make_shape(*in);
-  const LiftProgram prog = scheme_program(h.scheme);
-  if (threads > 0) set_lift_threads(threads);
+  if (threads > 0) set_parallel_threads(threads);
   time_in_place(st, h.coeffs, [&](double* x) {
-    for (int j = 0; j < in->levels; ++j) lift_synthesize(h.levels[j], h.tables[j], prog, x, 3, false);
+    for (int j = 0; j < in->levels; ++j) run_synthesis(h.transitions[j], h.levels[j], x, 3, false);
   });
-  if (threads > 0) set_lift_threads(static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 8u)));
+  if (threads > 0) set_parallel_threads(static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 8u)));
   set_per_vertex(st, h.num_vertices(in->levels));
 }
 
@@ -229,9 +229,8 @@ void BM_SubliftSynthesizeApi(benchmark::State& st, const Input* in) {
 void BM_SubliftAnalysis(benchmark::State& st, const Input* in) {
   const Hierarchy h = make_shape(*in);
   const std::vector<double> fine = synthesize(h, in->levels);
-  const LiftProgram prog = scheme_program(h.scheme);
   time_in_place(st, fine, [&](double* x) {
-    for (int j = in->levels - 1; j >= 0; --j) lift_analyze(h.levels[j], h.tables[j], prog, x, 3, false);
+    for (int j = in->levels - 1; j >= 0; --j) run_analysis(h.transitions[j], h.levels[j], x, 3, false);
   });
   set_per_vertex(st, h.num_vertices(in->levels));
 }

@@ -37,7 +37,7 @@
 #include "core/mesh_import.h"
 #include "core/shapes.h"
 #include "core/sphere_resample.h"
-#include "core/sqrt2_sparse.h"
+#include "core/engine/executor.h"
 #include "core/tri_transform.h"
 
 #ifndef SUBLIFT_SHARED_DATA
@@ -148,9 +148,9 @@ const Data& data(Scheme s, const Size& sz) {
     d->finest = in.finest;
     analyze(d->h, d->finest);
     d->coeffs = d->h.coeffs;
-    for (const Sqrt2Transition& t : d->h.sqrt2) {
-      d->update_entries += double(t.steps[0].weights.size());
-      d->predict_entries += double(t.steps[1].weights.size());
+    for (const Transition& t : d->h.transitions) {
+      d->update_entries += double(std::get<WeightedStep>(t.steps[0].op).weights.size());
+      d->predict_entries += double(std::get<WeightedStep>(t.steps[1].op).weights.size());
     }
   }
   const std::vector<double> back = synthesize(d->h, d->h.finest_level());
@@ -220,10 +220,22 @@ void BM_Synthesis(benchmark::State& st, Scheme s, const Size* sz) {
   counters(st, "synthesis", s, *sz, d);
 }
 
-/// Loop's transitions split as sqrt2_analyze / sqrt2_synthesize run them: the solve (analysis)
-/// or vertex rule (synthesis), serial, and the lifting sub-steps, parallel. Manual time: both.
+/// The steps of one transition of one kind (Matrix or not), to time Loop's parts apart.
+Transition part(const Transition& t, bool matrix) {
+  Transition p;
+  p.num_coarse = t.num_coarse;
+  p.num_fine = t.num_fine;
+  for (const Step& s : t.steps)
+    if (std::holds_alternative<MatrixStep>(s.op) == matrix) p.steps.push_back(s);
+  return p;
+}
+
+/// Loop's transitions split as the executor runs them: the solve (analysis) or vertex rule
+/// (synthesis), serial, and the lifting steps, parallel. Manual time: both.
 void BM_LoopParts(benchmark::State& st, const Size* sz) {
   const Data& d = data(Scheme::Loop, *sz);
+  std::vector<Transition> rule, lifting;
+  for (const Transition& t : d.h.transitions) rule.push_back(part(t, true)), lifting.push_back(part(t, false));
   const std::string k = "loop parts " + sz->name;
   std::vector<double> x(d.finest.size());
   double err = 0;
@@ -231,24 +243,24 @@ void BM_LoopParts(benchmark::State& st, const Size* sz) {
     double solve = 0, alift = 0, slift = 0, smooth = 0;
     std::copy(d.finest.begin(), d.finest.end(), x.begin());
     for (int j = d.levels() - 1; j >= 0; --j) {
-      const Sqrt2Transition& t = d.h.sqrt2[std::size_t(j)];
+      const auto J = std::size_t(j);
       auto t0 = Clock::now();
-      loop_unsmooth(*t.smooth, x.data(), 3);
+      run_analysis(rule[J], d.h.levels[J], x.data(), 3, false);
       const double ms = since_ms(t0);
       note(k + " solve level " + std::to_string(j), ms);
       solve += ms;
       t0 = Clock::now();
-      for (auto it = t.steps.rbegin(); it != t.steps.rend(); ++it) sqrt2_run_step(*it, x.data(), 3, -1.0, false);
+      run_analysis(lifting[J], d.h.levels[J], x.data(), 3, false);
       alift += since_ms(t0);
     }
     for (std::size_t i = 0; i < x.size(); ++i) err = std::max(err, std::abs(x[i] - d.coeffs[i]));
     for (int j = 0; j < d.levels(); ++j) {
-      const Sqrt2Transition& t = d.h.sqrt2[std::size_t(j)];
+      const auto J = std::size_t(j);
       auto t0 = Clock::now();
-      for (const Sqrt2Substep& s : t.steps) sqrt2_run_step(s, x.data(), 3, 1.0, false);
+      run_synthesis(lifting[J], d.h.levels[J], x.data(), 3, false);
       slift += since_ms(t0);
       t0 = Clock::now();
-      loop_smooth(*t.smooth, x.data(), 3);
+      run_synthesis(rule[J], d.h.levels[J], x.data(), 3, false);
       smooth += since_ms(t0);
     }
     st.SetIterationTime((solve + alift + slift + smooth) * 1e-3);

@@ -6,91 +6,11 @@
 
 #include "core/errors.h"
 #include "core/level_counts.h"
-#include "core/sqrt2_sparse.h"
-#include "core/lifting_detail.h"
+#include "core/engine/executor.h"
 #include "core/limit.h"
 
 namespace sublift {
 namespace {
-
-using namespace lifting_detail;
-
-// Adjoint of one analysis gather sub-step x_t += -sum_g w_g(m_t) mean(x_s in row_g(t)) over the
-// targets [0, n) of a class: x_s += -(w_g(m_t) / len) x_t. Targets and sources are different
-// classes, so the order of the targets does not matter.
-void adjoint_gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* target_m, const Group* groups,
-                    int num_groups, double* y) {
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const double yt = y[target_base + i];
-    if (yt == 0.0) continue;
-    const int m = target_m ? target_m[i] : 0;
-    for (int g = 0; g < num_groups; ++g) {
-      const Group& gr = groups[g];
-      const double wm = gr.weight[m];
-      std::uint32_t b, len;
-      group_row(gr, i, b, len);
-      if (len == 0 || wm == 0.0) continue;
-      const double c = -wm * inv(len) * yt;
-      for (std::uint32_t k = 0; k < len; ++k) y[gr.source_base + gr.items[b + k]] += c;
-    }
-  }
-}
-
-// The groups below are those of lifting.cpp's sub-steps (same rows, same weights).
-void adjoint_wlift(const Complex& p, const Classes& k, double a, double* y) {
-  if (k.nc) {  // c from v, e, f
-    Group g[3] = {group_of(p.cell_verts, 0), group_of(p.cell_edges, k.E0), group_of(p.cell_faces, k.F0)};
-    for (int s = 0; s < 3; ++s) set_wlift_weight(g[s], 3, s, a);
-    adjoint_gather(k.nc, k.C0, nullptr, g, 3, y);
-  }
-  if (k.nf) {  // f from v, e
-    Group g[2] = {group_of(p.faces, 0), group_of(p.face_edges, k.E0)};
-    for (int s = 0; s < 2; ++s) set_wlift_weight(g[s], 2, s, a);
-    adjoint_gather(k.nf, k.F0, nullptr, g, 2, y);
-  }
-  if (k.ne) {  // e from v
-    Group g;
-    g.items = p.edge_verts.data();
-    g.stride = 2;
-    g.source_base = 0;
-    set_wlift_weight(g, 1, 0, a);
-    adjoint_gather(k.ne, k.E0, nullptr, &g, 1, y);
-  }
-}
-
-void adjoint_slift(const Complex& p, const LiftTables& t, const Classes& k, double a, double* y) {
-  {  // v from e, f, c
-    Group g[3] = {group_of(pick(t.own_v_from_e, t.v_from_e, p.vertex_edges), k.E0),
-                  group_of(pick(t.own_v_from_f, t.v_from_f, p.vertex_faces), k.F0),
-                  group_of(pick(t.own_v_from_c, t.v_from_c, p.vertex_cells), k.C0)};
-    for (int s = 0; s < 3; ++s) set_slift_weight(g[s], 0, s + 1, a);
-    adjoint_gather(k.nv, 0, p.vertex_dim.data(), g, k.nc ? 3 : (k.nf ? 2 : 1), y);
-  }
-  if (k.nf) {  // e from f, c
-    Group g[2] = {group_of(pick(t.own_e_from_f, t.e_from_f, p.edge_faces), k.F0),
-                  group_of(pick(t.own_e_from_c, t.e_from_c, p.edge_cells), k.C0)};
-    for (int s = 0; s < 2; ++s) set_slift_weight(g[s], 1, s + 2, a);
-    adjoint_gather(k.ne, k.E0, p.edge_dim.data(), g, k.nc ? 2 : 1, y);
-  }
-  if (k.nc) {  // f from c
-    Group g = group_of(pick(t.own_f_from_c, t.f_from_c, p.face_cells), k.C0);
-    set_slift_weight(g, 2, 3, a);
-    adjoint_gather(k.nf, k.F0, p.face_dim.data(), &g, 1, y);
-  }
-}
-
-// Inverse s-scale (000 eq. 3.18) is diagonal, hence its own adjoint.
-void adjoint_sscale(const Complex& p, const Classes& k, double a, double* y) {
-  auto scale_class = [&](std::uint32_t n, std::uint32_t base, const std::vector<std::uint8_t>& dims, int t) {
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const int m = dims[i];
-      if (m > t) y[base + i] /= std::pow(a, m - t);
-    }
-  };
-  scale_class(k.nv, 0, p.vertex_dim, 0);
-  scale_class(k.ne, k.E0, p.edge_dim, 1);
-  scale_class(k.nf, k.F0, p.face_dim, 2);
-}
 
 std::uint32_t count_nonzero(const double* x, std::uint32_t n) {
   return static_cast<std::uint32_t>(std::count_if(x, x + n, [](double v) { return v != 0.0; }));
@@ -101,7 +21,7 @@ std::uint32_t count_nonzero(const double* x, std::uint32_t n) {
 // (odd L) half of that.
 std::vector<double> vertex_measures(const Complex& c, int L, Scheme scheme) {
   std::vector<double> mu(c.num_vertices, 0.0);
-  const bool sqrt2 = scheme == Scheme::Sqrt2;
+  const bool sqrt2 = scheme_info(scheme).refinement == Refinement::Sqrt2;
   const double cell = std::ldexp(1.0, sqrt2 ? -L : -L * c.dim);
   if (c.dim == 1) {
     for (std::uint32_t v : c.edge_verts) mu[v] += 0.5 * cell;
@@ -129,19 +49,6 @@ std::vector<double> vertex_measures(const Complex& c, int L, Scheme scheme) {
 
 }  // namespace
 
-void lift_analyze_adjoint(const Complex& parent, const LiftTables& t, const LiftProgram& program, double* y) {
-  // Analysis runs the program's inverse sub-steps backwards; its adjoint runs their transposes
-  // forwards: w-lift c, f, e; s-lift v, e, f (the synthesis order).
-  const Classes k(parent);
-  for (const LiftStep& s : program) {
-    switch (s.op) {
-      case LiftOp::WLift: adjoint_wlift(parent, k, s.a, y); break;
-      case LiftOp::SLift: adjoint_slift(parent, t, k, s.a, y); break;
-      case LiftOp::SScale: adjoint_sscale(parent, k, s.a, y); break;
-    }
-  }
-}
-
 int default_extra_levels(const Complex& c, double max_vertices, Scheme scheme, int level) {
   int K = (c.dim == 1 ? 6 : (c.dim == 2 ? 4 : 3)) * scheme_levels_per_split(scheme);
   const std::vector<double> counts = predicted_level_counts(c, K, scheme, level);
@@ -157,7 +64,7 @@ BasisFunction basis_function(const Complex& level_j, Scheme scheme, const BasisR
                 " position values, got " + std::to_string(level_j_positions.size()));
   if (r.level < 0) throw Error("basis function: level must be non-negative");
   const int K = r.extra_levels < 0 ? default_extra_levels(level_j, r.max_vertices, scheme, r.level) : r.extra_levels;
-  const int most = 16 * scheme_levels_per_split(scheme);
+  const int most = max_levels(scheme);
   if (K > most) throw Error("basis function: at most " + std::to_string(most) + " extra levels, got " + std::to_string(K));
   if (r.kind == BasisKind::Wavelet && K < 1) throw Error("basis function: a wavelet needs at least one extra level");
   const double predicted = predicted_level_counts(level_j, K, scheme, r.level).back();
@@ -187,8 +94,7 @@ BasisFunction basis_function(const Complex& level_j, Scheme scheme, const BasisR
   out.support_per_level.push_back(count_nonzero(x.data(), nv));
   for (int l = 0; l < K; ++l) {
     const auto L = static_cast<std::size_t>(l);
-    if (r.dual && scheme_has_transitions(scheme)) sqrt2_analyze_adjoint(h.sqrt2[L], x.data());
-    else if (r.dual) lift_analyze_adjoint(h.levels[L], h.tables[L], scheme_program(scheme), x.data());
+    if (r.dual) run_analysis_adjoint(h.transitions[L], h.levels[L], x.data());
     else synthesize_transition(h, l, x.data(), 1, false);
     out.support_per_level.push_back(count_nonzero(x.data(), h.num_vertices(l + 1)));
   }

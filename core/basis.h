@@ -74,9 +74,4 @@ BasisFunction basis_function(const Complex& level_j, Scheme scheme, const BasisR
                              std::span<const double> level_j_positions,
                              std::vector<double>* finest_positions = nullptr);
 
-/// The adjoint (transpose) of one transition's analysis (lift_analyze) applied to `y` (level j+1
-/// layout, `parent.num_child_vertices()` values, one channel), in place: analysis sub-steps
-/// x_t -= w mean(x_s) become x_s -= (w / len) x_t, run in the opposite order.
-void lift_analyze_adjoint(const Complex& parent, const LiftTables& t, const LiftProgram& program, double* y);
-
 }  // namespace sublift

@@ -74,11 +74,8 @@ std::vector<double> wavelet_l2_norms(const Hierarchy& h) {
   std::vector<double> out;
   out.reserve(count);
   const int dim = h.levels.front().dim;
-  // Each level multiplies the cell count by 2^dim (sqrt2: by 2), so the L2 norm of a level-j
-  // basis function scales by 2^(-j dim / 2) (the same expression as keep_largest, bit for bit).
-  const double per_level = h.scheme == Scheme::Sqrt2 ? 1.0 : double(dim);
   for (int j = 0; j < h.finest_level(); ++j) {
-    const double scale = std::pow(2.0, -0.5 * j * per_level);
+    const double scale = wavelet_scale(h.scheme, dim, j);
     out.insert(out.end(), h.num_vertices(j + 1) - h.num_vertices(j), scale);
   }
   return out;

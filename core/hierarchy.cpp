@@ -4,164 +4,66 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/engine/executor.h"
 #include "core/errors.h"
 #include "core/level_counts.h"
-#include "core/refine.h"
 #include "core/refine_sqrt2.h"
-#include "core/refine_tri.h"
-#include "core/sqrt2_sparse.h"
-#include "core/tri_transform.h"
 
 namespace sublift {
 
-std::string scheme_name(Scheme s) {
-  switch (s) {
-    case Scheme::Linear: return "linear";
-    case Scheme::Cubic: return "cubic";
-    case Scheme::Sqrt2: return "sqrt2";
-    case Scheme::LinearTri: return "linear-tri";
-    case Scheme::Butterfly: return "butterfly";
-    case Scheme::Loop: return "loop";
-  }
-  return "?";
-}
-
-Scheme parse_scheme(const std::string& name) {
-  if (name == "linear") return Scheme::Linear;
-  if (name == "cubic") return Scheme::Cubic;
-  if (name == "sqrt2") return Scheme::Sqrt2;
-  if (name == "linear-tri") return Scheme::LinearTri;
-  if (name == "butterfly") return Scheme::Butterfly;
-  if (name == "loop") return Scheme::Loop;
-  throw std::invalid_argument("unknown scheme '" + name +
-                              "' (expected linear, cubic, sqrt2, linear-tri, butterfly or loop)");
-}
-
-LiftProgram scheme_program(Scheme s) {
-  if (scheme_has_transitions(s))
-    throw std::logic_error("the " + scheme_name(s) + " scheme has no lifting program (it uses explicit transitions)");
-  return s == Scheme::Linear ? linear_program() : cubic_program();
-}
-
 std::size_t Hierarchy::bytes() const {
-  std::size_t b = coeffs.capacity() * sizeof(double);
+  std::size_t b = coeffs.capacity() * sizeof(double) + wavelet_norms.capacity() * sizeof(double);
   for (const Complex& c : levels) b += c.bytes();
-  for (const LiftTables& t : tables) b += t.bytes();
-  for (const Sqrt2Transition& t : sqrt2)
-    for (const Sqrt2Substep& s : t.steps)
-      b += (s.target.capacity() + s.sources.offsets.capacity() + s.sources.items.capacity()) * 4 + s.weights.capacity() * 8;
+  for (const Transition& t : transitions) b += t.bytes();
   for (const ChildSites& s : sites) b += (s.site.capacity() + s.edge_child.capacity() + s.face_child.capacity()) * 4;
   return b;
 }
-
-namespace {
-
-TriScheme tri_scheme(Scheme s) {
-  return s == Scheme::Loop ? TriScheme::Loop : s == Scheme::Butterfly ? TriScheme::Butterfly : TriScheme::Linear;
-}
-
-ChildSites sites_of(const Complex& coarse, const Sqrt2Children& ch) {
-  ChildSites s;
-  s.edge_child.assign(coarse.num_edges(), UINT32_MAX);
-  s.face_child.assign(coarse.num_faces(), UINT32_MAX);
-  const std::uint32_t nc = ch.curve_step ? static_cast<std::uint32_t>(ch.curve_edges.size()) : 0;
-  s.site.reserve(nc + ch.point_faces.size());
-  for (std::uint32_t k = 0; k < nc; ++k) {
-    s.site.push_back(ch.curve_edges[k]);
-    s.edge_child[ch.curve_edges[k]] = coarse.num_vertices + k;
-  }
-  for (std::uint32_t k = 0; k < ch.point_faces.size(); ++k) {
-    s.site.push_back(coarse.num_edges() + ch.point_faces[k]);
-    s.face_child[ch.point_faces[k]] = ch.first_face_point + k;
-  }
-  return s;
-}
-
-}  // namespace
 
 void append_level(Hierarchy& h, bool adjacency) {
   Complex& parent = h.levels.back();
   if (parent.vertex_edges.rows() != parent.num_vertices) build_adjacency(parent);
   const int j = h.finest_level();
-  if (h.scheme == Scheme::Sqrt2) {
-    const double next = double(parent.num_vertices) + double(parent.num_edges()) + double(parent.num_faces());
-    if (next > 4.0e9) throw Error("level " + std::to_string(j + 1) + " would have more than 2^32 vertices");
-    Sqrt2Step step = refine_sqrt2(parent, h.first_level + j);
-    h.sqrt2.push_back(build_sqrt2_transition(parent, step.fine, step.children));
-    h.sites.push_back(sites_of(parent, step.children));
-    (void)adjacency;  // refine_sqrt2 builds the derived rows anyway
-    h.levels.push_back(std::move(step.fine));
-    return;
+  if (predicted_level_counts(parent, 1, h.scheme, h.first_level + j).back() > 4.0e9)
+    throw Error("level " + std::to_string(j + 1) + " would have more than 2^32 vertices");
+  LevelBuild b = scheme_info(h.scheme).build(parent, {h.first_level + j, h.disc, adjacency});
+  if (!b.norms.empty()) {
+    h.wavelet_norms.resize(std::size_t(parent.num_vertices) - h.levels.front().num_vertices);
+    h.wavelet_norms.insert(h.wavelet_norms.end(), b.norms.begin(), b.norms.end());
   }
-  if (scheme_is_tri(h.scheme)) {
-    const double next = double(parent.num_vertices) + double(parent.num_edges());
-    if (next > 4.0e9) throw Error("level " + std::to_string(j + 1) + " would have more than 2^32 vertices");
-    // The wavelets read the child's neighbourhoods too; its derived rows go again if not wanted.
-    Complex child = refine_tri(parent, true);
-    TriTransitionResult r = build_tri_transition(parent, child, tri_scheme(h.scheme), h.disc);
-    if (!adjacency)
-      for (Csr* rows : {&child.vertex_edges, &child.vertex_faces, &child.vertex_cells, &child.edge_faces, &child.edge_cells,
-                        &child.face_cells, &child.cell_verts, &child.cell_edges})
-        *rows = Csr{};
-    ChildSites s;
-    const std::uint32_t nv = parent.num_vertices, ne = parent.num_edges();
-    s.site.resize(ne);
-    s.edge_child.resize(ne);
-    s.face_child.assign(parent.num_faces(), UINT32_MAX);
-    for (std::uint32_t e = 0; e < ne; ++e) {
-      s.site[e] = e;
-      s.edge_child[e] = nv + e;
-    }
-    // ||psi|| in units of a base face's area: a level-j face has 4^-j of it.
-    const double area = std::pow(0.25, j);
-    h.wavelet_norms.resize(std::size_t(nv) - h.levels.front().num_vertices);
-    for (double n2 : r.norm2) h.wavelet_norms.push_back(std::sqrt(std::max(0.0, n2 * area)));
-    h.sqrt2.push_back(std::move(r.transition));
-    h.sites.push_back(std::move(s));
-    h.levels.push_back(std::move(child));
-    return;
-  }
-  const double next = double(parent.num_child_vertices());
-  if (next > 4.0e9) throw Error("level " + std::to_string(j + 1) + " would have more than 2^32 vertices");
-  h.tables.push_back(build_lift_tables(parent));
-  Complex child = refine(parent, adjacency);
-  h.levels.push_back(std::move(child));
+  h.transitions.push_back(std::move(b.transition));
+  if (b.has_sites) h.sites.push_back(std::move(b.sites));
+  h.levels.push_back(std::move(b.fine));
 }
 
 void pop_level(Hierarchy& h) {
   if (h.levels.size() < 2) throw Error("the hierarchy has no level to remove");
   h.levels.pop_back();
-  if (scheme_has_transitions(h.scheme)) {
-    h.sqrt2.pop_back();
-    h.sites.pop_back();
-    if (!h.wavelet_norms.empty())
-      h.wavelet_norms.resize(std::size_t(h.levels.back().num_vertices) - h.levels.front().num_vertices);
-  } else {
-    h.tables.pop_back();
-  }
+  h.transitions.pop_back();
+  if (!h.sites.empty()) h.sites.pop_back();
+  if (!h.wavelet_norms.empty())
+    h.wavelet_norms.resize(std::size_t(h.levels.back().num_vertices) - h.levels.front().num_vertices);
 }
 
 Hierarchy make_hierarchy(Complex base, int levels, Scheme scheme, int channels, bool integer, int first_level, int disc) {
-  const int most = scheme == Scheme::Sqrt2 ? 32 : 16;
+  const SchemeInfo& info = scheme_info(scheme);
+  const int most = max_levels(scheme);
   if (levels < 0 || levels > most)
     throw Error("number of levels must be in 0.." + std::to_string(most) + ", got " + std::to_string(levels));
   if (channels < 1) throw Error("at least one channel is needed");
-  if (scheme == Scheme::Sqrt2 && (base.dim != 2 || base.num_cells() != 0))
-    throw Error("the sqrt2 scheme refines surfaces only; this is a " +
+  if (info.surfaces_only && (base.dim != 2 || base.num_cells() != 0))
+    throw Error("the " + scheme_name(scheme) + " scheme refines " +
+                std::string(info.triangles_only ? "triangle meshes" : "surfaces") + " only; this is a " +
                 std::string(base.dim == 1 ? "curve" : base.dim == 3 ? "volume lattice" : "complex") +
                 " (use linear or cubic)");
-  if (scheme_is_tri(scheme) && (base.dim != 2 || base.num_cells() != 0))
-    throw Error("the " + scheme_name(scheme) + " scheme refines triangle meshes only; this is a " +
-                std::string(base.dim == 1 ? "curve" : base.dim == 3 ? "volume lattice" : "complex") +
-                " (use linear or cubic)");
-  if (scheme == Scheme::Loop && integer)
-    throw Error("integer mode needs an interpolating scheme; loop's analysis solves a linear system (use butterfly or linear-tri)");
+  if (integer && !info.integer)
+    throw Error("integer mode needs an interpolating scheme; " + scheme_name(scheme) +
+                "'s analysis solves a linear system (use butterfly or linear-tri)");
   if (first_level < 0) throw Error("the first sqrt(2) level must not be negative");
   Hierarchy h;
   h.scheme = scheme;
   h.integer = integer;
   h.channels = channels;
-  h.first_level = scheme == Scheme::Sqrt2 ? first_level : 0;
+  h.first_level = info.refinement == Refinement::Sqrt2 ? first_level : 0;
   if (disc < 1 || disc > 3) throw Error("the wavelet disc must have 1, 2 or 3 rings, got " + std::to_string(disc));
   h.disc = disc;
   if (base.vertex_edges.rows() != base.num_vertices) build_adjacency(base);
@@ -174,31 +76,17 @@ Hierarchy make_hierarchy(Complex base, int levels, Scheme scheme, int channels, 
 
 void synthesize_transition(const Hierarchy& h, int j, double* x, int channels, bool integer, bool wavelets_zero) {
   const auto J = static_cast<std::size_t>(j);
-  if (scheme_has_transitions(h.scheme)) {
-    // The update sub-step (steps[0]) reads only wavelets.
-    const Sqrt2Transition& t = h.sqrt2[J];
-    if (!wavelets_zero) return sqrt2_synthesize(t, x, channels, integer);
-    for (std::size_t k = 1; k < t.steps.size(); ++k) sqrt2_run_step(t.steps[k], x, channels, 1.0, integer);
-    if (t.smooth) loop_smooth(*t.smooth, x, channels);
-    return;
-  }
-  const LiftProgram program = scheme_program(h.scheme);
-  // A leading s-lift only reads wavelet coefficients (e/f/c classes): when a level has none, it
-  // adds exactly zero and is skipped (000 sec. 4: "the first lifting operation does not have an
-  // impact"). Pure subdivision then costs what the subdivision rules cost.
-  const bool skip = wavelets_zero && !program.empty() && program.front().op == LiftOp::SLift;
-  const LiftProgram run(program.begin() + (skip ? 1 : 0), program.end());
-  lift_synthesize(h.levels[J], h.tables[J], run, x, channels, integer);
+  run_synthesis(h.transitions[J], h.levels[J], x, channels, integer, wavelets_zero);
 }
 
 void analyze_transition(const Hierarchy& h, int j, double* x, int channels, bool integer) {
   const auto J = static_cast<std::size_t>(j);
-  if (scheme_has_transitions(h.scheme)) return sqrt2_analyze(h.sqrt2[J], x, channels, integer);
-  lift_analyze(h.levels[J], h.tables[J], scheme_program(h.scheme), x, channels, integer);
+  run_analysis(h.transitions[J], h.levels[J], x, channels, integer);
 }
 
 std::vector<double> predicted_level_counts(const Complex& c, int levels, Scheme scheme, int first_level) {
-  if (scheme_is_tri(scheme)) {
+  const Refinement refinement = scheme_info(scheme).refinement;
+  if (refinement == Refinement::Tri) {
     // V' = V + E, E' = 2E + 3F, F' = 4F.
     double v = c.num_vertices, e = c.num_edges(), f = c.num_faces();
     std::vector<double> out{v};
@@ -210,7 +98,7 @@ std::vector<double> predicted_level_counts(const Complex& c, int levels, Scheme 
     }
     return out;
   }
-  if (scheme != Scheme::Sqrt2) return predicted_vertex_counts(c, levels);
+  if (refinement == Refinement::Split) return predicted_vertex_counts(c, levels);
   std::vector<double> out{double(c.num_vertices)};
   if (first_level % 2 == 0) {
     // Two sqrt(2) steps are one 1-to-4 step; the odd level between adds one point per face.
@@ -296,12 +184,10 @@ std::size_t keep_largest(Hierarchy& h, double fraction) {
   };
   std::vector<Entry> all;
   const int dim = h.levels.front().dim;
-  // Each level multiplies the cell count by 2^dim (sqrt2: by 2).
-  const double per_level = h.scheme == Scheme::Sqrt2 ? 1.0 : double(dim);
   const std::uint32_t nv0 = h.num_vertices(0);
   const bool exact = h.wavelet_norms.size() + nv0 == h.num_vertices(h.finest_level());
   for (int j = 0; j < h.finest_level(); ++j) {
-    const double scale = std::pow(2.0, -0.5 * j * per_level);  // L2 norm of a level-j basis function
+    const double scale = wavelet_scale(h.scheme, dim, j);
     for (std::uint32_t i = h.num_vertices(j); i < h.num_vertices(j + 1); ++i)
       all.push_back({norm(&h.coeffs[std::size_t(i) * h.channels], h.channels) * (exact ? h.wavelet_norms[i - nv0] : scale), i});
   }

@@ -15,47 +15,25 @@
 
 #include "core/child_sites.h"
 #include "core/complex.h"
-#include "core/lifting.h"
-#include "core/sqrt2_transform.h"
+#include "core/engine/transition.h"
+#include "core/schemes/registry.h"
 
 namespace sublift {
-
-// LinearTri, Butterfly, Loop: the triangle-mesh schemes of Lounsbery, DeRose & Warren (paper
-// 004) on the 1-to-4 triangle split (refine_tri.h), wavelets on the edge midpoints [v | e].
-enum class Scheme : std::uint8_t { Linear, Cubic, Sqrt2, LinearTri, Butterfly, Loop };
-
-/// "linear" / "cubic" / "sqrt2" / "linear-tri" / "butterfly" / "loop"; parse throws
-/// std::invalid_argument on other names.
-std::string scheme_name(Scheme s);
-Scheme parse_scheme(const std::string& name);
-/// The lifting program of the 1-to-4 schemes (Sqrt2 has explicit transitions instead).
-LiftProgram scheme_program(Scheme s);
-/// The triangle-mesh schemes of paper 004.
-inline bool scheme_is_tri(Scheme s) { return s == Scheme::LinearTri || s == Scheme::Butterfly || s == Scheme::Loop; }
-/// Schemes run by explicit sparse transitions (Hierarchy::sqrt2) instead of a lifting program.
-inline bool scheme_has_transitions(Scheme s) { return s == Scheme::Sqrt2 || scheme_is_tri(s); }
-/// Whether the scheme interpolates (its limit passes through every control point).
-inline bool scheme_interpolates(Scheme s) {
-  return s == Scheme::Sqrt2 || s == Scheme::LinearTri || s == Scheme::Butterfly;
-}
-/// How many of the scheme's levels make one 1-to-4 refinement: 2 for sqrt2, else 1.
-inline int scheme_levels_per_split(Scheme s) { return s == Scheme::Sqrt2 ? 2 : 1; }
-
 
 struct Hierarchy {
   Scheme scheme = Scheme::Cubic;
   bool integer = false;
   int channels = 3;
   std::vector<Complex> levels;      // 0..J; the last one without adjacency
-  std::vector<LiftTables> tables;   // tables[j]: transition j -> j+1 (Linear, Cubic)
-  std::vector<Sqrt2Transition> sqrt2;  // sqrt2[j]: transition j -> j+1 (Sqrt2 and the triangle schemes)
-  std::vector<ChildSites> sites;        // sites[j]: new vertices of level j+1 (same schemes)
+  std::vector<Transition> transitions;  // transitions[j]: j -> j+1, run by core/engine/executor.h
+  std::vector<ChildSites> sites;  // sites[j]: new vertices of level j+1; empty where the
+                                  // refinement implies them ([v | e | f | c])
   int disc = 2;  // triangle schemes: the rings k of the k-disc wavelets (004 sec. 6.3)
   int first_level = 0;  // the sqrt(2) level index of levels[0] (odd levels keep their curves)
   std::vector<double> coeffs;       // num_vertices(J) * channels, layout above
   // L2 norm of each wavelet (index v - nv_0 for the wavelet on fine vertex v), where the scheme
-  // knows it exactly (the triangle schemes, from exact inner products); empty otherwise, and
-  // then the area scaling 2^(-j * dim / 2) stands in (keep_largest).
+  // knows it exactly (SchemeInfo::exact_norms); empty otherwise, and then the area scaling
+  // wavelet_scale stands in.
   std::vector<double> wavelet_norms;
 
   int finest_level() const { return static_cast<int>(levels.size()) - 1; }
@@ -78,7 +56,7 @@ void pop_level(Hierarchy& h);
 
 /// Synthesis of transition j -> j+1 in place on x (level j+1 layout, `channels` per vertex).
 /// `wavelets_zero`: the caller knows the level's wavelets are zero, so steps that only read
-/// them are skipped (they would add exact zeros).
+/// them are skipped (they would add exact zeros; executor.h).
 void synthesize_transition(const Hierarchy& h, int j, double* x, int channels, bool integer, bool wavelets_zero = false);
 /// Analysis of transition j -> j+1 in place: the exact inverse of synthesize_transition.
 void analyze_transition(const Hierarchy& h, int j, double* x, int channels, bool integer);
@@ -110,8 +88,8 @@ struct LevelStats {
 std::vector<LevelStats> level_stats(const Hierarchy& h);
 
 /// Zeroes all but the largest `fraction` (0..1) of wavelet coefficients, ranked by
-/// L2-normalised magnitude |w| * 2^(-j * dim / 2) for level j (sqrt2: 2^(-j / 2), its levels
-/// halve the area). Returns how many were kept.
+/// L2-normalised magnitude |w| * ||psi|| (exact norms or wavelet_scale). Returns how many
+/// were kept.
 std::size_t keep_largest(Hierarchy& h, double fraction);
 
 }  // namespace sublift

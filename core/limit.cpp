@@ -606,7 +606,7 @@ LimitStencils build_limit_stencils(const Hierarchy& h) {
   LimitStencils s;
   const Complex& fin = h.levels.back();
   const std::uint32_t nv = fin.num_vertices;
-  if (h.scheme == Scheme::Linear || scheme_interpolates(h.scheme)) {  // the limit is the control net
+  if (scheme_info(h.scheme).limit == LimitRule::ControlNet) {  // the limit is the control net
     s.rows.offsets.resize(std::size_t(nv) + 1);
     std::iota(s.rows.offsets.begin(), s.rows.offsets.end(), 0u);
     s.rows.items.resize(nv);
@@ -616,7 +616,7 @@ LimitStencils build_limit_stencils(const Hierarchy& h) {
     s.users = s.rows;
     return s;
   }
-  if (h.scheme == Scheme::Loop) {  // Loop's limit masks; normals from the faces (no tangent rows)
+  if (scheme_info(h.scheme).limit == LimitRule::LoopMasks) {  // Loop's limit masks; normals from the faces (no tangent rows)
     loop_limit_rows(fin, s.rows, s.weights);
     s.tangent_rows.offsets.assign(std::size_t(nv) + 1, 0);
     s.users = transpose(s.rows, nv);

@@ -223,7 +223,7 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   check_csr(c.cell_faces, CF, F, "cell");
   if ((dim < 3 && C) || (dim < 2 && F) || (dim >= 2 && F == 0))
     throw InputError(file, 2, "counts do not fit a complex of dimension " + std::to_string(dim));
-  if (scheme_has_transitions(scheme) && dim != 2)
+  if (scheme_info(scheme).surfaces_only && dim != 2)
     throw InputError(file, 2, "the " + scheme_name(scheme) + " scheme needs a surface (dim 2), the header says dim " +
                                   std::to_string(dim));
   try {

@@ -45,9 +45,6 @@ Hierarchy read_project(const std::string& path, ProjectExtras* extras);
 Hierarchy read_project_from_memory(const std::string& name, const std::string& bytes);
 Hierarchy read_project_from_memory(const std::string& name, const std::string& bytes, ProjectExtras* extras);
 
-/// Largest number of levels a project or command accepts (1-to-4 schemes).
-inline constexpr int kMaxLevels = 12;
-/// The same for a scheme: sqrt2 takes two levels per 1-to-4 split, so twice as many.
-inline int max_levels(Scheme s) { return s == Scheme::Sqrt2 ? 2 * kMaxLevels : kMaxLevels; }
+// The level limits are the scheme registry's (kMaxLevels, max_levels in core/schemes/registry.h).
 
 }  // namespace sublift

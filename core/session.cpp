@@ -10,7 +10,6 @@
 #include "core/errors.h"
 #include "core/project_io.h"
 #include "core/refine.h"
-#include "core/sqrt2_sparse.h"
 
 namespace sublift {
 namespace {
@@ -43,7 +42,7 @@ Session::Session(Hierarchy h, std::vector<double> gains) : h_(std::move(h)) {
   for (const double g : gains)
     if (!std::isfinite(g)) throw Error("a detail gain is not finite");
   gains_ = std::move(gains);
-  for (const Sqrt2Transition& t : h_.sqrt2) sqrt2_index_.push_back(build_sqrt2_sparse_index(t));
+  for (const Transition& t : h_.transitions) sparse_index_.push_back(build_sparse_index(t));
   pos_.resize(static_cast<std::size_t>(J) + 1);
   pos_[0].assign(h_.coeffs.begin(), h_.coeffs.begin() + std::size_t(num_vertices(0)) * 3);
   resynthesize_from(0);
@@ -82,19 +81,17 @@ void Session::resynthesize_one(int l) {
 }
 
 const ChildSites* Session::sites(int l) const {
-  return scheme_has_transitions(h_.scheme) ? &h_.sites[static_cast<std::size_t>(l)] : nullptr;
+  return h_.sites.empty() ? nullptr : &h_.sites[static_cast<std::size_t>(l)];
 }
 
 void Session::synthesize_sparse(int l, SparseDelta& d) {
   const auto L = static_cast<std::size_t>(l);
-  if (scheme_has_transitions(h_.scheme)) return sqrt2_synthesize_sparse(h_.sqrt2[L], sqrt2_index_[L], d);
-  lift_synthesize_sparse(h_.levels[L], h_.tables[L], scheme_program(h_.scheme), d);
+  run_synthesis_sparse(h_.transitions[L], h_.levels[L], sparse_index_[L], d);
 }
 
 void Session::analyze_sparse(int l, SparseDelta& d) {
   const auto L = static_cast<std::size_t>(l);
-  if (scheme_has_transitions(h_.scheme)) return sqrt2_analyze_sparse(h_.sqrt2[L], sqrt2_index_[L], d);
-  lift_analyze_sparse(h_.levels[L], h_.tables[L], scheme_program(h_.scheme), d);
+  run_analysis_sparse(h_.transitions[L], h_.levels[L], sparse_index_[L], d);
 }
 
 void Session::clear_changed() {
@@ -444,7 +441,7 @@ OpReport Session::set_gain(int level, double factor) {
 
 void Session::add_level() {
   append_level(h_, true);
-  if (scheme_has_transitions(h_.scheme)) sqrt2_index_.push_back(build_sqrt2_sparse_index(h_.sqrt2.back()));
+  sparse_index_.push_back(build_sparse_index(h_.transitions.back()));
   const std::size_t n = std::size_t(h_.levels.back().num_vertices) * 3;
   h_.coeffs.resize(n, 0.0);
   if (!local_.empty()) local_.resize(n, 0.0);
@@ -458,7 +455,7 @@ void Session::add_level() {
 
 void Session::remove_level() {
   pop_level(h_);
-  if (!sqrt2_index_.empty()) sqrt2_index_.pop_back();
+  sparse_index_.pop_back();
   const std::size_t n = std::size_t(h_.levels.back().num_vertices) * 3;
   h_.coeffs.resize(n);
   if (!local_.empty()) local_.resize(n);

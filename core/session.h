@@ -10,7 +10,7 @@
 //
 // Edits. move() adds delta * weight to control points of level j. Finer levels are resynthesised
 // locally: by linearity, only the synthesis of the change (zero elsewhere) is computed, over the
-// vertices the lifting stencils reach from the moved points (lifting_sparse.h). Coarser levels
+// vertices the lifting stencils reach from the moved points (the executor's sparse mode, core/engine/executor.h). Coarser levels
 // are updated by analysing the change down to level 0 (fold-back), so the hierarchy stays
 // consistent and a later coarse edit keeps the fine edit as detail.
 //
@@ -30,8 +30,7 @@
 #include <vector>
 
 #include "core/hierarchy.h"
-#include "core/lifting_sparse.h"
-#include "core/sqrt2_sparse.h"
+#include "core/engine/executor.h"
 
 namespace sublift {
 
@@ -176,7 +175,7 @@ class Session {
   DetailFrames frames_ = DetailFrames::World;
   std::vector<double> local_;             // like coeffs (wavelet entries only) in Local mode
   std::vector<SparseDelta> deltas_;       // per level: the change being propagated
-  std::vector<Sqrt2SparseIndex> sqrt2_index_;  // sqrt2: per transition, the rows reading each vertex
+  std::vector<SparseIndex> sparse_index_;  // per transition: the rows reading each vertex
   std::vector<std::uint32_t> frame_list_, frame_stamp_, coeff_list_;
   std::uint32_t frame_epoch_ = 0;
 

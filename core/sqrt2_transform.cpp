@@ -1,5 +1,4 @@
 #include "core/sqrt2_transform.h"
-#include "core/tri_transform.h"
 
 #include <algorithm>
 #include <array>
@@ -12,7 +11,6 @@
 #include "core/errors.h"
 #include "core/parallel.h"
 #include "core/sqrt2_coefficients.h"
-#include "core/sqrt2_sparse.h"
 
 namespace sublift {
 
@@ -76,9 +74,9 @@ Entry entry(std::uint32_t target, std::uint32_t source, double weight) {
 // rule repeats its corners). Comparing the packed keys gives the same results as comparing
 // (target, source) pairs, so std::sort moves the entries exactly as it did when they were
 // tuples: duplicates are summed in the same order and the weights stay bit-identical.
-Sqrt2Substep make_substep(std::vector<Entry> t) {
+WeightedStep make_substep(std::vector<Entry> t) {
   std::sort(t.begin(), t.end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });
-  Sqrt2Substep s;
+  WeightedStep s;
   s.sources.items.reserve(t.size());
   s.weights.reserve(t.size());
   for (const Entry& x : t) {
@@ -192,7 +190,7 @@ bool find_phis(const Complex& c, std::uint32_t f, const std::vector<std::uint8_t
 // the actual masks (one primitive synthesis step: phi_a is 1 at a and P[n][a] at new point n),
 // G = I + P^T P and H_a = P[fp][a]. Rows of P by target: `rows`; columns: `cols`.
 void lift_near_curve(std::uint32_t fp, const std::array<std::uint32_t, 12>& phi, const std::vector<std::uint8_t>& inner,
-                     const Sqrt2Substep& rows, const std::vector<std::uint32_t>& row_of, const Sqrt2Substep& cols,
+                     const WeightedStep& rows, const std::vector<std::uint32_t>& row_of, const WeightedStep& cols,
                      const std::vector<std::uint32_t>& col_of, std::vector<Entry>& update) {
   static constexpr int kS[4][3] = {{0, 11, 4}, {1, 5, 6}, {2, 7, 8}, {3, 9, 10}};
   bool keep[12];
@@ -204,7 +202,7 @@ void lift_near_curve(std::uint32_t fp, const std::array<std::uint32_t, 12>& phi,
   for (int k = 0; k < 12; ++k)
     if (keep[k] && std::find(vs.begin(), vs.end(), phi[k]) == vs.end()) vs.push_back(phi[k]);
   if (vs.empty()) return;
-  auto weight = [](const Sqrt2Substep& s, std::uint32_t r, std::uint32_t item) {
+  auto weight = [](const WeightedStep& s, std::uint32_t r, std::uint32_t item) {
     for (std::uint32_t k = s.sources.offsets[r]; k < s.sources.offsets[r + 1]; ++k)
       if (s.sources.items[k] == item) return s.weights[k];
     return 0.0;
@@ -235,8 +233,8 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
       ch.curve_stencils.size() != (ch.curve_step ? 4 * std::size_t(nc) : 0))
     throw TopologyError("sqrt(2) transform: the fine level does not match its child description");
   Sqrt2Transition t;
-  t.num_coarse = nv;
-  t.num_fine = fine.num_vertices;
+  t.transition.num_coarse = nv;
+  t.transition.num_fine = fine.num_vertices;
 
   // inner[v]: no curve edge at v (the fan check is done per corner in corner_ring).
   std::vector<std::uint8_t> inner(nv, 1);
@@ -293,16 +291,16 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
   // The sorts in make_substep take about half of the build; the two that do not wait for each
   // other run side by side (each is still one std::sort, so the result does not change).
   const bool big = predict.size() + update.size() >= kConcurrentSortEntries;
-  Sqrt2Substep pred, upd;
+  WeightedStep pred, upd;
   if (near_curve.empty()) {
     side_by_side(big, [&] { pred = make_substep(std::move(predict)); }, [&] { upd = make_substep(std::move(update)); });
   } else {
     std::vector<Entry> swapped;  // the predict step by source: P's columns
     swapped.reserve(predict.size());
     for (const Entry& x : predict) swapped.push_back({x.key << 32 | x.key >> 32, x.weight});
-    Sqrt2Substep cols;
+    WeightedStep cols;
     side_by_side(big, [&] { pred = make_substep(std::move(predict)); }, [&] { cols = make_substep(std::move(swapped)); });
-    std::vector<std::uint32_t> row_of(t.num_fine, kNone), col_of(t.num_fine, kNone);
+    std::vector<std::uint32_t> row_of(t.transition.num_fine, kNone), col_of(t.transition.num_fine, kNone);
     for (std::uint32_t r = 0; r < pred.target.size(); ++r) row_of[pred.target[r]] = r;
     for (std::uint32_t r = 0; r < cols.target.size(); ++r) col_of[cols.target[r]] = r;
     for (std::size_t i = 0; i < near_curve.size(); ++i)
@@ -310,19 +308,9 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
     t.near_curve_face_points = static_cast<std::uint32_t>(near_curve.size());
     upd = make_substep(std::move(update));  // after the near-curve terms were added
   }
-  t.steps.push_back(std::move(upd));
-  t.steps.push_back(std::move(pred));
+  t.transition.add(std::move(upd));
+  t.transition.add(std::move(pred));
   return t;
-}
-
-void sqrt2_synthesize(const Sqrt2Transition& t, double* x, int channels, bool integer) {
-  for (const Sqrt2Substep& s : t.steps) sqrt2_run_step(s, x, channels, 1.0, integer);
-  if (t.smooth) loop_smooth(*t.smooth, x, channels);
-}
-
-void sqrt2_analyze(const Sqrt2Transition& t, double* x, int channels, bool integer) {
-  if (t.smooth) loop_unsmooth(*t.smooth, x, channels);
-  for (auto it = t.steps.rbegin(); it != t.steps.rend(); ++it) sqrt2_run_step(*it, x, channels, -1.0, integer);
 }
 
 }  // namespace sublift

@@ -29,46 +29,26 @@
 //     of level-0 non-quads are not lifted. Curve points lift with eta: case (a) a, p, q, b;
 //     case (b) the two points away from the curve end; none for the midpoint rule.
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include "core/complex.h"
 #include "core/csr.h"
+#include "core/engine/transition.h"
 #include "core/refine_sqrt2.h"
 
 namespace sublift {
 
-/// One sparse sub-step: row r adds sum_k weights[k] * x[sources.items[k]] to x[target[r]].
-/// Targets are distinct and never among the sources of the same step.
-struct Sqrt2Substep {
-  std::vector<std::uint32_t> target;
-  Csr sources;                  // fine vertex indices per row
-  std::vector<double> weights;  // aligned with sources.items
-};
-
-/// Loop's old-vertex rule (the triangle schemes, core/tri_transform.h): synthesis ends with
-/// old = P_oo old, analysis begins with the sparse solve of it. Opaque here.
-struct LoopSmoothing;
-
+/// One sqrt(2) transition (steps: update, predict) and how its face points were lifted.
 struct Sqrt2Transition {
-  std::uint32_t num_coarse = 0;          // old vertices (fine indices 0..num_coarse-1)
-  std::uint32_t num_fine = 0;
-  std::vector<Sqrt2Substep> steps;       // synthesis order: update, predict
+  Transition transition;
   std::uint32_t lifted_face_points = 0;      // face points lifted with the omega table
   std::uint32_t near_curve_face_points = 0;  // lifted with a local solve (sec. 4)
   std::uint32_t unlifted_face_points = 0;    // left primitive (level-0 polygons)
-  std::shared_ptr<const LoopSmoothing> smooth;  // Loop only (triangle schemes); else null
 };
 
 /// Builds the sub-steps of the step coarse -> fine described by `children` (refine_sqrt2's
 /// output). `coarse` needs its derived rows (build_adjacency). Throws TopologyError when `fine`
 /// does not match `children`.
 Sqrt2Transition build_sqrt2_transition(const Complex& coarse, const Complex& fine, const Sqrt2Children& children);
-
-/// Synthesis (001 eq. 9) in place on the fine layout.
-void sqrt2_synthesize(const Sqrt2Transition& t, double* x, int channels, bool integer = false);
-
-/// Analysis (001 eq. 10) in place: the exact inverse of sqrt2_synthesize.
-void sqrt2_analyze(const Sqrt2Transition& t, double* x, int channels, bool integer = false);
 
 }  // namespace sublift

@@ -9,9 +9,6 @@
 #include <mutex>
 #include <string>
 
-#include <Eigen/IterativeLinearSolvers>
-#include <Eigen/Sparse>
-
 #include "core/errors.h"
 #include "core/parallel.h"
 #include "core/tri_local.h"
@@ -19,13 +16,6 @@
 
 namespace sublift {
 
-struct LoopSmoothing {
-  std::uint32_t nv = 0;
-  Csr rows;
-  std::vector<double> weights;
-  Csr readers;  // per old vertex: the rows that read it
-  Eigen::SparseMatrix<double, Eigen::RowMajor> P;
-};
 
 namespace {
 
@@ -48,7 +38,7 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
   level.stencils = &st;
   const std::uint32_t nv = coarse.num_vertices, ne = coarse.num_edges();
   TriTransitionResult out;
-  Sqrt2Transition& t = out.transition;
+  Transition& t = out.transition;
   t.num_coarse = nv;
   t.num_fine = nv + ne;
   out.norm2.resize(ne);
@@ -145,7 +135,7 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
       items[fill[i]] = nv + e;
       weights[fill[i]++] = -alpha_of[q];
     }
-  Sqrt2Substep up;
+  WeightedStep up;
   up.target.reserve(nv);
   up.sources.items.reserve(items.size());
   up.weights.reserve(items.size());
@@ -156,112 +146,16 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
     up.weights.insert(up.weights.end(), weights.begin() + start[i], weights.begin() + start[i + 1]);
     up.sources.offsets.push_back(static_cast<std::uint32_t>(up.sources.items.size()));
   }
-  Sqrt2Substep predict;
+  WeightedStep predict;
   predict.target.resize(ne);
   for (std::uint32_t e = 0; e < ne; ++e) predict.target[e] = nv + e;
   predict.sources = st.new_rows;
   predict.weights = st.new_weights;
-  t.steps.push_back(std::move(up));
-  t.steps.push_back(std::move(predict));
+  t.add(std::move(up));
+  t.add(std::move(predict));
 
-  if (st.old_rows.rows() != 0) {
-    auto m = std::make_shared<LoopSmoothing>();
-    m->nv = nv;
-    m->rows = st.old_rows;
-    m->weights = st.old_weights;
-    m->readers = transpose(m->rows, nv);
-    std::vector<Eigen::Triplet<double>> trip;
-    trip.reserve(m->weights.size());
-    for (std::uint32_t i = 0; i < nv; ++i)
-      for (std::uint32_t q = m->rows.offsets[i]; q < m->rows.offsets[i + 1]; ++q)
-        trip.emplace_back(static_cast<int>(i), static_cast<int>(m->rows.items[q]), m->weights[q]);
-    m->P.resize(static_cast<int>(nv), static_cast<int>(nv));
-    m->P.setFromTriplets(trip.begin(), trip.end());
-    t.smooth = std::move(m);
-  }
+  if (st.old_rows.rows() != 0) t.add(make_matrix_step(nv, st.old_rows, st.old_weights));
   return out;
-}
-
-void loop_smooth(const LoopSmoothing& m, double* x, int channels) {
-  std::vector<double> u(x, x + std::size_t(m.nv) * channels);
-  for (std::uint32_t i = 0; i < m.nv; ++i)
-    for (int c = 0; c < channels; ++c) {
-      double s = 0;
-      for (std::uint32_t q = m.rows.offsets[i]; q < m.rows.offsets[i + 1]; ++q)
-        s += m.weights[q] * u[std::size_t(m.rows.items[q]) * channels + c];
-      x[std::size_t(i) * channels + c] = s;
-    }
-}
-
-namespace {
-
-template <class Matrix>
-void solve_channels(const Matrix& A, std::uint32_t nv, double* x, int channels, const char* what) {
-  Eigen::BiCGSTAB<Matrix, Eigen::DiagonalPreconditioner<double>> solver;
-  solver.setTolerance(1e-15);
-  solver.setMaxIterations(1000);
-  solver.compute(A);
-  Eigen::VectorXd b(nv), u(nv);
-  for (int c = 0; c < channels; ++c) {
-    for (std::uint32_t i = 0; i < nv; ++i) b(i) = x[std::size_t(i) * channels + c];
-    if (b.squaredNorm() == 0) continue;
-    u = solver.solve(b);
-    const double rel = (A * u - b).norm() / b.norm();
-    if (!(rel < 1e-12))
-      throw Error(std::string("Loop analysis: the sparse solve of the vertex rule did not converge (") + what +
-                  ", relative residual " + std::to_string(rel) + ")");
-    for (std::uint32_t i = 0; i < nv; ++i) x[std::size_t(i) * channels + c] = u(i);
-  }
-}
-
-}  // namespace
-
-void loop_unsmooth(const LoopSmoothing& m, double* x, int channels) { solve_channels(m.P, m.nv, x, channels, "P"); }
-
-void loop_unsmooth_adjoint(const LoopSmoothing& m, double* y) {
-  const Eigen::SparseMatrix<double, Eigen::RowMajor> Pt = m.P.transpose();
-  solve_channels(Pt, m.nv, y, 1, "P^T");
-}
-
-void loop_smooth_sparse(const LoopSmoothing& m, SparseDelta& d) {
-  std::unordered_map<std::uint32_t, std::array<double, 3>> du;
-  for (std::uint32_t v : d.list)
-    if (v < m.nv) {
-      double* x = d.x.data() + std::size_t(v) * 3;
-      du[v] = {x[0], x[1], x[2]};
-      x[0] = x[1] = x[2] = 0.0;
-    }
-  std::vector<std::uint32_t> rows;
-  for (const auto& [k, value] : du)
-    for (std::uint32_t i : m.readers.row(k)) rows.push_back(i);
-  std::sort(rows.begin(), rows.end());
-  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
-  for (std::uint32_t i : rows) {
-    double acc[3] = {0, 0, 0};
-    for (std::uint32_t q = m.rows.offsets[i]; q < m.rows.offsets[i + 1]; ++q)
-      if (const auto it = du.find(m.rows.items[q]); it != du.end())
-        for (int c = 0; c < 3; ++c) acc[c] += m.weights[q] * it->second[static_cast<std::size_t>(c)];
-    double* x = d.at(i);
-    for (int c = 0; c < 3; ++c) x[c] = acc[c];
-  }
-}
-
-void loop_unsmooth_sparse(const LoopSmoothing& m, SparseDelta& d) {
-  std::vector<double> b(std::size_t(m.nv) * 3, 0.0);
-  bool any = false;
-  for (std::uint32_t v : d.list)
-    if (v < m.nv) {
-      for (int c = 0; c < 3; ++c) b[std::size_t(v) * 3 + c] = d.x[std::size_t(v) * 3 + c];
-      any = true;
-    }
-  if (!any) return;
-  loop_unsmooth(m, b.data(), 3);
-  for (std::uint32_t i = 0; i < m.nv; ++i) {
-    const double* u = b.data() + std::size_t(i) * 3;
-    if (u[0] == 0.0 && u[1] == 0.0 && u[2] == 0.0 && !d.in_list[i]) continue;
-    double* x = d.at(i);
-    for (int c = 0; c < 3; ++c) x[c] = u[c];
-  }
 }
 
 void loop_limit_rows(const Complex& c, Csr& rows, std::vector<double>& weights) {

@@ -1,8 +1,8 @@
 #pragma once
 // One transition (level j -> j+1) of the triangle-mesh wavelet transform of Lounsbery, DeRose
 // & Warren (paper 004 sec. 6) as explicit sparse lifting sub-steps, in the same form as the
-// sqrt(2) transform (core/sqrt2_transform.h), so the hierarchy, the session's local
-// resynthesis and the basis explorer run them alike.
+// sqrt(2) transform (core/sqrt2_transform.h): Weighted steps and, for Loop, a Matrix step
+// (core/engine/transition.h), run by the one executor.
 //
 // Fine layout (core/refine_tri.h): [old vertices | edge midpoints], the wavelet of coarse edge e
 // on fine vertex nv + e. With psi_m = phi_m^{j+1} - sum_i alpha_{i,m} phi_i^j
@@ -19,14 +19,13 @@
 #include <vector>
 
 #include "core/complex.h"
-#include "core/lifting_sparse.h"
-#include "core/sqrt2_transform.h"
+#include "core/engine/transition.h"
 #include "core/tri_rules.h"
 
 namespace sublift {
 
 struct TriTransitionResult {
-  Sqrt2Transition transition;
+  Transition transition;
   std::vector<double> norm2;  // ||psi||^2 per coarse edge, a level-j face having area 1
   double max_residual = 0;    // largest |<psi, phi_i>| over all discs
   std::size_t irregular_edges = 0;  // edges whose wavelet needed their own neighbourhood
@@ -36,17 +35,6 @@ struct TriTransitionResult {
 /// with derived rows) with k-disc wavelets. Uses a process-wide cache of face and edge types per
 /// (scheme, disc).
 TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, TriScheme s, int disc);
-
-/// x_old <- P_oo x_old (the first nv vertices, `channels` per vertex).
-void loop_smooth(const LoopSmoothing& m, double* x, int channels);
-/// The inverse: solves P_oo u = x_old in place (relative residual 1e-15 or an error).
-void loop_unsmooth(const LoopSmoothing& m, double* x, int channels);
-/// The adjoint of loop_unsmooth on one channel: y_old <- P_oo^-T y_old.
-void loop_unsmooth_adjoint(const LoopSmoothing& m, double* y);
-/// The same on a sparse change (3 channels): smoothing touches the rows reading a changed old
-/// vertex; the solve is global (every old vertex may change).
-void loop_smooth_sparse(const LoopSmoothing& m, SparseDelta& d);
-void loop_unsmooth_sparse(const LoopSmoothing& m, SparseDelta& d);
 
 /// Loop's limit positions (rows over the vertices of `c`, a triangle mesh; derived rows not
 /// needed): smooth or dart vertex (1 - n g) v + g sum of neighbours, g = 1 / (3 / (8 beta) + n);

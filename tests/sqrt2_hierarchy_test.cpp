@@ -261,7 +261,7 @@ TEST(Sqrt2Transition, CurveCornerDropsItsIndexSetAtACreaseEnd) {
     if (sqrt2_is_curve_edge(c, e)) on_curve[c.edge_verts[2 * e]] = on_curve[c.edge_verts[2 * e + 1]] = true;
   constexpr std::uint32_t kEnd = 24;  // the centre, where the crease from the boundary stops
   ASSERT_TRUE(on_curve[kEnd]);
-  const Sqrt2Substep& update = t.steps.at(0);
+  const WeightedStep& update = std::get<WeightedStep>(t.transition.steps.at(0).op);
   int checked_inner_neighbours = 0;
   for (std::uint32_t k = 0; k < step.children.point_faces.size(); ++k) {
     const std::uint32_t f = step.children.point_faces[k], fp = step.children.first_face_point + k;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/complex_build.h"
+#include "core/engine/executor.h"
 #include "core/refine_sqrt2.h"
 #include "core/shape_io.h"
 #include "core/shapes.h"
@@ -21,6 +22,15 @@
 using namespace sublift;
 
 namespace {
+
+// The one executor on a standalone sqrt(2) transition (Weighted steps read no complex).
+const Complex kNoParent;
+void sqrt2_synthesize(const Sqrt2Transition& t, double* x, int channels, bool integer = false) {
+  run_synthesis(t.transition, kNoParent, x, channels, integer);
+}
+void sqrt2_analyze(const Sqrt2Transition& t, double* x, int channels, bool integer = false) {
+  run_analysis(t.transition, kNoParent, x, channels, integer);
+}
 
 Complex asset(const std::string& name) {
   Complex c = read_shape(std::string(SUBLIFT_ASSETS_DIR) + "/" + name).base;
@@ -115,12 +125,12 @@ TEST(Sqrt2Transform, RegularFacePointsFollowEq1) {
     const Complex& fine = ch.levels[j + 1];
     const int channels = 2;
     std::vector<double> x(std::size_t(fine.num_vertices) * channels, 0.0);
-    const auto coarse = random_values(std::size_t(t.num_coarse) * channels, 7 + j, false);
+    const auto coarse = random_values(std::size_t(t.transition.num_coarse) * channels, 7 + j, false);
     std::copy(coarse.begin(), coarse.end(), x.begin());
     sqrt2_synthesize(t, x.data(), channels);
     for (std::size_t i = 0; i < coarse.size(); ++i) ASSERT_EQ(x[i], coarse[i]);
-    EXPECT_EQ(t.lifted_face_points, fine.num_vertices - t.num_coarse);
-    for (std::uint32_t fp = t.num_coarse; fp < fine.num_vertices; ++fp) {
+    EXPECT_EQ(t.lifted_face_points, fine.num_vertices - t.transition.num_coarse);
+    for (std::uint32_t fp = t.transition.num_coarse; fp < fine.num_vertices; ++fp) {
       const auto corners = neighbours(fine, fp);
       ASSERT_EQ(corners.size(), 4u);
       std::vector<std::uint32_t> outer;
@@ -150,12 +160,12 @@ TEST(Sqrt2Transform, CurvePointsFollowEq11) {
       const Complex& fine = ch.levels[j + 1];
       const Sqrt2Transition& t = ch.transitions[j];
       std::vector<double> x(fine.num_vertices, 0.0);
-      const auto c = random_values(t.num_coarse, 11 + j, false);
+      const auto c = random_values(t.transition.num_coarse, 11 + j, false);
       std::copy(c.begin(), c.end(), x.begin());
       sqrt2_synthesize(t, x.data(), 1);
       const std::uint32_t first_face_point = ch.children[j].first_face_point;
-      ASSERT_GT(first_face_point, t.num_coarse) << name;
-      for (std::uint32_t b = t.num_coarse; b < first_face_point; ++b) {
+      ASSERT_GT(first_face_point, t.transition.num_coarse) << name;
+      for (std::uint32_t b = t.transition.num_coarse; b < first_face_point; ++b) {
         std::vector<std::uint32_t> ends;  // p, q: the curve point's neighbours along fine curves
         for (std::uint32_t e : fine.vertex_edges.row(b))
           if (is_curve(fine, e)) ends.push_back(other_end(fine, e, b));
@@ -207,11 +217,11 @@ TEST(Sqrt2Transform, BoundaryFacePointsAverageInnerCorners) {
   for (std::uint32_t e = 0; e < coarse.num_edges(); ++e)
     if (is_curve(coarse, e)) on_curve[coarse.edge_verts[2 * e]] = on_curve[coarse.edge_verts[2 * e + 1]] = true;
   std::vector<double> x(fine.num_vertices, 0.0);
-  const auto c = random_values(t.num_coarse, 3, false);
+  const auto c = random_values(t.transition.num_coarse, 3, false);
   std::copy(c.begin(), c.end(), x.begin());
   sqrt2_synthesize(t, x.data(), 1);
   int partial = 0;
-  for (std::uint32_t fp = t.num_coarse; fp < fine.num_vertices; ++fp) {
+  for (std::uint32_t fp = t.transition.num_coarse; fp < fine.num_vertices; ++fp) {
     const auto corners = neighbours(fine, fp);
     double sum = 0;
     int l = 0;
@@ -240,7 +250,7 @@ TEST(Sqrt2Transform, InnerWaveletsLeaveCurvesAlone) {
       const Complex& coarse = ch.levels[j];
       const Sqrt2Transition& t = ch.transitions[j];
       const std::uint32_t first_face_point = ch.children[j].first_face_point;
-      std::vector<double> x = random_values(t.num_fine, 40 + j, false);
+      std::vector<double> x = random_values(t.transition.num_fine, 40 + j, false);
       std::fill(x.begin(), x.begin() + first_face_point, 0.0);  // face-point wavelets only
       sqrt2_synthesize(t, x.data(), 1);
       for (std::uint32_t e = 0; e < coarse.num_edges(); ++e)
@@ -248,7 +258,7 @@ TEST(Sqrt2Transform, InnerWaveletsLeaveCurvesAlone) {
           EXPECT_EQ(x[coarse.edge_verts[2 * e]], 0.0) << name << " level " << j;
           EXPECT_EQ(x[coarse.edge_verts[2 * e + 1]], 0.0) << name << " level " << j;
         }
-      for (std::uint32_t b = t.num_coarse; b < first_face_point; ++b) EXPECT_EQ(x[b], 0.0) << name;
+      for (std::uint32_t b = t.transition.num_coarse; b < first_face_point; ++b) EXPECT_EQ(x[b], 0.0) << name;
     }
   }
 }
@@ -258,8 +268,8 @@ TEST(Sqrt2Transform, ConstantsReproduced) {
   for (const char* name : {"quad_grid_boundary.obj", "crease_loop.obj", "mixed_polygons.obj"}) {
     const Chain& ch = asset_chain(name);
     for (const Sqrt2Transition& t : ch.transitions) {
-      std::vector<double> x(t.num_fine, 0.0);
-      std::fill(x.begin(), x.begin() + t.num_coarse, 2.5);
+      std::vector<double> x(t.transition.num_fine, 0.0);
+      std::fill(x.begin(), x.begin() + t.transition.num_coarse, 2.5);
       sqrt2_synthesize(t, x.data(), 1);
       for (double v : x) EXPECT_NEAR(v, 2.5, 1e-13) << name;
     }
@@ -334,7 +344,7 @@ TEST(Sqrt2Transform, LiftedWaveletOrthogonalToItsScalingFunctions) {
       sqrt2_synthesize(t, x.data(), 1);
       return x;
     };
-    for (std::uint32_t fp : {t.num_coarse, t.num_coarse + 17}) {
+    for (std::uint32_t fp : {t.transition.num_coarse, t.transition.num_coarse + 17}) {
       const std::set<std::uint32_t> phis = phi_set(fine, fp);
       ASSERT_EQ(phis.size(), 12u);
       const std::vector<double> psi = synth(fp);
@@ -376,7 +386,7 @@ TEST(Sqrt2Transform, NearCurveWaveletsOrthogonalToTheirScalingFunctions) {
         if (corners.size() != 4 || std::none_of(corners.begin(), corners.end(), curve_corner)) continue;
         const std::vector<double> psi = synth(fp);
         int lifted = 0;
-        for (std::uint32_t v = 0; v < t.num_coarse; ++v) {
+        for (std::uint32_t v = 0; v < t.transition.num_coarse; ++v) {
           if (psi[v] == 0.0) continue;  // old vertices hold omega after synthesis of a unit wavelet
           ++lifted;
           EXPECT_FALSE(on_curve[v]) << name;
@@ -423,7 +433,7 @@ TEST(Sqrt2Transform, LiftedCurveWaveletOrthogonalAlongTheCurve) {
       if (!closed && has_a && !has_b) targets = {st[0], st[1]};
       if (!closed && !has_a && has_b) targets = {st[3], st[2]};
       if (targets.empty()) continue;
-      const std::uint32_t x = t.num_coarse + k;
+      const std::uint32_t x = t.transition.num_coarse + k;
       const std::vector<double> psi = synth(x);
       for (std::uint32_t v : targets) {
         const std::vector<double> phi = synth(v);

@@ -1,0 +1,613 @@
+#include "core/engine/executor.h"
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <type_traits>
+#include <unordered_map>
+
+#include "core/errors.h"
+#include "core/parallel.h"
+
+namespace sublift {
+
+struct MatrixSolver {
+  Eigen::SparseMatrix<double, Eigen::RowMajor> P;
+};
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Centroid groups resolved against the parent complex: raw row pointers for the hot loops.
+
+struct Group {
+  const std::uint32_t* offsets = nullptr;
+  const std::uint32_t* items = nullptr;
+  std::uint32_t stride = 0;  // rows of fixed size (edge_verts) when offsets == nullptr
+  std::uint32_t source_base = 0;
+  double weight[4] = {0, 0, 0, 0};
+};
+
+const Csr& incidence(const Complex& p, Incidence r) {
+  switch (r) {
+    case Incidence::Faces: return p.faces;
+    case Incidence::FaceEdges: return p.face_edges;
+    case Incidence::CellVerts: return p.cell_verts;
+    case Incidence::CellEdges: return p.cell_edges;
+    case Incidence::CellFaces: return p.cell_faces;
+    case Incidence::VertexEdges: return p.vertex_edges;
+    case Incidence::VertexFaces: return p.vertex_faces;
+    case Incidence::VertexCells: return p.vertex_cells;
+    case Incidence::EdgeFaces: return p.edge_faces;
+    case Incidence::EdgeCells: return p.edge_cells;
+    case Incidence::FaceCells: return p.face_cells;
+    case Incidence::EdgeVerts: break;
+  }
+  throw std::logic_error("edge_verts are pairs, not rows");
+}
+
+// Rows `r` (or the owned copy) as raw pointers; edge_verts as rows of two.
+void resolve_rows(const Complex& p, const Transition& t, Incidence r, int owned, const std::uint32_t*& offsets,
+                  const std::uint32_t*& items, std::uint32_t& stride) {
+  if (owned >= 0) {
+    const Csr& rows = t.owned[static_cast<std::size_t>(owned)];
+    offsets = rows.offsets.data(), items = rows.items.data(), stride = 0;
+  } else if (r == Incidence::EdgeVerts) {
+    offsets = nullptr, items = p.edge_verts.data(), stride = 2;
+  } else {
+    const Csr& rows = incidence(p, r);
+    offsets = rows.offsets.data(), items = rows.items.data(), stride = 0;
+  }
+}
+
+Group resolve(const Complex& p, const Transition& t, const CentroidGroup& g, double sign) {
+  Group r;
+  resolve_rows(p, t, g.rows, g.owned, r.offsets, r.items, r.stride);
+  r.source_base = g.source_base;
+  for (int m = 0; m < 4; ++m) r.weight[m] = sign * g.weight[m];
+  return r;
+}
+
+const std::uint8_t* dims_of(const Complex& p, FeatureDims d) {
+  switch (d) {
+    case FeatureDims::Vertex: return p.vertex_dim.data();
+    case FeatureDims::Edge: return p.edge_dim.data();
+    case FeatureDims::Face: return p.face_dim.data();
+    case FeatureDims::None: break;
+  }
+  return nullptr;
+}
+
+// 1/n for small n without a division in the hot loop.
+constexpr int kInvTable = 64;
+const std::array<double, kInvTable> kInv = [] {
+  std::array<double, kInvTable> t{};
+  for (int i = 1; i < kInvTable; ++i) t[i] = 1.0 / double(i);
+  return t;
+}();
+inline double inv(std::uint32_t n) { return n < kInvTable ? kInv[n] : 1.0 / double(n); }
+
+inline void group_row(const Group& gr, std::uint32_t i, std::uint32_t& b, std::uint32_t& len) {
+  if (gr.offsets) {
+    b = gr.offsets[i];
+    len = gr.offsets[i + 1] - b;
+  } else {
+    b = i * gr.stride;
+    len = gr.stride;
+  }
+}
+
+// acc += sum over groups of weight_g(m) times the centroid of row i of group g (C channels, 0 =
+// `ch` at run time; `sum` is scratch). False when no group has a row for i. The dense and the
+// sparse loops evaluate a row through this one function, so they agree.
+template <int C, int G>
+inline bool accumulate_row(const Group* groups, std::uint32_t i, int m, const double* x, int ch, double* sum,
+                           double* acc) {
+  const int cc = C > 0 ? C : ch;
+  bool any = false;
+  for (int g = 0; g < G; ++g) {
+    const Group& gr = groups[g];
+    const double wm = gr.weight[m];
+    std::uint32_t b, len;
+    group_row(gr, i, b, len);
+    if (len == 0 || wm == 0.0) continue;
+    any = true;
+    for (int c = 0; c < cc; ++c) sum[c] = 0.0;
+    const std::uint32_t* idx = gr.items + b;
+    for (std::uint32_t k = 0; k < len; ++k) {
+      const double* q = x + std::size_t(gr.source_base + idx[k]) * cc;
+      for (int c = 0; c < cc; ++c) sum[c] += q[c];
+    }
+    const double w = wm * inv(len);
+    for (int c = 0; c < cc; ++c) acc[c] += w * sum[c];
+  }
+  return any;
+}
+
+// Targets per chunk handed to a thread: large enough to amortise the hand-out, small enough
+// to balance two cores when one is busy with something else.
+constexpr std::uint32_t kGrain = 8192;
+
+// x[target] += sum_g weight_g(m) * centroid_g (weights carry the sign), for targets [0, n) of
+// one class. G and C are template parameters so the loops unroll; C == 0: channels at run time.
+template <int C, int G, bool Integer>
+void gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* target_m, const Group* groups_in,
+            double* x, int channels, double sign) {
+  const int ch = C > 0 ? C : channels;
+  std::array<Group, G> groups;
+  for (int g = 0; g < G; ++g) groups[g] = groups_in[g];
+  parallel_for(n, kGrain, [&, groups](std::uint32_t begin, std::uint32_t end) {
+    std::vector<double> heap(C > 0 ? 0 : 2 * std::size_t(ch));
+    double stack[C > 0 ? 2 * C : 1];
+    double* acc = C > 0 ? stack : heap.data();
+    double* sum = C > 0 ? stack + C : heap.data() + ch;
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const int m = target_m ? target_m[i] : 0;
+      for (int c = 0; c < ch; ++c) acc[c] = 0.0;
+      if (!accumulate_row<C, G>(groups.data(), i, m, x, ch, sum, acc)) continue;
+      double* dst = x + std::size_t(target_base + i) * ch;
+      if constexpr (Integer) {
+        for (int c = 0; c < ch; ++c) dst[c] += sign * std::floor(sign * acc[c] + 0.5);
+      } else {
+        for (int c = 0; c < ch; ++c) dst[c] += acc[c];
+      }
+    }
+  });
+}
+
+template <int C, int G>
+void gather_mode(std::uint32_t n, std::uint32_t tb, const std::uint8_t* tm, const Group* g, double* x, int ch,
+                 double sign, bool integer) {
+  if (integer) gather<C, G, true>(n, tb, tm, g, x, ch, sign);
+  else gather<C, G, false>(n, tb, tm, g, x, ch, sign);
+}
+
+template <int G>
+void gather_channels(std::uint32_t n, std::uint32_t tb, const std::uint8_t* tm, const Group* g, double* x, int ch,
+                     double sign, bool integer) {
+  switch (ch) {
+    case 1: return gather_mode<1, G>(n, tb, tm, g, x, ch, sign, integer);
+    case 3: return gather_mode<3, G>(n, tb, tm, g, x, ch, sign, integer);
+    case 4: return gather_mode<4, G>(n, tb, tm, g, x, ch, sign, integer);
+    default: return gather_mode<0, G>(n, tb, tm, g, x, ch, sign, integer);
+  }
+}
+
+void run_centroid(const CentroidStep& s, const Complex& p, const Transition& t, double* x, int ch, double sign,
+                  bool integer) {
+  if (!s.count || !s.num_groups) return;
+  Group g[3];
+  for (int k = 0; k < s.num_groups; ++k) g[k] = resolve(p, t, s.groups[k], sign);
+  const std::uint8_t* m = dims_of(p, s.target_dims);
+  switch (s.num_groups) {
+    case 1: return gather_channels<1>(s.count, s.target_base, m, g, x, ch, sign, integer);
+    case 2: return gather_channels<2>(s.count, s.target_base, m, g, x, ch, sign, integer);
+    default: return gather_channels<3>(s.count, s.target_base, m, g, x, ch, sign, integer);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Weighted steps.
+
+void run_weighted(const WeightedStep& s, double* x, int ch, double sign, bool integer) {
+  const std::uint32_t rows = static_cast<std::uint32_t>(s.target.size());
+  parallel_for(rows, 512, [&](std::uint32_t begin, std::uint32_t end) {
+    double acc[64];  // channels are at most 64 (project_io.h)
+    std::vector<double> big(ch > 64 ? ch : 0);
+    double* a = ch > 64 ? big.data() : acc;
+    for (std::uint32_t r = begin; r < end; ++r) {
+      for (int c = 0; c < ch; ++c) a[c] = 0.0;
+      for (std::uint32_t k = s.sources.offsets[r]; k < s.sources.offsets[r + 1]; ++k) {
+        const double w = s.weights[k];
+        const double* src = x + std::size_t(s.sources.items[k]) * ch;
+        for (int c = 0; c < ch; ++c) a[c] += w * src[c];
+      }
+      double* dst = x + std::size_t(s.target[r]) * ch;
+      // Integer mode: the same rounded increment both ways, as the centroid rows.
+      for (int c = 0; c < ch; ++c) dst[c] += sign * (integer ? std::floor(a[c] + 0.5) : a[c]);
+    }
+  });
+}
+
+// ---------------------------------------------------------------------------------------------
+// Scale steps: diagonal, so the same loop serves every mode.
+
+template <class Visit>
+void for_each_scaled(const ScaleStep& s, const Complex& p, bool inverse, Visit visit) {
+  static constexpr FeatureDims kDims[3] = {FeatureDims::Vertex, FeatureDims::Edge, FeatureDims::Face};
+  for (int t = 0; t < 3; ++t) {
+    if (!s.count[t]) continue;
+    double factor[4];
+    for (int m = 0; m < 4; ++m) factor[m] = inverse ? 1.0 / s.factor[t][m] : s.factor[t][m];
+    visit(s.base[t], s.count[t], dims_of(p, kDims[t]), factor);
+  }
+}
+
+void run_scale(const ScaleStep& s, const Complex& p, double* x, int ch, bool inverse) {
+  for_each_scaled(s, p, inverse, [&](std::uint32_t base, std::uint32_t n, const std::uint8_t* dims, const double* f) {
+    parallel_for(n, kGrain, [&](std::uint32_t b, std::uint32_t e) {
+      for (std::uint32_t i = b; i < e; ++i) {
+        const double fi = f[dims[i]];
+        if (fi == 1.0) continue;
+        double* v = x + std::size_t(base + i) * ch;
+        for (int c = 0; c < ch; ++c) v[c] *= fi;
+      }
+    });
+  });
+}
+
+// ---------------------------------------------------------------------------------------------
+// Matrix steps (Loop's vertex rule).
+
+void run_matrix(const MatrixStep& m, double* x, int ch) {
+  std::vector<double> u(x, x + std::size_t(m.n) * ch);
+  for (std::uint32_t i = 0; i < m.n; ++i)
+    for (int c = 0; c < ch; ++c) {
+      double s = 0;
+      for (std::uint32_t q = m.rows.offsets[i]; q < m.rows.offsets[i + 1]; ++q)
+        s += m.weights[q] * u[std::size_t(m.rows.items[q]) * ch + c];
+      x[std::size_t(i) * ch + c] = s;
+    }
+}
+
+template <class Matrix>
+void solve_channels(const Matrix& A, std::uint32_t n, double* x, int ch, const char* what) {
+  Eigen::BiCGSTAB<Matrix, Eigen::DiagonalPreconditioner<double>> solver;
+  solver.setTolerance(1e-15);
+  solver.setMaxIterations(1000);
+  solver.compute(A);
+  Eigen::VectorXd b(n), u(n);
+  for (int c = 0; c < ch; ++c) {
+    for (std::uint32_t i = 0; i < n; ++i) b(i) = x[std::size_t(i) * ch + c];
+    if (b.squaredNorm() == 0) continue;
+    u = solver.solve(b);
+    const double rel = (A * u - b).norm() / b.norm();
+    if (!(rel < 1e-12))
+      throw Error(std::string("Loop analysis: the sparse solve of the vertex rule did not converge (") + what +
+                  ", relative residual " + std::to_string(rel) + ")");
+    for (std::uint32_t i = 0; i < n; ++i) x[std::size_t(i) * ch + c] = u(i);
+  }
+}
+
+void unrun_matrix(const MatrixStep& m, double* x, int ch) { solve_channels(m.solver->P, m.n, x, ch, "P"); }
+
+void no_integer_matrix(bool integer) {
+  if (integer) throw Error("integer mode needs an interpolating scheme; a vertex-rule solve is not exact in integers");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sparse mode.
+
+constexpr std::uint32_t kSparseGrain = 2048;
+
+struct Reverse {
+  const std::uint32_t* offsets = nullptr;
+  const std::uint32_t* items = nullptr;
+  std::uint32_t stride = 0;
+};
+
+// The centroid rows reading a changed source are found through the reverse incidences; they
+// are evaluated on the change as the dense loop evaluates them.
+void sparse_centroid(const CentroidStep& s, const Complex& p, const Transition& t, double sign, SparseDelta& d) {
+  if (!s.count || !s.num_groups) return;
+  Group g[3];
+  Reverse rev[3];
+  const int G = s.num_groups;
+  for (int k = 0; k < G; ++k) {
+    g[k] = resolve(p, t, s.groups[k], sign);
+    resolve_rows(p, t, s.groups[k].reverse, -1, rev[k].offsets, rev[k].items, rev[k].stride);
+  }
+  const std::uint32_t epoch = ++d.epoch;
+  d.candidates.clear();
+  const std::size_t n_list = d.list.size();
+  for (std::size_t q = 0; q < n_list; ++q) {
+    const std::uint32_t v = d.list[q];
+    for (int k = 0; k < G; ++k) {
+      const std::uint32_t b = s.groups[k].source_base;
+      if (v < b || v >= b + s.groups[k].source_count) continue;
+      const std::uint32_t src = v - b;
+      const std::uint32_t* row;
+      std::uint32_t len;
+      if (rev[k].offsets) {
+        row = rev[k].items + rev[k].offsets[src];
+        len = rev[k].offsets[src + 1] - rev[k].offsets[src];
+      } else {
+        row = rev[k].items + std::size_t(src) * rev[k].stride;
+        len = rev[k].stride;
+      }
+      for (std::uint32_t i = 0; i < len; ++i) {
+        std::uint32_t& st = d.stamp[s.target_base + row[i]];
+        if (st != epoch) {
+          st = epoch;
+          d.candidates.push_back(row[i]);
+        }
+      }
+    }
+  }
+  // Rows are independent (each writes its own target, reads other classes).
+  const std::uint8_t* dims = dims_of(p, s.target_dims);
+  const std::uint32_t nc = static_cast<std::uint32_t>(d.candidates.size());
+  parallel_for(nc, kSparseGrain, [&](std::uint32_t begin, std::uint32_t end) {
+    for (std::uint32_t q = begin; q < end; ++q) {
+      const std::uint32_t i = d.candidates[q];
+      const int m = dims ? dims[i] : 0;
+      double acc[3] = {0, 0, 0}, sum[3];
+      switch (G) {
+        case 1: accumulate_row<3, 1>(g, i, m, d.x.data(), 3, sum, acc); break;
+        case 2: accumulate_row<3, 2>(g, i, m, d.x.data(), 3, sum, acc); break;
+        default: accumulate_row<3, 3>(g, i, m, d.x.data(), 3, sum, acc); break;
+      }
+      double* dst = d.x.data() + std::size_t(s.target_base + i) * 3;
+      for (int c = 0; c < 3; ++c) dst[c] += acc[c];
+    }
+  });
+  for (const std::uint32_t i : d.candidates) d.at(s.target_base + i);
+}
+
+// Rows of a weighted step reading a listed vertex; targets are never sources of the same step,
+// so the order of the rows does not matter.
+void sparse_weighted(const WeightedStep& s, const Csr& readers, double sign, SparseDelta& d) {
+  const std::uint32_t epoch = ++d.epoch;
+  d.candidates.clear();
+  for (const std::uint32_t v : d.list)
+    for (const std::uint32_t r : readers.row(v)) {
+      std::uint32_t& st = d.stamp[s.target[r]];
+      if (st != epoch) {
+        st = epoch;
+        d.candidates.push_back(r);
+      }
+    }
+  for (const std::uint32_t r : d.candidates) {
+    double acc[3] = {0, 0, 0};
+    for (std::uint32_t k = s.sources.offsets[r]; k < s.sources.offsets[r + 1]; ++k) {
+      const double* src = d.x.data() + std::size_t(s.sources.items[k]) * 3;
+      for (int c = 0; c < 3; ++c) acc[c] += s.weights[k] * src[c];
+    }
+    double* dst = d.at(s.target[r]);
+    for (int c = 0; c < 3; ++c) dst[c] += sign * acc[c];
+  }
+}
+
+void sparse_scale(const ScaleStep& s, const Complex& p, bool inverse, SparseDelta& d) {
+  for_each_scaled(s, p, inverse, [&](std::uint32_t base, std::uint32_t n, const std::uint8_t* dims, const double* f) {
+    for (const std::uint32_t v : d.list) {
+      if (v < base || v >= base + n) continue;
+      const double fi = f[dims[v - base]];
+      if (fi == 1.0) continue;
+      double* x = d.x.data() + std::size_t(v) * 3;
+      for (int c = 0; c < 3; ++c) x[c] *= fi;
+    }
+  });
+}
+
+// Forwards the rows reading a changed old vertex change; the solve is global (every old
+// vertex may change).
+void sparse_matrix(const MatrixStep& m, SparseDelta& d) {
+  std::unordered_map<std::uint32_t, std::array<double, 3>> du;
+  for (std::uint32_t v : d.list)
+    if (v < m.n) {
+      double* x = d.x.data() + std::size_t(v) * 3;
+      du[v] = {x[0], x[1], x[2]};
+      x[0] = x[1] = x[2] = 0.0;
+    }
+  std::vector<std::uint32_t> rows;
+  for (const auto& [k, value] : du)
+    for (std::uint32_t i : m.readers.row(k)) rows.push_back(i);
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  for (std::uint32_t i : rows) {
+    double acc[3] = {0, 0, 0};
+    for (std::uint32_t q = m.rows.offsets[i]; q < m.rows.offsets[i + 1]; ++q)
+      if (const auto it = du.find(m.rows.items[q]); it != du.end())
+        for (int c = 0; c < 3; ++c) acc[c] += m.weights[q] * it->second[static_cast<std::size_t>(c)];
+    double* x = d.at(i);
+    for (int c = 0; c < 3; ++c) x[c] = acc[c];
+  }
+}
+
+void sparse_unmatrix(const MatrixStep& m, SparseDelta& d) {
+  std::vector<double> b(std::size_t(m.n) * 3, 0.0);
+  bool any = false;
+  for (std::uint32_t v : d.list)
+    if (v < m.n) {
+      for (int c = 0; c < 3; ++c) b[std::size_t(v) * 3 + c] = d.x[std::size_t(v) * 3 + c];
+      any = true;
+    }
+  if (!any) return;
+  unrun_matrix(m, b.data(), 3);
+  for (std::uint32_t i = 0; i < m.n; ++i) {
+    const double* u = b.data() + std::size_t(i) * 3;
+    if (u[0] == 0.0 && u[1] == 0.0 && u[2] == 0.0 && !d.in_list[i]) continue;
+    double* x = d.at(i);
+    for (int c = 0; c < 3; ++c) x[c] = u[c];
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Adjoint of the analysis: the analysis row x_t -= w x_s becomes x_s -= w x_t.
+
+void adjoint_centroid(const CentroidStep& s, const Complex& p, const Transition& t, double* y) {
+  Group g[3];
+  for (int k = 0; k < s.num_groups; ++k) g[k] = resolve(p, t, s.groups[k], -1.0);
+  const std::uint8_t* dims = dims_of(p, s.target_dims);
+  for (std::uint32_t i = 0; i < s.count; ++i) {
+    const double yt = y[s.target_base + i];
+    if (yt == 0.0) continue;
+    const int m = dims ? dims[i] : 0;
+    for (int k = 0; k < s.num_groups; ++k) {
+      const Group& gr = g[k];
+      std::uint32_t b, len;
+      group_row(gr, i, b, len);
+      if (len == 0 || gr.weight[m] == 0.0) continue;
+      const double c = gr.weight[m] * inv(len) * yt;
+      for (std::uint32_t q = 0; q < len; ++q) y[gr.source_base + gr.items[b + q]] += c;
+    }
+  }
+}
+
+void adjoint_weighted(const WeightedStep& s, double* y) {
+  for (std::uint32_t r = 0; r < s.target.size(); ++r) {
+    const double yt = y[s.target[r]];
+    if (yt == 0.0) continue;
+    for (std::uint32_t k = s.sources.offsets[r]; k < s.sources.offsets[r + 1]; ++k)
+      y[s.sources.items[k]] -= s.weights[k] * yt;
+  }
+}
+
+template <class... F>
+struct Overload : F... {
+  using F::operator()...;
+};
+template <class... F>
+Overload(F...) -> Overload<F...>;
+
+bool reads_only_new(const CentroidStep& s, std::uint32_t num_coarse) {
+  for (int k = 0; k < s.num_groups; ++k)
+    if (s.groups[k].source_base < num_coarse) return false;
+  return true;
+}
+
+}  // namespace
+
+MatrixStep make_matrix_step(std::uint32_t n, Csr rows, std::vector<double> weights) {
+  MatrixStep m;
+  m.n = n;
+  m.rows = std::move(rows);
+  m.weights = std::move(weights);
+  m.readers = transpose(m.rows, n);
+  auto solver = std::make_shared<MatrixSolver>();
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(m.weights.size());
+  for (std::uint32_t i = 0; i < n; ++i)
+    for (std::uint32_t q = m.rows.offsets[i]; q < m.rows.offsets[i + 1]; ++q)
+      trip.emplace_back(static_cast<int>(i), static_cast<int>(m.rows.items[q]), m.weights[q]);
+  solver->P.resize(static_cast<int>(n), static_cast<int>(n));
+  solver->P.setFromTriplets(trip.begin(), trip.end());
+  m.solver = std::move(solver);
+  return m;
+}
+
+void Transition::add(WeightedStep s) {
+  const bool reads = std::any_of(s.sources.items.begin(), s.sources.items.end(), [&](std::uint32_t v) { return v < num_coarse; });
+  const bool writes = std::any_of(s.target.begin(), s.target.end(), [&](std::uint32_t v) { return v >= num_coarse; });
+  steps.push_back({std::move(s), reads, writes});
+}
+void Transition::add(CentroidStep s) {
+  const bool reads = !reads_only_new(s, num_coarse), writes = s.target_base >= num_coarse && s.count;
+  steps.push_back({std::move(s), reads, writes});
+}
+void Transition::add(ScaleStep s) { steps.push_back({std::move(s), true, true}); }
+void Transition::add(MatrixStep s) { steps.push_back({std::move(s), true, false}); }
+
+std::size_t Transition::bytes() const {
+  std::size_t b = 0;
+  for (const Csr& rows : owned) b += rows.bytes();
+  for (const Step& s : steps) {
+    if (const auto* w = std::get_if<WeightedStep>(&s.op))
+      b += w->target.capacity() * 4 + w->sources.bytes() + w->weights.capacity() * 8;
+    else if (const auto* m = std::get_if<MatrixStep>(&s.op))
+      b += m->rows.bytes() + m->readers.bytes() + m->weights.capacity() * 8 +
+           std::size_t(m->solver->P.nonZeros()) * (sizeof(double) + sizeof(int));
+  }
+  return b;
+}
+
+void run_synthesis(const Transition& t, const Complex& p, double* x, int ch, bool integer, bool new_zero) {
+  // While the new values are zero, a step that reads only them adds exact zeros (000 sec. 4:
+  // "the first lifting operation does not have an impact"): pure subdivision then costs what
+  // the subdivision rules cost.
+  bool zero = new_zero;
+  for (const Step& s : t.steps) {
+    if (zero && !s.reads_coarse) continue;
+    zero = zero && !s.writes_new;
+    std::visit(Overload{[&](const WeightedStep& w) { run_weighted(w, x, ch, 1.0, integer); },
+                        [&](const CentroidStep& c) { run_centroid(c, p, t, x, ch, 1.0, integer); },
+                        [&](const ScaleStep& sc) {
+                          if (!integer) run_scale(sc, p, x, ch, false);
+                        },
+                        [&](const MatrixStep& m) {
+                          no_integer_matrix(integer);
+                          run_matrix(m, x, ch);
+                        }},
+               s.op);
+  }
+}
+
+void run_analysis(const Transition& t, const Complex& p, double* x, int ch, bool integer) {
+  for (auto it = t.steps.rbegin(); it != t.steps.rend(); ++it)
+    std::visit(Overload{[&](const WeightedStep& w) { run_weighted(w, x, ch, -1.0, integer); },
+                        [&](const CentroidStep& c) { run_centroid(c, p, t, x, ch, -1.0, integer); },
+                        [&](const ScaleStep& sc) {
+                          if (!integer) run_scale(sc, p, x, ch, true);
+                        },
+                        [&](const MatrixStep& m) {
+                          no_integer_matrix(integer);
+                          unrun_matrix(m, x, ch);
+                        }},
+               it->op);
+}
+
+SparseIndex build_sparse_index(const Transition& t) {
+  SparseIndex idx;
+  idx.readers.reserve(t.steps.size());
+  for (const Step& s : t.steps) {
+    const auto* w = std::get_if<WeightedStep>(&s.op);
+    idx.readers.push_back(w ? transpose(w->sources, t.num_fine) : Csr{});
+  }
+  return idx;
+}
+
+void run_synthesis_sparse(const Transition& t, const Complex& p, const SparseIndex& index, SparseDelta& d) {
+  for (std::size_t k = 0; k < t.steps.size(); ++k)
+    std::visit(Overload{[&](const WeightedStep& w) { sparse_weighted(w, index.readers[k], 1.0, d); },
+                        [&](const CentroidStep& c) { sparse_centroid(c, p, t, 1.0, d); },
+                        [&](const ScaleStep& sc) { sparse_scale(sc, p, false, d); },
+                        [&](const MatrixStep& m) { sparse_matrix(m, d); }},
+               t.steps[k].op);
+}
+
+void run_analysis_sparse(const Transition& t, const Complex& p, const SparseIndex& index, SparseDelta& d) {
+  for (std::size_t k = t.steps.size(); k-- > 0;)
+    std::visit(Overload{[&](const WeightedStep& w) { sparse_weighted(w, index.readers[k], -1.0, d); },
+                        [&](const CentroidStep& c) { sparse_centroid(c, p, t, -1.0, d); },
+                        [&](const ScaleStep& sc) { sparse_scale(sc, p, true, d); },
+                        [&](const MatrixStep& m) { sparse_unmatrix(m, d); }},
+               t.steps[k].op);
+}
+
+void run_analysis_adjoint(const Transition& t, const Complex& p, double* y) {
+  // Analysis runs the inverted steps backwards; its adjoint runs their transposes forwards.
+  for (const Step& s : t.steps)
+    std::visit(Overload{[&](const WeightedStep& w) { adjoint_weighted(w, y); },
+                        [&](const CentroidStep& c) { adjoint_centroid(c, p, t, y); },
+                        [&](const ScaleStep& sc) { run_scale(sc, p, y, 1, true); },  // diagonal
+                        [&](const MatrixStep& m) {
+                          // P^T only here (the dual basis), so it is not kept.
+                          const Eigen::SparseMatrix<double, Eigen::RowMajor> Pt = m.solver->P.transpose();
+                          solve_channels(Pt, m.n, y, 1, "P^T");
+                        }},
+               s.op);
+}
+
+void SparseDelta::reset(std::uint32_t n) {
+  clear();
+  if (x.size() != std::size_t(n) * 3) {
+    x.assign(std::size_t(n) * 3, 0.0);
+    in_list.assign(n, 0);
+    stamp.assign(n, 0);
+    epoch = 0;
+  }
+}
+
+void SparseDelta::clear() {
+  for (const std::uint32_t v : list) {
+    std::fill_n(x.data() + std::size_t(v) * 3, 3, 0.0);
+    in_list[v] = 0;
+  }
+  list.clear();
+}
+
+}  // namespace sublift

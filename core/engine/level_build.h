@@ -1,0 +1,28 @@
+#pragma once
+// What a scheme's builder (core/schemes/) makes of one level: the finer complex and the
+// transition to it. The hierarchy calls the builder its scheme's registry entry names.
+#include <vector>
+
+#include "core/child_sites.h"
+#include "core/complex.h"
+#include "core/engine/transition.h"
+
+namespace sublift {
+
+/// What one level's builder returns: the finer complex, the transition to it and, where the
+/// scheme knows them, where its new vertices sit and its wavelets' exact L2 norms.
+struct LevelBuild {
+  Complex fine;
+  Transition transition;
+  bool has_sites = false;       // ChildSites are implicit for the Split refinement
+  ChildSites sites;
+  std::vector<double> norms;    // per new vertex; empty: area scaling (wavelet_scale)
+};
+
+struct LevelContext {
+  int level = 0;       // the scheme's level index of `parent`
+  int disc = 2;        // the triangle schemes' k-disc wavelets
+  bool adjacency = true;  // whether `fine` needs its derived rows
+};
+
+}  // namespace sublift

@@ -1,0 +1,62 @@
+#include "core/schemes/registry.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/schemes/bertram/bertram_transition.h"
+#include "core/schemes/sqrt2/sqrt2_level.h"
+#include "core/schemes/tri/tri_level.h"
+
+namespace sublift {
+namespace {
+
+LevelBuild linear_level(Complex& parent, const LevelContext& ctx) { return build_bertram_level(parent, linear_program(), ctx); }
+LevelBuild cubic_level(Complex& parent, const LevelContext& ctx) { return build_bertram_level(parent, cubic_program(), ctx); }
+LevelBuild linear_tri_level(Complex& parent, const LevelContext& ctx) { return build_tri_level(parent, TriScheme::Linear, ctx); }
+LevelBuild butterfly_level(Complex& parent, const LevelContext& ctx) { return build_tri_level(parent, TriScheme::Butterfly, ctx); }
+LevelBuild loop_level(Complex& parent, const LevelContext& ctx) { return build_tri_level(parent, TriScheme::Loop, ctx); }
+
+using R = Refinement;
+using L = LimitRule;
+// id, name, refinement, surfaces only, triangles only, interpolates, integer, levels per split,
+// limit, exact norms, builder
+constexpr SchemeInfo kSchemes[] = {
+    {Scheme::Linear, "linear", R::Split, false, false, false, true, 1, L::ControlNet, false, linear_level},
+    {Scheme::Cubic, "cubic", R::Split, false, false, false, true, 1, L::Eigen, false, cubic_level},
+    {Scheme::Sqrt2, "sqrt2", R::Sqrt2, true, false, true, true, 2, L::ControlNet, false, build_sqrt2_level},
+    {Scheme::LinearTri, "linear-tri", R::Tri, true, true, true, true, 1, L::ControlNet, true, linear_tri_level},
+    {Scheme::Butterfly, "butterfly", R::Tri, true, true, true, true, 1, L::ControlNet, true, butterfly_level},
+    {Scheme::Loop, "loop", R::Tri, true, true, false, false, 1, L::LoopMasks, true, loop_level},
+};
+
+}  // namespace
+
+std::span<const SchemeInfo> all_schemes() { return kSchemes; }
+
+const SchemeInfo& scheme_info(Scheme s) {
+  for (const SchemeInfo& i : kSchemes)
+    if (i.id == s) return i;
+  throw std::logic_error("scheme without a registry entry");
+}
+
+std::string scheme_name(Scheme s) { return scheme_info(s).name; }
+
+std::string scheme_names_list() {
+  std::string out;
+  const std::size_t n = std::size(kSchemes);
+  for (std::size_t i = 0; i < n; ++i) out += std::string(i == 0 ? "" : i + 1 == n ? " or " : ", ") + kSchemes[i].name;
+  return out;
+}
+
+Scheme parse_scheme(const std::string& name) {
+  for (const SchemeInfo& i : kSchemes)
+    if (name == i.name) return i.id;
+  throw std::invalid_argument("unknown scheme '" + name + "' (expected " + scheme_names_list() + ")");
+}
+
+double wavelet_scale(Scheme s, int dim, int level) {
+  const double per_level = scheme_info(s).refinement == Refinement::Sqrt2 ? 1.0 : double(dim);
+  return std::pow(2.0, -0.5 * level * per_level);
+}
+
+}  // namespace sublift

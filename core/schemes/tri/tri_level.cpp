@@ -1,0 +1,36 @@
+#include "core/schemes/tri/tri_level.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/refine_tri.h"
+#include "core/tri_transform.h"
+
+namespace sublift {
+
+LevelBuild build_tri_level(Complex& parent, TriScheme scheme, const LevelContext& ctx) {
+  LevelBuild b;
+  // The wavelets read the child's neighbourhoods too; its derived rows go again if not wanted.
+  b.fine = refine_tri(parent, true);
+  TriTransitionResult r = build_tri_transition(parent, b.fine, scheme, ctx.disc);
+  if (!ctx.adjacency)
+    for (Csr* rows : {&b.fine.vertex_edges, &b.fine.vertex_faces, &b.fine.vertex_cells, &b.fine.edge_faces,
+                      &b.fine.edge_cells, &b.fine.face_cells, &b.fine.cell_verts, &b.fine.cell_edges})
+      *rows = Csr{};
+  const std::uint32_t nv = parent.num_vertices, ne = parent.num_edges();
+  b.has_sites = true;
+  b.sites.site.resize(ne);
+  b.sites.edge_child.resize(ne);
+  b.sites.face_child.assign(parent.num_faces(), UINT32_MAX);
+  for (std::uint32_t e = 0; e < ne; ++e) {
+    b.sites.site[e] = e;
+    b.sites.edge_child[e] = nv + e;
+  }
+  const double area = std::pow(0.25, ctx.level);
+  b.norms.reserve(r.norm2.size());
+  for (double n2 : r.norm2) b.norms.push_back(std::sqrt(std::max(0.0, n2 * area)));
+  b.transition = std::move(r.transition);
+  return b;
+}
+
+}  // namespace sublift

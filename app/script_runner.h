@@ -19,6 +19,7 @@
 // The runner executes commands until one needs a rendered frame (screenshot) or the script
 // ends; the app draws and saves the frame, then calls next() again.
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/modeler_state.h"
@@ -47,11 +48,11 @@ class ScriptRunner {
   ScriptStep next(ModelerState& state, ModelerDisplay* display = nullptr);
 
  private:
-  void run_line(ModelerState& state, ModelerDisplay* display, const std::vector<std::string>& words,
-                ScriptStep& step);
-
   std::vector<std::string> lines_;
   std::size_t line_ = 0;  // next line to run (0-based)
 };
+
+/// The command names, from the runner's table (for `sublift --help`).
+std::vector<std::string_view> script_commands();
 
 }  // namespace sublift

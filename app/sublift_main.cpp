@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "app/gui_app.h"
+#include "app/script_runner.h"
 
 namespace {
 
@@ -20,10 +21,18 @@ void print_usage(std::ostream& out) {
          "Sublift modeler; without FILE opens the bundled sample\n"
          "(" << sublift::default_model_path() << ").\n"
          "\n"
-         "  --script FILE      run modeler commands from FILE (one per line: open, scheme,\n"
-         "                     subdivide, level, select, soft, move, gain, frames, undo, redo,\n"
-         "                     save, export, screenshot, quit; see docs/modeler.md) and exit:\n"
-         "                     0, or 1 with 'script:LINE: message' on the first failure\n"
+         "  --script FILE      run modeler commands from FILE (one per line, see docs/modeler.md)\n"
+         "                     and exit: 0, or 1 with 'script:LINE: message' on the first failure;\n";
+  // The command names come from the runner's table, wrapped under the option's text.
+  std::string names = "                     commands:";
+  for (const std::string_view name : sublift::script_commands()) {
+    if (names.size() + 1 + name.size() > 88) {
+      out << names << '\n';
+      names.assign(30, ' ');  // under the first name
+    }
+    names.append(" ").append(name);
+  }
+  out << names << "\n"
          "  --headless         render through EGL without a window even if a display exists\n"
          "  --screenshot PATH  render the GUI, save it as a PNG and exit (default 3 frames)\n"
          "  --frames N         run N frames, then exit\n"

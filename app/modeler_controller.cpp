@@ -657,10 +657,7 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     if (!std::equal(key, key + 4, stats_key_)) stats_dirty_ = true;
     if (stats_dirty_ && !model.dragging() && !gain_active_) {
       std::copy(key, key + 4, stats_key_);
-      level_cache_.clear();
-      for (const LevelRow& row : model.level_rows()) {
-        level_cache_.push_back(LevelInfo{row.level, row.vertices, row.wavelets, row.wavelet_max, row.wavelet_rms});
-      }
+      level_cache_ = model.level_rows();
       stats_dirty_ = false;
     }
     d.levels = level_cache_;

@@ -442,22 +442,15 @@ std::vector<std::string> ModelerState::export_shape(const std::string& path, boo
   return write_shape(path, c, session_->positions(level));
 }
 
-std::vector<LevelRow> ModelerState::level_rows() const {
+std::vector<LevelStats> ModelerState::level_rows() const {
   const Hierarchy& h = session_->hierarchy();
-  std::vector<LevelRow> rows;
-  const std::vector<LevelStats> stats = level_stats(h);
+  std::vector<LevelStats> rows(static_cast<std::size_t>(h.finest_level()) + 1);
   for (int l = 0; l <= h.finest_level(); ++l) {
-    LevelRow r;
-    r.level = l;
-    r.vertices = h.num_vertices(l);
-    for (const LevelStats& s : stats) {
-      if (s.level == l) {
-        r.wavelets = s.wavelets;
-        r.wavelet_max = s.wavelet_max;
-        r.wavelet_rms = s.wavelet_rms;
-      }
-    }
-    rows.push_back(r);
+    rows[static_cast<std::size_t>(l)].level = l;
+    rows[static_cast<std::size_t>(l)].vertices = h.num_vertices(l);
+  }
+  for (const LevelStats& s : level_stats(h)) {
+    if (s.level >= 0 && s.level <= h.finest_level()) rows[static_cast<std::size_t>(s.level)] = s;
   }
   return rows;
 }

@@ -50,14 +50,6 @@ struct CompressionReadout {
   double ms = 0.0;                           // the last synthesis, limit and normals
 };
 
-/// Per-level numbers for the panel.
-struct LevelRow {
-  int level = 0;
-  std::uint32_t vertices = 0;
-  std::uint32_t wavelets = 0;           // of this level (0 for the finest)
-  double wavelet_max = 0.0, wavelet_rms = 0.0;
-};
-
 class ModelerState {
  public:
   static constexpr int kDefaultLevels = 2;
@@ -128,7 +120,9 @@ class ModelerState {
   const std::string& project_path() const { return project_path_; }
   void set_project_path(std::string path) { project_path_ = std::move(path); }
   const std::vector<std::string>& import_warnings() const { return warnings_; }
-  std::vector<LevelRow> level_rows() const;
+  /// Per-level numbers for the panel: level_stats() with a row for the finest level too (its
+  /// vertices, no wavelets of its own).
+  std::vector<LevelStats> level_rows() const;
 
   const Csr& surface_faces() const { return faces_; }
   /// The finest limit surface shown (the compressed one while the compression view is on).

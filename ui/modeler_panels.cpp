@@ -99,7 +99,7 @@ void draw_levels_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
     ImGui::TableSetupColumn("|w| max", ImGuiTableColumnFlags_WidthStretch, 0.8f);
     ImGui::TableSetupColumn("|w| rms", ImGuiTableColumnFlags_WidthStretch, 0.8f);
     ImGui::TableHeadersRow();
-    for (const LevelInfo& l : d.levels) {
+    for (const LevelStats& l : d.levels) {
       ImGui::TableNextRow();
       ImGui::TableSetColumnIndex(0);
       if (l.level == d.level) {
@@ -108,9 +108,9 @@ void draw_levels_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
         ImGui::Text("%d", l.level);
       }
       ImGui::TableSetColumnIndex(1);
-      ImGui::Text("%zu", l.vertices);
+      ImGui::Text("%u", l.vertices);
       ImGui::TableSetColumnIndex(2);
-      if (l.level < d.finest) ImGui::Text("%zu", l.wavelets);
+      if (l.level < d.finest) ImGui::Text("%u", l.wavelets);
       ImGui::TableSetColumnIndex(3);
       if (l.level < d.finest) ImGui::Text("%.3g", l.wavelet_max);
       ImGui::TableSetColumnIndex(4);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/hierarchy.h"
 #include "ui/viewport_input.h"
 
 namespace sublift {
@@ -25,12 +26,6 @@ struct ModelerDisplay {
   bool clip_flip = false;
   bool orthographic = false;
   bool z_up = false;
-};
-
-struct LevelInfo {
-  int level = 0;
-  std::size_t vertices = 0, wavelets = 0;
-  double wavelet_max = 0.0, wavelet_rms = 0.0;
 };
 
 /// Readouts of one computed basis function.
@@ -119,7 +114,7 @@ struct ModelerPanelData {
   int dim = 2;
   int scheme = 1;                     // Scheme's value: 0 linear, 1 cubic, 2 sqrt2
   int level = 0, finest = 0;
-  std::vector<LevelInfo> levels;
+  std::vector<LevelStats> levels;     // levels 0..finest (the finest has no wavelets of its own)
   std::vector<double> gains;          // per level 0..finest-1
   bool local_frames = false;
   std::vector<std::string> history;   // labels, oldest first

@@ -141,7 +141,7 @@ class ModelerState {
   const std::vector<float>& colour_values() const { return colour_; }
 
   /// Basis-function mode (issue 5, app/basis_view_state.h): computes the function of
-  /// `settings` on level settings.level (-1: the edit level; the level used is stored)
+  /// `settings` on level settings.request.level (-1: the edit level; the level used is stored)
   /// (settings.on false: off). Throws Error and leaves the mode off on a bad level or index. A
   /// change of view settings alone (height, slice, iso) only redraws. Kept when the edit level
   /// changes; turned off when the scheme, file or topology changes; recomputed after edits of

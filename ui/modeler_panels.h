@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/hierarchy.h"
+#include "ui/basis_settings.h"
 #include "ui/viewport_input.h"
 
 namespace sublift {
@@ -40,21 +41,11 @@ struct BasisReadout {
 
 /// The Basis section (issue 5): the mode's settings and the current function's readouts.
 struct BasisPanelData {
-  bool on = false;
-  int level = 0;                 // j of the function (the edit level when off)
+  // As shown: on = the mode is on; request.level = j of the function (the edit level when off);
+  // request.extra_levels = K asked for (-1: default).
+  BasisSettings settings{.request = {.level = 0}};
   int finest = 0;
-  bool follow = false;
-  int kind = 0;                  // 0 scaling function, 1 wavelet
-  bool dual = false;
-  long long index = 0;
-  int extra_levels = -1;         // K asked for (-1: default)
   int default_extra_levels = 4;  // core's default for this complex
-  bool height = false;
-  float height_scale = 0.2f;
-  int slice_axis = -1;           // lattices
-  float slice_pos = 0.5f;
-  bool iso = false;
-  float iso_level = 0.3f;
   long long scaling_count = 0;   // level-j vertices: scaling indices 0..scaling_count-1
   long long wavelet_end = 0;     // wavelet indices scaling_count..wavelet_end-1 (e/f/c of level j+1)
   // What "At selection" picks (basis_target_at): level and index per kind, -1: nothing.
@@ -86,23 +77,6 @@ struct CompressionPanelData {
   std::size_t kept = 0, total = 0;    // wavelets kept / in all (total also while off)
   double l2_error = 0.0, linf_error = 0.0;  // relative to the bounding-box diagonal
   double ms = 0.0;
-};
-
-/// The Basis section's settings after the user changed one (all of them, as in BasisPanelData).
-struct BasisPanelRequest {
-  bool on = false;
-  int level = -1;
-  bool follow = false;
-  int kind = 0;
-  bool dual = false;
-  long long index = 0;
-  int extra_levels = -1;
-  bool height = false;
-  float height_scale = 0.2f;
-  int slice_axis = -1;
-  float slice_pos = 0.5f;
-  bool iso = false;
-  float iso_level = 0.3f;
 };
 
 /// What the panel shows (filled by the app each frame).
@@ -154,7 +128,7 @@ struct ModelerPanelRequests {
   std::optional<std::string> export_path;
   bool export_finest = true;
   std::optional<double> soft_radius;
-  std::optional<BasisPanelRequest> basis;
+  std::optional<BasisSettings> basis;  // the Basis section's settings after the user changed one
   bool pin_basis = false, clear_pin = false;
   // FFD: load a model, wrap it in a box lattice (fields.box, fields.box_margin), bind (with the
   // outside mode), unbind, remove, export.

@@ -139,8 +139,9 @@ std::vector<float> curve_plot(const std::vector<std::uint32_t>& edges, const std
 }  // namespace
 
 bool same_function(const BasisSettings& a, const BasisSettings& b) {
-  return a.kind == b.kind && a.index == b.index && a.dual == b.dual && a.extra_levels == b.extra_levels &&
-         a.level == b.level;
+  const BasisRequest &p = a.request, &q = b.request;
+  return p.kind == q.kind && p.index == q.index && p.dual == q.dual && p.extra_levels == q.extra_levels &&
+         p.level == q.level;
 }
 
 float basis_colour(const BasisDisplay& d, double v) {
@@ -173,21 +174,18 @@ BasisDisplay compute_basis_display(const Session& session, int level, const Basi
   BasisDisplay d;
   d.settings = settings;
   d.level = level;
-  BasisRequest r;
+  BasisRequest r = settings.request;
   r.level = level;
-  r.kind = settings.kind;
-  r.index = settings.index;
-  r.dual = settings.dual;
   // The modeler's default K stops at a million finest vertices (about a third of a second here),
   // so that a click with Follow answers at once; a K typed in the panel may go to core's cap.
-  r.extra_levels = settings.extra_levels >= 0 ? settings.extra_levels : default_extra_levels(cj, kModelerBasisVertices, h.scheme, level);
+  if (r.extra_levels < 0) r.extra_levels = default_extra_levels(cj, kModelerBasisVertices, h.scheme, level);
   d.function = basis_function(cj, h.scheme, r, session.positions(level), &d.base_positions);
   const BasisFunction& f = d.function;
   d.model_size = diagonal(d.base_positions);
 
   // Colour.
   const double maxabs = std::max(std::abs(f.min), std::abs(f.max));
-  d.symmetric = settings.kind == BasisKind::Wavelet || settings.dual || f.min < -1e-9 * maxabs;
+  d.symmetric = r.kind == BasisKind::Wavelet || r.dual || f.min < -1e-9 * maxabs;
   d.vertex_colour.resize(f.values.size());
   for (std::size_t v = 0; v < f.values.size(); ++v) d.vertex_colour[v] = basis_colour(d, f.values[v]);
 

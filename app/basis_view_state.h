@@ -28,29 +28,14 @@
 #include "core/basis.h"
 #include "core/csr.h"
 #include "core/session.h"
+#include "ui/basis_settings.h"
 
 namespace sublift {
 
 /// Finest vertices the modeler's default K may reach (core's own default allows 4e6).
 inline constexpr double kModelerBasisVertices = 1.0e6;
 
-struct BasisSettings {
-  bool on = false;
-  int level = -1;             // j; -1: the edit level (ModelerState stores the level it used)
-  bool follow = false;        // a click on the net picks the function there (basis_target_at)
-  BasisKind kind = BasisKind::Scaling;
-  std::uint32_t index = 0;    // level-j vertex (scaling) or e/f/c vertex of level j+1 (wavelet)
-  bool dual = false;
-  int extra_levels = -1;      // K; -1: core's default, capped at kModelerBasisVertices
-  bool height = false;        // displace as a height field (surfaces, curves)
-  double height_scale = 0.2;  // times the bounding-box diagonal at max|value|
-  int slice_axis = -1;        // lattices: a slice plane normal to x, y or z (0, 1, 2); -1 none
-  double slice_pos = 0.5;     // where along that axis, as a fraction of the bounds
-  bool iso = false;           // lattices: iso-surfaces at +-iso_level * max|value|
-  double iso_level = 0.3;
-};
-
-/// The same function (kind, index, dual, K, level); the view settings may differ.
+/// The same function (request's kind, index, dual, K, level); the view settings may differ.
 bool same_function(const BasisSettings& a, const BasisSettings& b);
 
 struct BasisDisplay {

@@ -6,6 +6,7 @@
 #include "app/cli_args.h"
 #include "app/cli_commands.h"
 #include "app/cli_hierarchy.h"
+#include "core/compress.h"
 #include "core/hierarchy.h"
 #include "core/project_io.h"
 #include "core/shape_io.h"

@@ -441,24 +441,9 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
     if (r.colour_level) model.set_colour_level(*r.colour_level);
     if (r.soft_radius) model.set_soft_radius(*r.soft_radius);
     if (r.basis) {
-      const BasisPanelRequest& q = *r.basis;
-      BasisSettings b;
-      b.on = q.on;
-      b.level = q.level;
-      b.follow = q.follow;
-      b.kind = q.kind == 0 ? BasisKind::Scaling : BasisKind::Wavelet;
-      b.index = static_cast<std::uint32_t>(std::max(0LL, q.index));
-      b.dual = q.dual;
-      b.extra_levels = q.extra_levels;
-      b.height = q.height;
-      b.height_scale = q.height_scale;
-      b.slice_axis = q.slice_axis;
-      b.slice_pos = q.slice_pos;
-      b.iso = q.iso;
-      b.iso_level = q.iso_level;
-      basis_request_ = b;  // kept even when it fails, so the panel shows what was typed
+      basis_request_ = *r.basis;  // kept even when it fails, so the panel shows what was typed
       try {
-        model.set_basis(b);
+        model.set_basis(*r.basis);
       } catch (const std::exception& e) {
         fail(e, "Basis: ");
       }
@@ -532,8 +517,9 @@ BasisReadout readout_of(const BasisDisplay& d) {
   const BasisFunction& f = d.function;
   BasisReadout o;
   char title[160];
-  std::snprintf(title, sizeof title, "%s %s %u of level %d, K = %d (%s)", d.settings.dual ? "dual" : "primal",
-                d.settings.kind == BasisKind::Scaling ? "scaling" : "wavelet", d.settings.index, d.level,
+  const BasisRequest& q = d.settings.request;
+  std::snprintf(title, sizeof title, "%s %s %u of level %d, K = %d (%s)", q.dual ? "dual" : "primal",
+                q.kind == BasisKind::Scaling ? "scaling" : "wavelet", q.index, d.level,
                 f.extra_levels, f.limit ? "limit values" : "control values");
   o.title = title;
   o.support = f.support.size();
@@ -589,23 +575,13 @@ void ModelerController::fill_compression_data(CompressionPanelData& c) const {
 void ModelerController::fill_basis_data(BasisPanelData& b) const {
   const Session& s = model.session();
   const BasisSettings& set = model.basis_on() ? model.basis_settings() : basis_request_;
-  const int level = set.level >= 0 && set.level <= s.finest_level() ? set.level : model.level();
+  const int level = set.request.level >= 0 && set.request.level <= s.finest_level() ? set.request.level : model.level();
   const Complex& cj = s.hierarchy().levels[static_cast<std::size_t>(level)];
-  b.on = model.basis_on();
-  b.level = level;
+  b.settings = set;
+  b.settings.on = model.basis_on();
+  b.settings.request.level = level;
   b.finest = s.finest_level();
-  b.follow = set.follow;
-  b.kind = set.kind == BasisKind::Scaling ? 0 : 1;
-  b.dual = set.dual;
-  b.index = set.index;
-  b.extra_levels = set.extra_levels;
   b.default_extra_levels = default_extra_levels(cj, kModelerBasisVertices, s.hierarchy().scheme, level);
-  b.height = set.height;
-  b.height_scale = static_cast<float>(set.height_scale);
-  b.slice_axis = set.slice_axis;
-  b.slice_pos = static_cast<float>(set.slice_pos);
-  b.iso = set.iso;
-  b.iso_level = static_cast<float>(set.iso_level);
   b.scaling_count = cj.num_vertices;
   b.wavelet_end = static_cast<unsigned>(predicted_level_counts(cj, 1, s.hierarchy().scheme, level).back());
   b.curve = cj.dim == 1;
@@ -657,10 +633,7 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     if (!std::equal(key, key + 4, stats_key_)) stats_dirty_ = true;
     if (stats_dirty_ && !model.dragging() && !gain_active_) {
       std::copy(key, key + 4, stats_key_);
-      level_cache_.clear();
-      for (const LevelRow& row : model.level_rows()) {
-        level_cache_.push_back(LevelInfo{row.level, row.vertices, row.wavelets, row.wavelet_max, row.wavelet_rms});
-      }
+      level_cache_ = model.level_rows();
       stats_dirty_ = false;
     }
     d.levels = level_cache_;

@@ -142,7 +142,7 @@ class ModelerController {
   double last_autosave_ = -1.0;
   bool stats_dirty_ = true;
   std::size_t stats_key_[4] = {~std::size_t(0), 0, 0, 0};  // undo position, history size, topology, session
-  std::vector<LevelInfo> level_cache_;
+  std::vector<LevelStats> level_cache_;
   std::vector<std::string> recent_;
   BasisSettings basis_request_;  // the Basis section's settings while the mode is off
   double compress_fraction_ = 1.0;  // the Compression slider's last value

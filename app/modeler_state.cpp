@@ -442,22 +442,15 @@ std::vector<std::string> ModelerState::export_shape(const std::string& path, boo
   return write_shape(path, c, session_->positions(level));
 }
 
-std::vector<LevelRow> ModelerState::level_rows() const {
+std::vector<LevelStats> ModelerState::level_rows() const {
   const Hierarchy& h = session_->hierarchy();
-  std::vector<LevelRow> rows;
-  const std::vector<LevelStats> stats = level_stats(h);
+  std::vector<LevelStats> rows(static_cast<std::size_t>(h.finest_level()) + 1);
   for (int l = 0; l <= h.finest_level(); ++l) {
-    LevelRow r;
-    r.level = l;
-    r.vertices = h.num_vertices(l);
-    for (const LevelStats& s : stats) {
-      if (s.level == l) {
-        r.wavelets = s.wavelets;
-        r.wavelet_max = s.wavelet_max;
-        r.wavelet_rms = s.wavelet_rms;
-      }
-    }
-    rows.push_back(r);
+    rows[static_cast<std::size_t>(l)].level = l;
+    rows[static_cast<std::size_t>(l)].vertices = h.num_vertices(l);
+  }
+  for (const LevelStats& s : level_stats(h)) {
+    if (s.level >= 0 && s.level <= h.finest_level()) rows[static_cast<std::size_t>(s.level)] = s;
   }
   return rows;
 }
@@ -495,10 +488,11 @@ void ModelerState::set_basis(const BasisSettings& settings_in) {
   }
   BasisSettings settings = settings_in;
   if (compress_) compression_off();  // both replace the surface: the newer request wins
-  if (settings.level < 0) settings.level = level_;
-  if (settings.level > session_->finest_level()) {
+  int& j = settings.request.level;
+  if (j < 0) j = level_;
+  if (j > session_->finest_level()) {
     basis_off();
-    throw Error("basis: level " + std::to_string(settings.level) + " does not exist (finest is " +
+    throw Error("basis: level " + std::to_string(j) + " does not exist (finest is " +
                 std::to_string(session_->finest_level()) + ")");
   }
   if (basis_ && same_function(basis_->settings, settings) && !basis_stale_) {
@@ -509,7 +503,7 @@ void ModelerState::set_basis(const BasisSettings& settings_in) {
     return;
   }
   try {
-    basis_ = std::make_unique<BasisDisplay>(compute_basis_display(*session_, settings.level, settings));
+    basis_ = std::make_unique<BasisDisplay>(compute_basis_display(*session_, j, settings));
   } catch (...) {
     basis_off();
     throw;
@@ -532,11 +526,11 @@ void ModelerState::clear_pin() {
 
 void ModelerState::follow_selection() {
   if (!basis_ || !basis_settings_.follow || selection_.empty()) return;
-  const auto target = basis_target_at(session_->hierarchy(), level_, basis_settings_.kind, selection_.front());
+  const auto target = basis_target_at(session_->hierarchy(), level_, basis_settings_.request.kind, selection_.front());
   if (!target) return;
   BasisSettings b = basis_settings_;
-  b.level = target->level;
-  b.index = target->index;
+  b.request.level = target->level;
+  b.request.index = target->index;
   try {
     set_basis(b);
   } catch (const Error&) {

@@ -50,14 +50,6 @@ struct CompressionReadout {
   double ms = 0.0;                           // the last synthesis, limit and normals
 };
 
-/// Per-level numbers for the panel.
-struct LevelRow {
-  int level = 0;
-  std::uint32_t vertices = 0;
-  std::uint32_t wavelets = 0;           // of this level (0 for the finest)
-  double wavelet_max = 0.0, wavelet_rms = 0.0;
-};
-
 class ModelerState {
  public:
   static constexpr int kDefaultLevels = 2;
@@ -128,7 +120,9 @@ class ModelerState {
   const std::string& project_path() const { return project_path_; }
   void set_project_path(std::string path) { project_path_ = std::move(path); }
   const std::vector<std::string>& import_warnings() const { return warnings_; }
-  std::vector<LevelRow> level_rows() const;
+  /// Per-level numbers for the panel: level_stats() with a row for the finest level too (its
+  /// vertices, no wavelets of its own).
+  std::vector<LevelStats> level_rows() const;
 
   const Csr& surface_faces() const { return faces_; }
   /// The finest limit surface shown (the compressed one while the compression view is on).
@@ -147,7 +141,7 @@ class ModelerState {
   const std::vector<float>& colour_values() const { return colour_; }
 
   /// Basis-function mode (issue 5, app/basis_view_state.h): computes the function of
-  /// `settings` on level settings.level (-1: the edit level; the level used is stored)
+  /// `settings` on level settings.request.level (-1: the edit level; the level used is stored)
   /// (settings.on false: off). Throws Error and leaves the mode off on a bad level or index. A
   /// change of view settings alone (height, slice, iso) only redraws. Kept when the edit level
   /// changes; turned off when the scheme, file or topology changes; recomputed after edits of

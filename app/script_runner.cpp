@@ -157,18 +157,18 @@ void basis(const Call& c) {
   const long long nv = cj.num_vertices, nc = static_cast<long long>(predicted_level_counts(cj, 1, state.session().hierarchy().scheme, state.level()).back());
   BasisSettings b = state.basis_on() ? state.basis_settings() : BasisSettings{};
   b.on = true;
-  b.kind = w[1] == "scaling" ? BasisKind::Scaling : BasisKind::Wavelet;
-  b.dual = w.size() == 4;
-  if (b.kind == BasisKind::Scaling && (index < 0 || index >= nv)) {
+  b.request.kind = w[1] == "scaling" ? BasisKind::Scaling : BasisKind::Wavelet;
+  b.request.dual = w.size() == 4;
+  if (b.request.kind == BasisKind::Scaling && (index < 0 || index >= nv)) {
     throw ScriptError("scaling index " + w[2] + " is outside 0.." + std::to_string(nv - 1) + " of level " +
                       std::to_string(state.level()));
   }
-  if (b.kind == BasisKind::Wavelet && (index < nv || index >= nc)) {
+  if (b.request.kind == BasisKind::Wavelet && (index < nv || index >= nc)) {
     throw ScriptError("wavelet index " + w[2] + " is outside " + std::to_string(nv) + ".." + std::to_string(nc - 1) +
                       " (e/f/c vertices of level " + std::to_string(state.level() + 1) + ")");
   }
-  b.index = static_cast<std::uint32_t>(index);
-  b.level = state.level();
+  b.request.index = static_cast<std::uint32_t>(index);
+  b.request.level = state.level();
   state.set_basis(b);
 }
 

@@ -47,6 +47,12 @@ void synthesize_step(const Hierarchy& h, std::span<const double> gains, int j, s
   synthesize_transition(h, j, x.data(), h.channels, h.integer, zero);
 }
 
+// llround(fraction x n), at most n: the one rounding of a kept fraction.
+std::size_t count_of_fraction(std::size_t n, double fraction) {
+  if (!(fraction >= 0.0 && fraction <= 1.0)) throw Error("keep fraction must be in [0, 1], got " + std::to_string(fraction));
+  return std::min(n, static_cast<std::size_t>(std::llround(fraction * double(n))));
+}
+
 std::vector<double> numbers_of(std::string_view text, std::string_view spec) {
   std::vector<double> out;
   std::size_t at = 0;
@@ -79,6 +85,40 @@ std::vector<double> wavelet_l2_norms(const Hierarchy& h) {
     out.insert(out.end(), h.num_vertices(j + 1) - h.num_vertices(j), scale);
   }
   return out;
+}
+
+std::vector<RankedWavelet> rank_wavelets(const Hierarchy& h, std::span<const double> norms,
+                                         std::span<const double> gains, std::span<const std::uint8_t> candidates) {
+  check_gains(h, gains);
+  const int J = h.finest_level(), ch = h.channels;
+  const std::uint32_t nv0 = h.num_vertices(0);
+  const std::size_t total = h.num_vertices(J) - nv0;
+  if (!norms.empty() && norms.size() != total)
+    throw Error("ranking: " + std::to_string(norms.size()) + " wavelet norms for " + std::to_string(total) + " wavelets");
+  if (!candidates.empty() && candidates.size() != total)
+    throw Error("ranking: " + std::to_string(candidates.size()) + " candidate flags for " + std::to_string(total) +
+                " wavelets");
+  std::vector<RankedWavelet> all;
+  all.reserve(total);
+  for (int j = 0; j < J; ++j) {
+    const double g = gains.empty() ? 1.0 : gains[static_cast<std::size_t>(j)];
+    for (std::uint32_t v = h.num_vertices(j); v < h.num_vertices(j + 1); ++v) {
+      if (!candidates.empty() && !candidates[v - nv0]) continue;
+      const double m = norm(&h.coeffs[std::size_t(v) * ch], ch) * std::abs(g);
+      all.push_back({norms.empty() ? m : m * norms[v - nv0], v});
+    }
+  }
+  std::sort(all.begin(), all.end(), [](const RankedWavelet& a, const RankedWavelet& b) {
+    return a.magnitude != b.magnitude ? a.magnitude > b.magnitude : a.index < b.index;
+  });
+  return all;
+}
+
+std::size_t keep_ranked(Hierarchy& h, std::span<const RankedWavelet> ranking, double fraction) {
+  const std::size_t keep = count_of_fraction(ranking.size(), fraction);
+  for (std::size_t k = keep; k < ranking.size(); ++k)
+    std::fill_n(h.coeffs.begin() + std::ptrdiff_t(std::size_t(ranking[k].index) * h.channels), h.channels, 0.0);
+  return keep;
 }
 
 std::vector<double> synthesize_coefficients(const Hierarchy& h, std::span<const double> coeffs,
@@ -169,36 +209,19 @@ Compressor::Compressor(const Hierarchy& h, CompressOptions options)
   if (!(diagonal_ > 0) || !std::isfinite(diagonal_))
     throw Error("compress: the finest shape has no extent (bounding-box diagonal 0), so errors cannot be relative to it");
 
-  // The ranking: (magnitude, index) pairs sorted as keep_largest's nth_element orders them.
-  struct Entry {
-    double magnitude;
-    std::uint32_t index;
-  };
-  std::vector<Entry> all;
-  all.reserve(total_);
-  for (int j = 0; j < J; ++j) {
-    const double g = options_.gains.empty() ? 1.0 : options_.gains[static_cast<std::size_t>(j)];
-    for (std::uint32_t v = h.num_vertices(j); v < h.num_vertices(j + 1); ++v) {
-      if (options_.region && !inside[v - nv0]) continue;
-      const double m = norm(&coeffs_[std::size_t(v) * ch], ch) * std::abs(g);
-      all.push_back({options_.normalise ? m * norms[v - nv0] : m, v});
-    }
-  }
-  std::sort(all.begin(), all.end(), [](const Entry& a, const Entry& b) {
-    return a.magnitude != b.magnitude ? a.magnitude > b.magnitude : a.index < b.index;
-  });
+  // The ranking, on the stored coefficients (coeffs_ is h.coeffs).
+  const std::vector<RankedWavelet> all =
+      rank_wavelets(h, options_.normalise ? std::span<const double>(norms) : std::span<const double>(), options_.gains,
+                    inside);
   order_.reserve(all.size());
   magnitude_.reserve(all.size());
-  for (const Entry& e : all) {
+  for (const RankedWavelet& e : all) {
     order_.push_back(e.index);
     magnitude_.push_back(e.magnitude);
   }
 }
 
-std::size_t Compressor::count_for_fraction(double fraction) const {
-  if (!(fraction >= 0.0 && fraction <= 1.0)) throw Error("keep fraction must be in [0, 1], got " + std::to_string(fraction));
-  return std::min(order_.size(), static_cast<std::size_t>(std::llround(fraction * double(order_.size()))));
-}
+std::size_t Compressor::count_for_fraction(double fraction) const { return count_of_fraction(order_.size(), fraction); }
 
 std::size_t Compressor::count_for_threshold(double threshold) const {
   if (!(threshold >= 0.0) || !std::isfinite(threshold))
@@ -260,6 +283,11 @@ Compression Compressor::evaluate(std::size_t keep) const {
   out.l2_error = e.rms;
   out.linf_error = e.max;
   return out;
+}
+
+std::size_t keep_largest(Hierarchy& h, double fraction) {
+  if (!(fraction >= 0.0 && fraction <= 1.0)) throw Error("keep fraction must be in [0, 1]");
+  return keep_ranked(h, rank_wavelets(h, wavelet_l2_norms(h)), fraction);
 }
 
 }  // namespace sublift

@@ -17,8 +17,9 @@
 //   level-j wavelet). Every other wavelet and every scaling coefficient is always kept, bit for
 //   bit.
 // - order() lists the candidates' fine-vertex indices v (nv_0 <= v < nv_J), largest magnitude
-//   first, ties to the lower index: keep_largest's order, so with no region `keep F` keeps
-//   exactly the wavelets keep_largest(h, F) keeps (llround(F x candidates) of them).
+//   first, ties to the lower index: rank_wavelets(), the one ranking of every compress path
+//   (keep_largest's, the experiments'), so with no region `keep F` keeps exactly the wavelets
+//   keep_largest(h, F) keeps (llround(F x candidates) of them, keep_ranked's rounding).
 // - Shapes are synthesised with per-level gains (the session's detail gains; default 1). Errors
 //   compare the finest control points' x, y, z (the first three channels, missing ones 0) with
 //   the uncompressed finest shape and are divided by its bounding-box diagonal.
@@ -37,9 +38,35 @@ namespace sublift {
 
 /// L2 norm of each wavelet, index v - nv_0 for the wavelet on fine vertex v: h.wavelet_norms when
 /// the scheme knows them exactly, else the area scaling 2^(-j dim / 2) of a level-j wavelet
-/// (sqrt2: 2^(-j / 2), each level halves the area) that keep_largest uses. Throws Error when
-/// h.wavelet_norms is non-empty but does not hold one value per wavelet.
+/// (sqrt2: 2^(-j / 2), each level halves the area). The one source of the norms the rankings
+/// use (rank_wavelets). Throws Error when h.wavelet_norms is non-empty but does not hold one
+/// value per wavelet.
 std::vector<double> wavelet_l2_norms(const Hierarchy& h);
+
+/// One place of a wavelet ranking: the wavelet on fine vertex `index` and its magnitude.
+struct RankedWavelet {
+  double magnitude = 0.0;
+  std::uint32_t index = 0;
+};
+
+/// The wavelet ranking, the one every compress path uses (Compressor, keep_largest, the
+/// experiments' l2 and raw rankings): each wavelet v of level j with magnitude
+/// |w_v| x |gains[j]| x norms[v - nv_0] — |w_v| the Euclidean norm of its coefficient vector in
+/// h.coeffs, gains per level 0..J-1 (empty: 1), norms one per wavelet (wavelet_l2_norms(h) for
+/// the normalised ranking; empty: the raw magnitude, no norm factor) — sorted largest first,
+/// ties to the lower index. `candidates`, when not empty, holds one flag per wavelet (index
+/// v - nv_0): only the flagged ones are ranked. Throws Error on sizes or gains.
+std::vector<RankedWavelet> rank_wavelets(const Hierarchy& h, std::span<const double> norms,
+                                         std::span<const double> gains = {},
+                                         std::span<const std::uint8_t> candidates = {});
+
+/// Keeps the first llround(fraction x ranking.size()) wavelets of `ranking` and zeroes the rest
+/// in h.coeffs (every channel); returns how many were kept. keep_largest(h, F) is
+/// keep_ranked(h, rank_wavelets(h, wavelet_l2_norms(h)), F). Throws Error outside [0, 1].
+std::size_t keep_ranked(Hierarchy& h, std::span<const RankedWavelet> ranking, double fraction);
+/// Zeroes all but the largest `fraction` (0..1) of the wavelet coefficients by the one ranking
+/// (|w| x ||psi||, exact norms or wavelet_scale). Returns how many were kept.
+std::size_t keep_largest(Hierarchy& h, double fraction);
 
 /// The control net of `level` synthesised from `coeffs` (h's layout and size) with the wavelets
 /// of each level l multiplied by gains[l] (empty: all 1), on h's topology; what synthesize(h,
@@ -109,7 +136,7 @@ class Compressor {
   const CompressOptions& options() const { return options_; }
 
   /// Candidates kept for a fraction in [0, 1]: llround(fraction x candidates()), the rounding
-  /// of keep_largest and `synthesize --keep`. Throws Error outside [0, 1].
+  /// of keep_ranked, keep_largest and `synthesize --keep`. Throws Error outside [0, 1].
   std::size_t count_for_fraction(double fraction) const;
   /// Candidates whose magnitude is >= threshold x diagonal(). Throws Error unless threshold >= 0.
   std::size_t count_for_threshold(double threshold) const;

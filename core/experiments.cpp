@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string>
 
+#include "core/compress.h"
 #include "core/errors.h"
 #include "core/parallel.h"
 
@@ -69,24 +70,6 @@ LevelExperiment level_errors(Hierarchy& h, std::span<const double> model, std::s
     r.max_ratio = ratio(r.max, out.levels.front().max);
   }
   return out;
-}
-
-// Zeroes all but the `fraction` of wavelets with the largest Euclidean norm (ties: lower index).
-std::size_t keep_largest_raw(Hierarchy& h, double fraction) {
-  const std::uint32_t first = h.num_vertices(0), end = h.num_vertices(h.finest_level());
-  std::vector<std::pair<double, std::uint32_t>> all;
-  all.reserve(end - first);
-  for (std::uint32_t i = first; i < end; ++i) {
-    double s = 0;
-    for (int c = 0; c < h.channels; ++c) s += h.coeffs[std::size_t(i) * h.channels + c] * h.coeffs[std::size_t(i) * h.channels + c];
-    all.push_back({std::sqrt(s), i});
-  }
-  const auto keep = std::min(all.size(), static_cast<std::size_t>(std::llround(fraction * double(all.size()))));
-  std::nth_element(all.begin(), all.begin() + keep, all.end(),
-                   [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
-  for (std::size_t k = keep; k < all.size(); ++k)
-    std::fill_n(h.coeffs.begin() + std::size_t(all[k].second) * h.channels, h.channels, 0.0);
-  return keep;
 }
 
 }  // namespace
@@ -181,9 +164,12 @@ CompressExperiment compress_experiment(Hierarchy& h, std::span<const double> fin
   out.diagonal = bbox_diagonal(finest_xyz);
   out.finest_vertices = h.num_vertices(h.finest_level());
   out.wavelets = out.finest_vertices - h.num_vertices(0);
+  // Ranked once (core/compress.h): the kept wavelets are keep_largest's (l2) or the largest raw
+  // magnitudes (raw) for every fraction.
+  const std::vector<RankedWavelet> order = rank_wavelets(h, ranking == Ranking::L2 ? wavelet_l2_norms(h) : std::vector<double>{});
   for (const double f : fractions) {
     h.coeffs = analysed;
-    const std::size_t kept = ranking == Ranking::L2 ? keep_largest(h, f) : keep_largest_raw(h, f);
+    const std::size_t kept = keep_ranked(h, order, f);
     const ShapeError e = shape_error(synthesize(h, h.finest_level()), finest_xyz, out.diagonal);
     out.rows.push_back({f, kept, e.rms, e.max});
   }

@@ -58,8 +58,9 @@ struct CompressExperiment {
   std::vector<KeepError> rows;  // in the order of the requested fractions
 };
 
-/// How compress ranks wavelet coefficients: L2-normalised (keep_largest: |w| 2^(-j dim / 2))
-/// or by the raw Euclidean norm of the coefficient vector.
+/// How compress ranks wavelet coefficients (rank_wavelets, core/compress.h): L2-normalised
+/// (keep_largest's: |w| ||psi||_2, wavelet_l2_norms) or by the raw Euclidean norm of the
+/// coefficient vector.
 enum class Ranking : std::uint8_t { L2, Raw };
 
 

@@ -176,30 +176,4 @@ std::vector<LevelStats> level_stats(const Hierarchy& h) {
   return out;
 }
 
-std::size_t keep_largest(Hierarchy& h, double fraction) {
-  if (!(fraction >= 0.0 && fraction <= 1.0)) throw Error("keep fraction must be in [0, 1]");
-  struct Entry {
-    double magnitude;
-    std::uint32_t index;
-  };
-  std::vector<Entry> all;
-  const int dim = h.levels.front().dim;
-  const std::uint32_t nv0 = h.num_vertices(0);
-  const bool exact = h.wavelet_norms.size() + nv0 == h.num_vertices(h.finest_level());
-  for (int j = 0; j < h.finest_level(); ++j) {
-    const double scale = wavelet_scale(h.scheme, dim, j);
-    for (std::uint32_t i = h.num_vertices(j); i < h.num_vertices(j + 1); ++i)
-      all.push_back({norm(&h.coeffs[std::size_t(i) * h.channels], h.channels) * (exact ? h.wavelet_norms[i - nv0] : scale), i});
-  }
-  const auto keep = static_cast<std::size_t>(std::llround(fraction * double(all.size())));
-  if (keep < all.size()) {
-    std::nth_element(all.begin(), all.begin() + keep, all.end(), [](const Entry& a, const Entry& b) {
-      return a.magnitude != b.magnitude ? a.magnitude > b.magnitude : a.index < b.index;
-    });
-    for (std::size_t k = keep; k < all.size(); ++k)
-      std::fill_n(h.coeffs.begin() + std::size_t(all[k].index) * h.channels, h.channels, 0.0);
-  }
-  return std::min(keep, all.size());
-}
-
 }  // namespace sublift

@@ -87,9 +87,4 @@ struct LevelStats {
 };
 std::vector<LevelStats> level_stats(const Hierarchy& h);
 
-/// Zeroes all but the largest `fraction` (0..1) of wavelet coefficients, ranked by
-/// L2-normalised magnitude |w| * ||psi|| (exact norms or wavelet_scale). Returns how many
-/// were kept.
-std::size_t keep_largest(Hierarchy& h, double fraction);
-
 }  // namespace sublift

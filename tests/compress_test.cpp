@@ -128,6 +128,39 @@ TEST(Compress, KeepSelectsWhatKeepLargestSelectsAndIsProgressive) {
   }
 }
 
+// rank_wavelets is the one ranking: keep_ranked on it is keep_largest, bit for bit, and the
+// Compressor's order and magnitudes are its entries (raw: no norm factor); the loop scheme
+// carries exact norms.
+TEST(Compress, RankWaveletsIsKeepLargestsAndTheCompressorsRanking) {
+  std::vector<Case> cases(std::begin(kCases), std::end(kCases));
+  cases.push_back({"loop_octahedron", "octahedron.obj", Scheme::Loop, 4});
+  for (const Case& k : cases) {
+    SCOPED_TRACE(k.name);
+    const Hierarchy h = detailed(k.asset, k.scheme, k.levels);
+    const std::vector<RankedWavelet> ranking = rank_wavelets(h, wavelet_l2_norms(h));
+    ASSERT_EQ(ranking.size(), std::size_t(h.num_vertices(h.finest_level()) - h.num_vertices(0)));
+    for (const double f : {0.0, 0.01, 0.2, 0.5, 1.0}) {
+      Hierarchy a = h, b = h;
+      EXPECT_EQ(keep_ranked(a, ranking, f), keep_largest(b, f)) << f;
+      EXPECT_EQ(std::memcmp(a.coeffs.data(), b.coeffs.data(), a.coeffs.size() * sizeof(double)), 0) << f;
+    }
+    for (const bool normalise : {true, false}) {
+      CompressOptions o;
+      o.normalise = normalise;
+      const Compressor c(h, o);
+      const std::vector<RankedWavelet> r = rank_wavelets(h, normalise ? wavelet_l2_norms(h) : std::vector<double>{});
+      ASSERT_EQ(c.candidates(), r.size());
+      for (std::size_t i = 0; i < r.size(); ++i) {
+        ASSERT_EQ(c.order()[i], r[i].index) << i;
+        ASSERT_EQ(c.magnitudes()[i], r[i].magnitude) << i;
+      }
+    }
+    Hierarchy a = h;
+    EXPECT_THROW(keep_ranked(a, ranking, 1.5), Error);
+    EXPECT_THROW(rank_wavelets(h, std::vector<double>(3, 1.0)), Error);  // one norm per wavelet
+  }
+}
+
 TEST(Compress, ThresholdKeepsExactlyTheWaveletsAboveIt) {
   for (const Case& k : kCases) {
     SCOPED_TRACE(k.name);

@@ -147,7 +147,7 @@ TEST(ModelerCompressTest, EditingIsRefusedWhileTheViewIsOn) {
   // The basis mode replaces the surface, so it turns the view off.
   BasisSettings b;
   b.on = true;
-  b.index = 0;
+  b.request.index = 0;
   f.app.model.set_basis(b);
   EXPECT_FALSE(f.app.model.compression_on());
 }

@@ -326,11 +326,11 @@ TEST(ModelerControllerTest, AutosaveRecoveryAndQuitPrompt) {
 }
 
 // A Basis-section request for the edit level: on, kind (0 scaling, 1 wavelet), index.
-BasisPanelRequest basis_request(int kind, long long index) {
-  BasisPanelRequest q;
+BasisSettings basis_request(int kind, long long index) {
+  BasisSettings q;
   q.on = true;
-  q.kind = kind;
-  q.index = index;
+  q.request.kind = kind == 0 ? BasisKind::Scaling : BasisKind::Wavelet;
+  q.request.index = static_cast<std::uint32_t>(index);
   return q;
 }
 
@@ -400,7 +400,7 @@ TEST(ModelerControllerTest, BasisModeComputesTheSelectedScalingFunctionAndWavele
   EXPECT_EQ(m.basis().function.support, wd.support);
   EXPECT_NEAR(m.basis().function.integral, wd.integral, 1e-15);
   EXPECT_TRUE(m.basis().symmetric);
-  req.basis->dual = true;
+  req.basis->request.dual = true;
   f.app.apply_panel_requests(req);
   ASSERT_TRUE(m.basis_on());
   EXPECT_FALSE(m.basis().function.limit);
@@ -455,12 +455,12 @@ TEST(ModelerControllerTest, BasisFollowPicksWaveletsOnTheNextLevelNet) {
   m.set_selection({face_point});
   ASSERT_TRUE(m.basis_on());
   EXPECT_EQ(m.basis().level, 0);
-  EXPECT_EQ(m.basis().settings.index, face_point);
+  EXPECT_EQ(m.basis().settings.request.index, face_point);
   EXPECT_EQ(m.basis().function.support, direct(0, BasisKind::Wavelet, face_point).support);
   m.set_selection({5});  // a vertex point: the edge wavelet of level 1 on its first edge
   const long long w = edge_wavelet_at(h.levels[1], 5);
   EXPECT_EQ(m.basis().level, 1);
-  EXPECT_EQ(m.basis().settings.index, static_cast<std::uint32_t>(w));
+  EXPECT_EQ(m.basis().settings.request.index, static_cast<std::uint32_t>(w));
   EXPECT_EQ(m.basis().function.support, direct(1, BasisKind::Wavelet, static_cast<std::uint32_t>(w)).support);
   // Scaling mode follows too; without follow nothing changes on a click.
   req.basis = basis_request(0, 0);
@@ -468,13 +468,13 @@ TEST(ModelerControllerTest, BasisFollowPicksWaveletsOnTheNextLevelNet) {
   f.app.apply_panel_requests(req);
   m.set_selection({face_point});
   EXPECT_EQ(m.basis().level, 1);
-  EXPECT_EQ(m.basis().settings.index, face_point);
+  EXPECT_EQ(m.basis().settings.request.index, face_point);
   EXPECT_EQ(m.basis().function.integral, direct(1, BasisKind::Scaling, face_point).integral);
   req.basis->follow = false;
-  req.basis->index = 7;
+  req.basis->request.index = 7;
   f.app.apply_panel_requests(req);
   m.set_selection({9});
-  EXPECT_EQ(m.basis().settings.index, 7u);
+  EXPECT_EQ(m.basis().settings.request.index, 7u);
 }
 
 // Pinning keeps a copy of the function across index and scheme changes (linear vs cubic) and
@@ -509,7 +509,7 @@ TEST(ModelerControllerTest, BasisPinKeepsAFunctionForComparison) {
   f.app.apply_panel_requests(clear);
   EXPECT_EQ(m.pinned(), nullptr);
   ModelerPanelRequests off;
-  off.basis = BasisPanelRequest{};
+  off.basis = BasisSettings{};
   f.app.apply_panel_requests(off);
   f.app.apply_panel_requests(pin);  // nothing to pin: an error, not a crash
   EXPECT_NE(f.app.error.find("nothing to pin"), std::string::npos) << f.app.error;
@@ -682,8 +682,8 @@ TEST(ModelerControllerTest, BasisScriptCommands) {
   ScriptRunner ok("ok", "open " + torus + "\nlevel 1\nbasis scaling 5\nbasis height 0.1\nbasis wavelet 400 dual\n");
   EXPECT_EQ(ok.next(m).kind, ScriptStep::Kind::End);
   ASSERT_TRUE(m.basis_on());
-  EXPECT_EQ(m.basis_settings().kind, BasisKind::Wavelet);
-  EXPECT_TRUE(m.basis_settings().dual);
+  EXPECT_EQ(m.basis_settings().request.kind, BasisKind::Wavelet);
+  EXPECT_TRUE(m.basis_settings().request.dual);
   EXPECT_TRUE(m.basis_settings().height);
   EXPECT_EQ(m.basis().function.finest.num_vertices, m.basis().function.values.size());
   ScriptRunner off("off", "basis off\n");

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "core/compress.h"
 #include "core/complex_build.h"
 #include "core/hierarchy.h"
 #include "core/mesh_import.h"

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/compress.h"
 #include "core/basis.h"
 #include "core/complex_build.h"
 #include "core/errors.h"

@@ -99,7 +99,7 @@ void draw_levels_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
     ImGui::TableSetupColumn("|w| max", ImGuiTableColumnFlags_WidthStretch, 0.8f);
     ImGui::TableSetupColumn("|w| rms", ImGuiTableColumnFlags_WidthStretch, 0.8f);
     ImGui::TableHeadersRow();
-    for (const LevelInfo& l : d.levels) {
+    for (const LevelStats& l : d.levels) {
       ImGui::TableNextRow();
       ImGui::TableSetColumnIndex(0);
       if (l.level == d.level) {
@@ -108,9 +108,9 @@ void draw_levels_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
         ImGui::Text("%d", l.level);
       }
       ImGui::TableSetColumnIndex(1);
-      ImGui::Text("%zu", l.vertices);
+      ImGui::Text("%u", l.vertices);
       ImGui::TableSetColumnIndex(2);
-      if (l.level < d.finest) ImGui::Text("%zu", l.wavelets);
+      if (l.level < d.finest) ImGui::Text("%u", l.wavelets);
       ImGui::TableSetColumnIndex(3);
       if (l.level < d.finest) ImGui::Text("%.3g", l.wavelet_max);
       ImGui::TableSetColumnIndex(4);
@@ -226,65 +226,69 @@ void draw_basis_readout(const BasisReadout& o) {
 void draw_basis_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   if (!section("Basis")) return;
   const BasisPanelData& b = d.basis;
-  BasisPanelRequest q{b.on,  b.level,      b.follow,     b.kind,      b.dual,      b.index,    b.extra_levels,
-                      b.height, b.height_scale, b.slice_axis, b.slice_pos, b.iso, b.iso_level};
+  BasisSettings q = b.settings;
+  BasisRequest& f = q.request;
+  // The sliders edit floats: the settings carry the values they show.
+  float height_scale = static_cast<float>(q.height_scale), slice_pos = static_cast<float>(q.slice_pos),
+        iso_level = static_cast<float>(q.iso_level);
   bool changed = false;
   changed |= ImGui::Checkbox("Show basis function", &q.on);
   ImGui::BeginDisabled(!q.on);
-  changed |= ImGui::RadioButton("scaling function", &q.kind, 0);
+  if (ImGui::RadioButton("scaling function", f.kind == BasisKind::Scaling)) f.kind = BasisKind::Scaling, changed = true;
   ImGui::SameLine();
-  changed |= ImGui::RadioButton("wavelet", &q.kind, 1);
-  if (q.kind != b.kind) {  // keep the index in the new kind's range
-    const int level = q.kind == 1 ? b.selected_wavelet_level : b.selected_scaling_level;
-    const long long at = q.kind == 1 ? b.selected_wavelet : b.selected;
+  if (ImGui::RadioButton("wavelet", f.kind == BasisKind::Wavelet)) f.kind = BasisKind::Wavelet, changed = true;
+  const bool wavelet = f.kind == BasisKind::Wavelet;
+  if (f.kind != b.settings.request.kind) {  // keep the index in the new kind's range
+    const int level = wavelet ? b.selected_wavelet_level : b.selected_scaling_level;
+    const long long at = wavelet ? b.selected_wavelet : b.selected;
     if (at >= 0) {
-      q.level = level, q.index = at;
-    } else if (q.kind == 1 && q.index < b.scaling_count) {
-      q.index = b.scaling_count;
-    } else if (q.kind == 0 && q.index >= b.scaling_count) {
-      q.index = 0;
+      f.level = level, f.index = static_cast<std::uint32_t>(at);
+    } else if (wavelet && f.index < b.scaling_count) {
+      f.index = static_cast<std::uint32_t>(b.scaling_count);
+    } else if (!wavelet && f.index >= b.scaling_count) {
+      f.index = 0;
     }
   }
   const float column = ImGui::GetContentRegionAvail().x * 0.5f;
-  changed |= ImGui::Checkbox("Dual (analysis)", &q.dual);
+  changed |= ImGui::Checkbox("Dual (analysis)", &f.dual);
   ImGui::SameLine(column);
   ImGui::BeginDisabled(b.lattice);
   changed |= ImGui::Checkbox("Height field", &q.height);
   ImGui::EndDisabled();
-  int level = q.level;
+  int level = f.level;
   ImGui::SetNextItemWidth(110.0f);
-  if (ImGui::InputInt("Level j", &level, 1, 1)) q.level = std::clamp(level, 0, b.finest), changed = true;
+  if (ImGui::InputInt("Level j", &level, 1, 1)) f.level = std::clamp(level, 0, b.finest), changed = true;
   ImGui::SameLine(column + 40.0f);
   changed |= ImGui::Checkbox("Follow", &q.follow);
   if (ImGui::IsItemHovered()) {
     ImGui::SetTooltip("clicking a control point shows its function; for a wavelet, click an\n"
                       "edge, face or cell point of the level j+1 net (or a vertex: its first edge)");
   }
-  int index = static_cast<int>(q.index);
+  int index = static_cast<int>(f.index);
   ImGui::SetNextItemWidth(110.0f);
   if (ImGui::InputInt("Index", &index, 1, 10, ImGuiInputTextFlags_EnterReturnsTrue)) {
-    q.index = index, changed = true;
+    f.index = static_cast<std::uint32_t>(std::max(0, index)), changed = true;
   }
   if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip(q.kind == 0 ? "control point of level j (0..%lld)" : "e/f/c vertex of level j+1 (%lld..%lld)",
-                      q.kind == 0 ? b.scaling_count - 1 : b.scaling_count, b.wavelet_end - 1);
+    ImGui::SetTooltip(!wavelet ? "control point of level j (0..%lld)" : "e/f/c vertex of level j+1 (%lld..%lld)",
+                      !wavelet ? b.scaling_count - 1 : b.scaling_count, b.wavelet_end - 1);
   }
   ImGui::SameLine();
-  const long long at = q.kind == 0 ? b.selected : b.selected_wavelet;
+  const long long at = !wavelet ? b.selected : b.selected_wavelet;
   ImGui::BeginDisabled(at < 0);
   if (ImGui::Button("At selection")) {
-    q.level = q.kind == 0 ? b.selected_scaling_level : b.selected_wavelet_level;
-    q.index = at;
+    f.level = !wavelet ? b.selected_scaling_level : b.selected_wavelet_level;
+    f.index = static_cast<std::uint32_t>(at);
     changed = true;
   }
   ImGui::EndDisabled();
-  int k = q.extra_levels < 0 ? b.default_extra_levels : q.extra_levels;
+  int k = f.extra_levels < 0 ? b.default_extra_levels : f.extra_levels;
   ImGui::SetNextItemWidth(110.0f);
-  if (ImGui::SliderInt("Extra levels K", &k, 0, 8)) q.extra_levels = k, changed = true;
+  if (ImGui::SliderInt("Extra levels K", &k, 0, 8)) f.extra_levels = k, changed = true;
   if (!b.lattice) {
     ImGui::BeginDisabled(!q.height);
     ImGui::SetNextItemWidth(140.0f);
-    if (ImGui::SliderFloat("Height scale", &q.height_scale, 0.0f, 1.0f, "%.2f")) changed = true;
+    if (ImGui::SliderFloat("Height scale", &height_scale, 0.0f, 1.0f, "%.2f")) changed = true;
     ImGui::EndDisabled();
   } else {
     const char* axes[] = {"no slice", "slice x", "slice y", "slice z"};
@@ -294,16 +298,17 @@ void draw_basis_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
     ImGui::SameLine();
     ImGui::BeginDisabled(q.slice_axis < 0);
     ImGui::SetNextItemWidth(120.0f);
-    if (ImGui::SliderFloat("at", &q.slice_pos, 0.0f, 1.0f, "%.2f")) changed = true;
+    if (ImGui::SliderFloat("at", &slice_pos, 0.0f, 1.0f, "%.2f")) changed = true;
     ImGui::EndDisabled();
     changed |= ImGui::Checkbox("Iso-surface", &q.iso);
     ImGui::SameLine();
     ImGui::BeginDisabled(!q.iso);
     ImGui::SetNextItemWidth(120.0f);
-    if (ImGui::SliderFloat("of max", &q.iso_level, 0.01f, 0.99f, "%.2f")) changed = true;
+    if (ImGui::SliderFloat("of max", &iso_level, 0.01f, 0.99f, "%.2f")) changed = true;
     ImGui::EndDisabled();
   }
   ImGui::EndDisabled();
+  q.height_scale = height_scale, q.slice_pos = slice_pos, q.iso_level = iso_level;
   if (changed) r.basis = q;
   ImGui::BeginDisabled(!b.computed);
   if (ImGui::Button("Pin for comparison")) r.pin_basis = true;

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "core/hierarchy.h"
+#include "ui/basis_settings.h"
 #include "ui/viewport_input.h"
 
 namespace sublift {
@@ -27,12 +29,6 @@ struct ModelerDisplay {
   bool z_up = false;
 };
 
-struct LevelInfo {
-  int level = 0;
-  std::size_t vertices = 0, wavelets = 0;
-  double wavelet_max = 0.0, wavelet_rms = 0.0;
-};
-
 /// Readouts of one computed basis function.
 struct BasisReadout {
   std::string title;             // "primal scaling 12 of level 1, K = 4 (limit values)"
@@ -45,21 +41,11 @@ struct BasisReadout {
 
 /// The Basis section (issue 5): the mode's settings and the current function's readouts.
 struct BasisPanelData {
-  bool on = false;
-  int level = 0;                 // j of the function (the edit level when off)
+  // As shown: on = the mode is on; request.level = j of the function (the edit level when off);
+  // request.extra_levels = K asked for (-1: default).
+  BasisSettings settings{.request = {.level = 0}};
   int finest = 0;
-  bool follow = false;
-  int kind = 0;                  // 0 scaling function, 1 wavelet
-  bool dual = false;
-  long long index = 0;
-  int extra_levels = -1;         // K asked for (-1: default)
   int default_extra_levels = 4;  // core's default for this complex
-  bool height = false;
-  float height_scale = 0.2f;
-  int slice_axis = -1;           // lattices
-  float slice_pos = 0.5f;
-  bool iso = false;
-  float iso_level = 0.3f;
   long long scaling_count = 0;   // level-j vertices: scaling indices 0..scaling_count-1
   long long wavelet_end = 0;     // wavelet indices scaling_count..wavelet_end-1 (e/f/c of level j+1)
   // What "At selection" picks (basis_target_at): level and index per kind, -1: nothing.
@@ -93,23 +79,6 @@ struct CompressionPanelData {
   double ms = 0.0;
 };
 
-/// The Basis section's settings after the user changed one (all of them, as in BasisPanelData).
-struct BasisPanelRequest {
-  bool on = false;
-  int level = -1;
-  bool follow = false;
-  int kind = 0;
-  bool dual = false;
-  long long index = 0;
-  int extra_levels = -1;
-  bool height = false;
-  float height_scale = 0.2f;
-  int slice_axis = -1;
-  float slice_pos = 0.5f;
-  bool iso = false;
-  float iso_level = 0.3f;
-};
-
 /// What the panel shows (filled by the app each frame).
 struct ModelerPanelData {
   std::string file_name, file_path;
@@ -119,7 +88,7 @@ struct ModelerPanelData {
   int dim = 2;
   int scheme = 1;                     // Scheme's value: 0 linear, 1 cubic, 2 sqrt2
   int level = 0, finest = 0;
-  std::vector<LevelInfo> levels;
+  std::vector<LevelStats> levels;     // levels 0..finest (the finest has no wavelets of its own)
   std::vector<double> gains;          // per level 0..finest-1
   bool local_frames = false;
   std::vector<std::string> history;   // labels, oldest first
@@ -159,7 +128,7 @@ struct ModelerPanelRequests {
   std::optional<std::string> export_path;
   bool export_finest = true;
   std::optional<double> soft_radius;
-  std::optional<BasisPanelRequest> basis;
+  std::optional<BasisSettings> basis;  // the Basis section's settings after the user changed one
   bool pin_basis = false, clear_pin = false;
   // FFD: load a model, wrap it in a box lattice (fields.box, fields.box_margin), bind (with the
   // outside mode), unbind, remove, export.

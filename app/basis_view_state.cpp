@@ -6,10 +6,10 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
-#include "core/boundary_surface.h"
-#include "core/bounds.h"
-#include "core/cell_contour.h"
-#include "core/errors.h"
+#include "core/analysis/boundary_surface.h"
+#include "core/base/bounds.h"
+#include "core/analysis/cell_contour.h"
+#include "core/base/errors.h"
 
 namespace sublift {
 namespace {

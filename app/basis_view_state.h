@@ -1,6 +1,6 @@
 #pragma once
 // The modeler's basis-function mode (issue 5): one scaling function or wavelet of the edit level,
-// computed with core/basis.h on the edit level's complex and positions, and what the viewport
+// computed with core/multires/basis.h on the edit level's complex and positions, and what the viewport
 // draws of it — the function on the level j+K shape (limit positions where the scheme has them),
 // a colour value per vertex, optionally displaced along the normal as a height field, and the
 // support outline on the level-j net. GL-free: ModelerView uploads it.
@@ -12,7 +12,7 @@
 // bounding-box diagonal. Lattices are never displaced: they show the function as colour on
 // their boundary surface, or, when a slice plane or an iso-surface is asked for, on a plane
 // normal to x, y or z through the volume (at a fraction of the function's bounds) and on the
-// surfaces where the function equals +-iso_level * max|value| (core/cell_contour.h; the negative
+// surfaces where the function equals +-iso_level * max|value| (core/analysis/cell_contour.h; the negative
 // one only for functions with negative values), coloured by the same map.
 // Curves also give a plot: the values along the curve component holding the largest |value|,
 // in parameter order, over the support and a margin of a tenth of its length on either side.
@@ -25,9 +25,9 @@
 #include <string>
 #include <vector>
 
-#include "core/basis.h"
-#include "core/csr.h"
-#include "core/session.h"
+#include "core/multires/basis.h"
+#include "core/base/csr.h"
+#include "core/edit/session.h"
 #include "ui/basis_settings.h"
 
 namespace sublift {

@@ -5,12 +5,12 @@
 #include "app/cli_commands.h"
 #include "app/cli_hierarchy.h"
 #include "app/cli_json.h"
-#include "core/connectivity_match.h"
-#include "core/errors.h"
-#include "core/file_io.h"
-#include "core/hierarchy.h"
-#include "core/project_io.h"
-#include "core/shape_io.h"
+#include "core/complex/connectivity_match.h"
+#include "core/base/errors.h"
+#include "core/base/file_io.h"
+#include "core/multires/hierarchy.h"
+#include "core/io/project/project_io.h"
+#include "core/io/lattice/shape_io.h"
 
 namespace sublift::cli {
 

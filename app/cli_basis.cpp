@@ -10,15 +10,15 @@
 #include "app/cli_args.h"
 #include "app/cli_commands.h"
 #include "app/cli_hierarchy.h"
-#include "core/basis.h"
-#include "core/boundary_surface.h"
-#include "core/errors.h"
-#include "core/file_io.h"
-#include "core/level_counts.h"
-#include "core/mesh_export.h"
-#include "core/project_io.h"
-#include "core/shape_io.h"
-#include "core/text_lines.h"
+#include "core/multires/basis.h"
+#include "core/analysis/boundary_surface.h"
+#include "core/base/errors.h"
+#include "core/base/file_io.h"
+#include "core/complex/level_counts.h"
+#include "core/io/mesh/mesh_export.h"
+#include "core/io/project/project_io.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/base/text_lines.h"
 #ifdef SUBLIFT_HAVE_RENDER
 #include "app/cli_basis_png.h"
 #endif
@@ -55,7 +55,7 @@ constexpr const char* kHelp =
     "               behind it and the slice of finest faces on it, both coloured, seen from +x+y+z\n"
     "  --json       level, kind, index, dual, levels, support (non-zero finest vertices),\n"
     "               support_per_level (non-zero control values of levels J..J+K), integral,\n"
-    "               moments, min, max, output (conventions: core/basis.h, docs/engine.md)\n";
+    "               moments, min, max, output (conventions: core/multires/basis.h, docs/engine.md)\n";
 
 int int_option(const Args& a, const std::string& key, int lo, int hi) {
   const std::string v = *a.value(key);

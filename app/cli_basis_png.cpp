@@ -9,8 +9,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
-#include "core/boundary_surface.h"
-#include "core/polygon_normal.h"
+#include "core/analysis/boundary_surface.h"
+#include "core/complex/polygon_normal.h"
 #include "render/background.h"
 #include "render/camera.h"
 #include "render/headless_context.h"
@@ -47,7 +47,7 @@ std::vector<float> to_unit(std::span<const double> values, bool symmetric) {
   return s;
 }
 
-// Area-weighted unit vertex normals (core/polygon_normal.h) as vectors.
+// Area-weighted unit vertex normals (core/complex/polygon_normal.h) as vectors.
 std::vector<glm::dvec3> vertex_normals(const Csr& faces, std::span<const double> xyz) {
   const std::vector<double> flat = area_weighted_normals(faces, xyz);
   std::vector<glm::dvec3> n(flat.size() / 3);

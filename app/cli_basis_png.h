@@ -4,7 +4,7 @@
 #include <span>
 #include <string>
 
-#include "core/basis.h"
+#include "core/multires/basis.h"
 
 namespace sublift::cli {
 

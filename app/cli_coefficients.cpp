@@ -16,9 +16,9 @@
 
 #include "app/cli_args.h"
 #include "app/cli_commands.h"
-#include "core/sqrt2_coefficients.h"
-#include "core/tri_local.h"
-#include "core/tri_wavelets.h"
+#include "core/schemes/sqrt2/sqrt2_coefficients.h"
+#include "core/schemes/tri/tri_local.h"
+#include "core/schemes/tri/tri_wavelets.h"
 
 namespace sublift::cli {
 namespace {
@@ -60,7 +60,7 @@ int parse_valence(const std::string& s) {
   return v;
 }
 
-// Where phi_k sits (core/sqrt2_coefficients.h).
+// Where phi_k sits (core/schemes/sqrt2/sqrt2_coefficients.h).
 std::string sqrt2_slot_name(int k) {
   if (k < 4) return "p" + std::to_string(k);
   const int i = (k - 4) / 2, near = (k % 2 == 0) ? i : (i + 1) % 4;

@@ -7,11 +7,11 @@
 #include "app/cli_args.h"
 #include "app/cli_commands.h"
 #include "app/cli_hierarchy.h"
-#include "core/compress.h"
-#include "core/errors.h"
-#include "core/project_io.h"
-#include "core/shape_io.h"
-#include "core/text_lines.h"
+#include "core/analysis/compress.h"
+#include "core/base/errors.h"
+#include "core/io/project/project_io.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/base/text_lines.h"
 
 namespace sublift::cli {
 namespace {

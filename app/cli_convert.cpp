@@ -4,10 +4,10 @@
 #include "app/cli_args.h"
 #include "app/cli_commands.h"
 #include "app/cli_json.h"
-#include "core/file_io.h"
-#include "core/mesh_export.h"
-#include "core/mesh_import.h"
-#include "core/shape_io.h"
+#include "core/base/file_io.h"
+#include "core/io/mesh/mesh_export.h"
+#include "core/io/mesh/mesh_import.h"
+#include "core/io/lattice/shape_io.h"
 
 namespace sublift::cli {
 

@@ -1,4 +1,4 @@
-// sublift-cli experiment noise|fit|compress: the papers' experiments (core/experiments.h,
+// sublift-cli experiment noise|fit|compress: the papers' experiments (core/analysis/experiments.h,
 // docs/experiments.md) on a base file, for any scheme.
 #include <charconv>
 #include <cmath>
@@ -9,11 +9,11 @@
 #include "app/cli_args.h"
 #include "app/cli_commands.h"
 #include "app/cli_hierarchy.h"
-#include "core/connectivity_match.h"
-#include "core/errors.h"
-#include "core/experiments.h"
-#include "core/shape_io.h"
-#include "core/text_lines.h"
+#include "core/complex/connectivity_match.h"
+#include "core/base/errors.h"
+#include "core/analysis/experiments.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/base/text_lines.h"
 
 namespace sublift::cli {
 

@@ -7,11 +7,11 @@
 
 #include "app/cli_args.h"
 #include "app/cli_commands.h"
-#include "core/errors.h"
-#include "core/ffd_edits.h"
-#include "core/ffd_scene.h"
-#include "core/shape_io.h"
-#include "core/text_lines.h"
+#include "core/base/errors.h"
+#include "core/ffd/ffd_edits.h"
+#include "core/ffd/ffd_scene.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/base/text_lines.h"
 
 namespace sublift::cli {
 namespace {

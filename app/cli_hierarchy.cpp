@@ -4,9 +4,9 @@
 #include <charconv>
 #include <cstdio>
 
-#include "core/level_counts.h"
-#include "core/project_io.h"
-#include "core/shape_io.h"
+#include "core/complex/level_counts.h"
+#include "core/io/project/project_io.h"
+#include "core/io/lattice/shape_io.h"
 
 namespace sublift::cli {
 

@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli_args.h"
-#include "core/complex.h"
-#include "core/hierarchy.h"
+#include "core/complex/complex.h"
+#include "core/multires/hierarchy.h"
 
 namespace sublift::cli {
 

@@ -7,10 +7,10 @@
 #include "app/cli_commands.h"
 #include "app/cli_hierarchy.h"
 #include "app/cli_json.h"
-#include "core/hierarchy.h"
-#include "core/mesh_export.h"
-#include "core/project_io.h"
-#include "core/shape_io.h"
+#include "core/multires/hierarchy.h"
+#include "core/io/mesh/mesh_export.h"
+#include "core/io/project/project_io.h"
+#include "core/io/lattice/shape_io.h"
 
 namespace sublift::cli {
 

@@ -5,8 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/mesh_import.h"
-#include "core/mesh_stats.h"
+#include "core/io/mesh/mesh_import.h"
+#include "core/analysis/mesh_stats.h"
 
 namespace sublift::cli {
 

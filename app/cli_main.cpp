@@ -8,7 +8,7 @@
 
 #include "app/cli_args.h"
 #include "app/cli_commands.h"
-#include "core/errors.h"
+#include "core/base/errors.h"
 
 namespace {
 

@@ -5,9 +5,9 @@
 
 #include "app/cli_args.h"
 #include "app/cli_commands.h"
-#include "core/errors.h"
-#include "core/file_io.h"
-#include "core/mesh_import.h"
+#include "core/base/errors.h"
+#include "core/base/file_io.h"
+#include "core/io/mesh/mesh_import.h"
 #ifdef SUBLIFT_HAVE_RENDER
 #include "render/headless_render.h"
 #include "render/offscreen_target.h"

@@ -7,10 +7,10 @@
 #include "app/cli_commands.h"
 #include "app/cli_hierarchy.h"
 #include "app/cli_json.h"
-#include "core/errors.h"
-#include "core/mesh_import.h"
-#include "core/shape_io.h"
-#include "core/sphere_resample.h"
+#include "core/base/errors.h"
+#include "core/io/mesh/mesh_import.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/analysis/sphere_resample.h"
 
 namespace sublift::cli {
 

@@ -5,8 +5,8 @@
 #include "app/cli_commands.h"
 #include "app/cli_hierarchy.h"
 #include "app/cli_json.h"
-#include "core/hierarchy.h"
-#include "core/shape_io.h"
+#include "core/multires/hierarchy.h"
+#include "core/io/lattice/shape_io.h"
 
 namespace sublift::cli {
 

@@ -1,7 +1,7 @@
 #pragma once
-// The modeler's free-form deformation mode (issue 6): a model (glTF/OBJ/PLY/OFF, core/model.h)
+// The modeler's free-form deformation mode (issue 6): a model (glTF/OBJ/PLY/OFF, core/io/model/model.h)
 // shown with the lattice being edited. While bound, the model follows every lattice operation
-// (drag, undo, redo, gain) through core/ffd.h: only the vertices whose cells moved are
+// (drag, undo, redo, gain) through core/ffd/ffd.h: only the vertices whose cells moved are
 // recomputed. Unbinding keeps the model where it is; binding again takes its current shape as
 // the new rest state against the lattice as it is now (the usual FFD workflow: bind, bend,
 // unbind, reshape the lattice, bind again). GL-free: ModelerView uploads it.
@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "core/ffd.h"
-#include "core/model.h"
+#include "core/ffd/ffd.h"
+#include "core/io/model/model.h"
 
 namespace sublift {
 

@@ -10,7 +10,7 @@
 #include <utility>
 
 #include "app/modeler_view.h"
-#include "core/errors.h"
+#include "core/base/errors.h"
 
 namespace sublift {
 namespace {

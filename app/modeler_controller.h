@@ -12,7 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include "app/modeler_state.h"
-#include "core/picking.h"
+#include "core/edit/picking.h"
 #include "render/camera.h"
 #include "ui/modeler_keys.h"
 #include "ui/modeler_panels.h"

@@ -7,14 +7,14 @@
 #include <filesystem>
 #include <sstream>
 
-#include "core/boundary_surface.h"
-#include "core/bounds.h"
-#include "core/errors.h"
-#include "core/ffd_scene.h"
-#include "core/project_io.h"
-#include "core/shape_io.h"
-#include "core/polygon_normal.h"
-#include "core/surface_export.h"
+#include "core/analysis/boundary_surface.h"
+#include "core/base/bounds.h"
+#include "core/base/errors.h"
+#include "core/ffd/ffd_scene.h"
+#include "core/io/project/project_io.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/complex/polygon_normal.h"
+#include "core/io/model/surface_export.h"
 
 namespace sublift {
 namespace {

@@ -22,11 +22,11 @@
 
 #include "app/basis_view_state.h"
 #include "app/ffd_view_state.h"
-#include "core/compress.h"
-#include "core/csr.h"
-#include "core/hierarchy.h"
-#include "core/limit.h"
-#include "core/session.h"
+#include "core/analysis/compress.h"
+#include "core/base/csr.h"
+#include "core/multires/hierarchy.h"
+#include "core/multires/limit.h"
+#include "core/edit/session.h"
 
 namespace sublift {
 
@@ -195,7 +195,7 @@ class ModelerState {
   /// The model stays where it is and no longer follows the lattice.
   void unbind_model();
   void remove_model();
-  /// Writes the model as it is now in its own format family (core/model.h export_model).
+  /// Writes the model as it is now in its own format family (core/io/model/model.h export_model).
   void export_model(const std::string& path) const;
   const FfdModelState* ffd() const { return ffd_.get(); }
 

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "core/errors.h"
+#include "core/base/errors.h"
 
 namespace sublift {
 namespace {

@@ -21,12 +21,12 @@
 #include <vector>
 
 #include "bench/bench_timing.h"
-#include "core/complex_build.h"
-#include "core/csr.h"
-#include "core/hierarchy.h"
-#include "core/limit.h"
-#include "core/session.h"
-#include "core/shapes.h"
+#include "core/complex/complex_build.h"
+#include "core/base/csr.h"
+#include "core/multires/hierarchy.h"
+#include "core/multires/limit.h"
+#include "core/edit/session.h"
+#include "core/complex/shapes.h"
 
 namespace {
 

@@ -20,11 +20,11 @@
 #include <vector>
 
 #include "bench/bench_timing.h"
-#include "core/box_lattice.h"
-#include "core/ffd.h"
-#include "core/hierarchy.h"
-#include "core/parallel.h"
-#include "core/session.h"
+#include "core/ffd/box_lattice.h"
+#include "core/ffd/ffd.h"
+#include "core/multires/hierarchy.h"
+#include "core/base/parallel.h"
+#include "core/edit/session.h"
 
 namespace {
 

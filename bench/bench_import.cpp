@@ -11,7 +11,7 @@
 #include <fstream>
 #include <map>
 
-#include "core/mesh_import.h"
+#include "core/io/mesh/mesh_import.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The sqrt(2) wavelet transform (core/sqrt2_transform.h) versus Bertram's cubic lifting (1-to-4)
+// The sqrt(2) wavelet transform (core/schemes/sqrt2/sqrt2_transform.h) versus Bertram's cubic lifting (1-to-4)
 // on closed regular quad tori of the same final size, in one run:
 //   synthesis  all levels: sqrt2_synthesize for j = 0..J-1   vs  lift_synthesize (cubic) for
 //              j = 0..L-1, each on one array in place, base positions plus small nonzero wavelets
@@ -24,12 +24,12 @@
 #include <vector>
 
 #include "bench/bench_timing.h"
-#include "core/complex_build.h"
-#include "core/hierarchy.h"
+#include "core/complex/complex_build.h"
+#include "core/multires/hierarchy.h"
 #include "core/engine/executor.h"
-#include "core/parallel.h"
-#include "core/refine_sqrt2.h"
-#include "core/sqrt2_transform.h"
+#include "core/base/parallel.h"
+#include "core/complex/refine_sqrt2.h"
+#include "core/schemes/sqrt2/sqrt2_transform.h"
 #include "tests/mesh_fixtures.h"
 
 namespace {

@@ -35,10 +35,10 @@
 #include <thread>
 #include <vector>
 
-#include "core/complex_build.h"
-#include "core/hierarchy.h"
+#include "core/complex/complex_build.h"
+#include "core/multires/hierarchy.h"
 #include "core/engine/executor.h"
-#include "core/parallel.h"
+#include "core/base/parallel.h"
 #include "tests/mesh_fixtures.h"
 #include "tests/osd_refiner.h"
 

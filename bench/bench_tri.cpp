@@ -1,5 +1,5 @@
 // The triangle-mesh wavelet transforms of paper 004 (Lounsbery, DeRose & Warren: linear-tri,
-// butterfly, Loop; core/tri_transform.h) versus Bertram's cubic lifting (1-to-4 quads) at the
+// butterfly, Loop; core/schemes/tri/tri_transform.h) versus Bertram's cubic lifting (1-to-4 quads) at the
 // same finest size, in one run:
 //   analysis   analyze_transition for j = J-1..0 on one array in place, from the finest
 //              positions (the copy that restores them before each iteration is excluded)
@@ -9,11 +9,11 @@
 //              their wavelet coefficients per neighbourhood type process-wide, so each setup
 //              iteration runs in a fresh child process (this binary, --tri-setup-child) that
 //              builds twice: "first" pays for solving the types, "second" finds them cached
-//   loop parts Loop's analysis split into the sparse solve (loop_unsmooth, Eigen BiCGSTAB,
+//   loop parts Loop's analysis split into the sparse solve (the Matrix step, Eigen BiCGSTAB,
 //              serial) and the lifting sub-steps (parallel), and its synthesis into the lifting
-//              sub-steps and the vertex rule (loop_smooth, serial)
+//              sub-steps and the vertex rule (the Matrix step, serial)
 // Input: the scan ../shared/data/scans/bunny_npm_lowres.obj (SUBLIFT_SHARED_DATA) resampled onto
-// the octahedron split J times (core/sphere_resample.h, the order make_hierarchy builds on
+// the octahedron split J times (core/analysis/sphere_resample.h, the order make_hierarchy builds on
 // octahedron_complex()); an analytic star-shaped surface when the file is absent (printed).
 // Sizes: J = 8 (262,146 finest vertices) and J = 9 (1,048,578). Cubic: closed quad torus 64 x 16
 // (1024 quads, make_quad_torus) with L = 4 (262,144) and L = 5 (1,048,576).
@@ -32,13 +32,13 @@
 #include <vector>
 
 #include "bench/bench_timing.h"
-#include "core/complex_build.h"
-#include "core/hierarchy.h"
-#include "core/mesh_import.h"
-#include "core/shapes.h"
-#include "core/sphere_resample.h"
+#include "core/complex/complex_build.h"
+#include "core/multires/hierarchy.h"
+#include "core/io/mesh/mesh_import.h"
+#include "core/complex/shapes.h"
+#include "core/analysis/sphere_resample.h"
 #include "core/engine/executor.h"
-#include "core/tri_transform.h"
+#include "core/schemes/tri/tri_transform.h"
 
 #ifndef SUBLIFT_SHARED_DATA
 #define SUBLIFT_SHARED_DATA "../shared/data"

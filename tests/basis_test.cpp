@@ -5,11 +5,11 @@
 
 #include <gtest/gtest.h>
 
-#include "core/basis.h"
-#include "core/complex_build.h"
-#include "core/errors.h"
-#include "core/hierarchy.h"
-#include "core/shapes.h"
+#include "core/multires/basis.h"
+#include "core/complex/complex_build.h"
+#include "core/base/errors.h"
+#include "core/multires/hierarchy.h"
+#include "core/complex/shapes.h"
 #include "tests/mesh_fixtures.h"
 #include "tests/test_lattices.h"
 

@@ -9,13 +9,13 @@
 
 #include <gtest/gtest.h>
 
-#include "core/boundary_surface.h"
-#include "core/complex_build.h"
-#include "core/errors.h"
-#include "core/hierarchy.h"
-#include "core/lattice_format.h"
-#include "core/shape_io.h"
-#include "core/shapes.h"
+#include "core/analysis/boundary_surface.h"
+#include "core/complex/complex_build.h"
+#include "core/base/errors.h"
+#include "core/multires/hierarchy.h"
+#include "core/io/lattice/lattice_format.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/complex/shapes.h"
 
 using namespace sublift;
 

@@ -1,4 +1,4 @@
-// Slices and iso-surfaces of volume lattices (core/cell_contour.h): the pieces reproduce affine
+// Slices and iso-surfaces of volume lattices (core/analysis/cell_contour.h): the pieces reproduce affine
 // fields exactly, their areas are the cross-sections of known solids, their normals point to
 // the low side, and an iso-surface inside a lattice is closed and consistently oriented.
 #include <cmath>
@@ -8,10 +8,10 @@
 
 #include <gtest/gtest.h>
 
-#include "core/cell_contour.h"
-#include "core/errors.h"
-#include "core/hierarchy.h"
-#include "core/shape_io.h"
+#include "core/analysis/cell_contour.h"
+#include "core/base/errors.h"
+#include "core/multires/hierarchy.h"
+#include "core/io/lattice/shape_io.h"
 
 namespace sublift {
 namespace {

@@ -7,13 +7,13 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "core/basis.h"
-#include "core/complex_build.h"
-#include "core/file_io.h"
-#include "core/hierarchy.h"
-#include "core/project_io.h"
-#include "core/shape_io.h"
-#include "core/shapes.h"
+#include "core/multires/basis.h"
+#include "core/complex/complex_build.h"
+#include "core/base/file_io.h"
+#include "core/multires/hierarchy.h"
+#include "core/io/project/project_io.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/complex/shapes.h"
 #include "tests/io_test_util.h"
 #include "tests/cli_run.h"
 

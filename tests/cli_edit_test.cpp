@@ -5,12 +5,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "core/complex_build.h"
-#include "core/hierarchy.h"
-#include "core/project_io.h"
-#include "core/session.h"
-#include "core/shape_io.h"
-#include "core/shapes.h"
+#include "core/complex/complex_build.h"
+#include "core/multires/hierarchy.h"
+#include "core/io/project/project_io.h"
+#include "core/edit/session.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/complex/shapes.h"
 #include "tests/io_test_util.h"
 #include "tests/cli_run.h"
 #include "tests/test_shapes.h"

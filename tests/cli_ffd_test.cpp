@@ -8,12 +8,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "core/box_lattice.h"
-#include "core/errors.h"
-#include "core/ffd_edits.h"
-#include "core/ffd_scene.h"
-#include "core/model.h"
-#include "core/shape_io.h"
+#include "core/ffd/box_lattice.h"
+#include "core/base/errors.h"
+#include "core/ffd/ffd_edits.h"
+#include "core/ffd/ffd_scene.h"
+#include "core/io/model/model.h"
+#include "core/io/lattice/shape_io.h"
 #include "tests/cli_run.h"
 #include "tests/io_test_util.h"
 

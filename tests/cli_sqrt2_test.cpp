@@ -10,8 +10,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "core/file_io.h"
-#include "core/shape_io.h"
+#include "core/base/file_io.h"
+#include "core/io/lattice/shape_io.h"
 #include "tests/io_test_util.h"
 #include "tests/cli_run.h"
 #include "tests/run_process.h"

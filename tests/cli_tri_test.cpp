@@ -7,7 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/shape_io.h"
+#include "core/io/lattice/shape_io.h"
 #include "tests/cli_run.h"
 #include "tests/io_test_util.h"
 

@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "core/bounds.h"
-#include "core/experiments.h"
-#include "core/hierarchy.h"
-#include "core/shape_io.h"
+#include "core/base/bounds.h"
+#include "core/analysis/experiments.h"
+#include "core/multires/hierarchy.h"
+#include "core/io/lattice/shape_io.h"
 
 namespace sublift::testing {
 

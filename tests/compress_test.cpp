@@ -1,4 +1,4 @@
-// Wavelet compression (core/compress.h, docs/compression.md) on hierarchies with real detail
+// Wavelet compression (core/analysis/compress.h, docs/compression.md) on hierarchies with real detail
 // (tests/compress_fixture.h: a bundled shape refined J times, bent by smooth waves of three
 // lengths and roughened by a little Gaussian noise, then analysed). Checks the error measures
 // against their definition, the ranking against keep_largest and an independent recomputation
@@ -10,12 +10,12 @@
 
 #include <gtest/gtest.h>
 
-#include "core/bounds.h"
-#include "core/compress.h"
-#include "core/errors.h"
-#include "core/experiments.h"
-#include "core/session.h"
-#include "core/shape_io.h"
+#include "core/base/bounds.h"
+#include "core/analysis/compress.h"
+#include "core/base/errors.h"
+#include "core/analysis/experiments.h"
+#include "core/edit/session.h"
+#include "core/io/lattice/shape_io.h"
 #include "tests/compress_fixture.h"
 
 using namespace sublift;

@@ -1,4 +1,4 @@
-// The papers' experiments (core/experiments.h, docs/experiments.md): the noise generator, the
+// The papers' experiments (core/analysis/experiments.h, docs/experiments.md): the noise generator, the
 // error measures, the properties every scheme must show (a pure refinement has zero wavelets,
 // fraction 1 reconstructs exactly) and what the papers report (001 sec. 5, 000 Table 1), plus
 // `sublift-cli experiment` end to end.
@@ -8,11 +8,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "core/complex_build.h"
-#include "core/errors.h"
-#include "core/experiments.h"
-#include "core/parallel.h"
-#include "core/shapes.h"
+#include "core/complex/complex_build.h"
+#include "core/base/errors.h"
+#include "core/analysis/experiments.h"
+#include "core/base/parallel.h"
+#include "core/complex/shapes.h"
 #include "tests/cli_run.h"
 
 using namespace sublift;

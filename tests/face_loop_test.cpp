@@ -2,7 +2,7 @@
 
 #include <random>
 
-#include "core/face_loop.h"
+#include "core/complex/face_loop.h"
 
 using namespace sublift;
 

@@ -3,11 +3,11 @@
 // the surface scheme applied to that boundary mesh.
 #include <gtest/gtest.h>
 
-#include "core/complex_build.h"
-#include "core/hierarchy.h"
-#include "core/mesh_import.h"
-#include "core/refine.h"
-#include "core/shapes.h"
+#include "core/complex/complex_build.h"
+#include "core/multires/hierarchy.h"
+#include "core/io/mesh/mesh_import.h"
+#include "core/complex/refine.h"
+#include "core/complex/shapes.h"
 #include "tests/test_lattices.h"
 #include "tests/test_shapes.h"
 

@@ -17,13 +17,13 @@
 #include <string>
 #include <vector>
 
-#include "core/box_lattice.h"
-#include "core/errors.h"
-#include "core/ffd.h"
-#include "core/hierarchy.h"
-#include "core/mesh_import.h"
-#include "core/session.h"
-#include "core/shape_io.h"
+#include "core/ffd/box_lattice.h"
+#include "core/base/errors.h"
+#include "core/ffd/ffd.h"
+#include "core/multires/hierarchy.h"
+#include "core/io/mesh/mesh_import.h"
+#include "core/edit/session.h"
+#include "core/io/lattice/shape_io.h"
 #include "tests/test_lattices.h"
 
 namespace sublift {

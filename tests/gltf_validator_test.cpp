@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/model.h"
+#include "core/io/model/model.h"
 #include "tests/io_test_util.h"
 #include "tests/run_process.h"
 

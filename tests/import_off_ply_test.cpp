@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/errors.h"
-#include "core/mesh_import.h"
+#include "core/base/errors.h"
+#include "core/io/mesh/mesh_import.h"
 #include "tests/test_util.h"
 
 using namespace sublift;

@@ -1,5 +1,5 @@
-// Exact inner products of subdivision scaling functions (paper 004 sec. 5; core/inner_products.h).
-#include "core/inner_products.h"
+// Exact inner products of subdivision scaling functions (paper 004 sec. 5; core/analysis/inner_products.h).
+#include "core/analysis/inner_products.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "core/errors.h"
+#include "core/base/errors.h"
 
 namespace {
 

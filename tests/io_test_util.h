@@ -1,5 +1,5 @@
 #pragma once
-#include "core/face_loop.h"
+#include "core/complex/face_loop.h"
 // Helpers for the file-format tests: temporary folders, error capture and comparisons of
 // complexes that do not depend on edge or face numbering.
 #include <algorithm>
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "core/complex.h"
-#include "core/errors.h"
+#include "core/complex/complex.h"
+#include "core/base/errors.h"
 
 namespace sublift::testing {
 

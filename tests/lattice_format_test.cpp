@@ -2,10 +2,10 @@
 // line it comes from), and exact round trips of positions, cells and feature dims.
 #include <gtest/gtest.h>
 
-#include "core/complex_build.h"
-#include "core/file_io.h"
-#include "core/lattice_format.h"
-#include "core/refine.h"
+#include "core/complex/complex_build.h"
+#include "core/base/file_io.h"
+#include "core/io/lattice/lattice_format.h"
+#include "core/complex/refine.h"
 #include "tests/io_test_util.h"
 
 using namespace sublift;

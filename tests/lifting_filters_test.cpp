@@ -5,8 +5,8 @@
 
 #include <map>
 
-#include "core/hierarchy.h"
-#include "core/shapes.h"
+#include "core/multires/hierarchy.h"
+#include "core/complex/shapes.h"
 
 using namespace sublift;
 

@@ -1,4 +1,4 @@
-// Limit stencils and limit normals (core/limit.h): exact rational masks where the scheme is a
+// Limit stencils and limit normals (core/multires/limit.h): exact rational masks where the scheme is a
 // B-spline, eigenvector stencils elsewhere, checked against the engine's own refinement, against
 // OpenSubdiv's limit stencils on a regular torus and against heavily refined normals.
 #include <gtest/gtest.h>
@@ -16,11 +16,11 @@
 #include <random>
 #include <vector>
 
-#include "core/complex_build.h"
-#include "core/hierarchy.h"
-#include "core/limit.h"
-#include "core/mesh_import.h"
-#include "core/shapes.h"
+#include "core/complex/complex_build.h"
+#include "core/multires/hierarchy.h"
+#include "core/multires/limit.h"
+#include "core/io/mesh/mesh_import.h"
+#include "core/complex/shapes.h"
 #include "tests/mesh_fixtures.h"
 
 namespace sublift {

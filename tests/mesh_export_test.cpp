@@ -4,10 +4,10 @@
 
 #include <gtest/gtest.h>
 
-#include "core/errors.h"
-#include "core/file_io.h"
-#include "core/mesh_export.h"
-#include "core/mesh_import.h"
+#include "core/base/errors.h"
+#include "core/base/file_io.h"
+#include "core/io/mesh/mesh_export.h"
+#include "core/io/mesh/mesh_import.h"
 
 using namespace sublift;
 

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <vector>
 
-#include "core/csr.h"
+#include "core/base/csr.h"
 
 namespace sublift::fixtures {
 

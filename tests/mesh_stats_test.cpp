@@ -1,8 +1,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/mesh_stats.h"
-#include "core/shapes.h"
+#include "core/analysis/mesh_stats.h"
+#include "core/complex/shapes.h"
 #include "tests/test_util.h"
 
 using namespace sublift;

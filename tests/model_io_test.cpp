@@ -1,4 +1,4 @@
-// Model import/export for FFD (core/model.h): glTF round trips on the shared sample models
+// Model import/export for FFD (core/io/model/model.h): glTF round trips on the shared sample models
 // (deform by a known map, export, re-import: positions moved, everything else unchanged, checked
 // against the test's own reading of the files with plain tinygltf), the invalid and hostile glTF
 // corpus, the file-access lock-down, refusals, and OBJ/PLY/OFF rewrites of the original bytes.
@@ -14,9 +14,9 @@
 
 #include <tiny_gltf.h>
 
-#include "core/errors.h"
-#include "core/file_io.h"
-#include "core/model.h"
+#include "core/base/errors.h"
+#include "core/base/file_io.h"
+#include "core/io/model/model.h"
 #include "tests/io_test_util.h"
 
 namespace {

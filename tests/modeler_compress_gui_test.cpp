@@ -13,7 +13,7 @@
 #include <fstream>
 #include <string>
 
-#include "core/project_io.h"
+#include "core/io/project/project_io.h"
 #include "tests/compress_fixture.h"
 #include "tests/gui_test_util.h"
 

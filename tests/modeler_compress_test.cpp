@@ -13,10 +13,10 @@
 
 #include "app/modeler_controller.h"
 #include "app/script_runner.h"
-#include "core/compress.h"
-#include "core/errors.h"
-#include "core/limit.h"
-#include "core/project_io.h"
+#include "core/analysis/compress.h"
+#include "core/base/errors.h"
+#include "core/multires/limit.h"
+#include "core/io/project/project_io.h"
 #include "tests/compress_fixture.h"
 
 #ifndef SUBLIFT_ASSETS_DIR

@@ -14,11 +14,11 @@
 #include "app/modeler_controller.h"
 #include "app/modeler_view.h"
 #include "app/script_runner.h"
-#include "core/basis.h"
-#include "core/errors.h"
-#include "core/model.h"
-#include "core/limit.h"
-#include "core/picking.h"
+#include "core/multires/basis.h"
+#include "core/base/errors.h"
+#include "core/io/model/model.h"
+#include "core/multires/limit.h"
+#include "core/edit/picking.h"
 #include "render/headless_context.h"
 #include "render/net_renderer.h"
 #include "render/viewport_renderer.h"
@@ -706,7 +706,7 @@ namespace sublift {
 namespace {
 
 // FFD mode (issue 6): a model loaded with no lattice open is wrapped in a 4x4x4 box lattice and
-// bound; a lattice drag moves it exactly as core/ffd.h's deform of the same binding does, undo
+// bound; a lattice drag moves it exactly as core/ffd/ffd.h's deform of the same binding does, undo
 // brings it back bit for bit, an unbound model stays put, topology changes are refused while
 // bound, and a dirty surface is not replaced.
 TEST(ModelerFfdTest, ModelFollowsLatticeEditsAndUndo) {

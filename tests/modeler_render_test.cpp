@@ -14,8 +14,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/errors.h"
-#include "core/picking.h"
+#include "core/base/errors.h"
+#include "core/edit/picking.h"
 #include "render/camera.h"
 #include "render/headless_context.h"
 #include "render/limit_surface_renderer.h"

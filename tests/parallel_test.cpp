@@ -3,10 +3,10 @@
 #include <atomic>
 #include <vector>
 
-#include "core/complex_build.h"
-#include "core/hierarchy.h"
-#include "core/parallel.h"
-#include "core/shapes.h"
+#include "core/complex/complex_build.h"
+#include "core/multires/hierarchy.h"
+#include "core/base/parallel.h"
+#include "core/complex/shapes.h"
 #include "tests/test_shapes.h"
 
 using namespace sublift;

@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
-#include "core/complex_build.h"
-#include "core/hierarchy.h"
-#include "core/mesh_import.h"
+#include "core/complex/complex_build.h"
+#include "core/multires/hierarchy.h"
+#include "core/io/mesh/mesh_import.h"
 #include "tests/mesh_fixtures.h"
 #include "tests/osd_refiner.h"
 

@@ -10,7 +10,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/picking.h"
+#include "core/edit/picking.h"
 
 namespace sublift {
 namespace {

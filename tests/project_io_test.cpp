@@ -6,11 +6,11 @@
 
 #include <gtest/gtest.h>
 
-#include "core/complex_build.h"
-#include "core/file_io.h"
-#include "core/lattice_format.h"
-#include "core/project_io.h"
-#include "core/shapes.h"
+#include "core/complex/complex_build.h"
+#include "core/base/file_io.h"
+#include "core/io/lattice/lattice_format.h"
+#include "core/io/project/project_io.h"
+#include "core/complex/shapes.h"
 #include "tests/io_test_util.h"
 
 using namespace sublift;

@@ -5,11 +5,11 @@
 
 #include <cmath>
 
-#include "core/compress.h"
-#include "core/complex_build.h"
-#include "core/hierarchy.h"
-#include "core/mesh_import.h"
-#include "core/shapes.h"
+#include "core/analysis/compress.h"
+#include "core/complex/complex_build.h"
+#include "core/multires/hierarchy.h"
+#include "core/io/mesh/mesh_import.h"
+#include "core/complex/shapes.h"
 #include "tests/test_lattices.h"
 #include "tests/test_shapes.h"
 

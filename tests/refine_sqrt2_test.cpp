@@ -1,4 +1,4 @@
-// sqrt(2) refinement (core/refine_sqrt2.h): closed-form counts, Euler characteristic, validate()
+// sqrt(2) refinement (core/complex/refine_sqrt2.h): closed-form counts, Euler characteristic, validate()
 // and orientation on every level, 45-degree rotated odd levels, curves kept at odd and refined
 // at even levels, and the two-step property checked against the engine's 1-to-4 refine() as an
 // independent peer (vertex correspondence found from adjacency, not from the child arrays).
@@ -11,12 +11,12 @@
 #include <utility>
 #include <vector>
 
-#include "core/complex_build.h"
-#include "core/errors.h"
-#include "core/refine.h"
-#include "core/refine_sqrt2.h"
-#include "core/shape_io.h"
-#include "core/shapes.h"
+#include "core/complex/complex_build.h"
+#include "core/base/errors.h"
+#include "core/complex/refine.h"
+#include "core/complex/refine_sqrt2.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/complex/shapes.h"
 #include "tests/mesh_fixtures.h"
 
 using namespace sublift;

@@ -2,10 +2,10 @@
 // symmetry, class ordering, and type-n cells where paper 000 says so.
 #include <gtest/gtest.h>
 
-#include "core/complex_build.h"
-#include "core/errors.h"
-#include "core/refine.h"
-#include "core/shapes.h"
+#include "core/complex/complex_build.h"
+#include "core/base/errors.h"
+#include "core/complex/refine.h"
+#include "core/complex/shapes.h"
 #include "tests/test_lattices.h"
 
 using namespace sublift;

@@ -1,4 +1,4 @@
-// 1-to-4 triangle refinement (core/refine_tri.h): closed-form counts, Euler characteristic,
+// 1-to-4 triangle refinement (core/complex/refine_tri.h): closed-form counts, Euler characteristic,
 // validate() and consistent orientation over several levels on closed and open meshes; the
 // documented numbering (midpoints, halves, inner edges, child faces) checked against positions
 // computed from it; feature dims inherited (boundary, OBJ `t crease` / `t corner` tags); errors
@@ -21,11 +21,11 @@
 #include <utility>
 #include <vector>
 
-#include "core/complex_build.h"
-#include "core/errors.h"
-#include "core/refine_tri.h"
-#include "core/shape_io.h"
-#include "core/shapes.h"
+#include "core/complex/complex_build.h"
+#include "core/base/errors.h"
+#include "core/complex/refine_tri.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/complex/shapes.h"
 #include "tests/mesh_fixtures.h"
 #include "tests/osd_refiner.h"
 

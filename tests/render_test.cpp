@@ -23,8 +23,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
-#include "core/errors.h"
-#include "core/surface_mesh.h"
+#include "core/base/errors.h"
+#include "core/base/surface_mesh.h"
 #include "render/camera.h"
 #include "render/headless_context.h"
 #include "render/headless_render.h"

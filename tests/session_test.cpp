@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "core/complex_build.h"
-#include "core/errors.h"
-#include "core/hierarchy.h"
-#include "core/session.h"
-#include "core/shape_io.h"
-#include "core/shapes.h"
+#include "core/complex/complex_build.h"
+#include "core/base/errors.h"
+#include "core/multires/hierarchy.h"
+#include "core/edit/session.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/complex/shapes.h"
 #include "tests/test_shapes.h"
 
 namespace sublift {

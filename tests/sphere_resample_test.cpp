@@ -1,4 +1,4 @@
-// Resampling onto a subdivided octahedron (core/sphere_resample.h, `sublift-cli resample-sphere`):
+// Resampling onto a subdivided octahedron (core/analysis/sphere_resample.h, `sublift-cli resample-sphere`):
 // a cube against the analytic ray-plane intersection, an icosphere against its discretisation
 // error, a torus (not star-shaped: farthest hit kept), an open cube (misses filled), the output's
 // topology against refine_tri^J of the octahedron (what `analyze --base` rebuilds), the CLI's
@@ -19,12 +19,12 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/connectivity_match.h"
-#include "core/errors.h"
-#include "core/refine_tri.h"
-#include "core/shape_io.h"
-#include "core/shapes.h"
-#include "core/sphere_resample.h"
+#include "core/complex/connectivity_match.h"
+#include "core/base/errors.h"
+#include "core/complex/refine_tri.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/complex/shapes.h"
+#include "core/analysis/sphere_resample.h"
 #include "tests/cli_run.h"
 #include "tests/io_test_util.h"
 

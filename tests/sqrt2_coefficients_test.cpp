@@ -8,8 +8,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "core/errors.h"
-#include "core/sqrt2_coefficients.h"
+#include "core/base/errors.h"
+#include "core/schemes/sqrt2/sqrt2_coefficients.h"
 #include "tests/cli_run.h"
 
 namespace sublift {

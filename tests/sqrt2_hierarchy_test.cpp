@@ -12,16 +12,16 @@
 #include <string>
 #include <vector>
 
-#include "core/compress.h"
-#include "core/basis.h"
-#include "core/complex_build.h"
-#include "core/errors.h"
-#include "core/hierarchy.h"
-#include "core/project_io.h"
-#include "core/refine_sqrt2.h"
-#include "core/shape_io.h"
-#include "core/shapes.h"
-#include "core/sqrt2_transform.h"
+#include "core/analysis/compress.h"
+#include "core/multires/basis.h"
+#include "core/complex/complex_build.h"
+#include "core/base/errors.h"
+#include "core/multires/hierarchy.h"
+#include "core/io/project/project_io.h"
+#include "core/complex/refine_sqrt2.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/complex/shapes.h"
+#include "core/schemes/sqrt2/sqrt2_transform.h"
 #include "tests/io_test_util.h"
 
 using namespace sublift;

@@ -1,4 +1,4 @@
-// sqrt(2) wavelet transform (core/sqrt2_transform.h): interpolation and the eq. 1 / eq. 11 rules
+// sqrt(2) wavelet transform (core/schemes/sqrt2/sqrt2_transform.h): interpolation and the eq. 1 / eq. 11 rules
 // recomputed here from the fine complex's adjacency, perfect reconstruction (float and integer)
 // on closed, open, creased and polygon bases over levels 1..4, analysis of a pure refinement,
 // and near-orthogonality of the lifted wavelet to its 12 scaling functions (001 eq. 5-9).
@@ -12,12 +12,13 @@
 #include <string>
 #include <vector>
 
-#include "core/complex_build.h"
+#include "core/complex/complex_build.h"
+#include "tests/test_shapes.h"
 #include "core/engine/executor.h"
-#include "core/refine_sqrt2.h"
-#include "core/shape_io.h"
-#include "core/shapes.h"
-#include "core/sqrt2_transform.h"
+#include "core/complex/refine_sqrt2.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/complex/shapes.h"
+#include "core/schemes/sqrt2/sqrt2_transform.h"
 
 using namespace sublift;
 
@@ -70,13 +71,6 @@ const Chain& asset_chain(const std::string& name) {
   return it->second;
 }
 
-std::vector<double> random_values(std::size_t n, unsigned seed, bool integer) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<double> x(n);
-  for (double& v : x) v = integer ? std::round(1000.0 * u(rng)) : u(rng);
-  return x;
-}
 
 bool is_curve(const Complex& c, std::uint32_t e) { return c.edge_dim[e] <= 1 || c.edge_faces.size(e) != 2; }
 
@@ -110,11 +104,6 @@ std::set<std::uint32_t> phi_set(const Complex& fine, std::uint32_t fp) {
   return out;
 }
 
-double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
-  double m = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
-  return m;
-}
 
 // Zero wavelets on a regular torus: old vertices kept exactly, face points = 5/16 corners -
 // 1/32 outer neighbours (eq. 1 with n = 4), at a keep step (0 -> 1) and a curve step (1 -> 2).
@@ -125,7 +114,7 @@ TEST(Sqrt2Transform, RegularFacePointsFollowEq1) {
     const Complex& fine = ch.levels[j + 1];
     const int channels = 2;
     std::vector<double> x(std::size_t(fine.num_vertices) * channels, 0.0);
-    const auto coarse = random_values(std::size_t(t.transition.num_coarse) * channels, 7 + j, false);
+    const auto coarse = sublift::testing::random_coefficients(std::size_t(t.transition.num_coarse) * channels, 7 + j, false);
     std::copy(coarse.begin(), coarse.end(), x.begin());
     sqrt2_synthesize(t, x.data(), channels);
     for (std::size_t i = 0; i < coarse.size(); ++i) ASSERT_EQ(x[i], coarse[i]);
@@ -160,7 +149,7 @@ TEST(Sqrt2Transform, CurvePointsFollowEq11) {
       const Complex& fine = ch.levels[j + 1];
       const Sqrt2Transition& t = ch.transitions[j];
       std::vector<double> x(fine.num_vertices, 0.0);
-      const auto c = random_values(t.transition.num_coarse, 11 + j, false);
+      const auto c = sublift::testing::random_coefficients(t.transition.num_coarse, 11 + j, false);
       std::copy(c.begin(), c.end(), x.begin());
       sqrt2_synthesize(t, x.data(), 1);
       const std::uint32_t first_face_point = ch.children[j].first_face_point;
@@ -217,7 +206,7 @@ TEST(Sqrt2Transform, BoundaryFacePointsAverageInnerCorners) {
   for (std::uint32_t e = 0; e < coarse.num_edges(); ++e)
     if (is_curve(coarse, e)) on_curve[coarse.edge_verts[2 * e]] = on_curve[coarse.edge_verts[2 * e + 1]] = true;
   std::vector<double> x(fine.num_vertices, 0.0);
-  const auto c = random_values(t.transition.num_coarse, 3, false);
+  const auto c = sublift::testing::random_coefficients(t.transition.num_coarse, 3, false);
   std::copy(c.begin(), c.end(), x.begin());
   sqrt2_synthesize(t, x.data(), 1);
   int partial = 0;
@@ -250,7 +239,7 @@ TEST(Sqrt2Transform, InnerWaveletsLeaveCurvesAlone) {
       const Complex& coarse = ch.levels[j];
       const Sqrt2Transition& t = ch.transitions[j];
       const std::uint32_t first_face_point = ch.children[j].first_face_point;
-      std::vector<double> x = random_values(t.transition.num_fine, 40 + j, false);
+      std::vector<double> x = sublift::testing::random_coefficients(t.transition.num_fine, 40 + j, false);
       std::fill(x.begin(), x.begin() + first_face_point, 0.0);  // face-point wavelets only
       sqrt2_synthesize(t, x.data(), 1);
       for (std::uint32_t e = 0; e < coarse.num_edges(); ++e)
@@ -298,7 +287,7 @@ TEST(Sqrt2Transform, PerfectReconstruction) {
       for (bool integer : {false, true}) {
         const int channels = 3;
         const std::size_t n = std::size_t(ch.levels[J].num_vertices) * channels;
-        const auto data = random_values(n, 100 * J + integer, integer);
+        const auto data = sublift::testing::random_coefficients(n, 100 * J + integer, integer);
         std::vector<double> x = data;
         for (int j = J - 1; j >= 0; --j) sqrt2_analyze(ch.transitions[j], x.data(), channels, integer);
         const std::vector<double> coefficients = x;
@@ -307,11 +296,11 @@ TEST(Sqrt2Transform, PerfectReconstruction) {
           EXPECT_EQ(x, data) << c.name << " J=" << J;
           for (double v : coefficients) ASSERT_EQ(v, std::round(v)) << c.name;
         } else {
-          EXPECT_LT(max_abs_diff(x, data), 1e-12) << c.name << " J=" << J;
+          EXPECT_LT(sublift::testing::max_abs_diff(x, data), 1e-12) << c.name << " J=" << J;
         }
         for (int j = J - 1; j >= 0; --j) sqrt2_analyze(ch.transitions[j], x.data(), channels, integer);
         if (integer) EXPECT_EQ(x, coefficients) << c.name << " J=" << J;
-        else EXPECT_LT(max_abs_diff(x, coefficients), 1e-12) << c.name << " J=" << J;
+        else EXPECT_LT(sublift::testing::max_abs_diff(x, coefficients), 1e-12) << c.name << " J=" << J;
       }
   }
 }
@@ -322,7 +311,7 @@ TEST(Sqrt2Transform, PureRefinementHasZeroWavelets) {
     const Chain& ch = c.ch;
     const std::size_t n0 = ch.levels[0].num_vertices;
     std::vector<double> x(ch.levels[4].num_vertices, 0.0);
-    const auto coarse = random_values(n0, 5, false);
+    const auto coarse = sublift::testing::random_coefficients(n0, 5, false);
     std::copy(coarse.begin(), coarse.end(), x.begin());
     for (int j = 0; j < 4; ++j) sqrt2_synthesize(ch.transitions[j], x.data(), 1);
     for (int j = 3; j >= 0; --j) sqrt2_analyze(ch.transitions[j], x.data(), 1);

@@ -6,10 +6,10 @@
 
 #include <cmath>
 
-#include "core/complex_build.h"
-#include "core/hierarchy.h"
-#include "core/mesh_import.h"
-#include "core/shapes.h"
+#include "core/complex/complex_build.h"
+#include "core/multires/hierarchy.h"
+#include "core/io/mesh/mesh_import.h"
+#include "core/complex/shapes.h"
 #include "tests/test_shapes.h"
 
 using namespace sublift;

@@ -11,10 +11,10 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
-#include "core/file_io.h"
-#include "core/mesh_import.h"
-#include "core/shapes.h"
-#include "core/surface_export.h"
+#include "core/base/file_io.h"
+#include "core/io/mesh/mesh_import.h"
+#include "core/complex/shapes.h"
+#include "core/io/model/surface_export.h"
 #include "tests/io_test_util.h"
 
 using namespace sublift;

@@ -3,7 +3,7 @@
 // face loops of a hex block's boundary.
 #include <vector>
 
-#include "core/complex_build.h"
+#include "core/complex/complex_build.h"
 
 namespace sublift::testing {
 

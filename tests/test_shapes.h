@@ -1,11 +1,12 @@
 #pragma once
 // Helpers for engine tests: edge lookup by end vertices, random values.
+#include <cmath>
 #include <map>
 #include <random>
 #include <utility>
 #include <vector>
 
-#include "core/complex.h"
+#include "core/complex/complex.h"
 
 namespace sublift::testing {
 
@@ -30,6 +31,21 @@ inline std::vector<double> random_values(std::size_t n, std::uint64_t seed, doub
   std::vector<double> v(n);
   for (double& x : v) x = u(rng);
   return v;
+}
+
+/// Uniform values in [-1, 1] (integer: rounded multiples of 1/1000 of them, times 1000).
+inline std::vector<double> random_coefficients(std::size_t n, unsigned seed, bool integer) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> x(n);
+  for (double& v : x) v = integer ? std::round(1000.0 * u(rng)) : u(rng);
+  return x;
+}
+
+inline double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
+  double m = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
+  return m;
 }
 
 }  // namespace sublift::testing

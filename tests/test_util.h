@@ -2,8 +2,8 @@
 // Small helpers for tests that build files in code.
 #include <string>
 
-#include "core/errors.h"
-#include "core/mesh_import.h"
+#include "core/base/errors.h"
+#include "core/io/mesh/mesh_import.h"
 
 namespace sublift::testing {
 

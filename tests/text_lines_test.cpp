@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "core/errors.h"
-#include "core/text_lines.h"
+#include "core/base/errors.h"
+#include "core/base/text_lines.h"
 
 using namespace sublift;
 

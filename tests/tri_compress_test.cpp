@@ -6,10 +6,10 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "core/compress.h"
-#include "core/hierarchy.h"
-#include "core/mesh_import.h"
-#include "core/sphere_resample.h"
+#include "core/analysis/compress.h"
+#include "core/multires/hierarchy.h"
+#include "core/io/mesh/mesh_import.h"
+#include "core/analysis/sphere_resample.h"
 
 using namespace sublift;
 

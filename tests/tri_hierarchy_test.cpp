@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "core/complex_build.h"
-#include "core/errors.h"
-#include "core/hierarchy.h"
-#include "core/project_io.h"
-#include "core/refine_tri.h"
-#include "core/shape_io.h"
-#include "core/tri_rules.h"
+#include "core/complex/complex_build.h"
+#include "core/base/errors.h"
+#include "core/multires/hierarchy.h"
+#include "core/io/project/project_io.h"
+#include "core/complex/refine_tri.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/schemes/tri/tri_rules.h"
 
 using namespace sublift;
 

@@ -1,4 +1,4 @@
-// Linear, butterfly and Loop stencils over the 1-to-4 split (core/tri_rules.h), against exact
+// Linear, butterfly and Loop stencils over the 1-to-4 split (core/schemes/tri/tri_rules.h), against exact
 // properties and two peers:
 //   Linear     midpoints bit for bit; old vertices kept bit for bit (Linear and Butterfly)
 //   Butterfly  == OpenMesh's ModifiedButterflyT vertex for vertex, closed and open meshes, one
@@ -32,12 +32,12 @@
 #include <utility>
 #include <vector>
 
-#include "core/complex_build.h"
-#include "core/errors.h"
-#include "core/refine_tri.h"
-#include "core/shape_io.h"
-#include "core/shapes.h"
-#include "core/tri_rules.h"
+#include "core/complex/complex_build.h"
+#include "core/base/errors.h"
+#include "core/complex/refine_tri.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/complex/shapes.h"
+#include "core/schemes/tri/tri_rules.h"
 #include "tests/mesh_fixtures.h"
 #include "tests/test_shapes.h"
 

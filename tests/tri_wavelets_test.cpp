@@ -1,18 +1,18 @@
-// Exact face-by-face inner products (core/tri_gram.h) and the k-disc wavelets of paper 004
-// (core/tri_wavelets.h).
+// Exact face-by-face inner products (core/schemes/tri/tri_gram.h) and the k-disc wavelets of paper 004
+// (core/schemes/tri/tri_wavelets.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <array>
 #include <map>
 
-#include "core/complex_build.h"
-#include "core/inner_products.h"
-#include "core/refine_tri.h"
-#include "core/tri_gram.h"
-#include "core/tri_local.h"
-#include "core/tri_rules.h"
-#include "core/tri_wavelets.h"
+#include "core/complex/complex_build.h"
+#include "core/analysis/inner_products.h"
+#include "core/complex/refine_tri.h"
+#include "core/schemes/tri/tri_gram.h"
+#include "core/schemes/tri/tri_local.h"
+#include "core/schemes/tri/tri_rules.h"
+#include "core/schemes/tri/tri_wavelets.h"
 
 using namespace sublift;
 

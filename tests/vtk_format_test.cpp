@@ -7,11 +7,11 @@
 
 #include <gtest/gtest.h>
 
-#include "core/complex_build.h"
-#include "core/file_io.h"
-#include "core/lattice_format.h"
-#include "core/refine.h"
-#include "core/vtk_format.h"
+#include "core/complex/complex_build.h"
+#include "core/base/file_io.h"
+#include "core/io/lattice/lattice_format.h"
+#include "core/complex/refine.h"
+#include "core/io/lattice/vtk_format.h"
 #include "tests/io_test_util.h"
 
 using namespace sublift;

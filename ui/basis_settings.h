@@ -3,7 +3,7 @@
 // and how the modeler shows it. The one struct that carries a basis request from the Basis
 // panel (ui/modeler_panels.h) through ModelerState and app/basis_view_state.h to core's
 // basis_function(). Plain data: no GL, no ImGui.
-#include "core/basis.h"
+#include "core/multires/basis.h"
 
 namespace sublift {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/hierarchy.h"
+#include "core/multires/hierarchy.h"
 #include "ui/basis_settings.h"
 #include "ui/viewport_input.h"
 

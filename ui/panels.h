@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <string>
 
-#include "core/mesh_stats.h"
+#include "core/analysis/mesh_stats.h"
 #include "ui/viewport_input.h"
 
 namespace sublift {

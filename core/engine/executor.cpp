@@ -9,8 +9,8 @@
 #include <type_traits>
 #include <unordered_map>
 
-#include "core/errors.h"
-#include "core/parallel.h"
+#include "core/base/errors.h"
+#include "core/base/parallel.h"
 
 namespace sublift {
 

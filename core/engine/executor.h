@@ -11,8 +11,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/complex.h"
-#include "core/csr.h"
+#include "core/complex/complex.h"
+#include "core/base/csr.h"
 #include "core/engine/sparse_delta.h"
 #include "core/engine/transition.h"
 

@@ -3,8 +3,8 @@
 // transition to it. The hierarchy calls the builder its scheme's registry entry names.
 #include <vector>
 
-#include "core/child_sites.h"
-#include "core/complex.h"
+#include "core/complex/child_sites.h"
+#include "core/complex/complex.h"
 #include "core/engine/transition.h"
 
 namespace sublift {

@@ -24,7 +24,7 @@
 #include <variant>
 #include <vector>
 
-#include "core/csr.h"
+#include "core/base/csr.h"
 
 namespace sublift {
 
@@ -34,7 +34,7 @@ struct WeightedStep {
   std::vector<double> weights;        // aligned with sources.items
 };
 
-/// Incidence rows of the parent complex (core/complex.h) a centroid group reads.
+/// Incidence rows of the parent complex (core/complex/complex.h) a centroid group reads.
 enum class Incidence : std::uint8_t {
   EdgeVerts,  // flat pairs, rows of two
   Faces, FaceEdges, CellVerts, CellEdges, CellFaces,

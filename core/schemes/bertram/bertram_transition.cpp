@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "core/refine.h"
+#include "core/complex/refine.h"
 
 namespace sublift {
 namespace {

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/complex.h"
+#include "core/complex/complex.h"
 #include "core/engine/level_build.h"
 #include "core/engine/transition.h"
 

@@ -1,7 +1,7 @@
 #include "core/schemes/sqrt2/sqrt2_level.h"
 
-#include "core/refine_sqrt2.h"
-#include "core/sqrt2_transform.h"
+#include "core/complex/refine_sqrt2.h"
+#include "core/schemes/sqrt2/sqrt2_transform.h"
 
 namespace sublift {
 namespace {

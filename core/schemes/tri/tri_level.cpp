@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/refine_tri.h"
-#include "core/tri_transform.h"
+#include "core/complex/refine_tri.h"
+#include "core/schemes/tri/tri_transform.h"
 
 namespace sublift {
 

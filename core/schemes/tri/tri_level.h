@@ -2,7 +2,7 @@
 // One level of a triangle-scheme hierarchy (paper 004): the 1-to-4 split, the k-disc wavelet
 // transition, the sites of the edge midpoints and the wavelets' exact norms.
 #include "core/engine/level_build.h"
-#include "core/tri_rules.h"
+#include "core/schemes/tri/tri_rules.h"
 
 namespace sublift {
 

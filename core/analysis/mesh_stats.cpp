@@ -1,0 +1,143 @@
+#include "core/analysis/mesh_stats.h"
+
+#include <algorithm>
+#include <numeric>
+#include <vector>
+
+#include <glm/common.hpp>
+
+namespace sublift {
+namespace {
+
+struct UnionFind {
+  std::vector<std::uint32_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  std::uint32_t find(std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(std::uint32_t a, std::uint32_t b) { parent[find(a)] = find(b); }
+};
+
+// One directed use of an edge by a face corner: edge from corner c to the next corner.
+struct HalfEdge {
+  std::uint64_t key;      // min(a,b) << 32 | max(a,b)
+  std::uint32_t corner;   // index into face_indices of the edge's start corner
+  bool forward;           // a < b
+};
+
+}  // namespace
+
+MeshStats compute_mesh_stats(const SurfaceMesh& mesh) {
+  MeshStats s;
+  const std::size_t nv = mesh.num_vertices();
+  const std::size_t nf = mesh.num_faces();
+  const std::size_t nc = mesh.face_indices.size();
+  s.vertices = nv;
+  s.faces = nf;
+
+  // next[c]: the corner after c in its face, so edge c runs face_indices[c] -> face_indices[next[c]].
+  std::vector<std::uint32_t> next(nc);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::uint32_t b = mesh.face_offsets[f], e = mesh.face_offsets[f + 1];
+    ++s.face_sizes[e - b];
+    for (std::uint32_t c = b; c < e; ++c) {
+      next[c] = c + 1 < e ? c + 1 : b;
+    }
+  }
+  std::vector<HalfEdge> half(nc);
+  for (std::uint32_t c = 0; c < nc; ++c) {
+    const std::uint64_t a = mesh.face_indices[c], b = mesh.face_indices[next[c]];
+    half[c] = {std::min(a, b) << 32 | std::max(a, b), c, a < b};
+  }
+  std::sort(half.begin(), half.end(), [](const HalfEdge& x, const HalfEdge& y) {
+    return x.key != y.key ? x.key < y.key : x.corner < y.corner;
+  });
+
+  std::vector<char> used(nv, 0);
+  for (std::uint32_t v : mesh.face_indices) used[v] = 1;
+  std::vector<std::uint32_t> valence(nv, 0);
+  UnionFind fans(nc);        // corners around a vertex joined across manifold edges
+  UnionFind parts(nv);       // vertices joined by edges
+  UnionFind boundary(nv);    // vertices joined by boundary edges
+  std::vector<char> on_boundary(nv, 0);
+  std::vector<char> nonmanifold_vertex(nv, 0);
+  for (std::size_t i = 0; i < half.size();) {
+    std::size_t j = i;
+    while (j < half.size() && half[j].key == half[i].key) ++j;
+    const std::size_t uses = j - i;
+    const auto a = static_cast<std::uint32_t>(half[i].key >> 32);
+    const auto b = static_cast<std::uint32_t>(half[i].key & 0xffffffffu);
+    ++s.edges;
+    ++valence[a];
+    ++valence[b];
+    parts.unite(a, b);
+    std::size_t fwd = 0;
+    for (std::size_t k = i; k < j; ++k) fwd += half[k].forward;
+    if (fwd > 1 || uses - fwd > 1) ++s.misoriented_edges;
+    if (uses == 1) {
+      ++s.boundary_edges;
+      boundary.unite(a, b);
+      on_boundary[a] = on_boundary[b] = 1;
+    } else if (uses == 2) {
+      // Join the two faces' corners at each end of the edge into one fan.
+      const std::uint32_t c0 = half[i].corner, c1 = half[i + 1].corner;
+      const std::uint32_t c0n = next[c0], c1n = next[c1];
+      for (std::uint32_t x : {c0, c0n})
+        for (std::uint32_t y : {c1, c1n})
+          if (mesh.face_indices[x] == mesh.face_indices[y]) fans.unite(x, y);
+    } else {
+      ++s.non_manifold_edges;
+      nonmanifold_vertex[a] = nonmanifold_vertex[b] = 1;
+    }
+    i = j;
+  }
+  // A manifold vertex has all its corners in one fan.
+  std::vector<std::uint32_t> fan_root(nv, UINT32_MAX);
+  for (std::uint32_t c = 0; c < nc; ++c) {
+    const std::uint32_t v = mesh.face_indices[c];
+    const std::uint32_t r = fans.find(c);
+    if (fan_root[v] == UINT32_MAX) fan_root[v] = r;
+    else if (fan_root[v] != r) nonmanifold_vertex[v] = 1;
+  }
+  std::vector<char> on_line(nv, 0);
+  s.polylines = mesh.num_polylines();
+  for (std::size_t l = 0; l < mesh.num_polylines(); ++l) {
+    const auto p = mesh.polyline(l);
+    s.polyline_segments += p.size() - 1;
+    s.closed_polylines += p.front() == p.back();
+    for (std::uint32_t v : p) on_line[v] = 1;
+  }
+  bool any_used = false;
+  s.components = 0;
+  s.boundary_loops = 0;
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    s.polyline_vertices += on_line[v];
+    if (!used[v]) {
+      s.isolated_vertices += !on_line[v];
+      continue;
+    }
+    ++s.used_vertices;
+    ++s.valences[valence[v]];
+    s.non_manifold_vertices += nonmanifold_vertex[v];
+    if (parts.find(v) == v) ++s.components;
+    if (on_boundary[v] && boundary.find(v) == v) ++s.boundary_loops;
+    const glm::dvec3& p = mesh.positions[v];
+    s.bbox_min = any_used ? glm::min(s.bbox_min, p) : p;
+    s.bbox_max = any_used ? glm::max(s.bbox_max, p) : p;
+    any_used = true;
+  }
+  for (int pass = 0; pass < 2 && !any_used; ++pass)  // no face: the polylines', else all vertices
+    for (std::uint32_t v = 0; v < nv; ++v) {
+      if (pass == 0 && !on_line[v]) continue;
+      const glm::dvec3& p = mesh.positions[v];
+      s.bbox_min = any_used ? glm::min(s.bbox_min, p) : p;
+      s.bbox_max = any_used ? glm::max(s.bbox_max, p) : p;
+      any_used = true;
+    }
+  s.euler_characteristic = static_cast<long long>(s.used_vertices) - static_cast<long long>(s.edges) +
+                           static_cast<long long>(s.faces);
+  return s;
+}
+
+}  // namespace sublift

@@ -1,0 +1,34 @@
+#include <algorithm>
+
+#include "core/base/import_report.h"
+
+namespace sublift {
+
+void ImportReport::add(const std::string& what, std::size_t line) {
+  auto it = std::find_if(warnings.begin(), warnings.end(),
+                         [&](const ImportWarning& w) { return w.what == what; });
+  if (it == warnings.end()) {
+    warnings.push_back({what, 0, {}});
+    it = warnings.end() - 1;
+  }
+  ++it->count;
+  if (line > 0 && it->first_lines.size() < kMaxLines) it->first_lines.push_back(line);
+}
+
+std::string ImportReport::format(const std::string& file) const {
+  std::string out;
+  for (const ImportWarning& w : warnings) {
+    out += file + ": warning: " + std::to_string(w.count) + " x " + w.what;
+    if (!w.first_lines.empty()) {
+      out += w.first_lines.size() == 1 ? " (line " : " (lines ";
+      for (std::size_t i = 0; i < w.first_lines.size(); ++i)
+        out += (i ? ", " : "") + std::to_string(w.first_lines[i]);
+      if (w.count > w.first_lines.size()) out += ", ...";
+      out += ")";
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace sublift

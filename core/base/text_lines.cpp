@@ -1,0 +1,87 @@
+#include "core/base/text_lines.h"
+
+#include <charconv>
+#include <cmath>
+
+#include "core/base/errors.h"
+
+namespace sublift {
+
+LineReader::LineReader(std::string_view text, std::string file, std::size_t max_line_length)
+    : text_(text), file_(std::move(file)), max_len_(max_line_length) {
+  if (text_.size() >= 3 && text_.substr(0, 3) == "\xEF\xBB\xBF") pos_ = 3;  // UTF-8 BOM
+}
+
+bool LineReader::next(std::string_view& line) {
+  if (pos_ >= text_.size()) return false;
+  ++line_;
+  std::size_t start = pos_;
+  std::size_t end = start;
+  while (end < text_.size() && text_[end] != '\n' && text_[end] != '\r') {
+    const unsigned char c = static_cast<unsigned char>(text_[end]);
+    // Control bytes other than tab/VT/FF never occur in a text mesh file: it is binary.
+    if (c < 0x20 && c != '\t' && c != '\v' && c != '\f')
+      throw InputError(file_, line_,
+                       "binary data in a text file (byte 0x" +
+                           std::string(1, "0123456789abcdef"[c >> 4]) +
+                           std::string(1, "0123456789abcdef"[c & 15]) + " at offset " +
+                           std::to_string(end) + ")");
+    ++end;
+    if (end - start > max_len_)
+      throw InputError(file_, line_,
+                       "line longer than " + std::to_string(max_len_) + " bytes");
+  }
+  line = text_.substr(start, end - start);
+  pos_ = end;
+  if (pos_ < text_.size() && text_[pos_] == '\r') ++pos_;           // CR or CRLF
+  if (pos_ < text_.size() && text_[pos_] == '\n') ++pos_;           // LF or the LF of CRLF
+  return true;
+}
+
+void split_tokens(std::string_view line, std::vector<std::string_view>& out) {
+  out.clear();
+  std::size_t i = 0;
+  const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f'; };
+  while (i < line.size()) {
+    while (i < line.size() && blank(line[i])) ++i;
+    std::size_t j = i;
+    while (j < line.size() && !blank(line[j])) ++j;
+    if (j > i) out.push_back(line.substr(i, j - i));
+    i = j;
+  }
+}
+
+bool next_tokens(LineReader& lines, std::vector<std::string_view>& tokens) {
+  std::string_view line;
+  while (lines.next(line)) {
+    if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+    split_tokens(line, tokens);
+    if (!tokens.empty()) return true;
+  }
+  return false;
+}
+
+std::optional<double> parse_double(std::string_view t) {
+  if (!t.empty() && t.front() == '+') t.remove_prefix(1);
+  double v = 0.0;
+  auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+  if (ec != std::errc() || p != t.data() + t.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+std::optional<std::int64_t> parse_int(std::string_view t) {
+  if (!t.empty() && t.front() == '+') t.remove_prefix(1);
+  std::int64_t v = 0;
+  auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+  if (ec != std::errc() || p != t.data() + t.size()) return std::nullopt;
+  return v;
+}
+
+std::string to_lower(std::string_view s) {
+  std::string r(s);
+  for (char& c : r)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return r;
+}
+
+}  // namespace sublift

@@ -1,0 +1,57 @@
+#pragma once
+// Building a Complex from what the files give: polygons, polylines or cells as face loops, plus
+// feature tags. Edges and shared faces are found here; feature dimensionalities follow the rules
+// of docs/features.md (boundaries become features automatically; tags add creases, corners and
+// inner feature surfaces).
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/complex/complex.h"
+#include "core/base/import_report.h"
+#include "core/base/surface_mesh.h"
+
+namespace sublift {
+
+/// User-tagged features, in vertex indices of the base.
+struct FeatureTags {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> crease_edges;  // dim 1 edges
+  std::vector<std::uint32_t> corner_vertices;                          // dim 0 vertices
+  std::vector<std::vector<std::uint32_t>> feature_faces;               // dim 2 faces (lattices)
+};
+
+/// Reads OpenSubdiv `t crease` (sharpness > 0, chains allowed) and `t corner` tags; other tags
+/// and zero-sharpness ones are itemised in `report` and ignored.
+FeatureTags feature_tags_from_obj(const std::vector<MeshTag>& tags, ImportReport& report);
+
+/// A surface complex (dim 2) from polygons. Throws TopologyError for a face of fewer than 3
+/// vertices, a repeated vertex in a face, an index out of range, or a crease tag naming two
+/// vertices that share no edge.
+Complex complex_from_polygons(std::uint32_t num_vertices, const Csr& faces, const FeatureTags& tags = {});
+
+/// The same from an imported mesh and its OBJ tags (unknown tags reported in `report`).
+Complex complex_from_surface_mesh(const SurfaceMesh& mesh, ImportReport* report = nullptr);
+
+/// A curve complex (dim 1) from polylines (each a chain of vertices; first == last closes it).
+Complex complex_from_polylines(std::uint32_t num_vertices, const Csr& polylines, const FeatureTags& tags = {});
+
+/// A volume complex (dim 3) from cells given as face loops: `cell_faces.row(c)` indexes
+/// `face_loops`; a face shared by two cells may be listed twice (either orientation) and is
+/// merged. Throws TopologyError for an unclosed cell (an edge not used by exactly two of its
+/// faces), a face of fewer than 3 vertices, or dangling indices.
+Complex complex_from_cells(std::uint32_t num_vertices, const Csr& face_loops, const Csr& cell_faces,
+                           const FeatureTags& tags = {});
+
+/// The feature dim a face, edge or vertex gets from topology alone, before tags lower it (faces
+/// need face_cells; edges need face dims set; vertices need edge dims set). Shared by
+/// assign_feature_dims and by writers that work out which tags reproduce a complex's dims.
+std::uint8_t untagged_face_dim(const Complex& c, std::uint32_t f);
+std::uint8_t untagged_edge_dim(const Complex& c, std::uint32_t e);
+std::uint8_t untagged_vertex_dim(const Complex& c, std::uint32_t v);
+
+/// Sets edge/face/vertex feature dims from topology and tags (see docs/features.md); called by
+/// the builders above, public for code that edits features.
+void assign_feature_dims(Complex& c, const FeatureTags& tags);
+
+}  // namespace sublift

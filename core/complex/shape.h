@@ -1,0 +1,18 @@
+#pragma once
+// Shape: what a curve, surface or lattice file gives the engine — a base complex, its vertex
+// positions (x, y, z per vertex, in the complex's vertex order, which is the file's order) and
+// the import report of repaired or ignored elements.
+#include <vector>
+
+#include "core/complex/complex.h"
+#include "core/base/import_report.h"
+
+namespace sublift {
+
+struct Shape {
+  Complex base;
+  std::vector<double> positions;  // 3 per vertex
+  ImportReport report;
+};
+
+}  // namespace sublift

@@ -1,0 +1,144 @@
+#include "core/io/lattice/shape_io.h"
+
+#include <algorithm>
+
+#include "core/complex/complex_build.h"
+#include "core/base/errors.h"
+#include "core/complex/feature_tags.h"
+#include "core/base/file_io.h"
+#include "core/io/lattice/lattice_format.h"
+#include "core/io/mesh/mesh_export.h"
+#include "core/io/mesh/mesh_import.h"
+#include "core/io/lattice/vtk_format.h"
+
+namespace sublift {
+namespace {
+
+Shape shape_from_mesh(const std::string& name, LoadedMesh loaded) {
+  Shape shape;
+  shape.report = std::move(loaded.report);
+  const SurfaceMesh& m = loaded.mesh;
+  shape.positions.reserve(3 * m.num_vertices());
+  for (const glm::dvec3& p : m.positions) shape.positions.insert(shape.positions.end(), {p.x, p.y, p.z});
+  try {
+    if (m.num_faces() > 0) {
+      if (m.num_polylines() > 0)
+        shape.report.add("polylines ignored: the file has faces, so it is a surface (tag creases with 't crease')", 0);
+      shape.base = complex_from_surface_mesh(m, &shape.report);
+    } else {
+      Csr lines;
+      lines.offsets = m.line_offsets;
+      lines.items = m.line_indices;
+      const FeatureTags tags = feature_tags_from_obj(m.tags, shape.report);
+      if (!tags.crease_edges.empty()) shape.report.add("crease tags ignored: every edge of a curve is a curve feature", 0);
+      FeatureTags corners;
+      corners.corner_vertices = tags.corner_vertices;
+      shape.base = complex_from_polylines(static_cast<std::uint32_t>(m.num_vertices()), lines, corners);
+    }
+  } catch (const TopologyError& e) {
+    throw InputError(name, 0, e.what());
+  }
+  return shape;
+}
+
+// Polylines covering every edge of a curve once: maximal chains through vertices on exactly
+// two edges, then the closed loops that remain (first vertex repeated at the end).
+void curve_polylines(const Complex& c, SurfaceMesh& m) {
+  const Csr ve = c.vertex_edges.rows() == c.num_vertices ? c.vertex_edges : [&] {
+    Csr e;
+    e.offsets.resize(c.num_edges() + 1);
+    for (std::uint32_t i = 0; i <= c.num_edges(); ++i) e.offsets[i] = 2 * i;
+    e.items = c.edge_verts;
+    return transpose(e, c.num_vertices);
+  }();
+  std::vector<char> done(c.num_edges(), 0);
+  std::vector<std::uint32_t> chain;
+  auto walk = [&](std::uint32_t v, std::uint32_t e) {
+    chain.assign(1, v);
+    for (;;) {
+      done[e] = 1;
+      v = c.edge_verts[2 * e] == v ? c.edge_verts[2 * e + 1] : c.edge_verts[2 * e];
+      chain.push_back(v);
+      if (ve.size(v) != 2) break;
+      const auto r = ve.row(v);
+      const std::uint32_t next = r[0] == e ? r[1] : r[0];
+      if (done[next]) break;
+      e = next;
+    }
+    m.add_polyline(chain);
+  };
+  for (std::uint32_t v = 0; v < c.num_vertices; ++v)
+    if (ve.size(v) != 2)
+      for (std::uint32_t e : ve.row(v))
+        if (!done[e]) walk(v, e);
+  for (std::uint32_t e = 0; e < c.num_edges(); ++e)
+    if (!done[e]) walk(c.edge_verts[2 * e], e);
+}
+
+}  // namespace
+
+Shape read_shape_from_memory(const std::string& name, const std::string& bytes) {
+  const std::string ext = file_extension(name);
+  if (ext == "lattice") return read_lattice(bytes, name);
+  if (ext == "vtk") return read_vtk(bytes, name);
+  if (ext == "obj" || ext == "off" || ext == "ply") return shape_from_mesh(name, import_surface_mesh_from_memory(name, bytes));
+  throw InputError(name, 0, "unsupported format '." + ext + "' (expected .obj, .off, .ply, .lattice or .vtk)");
+}
+
+Shape read_shape(const std::string& path) {
+  const std::string ext = file_extension(path);
+  if (ext != "lattice" && ext != "vtk" && ext != "obj" && ext != "off" && ext != "ply")
+    throw InputError(path, 0, "unsupported format '." + ext + "' (expected .obj, .off, .ply, .lattice or .vtk)");
+  return read_shape_from_memory(path, read_file_bytes(path));
+}
+
+std::string shape_output_problem(const std::string& path, int dim) {
+  const std::string ext = file_extension(path);
+  const std::string what = dim == 3 ? "lattice" : dim == 2 ? "surface" : "curve";
+  if (ext == "vtk") return "";
+  if (ext != "lattice" && ext != "obj" && ext != "off" && ext != "ply")
+    return "cannot write '." + ext + "' (expected .obj, .off, .ply, .lattice or .vtk)";
+  if (dim == 3 && ext != "lattice") return "a lattice cannot be written as ." + ext + "; use .lattice or .vtk";
+  if (dim != 3 && ext == "lattice") return "a .lattice holds volumes; write this " + what + " as .obj or .vtk";
+  if (dim == 1 && ext != "obj") return "a curve cannot be written as ." + ext + "; use .obj or .vtk";
+  return "";
+}
+
+std::vector<std::string> write_shape(const std::string& path, const Complex& c, std::span<const double> xyz) {
+  const std::string ext = file_extension(path);
+  std::vector<std::string> notes;
+  if (xyz.size() != 3 * static_cast<std::size_t>(c.num_vertices))
+    throw InputError(path, 0, "positions do not match the vertex count");
+  if (const std::string why = shape_output_problem(path, c.dim); !why.empty()) throw InputError(path, 0, why);
+  if (ext == "vtk") {
+    write_vtk(path, c, xyz);
+    return notes;
+  }
+  if (ext == "lattice") {
+    write_lattice(path, c, xyz);
+    return notes;
+  }
+  SurfaceMesh m;
+  m.positions.resize(c.num_vertices);
+  for (std::uint32_t v = 0; v < c.num_vertices; ++v) m.positions[v] = {xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]};
+  if (c.dim == 2) {
+    m.face_offsets = c.faces.offsets;
+    m.face_indices = c.faces.items;
+  } else {
+    curve_polylines(c, m);
+  }
+  const FeatureTags tags = derive_feature_tags(c);
+  // Sharpness 10: what OpenSubdiv treats as infinitely sharp; any sharpness > 0 is a crease here.
+  for (auto [a, b] : tags.crease_edges) m.tags.push_back({"crease", {a, b}, {10.0}, {}, 0});
+  for (std::uint32_t v : tags.corner_vertices) m.tags.push_back({"corner", {v}, {10.0}, {}, 0});
+  if (ext != "obj" && !m.tags.empty()) {
+    notes.push_back("." + ext + " cannot hold feature tags: " + std::to_string(tags.crease_edges.size()) +
+                    " crease edges and " + std::to_string(tags.corner_vertices.size()) +
+                    " corners not written (use .obj or .vtk)");
+    m.tags.clear();
+  }
+  write_surface_mesh(path, m);
+  return notes;
+}
+
+}  // namespace sublift

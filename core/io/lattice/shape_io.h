@@ -1,0 +1,30 @@
+#pragma once
+// Reading and writing any supported shape by extension: surfaces (.obj/.off/.ply through the
+// import layer), curves (.obj holding only `l` polylines), lattices (.lattice, .vtk; .vtk may
+// also hold a surface or curve). Output vertices are in the complex's order, which for a
+// refined level is refine.h's numbering.
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/complex/shape.h"
+
+namespace sublift {
+
+/// Reads `path` by extension into a base complex and positions. Throws InputError or IoError.
+Shape read_shape(const std::string& path);
+
+/// The same from memory; `name` picks the format by extension and names it in messages.
+Shape read_shape_from_memory(const std::string& name, const std::string& bytes);
+
+/// Writes complex `c` with positions `xyz` (3 per vertex) in the format of path's extension:
+/// dim 2 to .obj (faces, `t crease`/`t corner` tags that reproduce its features), .off or .ply
+/// (faces only); dim 1 to .obj (`l` polylines, `t corner` tags); dim 3 to .lattice; any dim to
+/// .vtk. Returns notes on what the format could not hold (empty when nothing was lost).
+/// Throws InputError (extension that cannot hold this dimension) or IoError.
+std::vector<std::string> write_shape(const std::string& path, const Complex& c, std::span<const double> xyz);
+
+/// Empty when write_shape can write a complex of dimension `dim` to `path`; else the reason.
+std::string shape_output_problem(const std::string& path, int dim);
+
+}  // namespace sublift

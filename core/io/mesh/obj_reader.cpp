@@ -1,0 +1,162 @@
+// Wavefront OBJ: `v`, `f` (v, v/vt, v//vn, v/vt/vn; negative = relative), `l` polylines (v, v/vt),
+// OpenSubdiv `t` tags.
+// Everything else that OBJ allows is skipped; unknown statements are reported.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/base/errors.h"
+#include "core/complex/face_builder.h"
+#include "core/io/mesh/mesh_readers.h"
+#include "core/base/text_lines.h"
+
+namespace sublift {
+namespace {
+
+// Statements that are valid OBJ but carry nothing a surface mesh needs.
+bool ignorable_statement(std::string_view k) {
+  static constexpr std::string_view kIgnored[] = {
+      "vn", "vt", "vp", "g", "o", "s", "usemtl", "mtllib", "mg", "lod", "bevel", "c_interp",
+      "d_interp", "shadow_obj", "trace_obj", "cstype", "deg", "bmat", "step", "curv", "curv2",
+      "surf", "parm", "trim", "hole", "scrv", "sp", "end", "con", "usemap", "maplib", "call",
+      "csh", "ctech", "stech"};
+  for (std::string_view s : kIgnored)
+    if (k == s) return true;
+  return false;
+}
+
+// Parses an OpenSubdiv tag: `t name ni/nf/ns ints... floats... strings...`.
+bool parse_tag(const std::vector<std::string_view>& tok, std::size_t line, MeshTag& tag) {
+  if (tok.size() < 3) return false;
+  tag.name = std::string(tok[1]);
+  tag.line = line;
+  std::string_view counts = tok[2];
+  std::int64_t n[3];
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t slash = counts.find('/');
+    const std::string_view part = k < 2 ? counts.substr(0, slash) : counts;
+    if (k < 2 && slash == std::string_view::npos) return false;
+    auto v = parse_int(part);
+    if (!v || *v < 0 || *v > 1 << 20) return false;
+    n[k] = *v;
+    if (k < 2) counts.remove_prefix(slash + 1);
+  }
+  if (tok.size() != 3 + static_cast<std::size_t>(n[0] + n[1] + n[2])) return false;
+  std::size_t i = 3;
+  for (std::int64_t k = 0; k < n[0]; ++k, ++i) {
+    auto v = parse_int(tok[i]);
+    if (!v) return false;
+    tag.ints.push_back(*v);
+  }
+  for (std::int64_t k = 0; k < n[1]; ++k, ++i) {
+    auto v = parse_double(tok[i]);
+    if (!v) return false;
+    tag.floats.push_back(*v);
+  }
+  for (std::int64_t k = 0; k < n[2]; ++k, ++i) tag.strings.emplace_back(tok[i]);
+  return true;
+}
+
+}  // namespace
+
+LoadedMesh read_obj(std::string_view bytes, const std::string& file, const ImportLimits& limits) {
+  LoadedMesh out;
+  SurfaceMesh& mesh = out.mesh;
+  ImportReport& report = out.report;
+  FaceBuilder faces;
+  PolylineBuilder polylines;
+  std::vector<std::size_t> vertex_lines;
+  std::vector<std::string_view> tok;
+  std::vector<std::int64_t> corners;
+  LineReader lines(bytes, file, limits.max_line_length);
+  while (next_tokens(lines, tok)) {
+    const std::size_t ln = lines.line_number();
+    const std::string_view key = tok[0];
+    if (key == "v") {
+      glm::dvec3 p(0.0);
+      bool ok = tok.size() >= 4;
+      for (int k = 0; ok && k < 3; ++k) {
+        auto d = parse_double(tok[k + 1]);
+        if (!d) {
+          // A literal nan/inf is a number the file really states: refuse the file.
+          const std::string t = to_lower(tok[k + 1]);
+          if (t.find("nan") != std::string::npos || t.find("inf") != std::string::npos)
+            throw InputError(file, ln, "non-finite coordinate '" + std::string(tok[k + 1]) + "'");
+          ok = false;
+        } else if (std::abs(*d) > kMaxCoordinate) {
+          throw InputError(file, ln, "coordinate " + std::string(tok[k + 1]) +
+                                         " exceeds the supported magnitude 1e30");
+        } else {
+          p[k] = *d;
+        }
+      }
+      if (!ok) {
+        // Keep a placeholder so later vertices keep their numbers; faces using it are dropped.
+        report.add("unreadable vertex line: unused placeholder kept so numbering is unchanged", ln);
+        faces.mark_unusable_vertex(mesh.positions.size());
+      }
+      mesh.positions.push_back(p);
+      vertex_lines.push_back(ln);
+    } else if (key == "f") {
+      corners.clear();
+      bool ok = tok.size() <= limits.max_face_size + 1;
+      for (std::size_t k = 1; ok && k < tok.size(); ++k) {
+        const std::string_view t = tok[k];
+        auto idx = parse_int(t.substr(0, t.find('/')));
+        if (!idx || *idx == 0) {
+          ok = false;
+          break;
+        }
+        const auto nv = static_cast<std::int64_t>(mesh.positions.size());
+        corners.push_back(*idx > 0 ? *idx - 1 : nv + *idx);  // negative: relative to here
+      }
+      if (!ok)
+        faces.add_unreadable(ln, report, tok.size() > limits.max_face_size + 1
+                                             ? "more corners than the face-size limit"
+                                             : "unreadable or zero vertex index");
+      else
+        faces.add(corners, ln);
+    } else if (key == "t") {
+      MeshTag tag;
+      if (parse_tag(tok, ln, tag))
+        mesh.tags.push_back(std::move(tag));
+      else
+        report.add("tag dropped: malformed 't name ni/nf/ns values' line", ln);
+    } else if (key == "l") {
+      corners.clear();
+      bool ok = tok.size() <= limits.max_face_size + 1;
+      for (std::size_t k = 1; ok && k < tok.size(); ++k) {
+        const std::string_view t = tok[k];
+        auto idx = parse_int(t.substr(0, t.find('/')));
+        ok = idx && *idx != 0;
+        if (ok) corners.push_back(*idx > 0 ? *idx - 1 : static_cast<std::int64_t>(mesh.positions.size()) + *idx);
+      }
+      if (!ok)
+        report.add(tok.size() > limits.max_face_size + 1 ? "polyline dropped: more vertices than the size limit"
+                                                         : "polyline dropped: unreadable or zero vertex index",
+                   ln);
+      else
+        polylines.add(corners, ln);
+    } else if (key == "p") {
+      report.add("point element ignored (not a face or polyline)", ln);
+    } else if (!ignorable_statement(key)) {
+      report.add("unknown statement ignored ('" + std::string(key.substr(0, 16)) + "')", ln);
+    }
+  }
+  faces.finish(mesh, report);
+  polylines.finish(mesh, faces.unusable(), report);
+  // crease/corner tags name vertices (0-based, as OpenSubdiv writes them).
+  std::erase_if(mesh.tags, [&](const MeshTag& t) {
+    if (t.name != "crease" && t.name != "corner") return false;
+    const bool bad = std::any_of(t.ints.begin(), t.ints.end(), [&](std::int64_t v) {
+      return v < 0 || v >= static_cast<std::int64_t>(mesh.num_vertices());
+    }) || (t.name == "crease" && t.ints.size() < 2);
+    if (bad) report.add("tag dropped: " + t.name + " names a vertex out of range", t.line);
+    return bad;
+  });
+  check_imported_mesh(file, mesh, vertex_lines, report);
+  return out;
+}
+
+}  // namespace sublift

@@ -1,0 +1,237 @@
+#include "core/io/model/surface_export.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <ostream>
+#include <sstream>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "core/base/errors.h"
+#include "core/base/file_io.h"
+#include "core/io/mesh/mesh_export.h"
+
+namespace sublift {
+namespace {
+
+// The surface after checking: positions as given, normals of unit length.
+struct Surface {
+  const Csr& faces;
+  std::span<const double> xyz;
+  std::vector<double> normals;
+  std::size_t num_vertices() const { return xyz.size() / 3; }
+};
+
+Surface checked_surface(const std::string& path, const Csr& faces, std::span<const double> xyz,
+                        std::span<const double> normals) {
+  if (xyz.size() % 3 != 0) throw InputError(path, 0, "positions are not 3 values per vertex");
+  if (normals.size() != xyz.size())
+    throw InputError(path, 0, std::to_string(normals.size() / 3) + " normals for " + std::to_string(xyz.size() / 3) + " vertices");
+  if (xyz.size() / 3 > 0xffffffffu) throw InputError(path, 0, "more than 2^32 vertices");
+  if (faces.offsets.empty() || faces.offsets.front() != 0 || faces.offsets.back() != faces.items.size())
+    throw InputError(path, 0, "face offsets do not run from 0 to the corner count");
+  const std::size_t nv = xyz.size() / 3;
+  for (std::size_t f = 0; f < faces.rows(); ++f) {
+    if (faces.offsets[f + 1] < faces.offsets[f] + 3)
+      throw InputError(path, 0, "face " + std::to_string(f) + " has fewer than 3 corners");
+    for (std::uint32_t v : faces.row(f))
+      if (v >= nv) throw InputError(path, 0, "face " + std::to_string(f) + " names vertex " + std::to_string(v) + ", beyond " + std::to_string(nv));
+  }
+  for (std::size_t i = 0; i < xyz.size(); ++i)
+    if (!std::isfinite(xyz[i])) throw InputError(path, 0, "position of vertex " + std::to_string(i / 3) + " is not finite");
+  Surface s{faces, xyz, std::vector<double>(normals.begin(), normals.end())};
+  for (std::size_t v = 0; v < nv; ++v) {
+    double* n = &s.normals[3 * v];
+    if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2]))
+      throw InputError(path, 0, "normal of vertex " + std::to_string(v) + " is not finite");
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (std::abs(len - 1.0) <= 1e-12) {
+      // unit already: written bit for bit
+    } else if (len > 0 && std::isfinite(len)) {
+      for (int k = 0; k < 3; ++k) n[k] /= len;
+    } else {
+      n[0] = 0, n[1] = 0, n[2] = 1;
+    }
+  }
+  return s;
+}
+
+void write_obj(std::ostream& out, const Surface& s) {
+  out << "# written by Sublift\n";
+  const std::size_t nv = s.num_vertices();
+  for (std::size_t v = 0; v < nv; ++v)
+    out << "v " << format_double(s.xyz[3 * v]) << ' ' << format_double(s.xyz[3 * v + 1]) << ' '
+        << format_double(s.xyz[3 * v + 2]) << '\n';
+  for (std::size_t v = 0; v < nv; ++v)
+    out << "vn " << format_double(s.normals[3 * v]) << ' ' << format_double(s.normals[3 * v + 1]) << ' '
+        << format_double(s.normals[3 * v + 2]) << '\n';
+  for (std::size_t f = 0; f < s.faces.rows(); ++f) {
+    out << 'f';
+    for (std::uint32_t v : s.faces.row(f)) out << ' ' << v + 1 << "//" << v + 1;
+    out << '\n';
+  }
+}
+
+template <class T>
+void put_le(std::ostream& out, T x) {
+  unsigned char b[sizeof(T)];
+  std::memcpy(b, &x, sizeof(T));
+  if constexpr (std::endian::native == std::endian::big) std::reverse(b, b + sizeof(T));
+  out.write(reinterpret_cast<const char*>(b), sizeof(T));
+}
+
+void write_ply(std::ostream& out, const Surface& s) {
+  std::uint32_t widest = 0;
+  for (std::size_t f = 0; f < s.faces.rows(); ++f) widest = std::max(widest, s.faces.size(f));
+  const bool wide = widest > 255;  // a uchar count cannot hold this face
+  const std::size_t nv = s.num_vertices();
+  out << "ply\nformat binary_little_endian 1.0\ncomment written by Sublift\nelement vertex " << nv
+      << "\nproperty double x\nproperty double y\nproperty double z\nproperty double nx\nproperty double ny\n"
+         "property double nz\nelement face "
+      << s.faces.rows() << "\nproperty list " << (wide ? "uint" : "uchar") << " uint vertex_indices\nend_header\n";
+  for (std::size_t v = 0; v < nv; ++v) {
+    for (int k = 0; k < 3; ++k) put_le(out, s.xyz[3 * v + k]);
+    for (int k = 0; k < 3; ++k) put_le(out, s.normals[3 * v + k]);
+  }
+  for (std::size_t f = 0; f < s.faces.rows(); ++f) {
+    if (wide) put_le(out, s.faces.size(f));
+    else put_le(out, static_cast<std::uint8_t>(s.faces.size(f)));
+    for (std::uint32_t v : s.faces.row(f)) put_le(out, v);
+  }
+}
+
+// Appends `values` to the buffer as little-endian bytes.
+template <class T>
+void append_le(std::vector<unsigned char>& buf, const std::vector<T>& values) {
+  const std::size_t at = buf.size();
+  buf.resize(at + values.size() * sizeof(T));
+  std::memcpy(buf.data() + at, values.data(), values.size() * sizeof(T));
+  if constexpr (std::endian::native == std::endian::big)
+    for (std::size_t i = at; i < buf.size(); i += sizeof(T)) std::reverse(buf.begin() + i, buf.begin() + i + sizeof(T));
+}
+
+int add_view(tinygltf::Model& m, std::size_t offset, std::size_t length, int target) {
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = offset;
+  view.byteLength = length;
+  view.target = target;
+  m.bufferViews.push_back(view);
+  return static_cast<int>(m.bufferViews.size()) - 1;
+}
+
+// The glTF document of the surface (one scene, node, mesh, primitive), serialised in memory.
+std::string gltf_bytes(const std::string& path, const Surface& s, bool binary) {
+  const std::size_t nv = s.num_vertices();
+  std::vector<float> pos(3 * nv), nrm(3 * nv);
+  for (std::size_t i = 0; i < 3 * nv; ++i) {
+    pos[i] = static_cast<float>(s.xyz[i]);
+    if (!std::isfinite(pos[i])) throw InputError(path, 0, "position of vertex " + std::to_string(i / 3) + " overflows float32");
+  }
+  for (std::size_t v = 0; v < nv; ++v) {  // unit length again after rounding to float
+    float n[3];
+    for (int k = 0; k < 3; ++k) n[k] = static_cast<float>(s.normals[3 * v + k]);
+    const float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; ++k) nrm[3 * v + k] = n[k] / len;
+  }
+  std::vector<std::uint32_t> tri;  // fans from each face's first corner
+  for (std::size_t f = 0; f < s.faces.rows(); ++f) {
+    const auto c = s.faces.row(f);
+    for (std::size_t i = 1; i + 1 < c.size(); ++i) tri.insert(tri.end(), {c[0], c[i], c[i + 1]});
+  }
+  if (tri.empty()) throw InputError(path, 0, "glTF needs at least one face");
+  const double bytes = 24.0 * double(nv) + 4.0 * double(tri.size());
+  if (bytes > double(std::numeric_limits<std::uint32_t>::max()) - (1 << 20))
+    throw InputError(path, 0, "the surface needs more than 4 GB of glTF buffer");
+
+  tinygltf::Model m;
+  m.asset.version = "2.0";
+  m.asset.generator = "Sublift";
+  tinygltf::Buffer buffer;
+  append_le(buffer.data, pos);
+  append_le(buffer.data, nrm);
+  append_le(buffer.data, tri);
+  m.buffers.push_back(std::move(buffer));
+  const int pos_view = add_view(m, 0, 12 * nv, TINYGLTF_TARGET_ARRAY_BUFFER);
+  const int nrm_view = add_view(m, 12 * nv, 12 * nv, TINYGLTF_TARGET_ARRAY_BUFFER);
+  const int idx_view = add_view(m, 24 * nv, 4 * tri.size(), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+
+  tinygltf::Accessor position;
+  position.bufferView = pos_view;
+  position.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  position.type = TINYGLTF_TYPE_VEC3;
+  position.count = nv;
+  position.minValues.assign(3, std::numeric_limits<double>::infinity());
+  position.maxValues.assign(3, -std::numeric_limits<double>::infinity());
+  for (std::size_t v = 0; v < nv; ++v)
+    for (int k = 0; k < 3; ++k) {  // glTF 2.0 sec. 3.6.2.5: POSITION requires min and max
+      position.minValues[k] = std::min(position.minValues[k], double(pos[3 * v + k]));
+      position.maxValues[k] = std::max(position.maxValues[k], double(pos[3 * v + k]));
+    }
+  tinygltf::Accessor normal;
+  normal.bufferView = nrm_view;
+  normal.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  normal.type = TINYGLTF_TYPE_VEC3;
+  normal.count = nv;
+  tinygltf::Accessor index;
+  index.bufferView = idx_view;
+  index.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  index.type = TINYGLTF_TYPE_SCALAR;
+  index.count = tri.size();
+  m.accessors = {position, normal, index};
+
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.attributes["POSITION"] = 0;
+  prim.attributes["NORMAL"] = 1;
+  prim.indices = 2;
+  tinygltf::Mesh mesh;
+  mesh.name = "surface";
+  mesh.primitives.push_back(prim);
+  m.meshes.push_back(mesh);
+  tinygltf::Node node;
+  node.name = "surface";
+  node.mesh = 0;
+  m.nodes.push_back(node);
+  tinygltf::Scene scene;  // named and non-empty: tinygltf 2.7 cannot read back a null scene
+  scene.name = "Sublift";
+  scene.nodes = {0};
+  m.scenes.push_back(scene);
+  m.defaultScene = 0;
+
+  std::ostringstream out(std::ios::binary);
+  tinygltf::TinyGLTF writer;
+  if (!writer.WriteGltfSceneToStream(&m, out, /*prettyPrint=*/!binary, binary) || !out)
+    throw IoError(path + ": cannot serialise glTF");
+  return std::move(out).str();
+}
+
+}  // namespace
+
+bool surface_export_supported(const std::string& path) {
+  const std::string ext = file_extension(path);
+  return ext == "obj" || ext == "ply" || ext == "gltf" || ext == "glb";
+}
+
+void write_surface_with_normals(const std::string& path, const Csr& faces, std::span<const double> xyz,
+                                std::span<const double> normals) {
+  const std::string ext = file_extension(path);
+  if (!surface_export_supported(path))
+    throw InputError(path, 0, "cannot export a surface with normals to '." + ext + "' (expected .obj, .ply, .gltf or .glb)");
+  const Surface s = checked_surface(path, faces, xyz, normals);
+  if (ext == "obj") {
+    write_file_atomic(path, [&](std::ostream& out) { write_obj(out, s); });
+  } else if (ext == "ply") {
+    write_file_atomic(path, [&](std::ostream& out) { write_ply(out, s); }, true);
+  } else {
+    const std::string bytes = gltf_bytes(path, s, ext == "glb");  // before the file is touched
+    write_file_atomic(path, [&](std::ostream& out) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); }, true);
+  }
+}
+
+}  // namespace sublift

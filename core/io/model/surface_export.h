@@ -1,0 +1,31 @@
+#pragma once
+// Exporting a surface with per-vertex normals (a level's limit surface or control net, or the
+// boundary of a lattice) as OBJ, PLY, glTF or GLB, chosen by extension.
+//
+// Formats: .obj `v` and `vn` lines with 17 significant digits and `f a//a b//b ...` corners;
+// .ply binary little endian with float64 x y z nx ny nz and faces as `list uchar uint32`
+// (`list uint uint32` when a face has more than 255 corners); .gltf (JSON, the buffer embedded
+// as a base64 data URI) and .glb through tinygltf: one scene, node, mesh and TRIANGLES primitive
+// with float32 POSITION (with min/max), float32 unit NORMAL and uint32 indices, polygons
+// triangulated as fans from their first corner, asset.generator "Sublift". Every file is
+// replaced atomically (file_io.h), so a failed save leaves the previous file intact.
+#include <span>
+#include <string>
+
+#include "core/base/csr.h"
+
+namespace sublift {
+
+/// Writes a polygon surface (faces as CSR corner lists, positions and unit normals 3 doubles
+/// per vertex) to path by extension (.obj, .ply, .gltf, .glb). Normals off unit length by more
+/// than 1e-12 are renormalised, a zero normal is written as (0, 0, 1). Throws InputError
+/// (unknown extension, sizes that do not match, a face of fewer than 3 corners or naming a
+/// missing vertex, non-finite values, no face for glTF) or IoError (write failure).
+void write_surface_with_normals(const std::string& path, const Csr& faces, std::span<const double> xyz,
+                                std::span<const double> normals);
+
+/// True for the extensions write_surface_with_normals accepts (".obj", ".ply", ".gltf", ".glb",
+/// any case).
+bool surface_export_supported(const std::string& path);
+
+}  // namespace sublift

@@ -1,0 +1,270 @@
+#include "core/io/project/project_io.h"
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <ostream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/base/errors.h"
+#include "core/base/file_io.h"
+#include "core/complex/level_counts.h"
+
+namespace sublift {
+namespace {
+
+constexpr std::string_view kMagic = "sublift-project";
+constexpr std::size_t kMaxHeader = std::size_t(1) << 20;
+
+template <class T>
+void put(std::ostream& out, const std::vector<T>& v) {
+  if constexpr (std::endian::native == std::endian::little || sizeof(T) == 1) {
+    out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
+  } else {
+    for (T x : v) {
+      unsigned char b[sizeof(T)];
+      std::memcpy(b, &x, sizeof(T));
+      for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
+      out.write(reinterpret_cast<const char*>(b), sizeof(T));
+    }
+  }
+}
+
+// Reads `n` little-endian values; the caller has checked that they fit.
+template <class T>
+std::vector<T> take(std::string_view bytes, std::size_t& pos, std::size_t n) {
+  std::vector<T> v(n);
+  if (n) std::memcpy(v.data(), bytes.data() + pos, n * sizeof(T));
+  if constexpr (std::endian::native != std::endian::little && sizeof(T) > 1)
+    for (T& x : v) {
+      unsigned char b[sizeof(T)];
+      std::memcpy(b, &x, sizeof(T));
+      for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
+      std::memcpy(&x, b, sizeof(T));
+    }
+  pos += n * sizeof(T);
+  return v;
+}
+
+// The optional session keys of the header, checked against the number of levels J.
+void check_extras(const ProjectExtras& x, int levels, const std::function<void(const std::string&)>& fail) {
+  if (x.current_level < 0 || x.current_level > levels)
+    fail("current_level " + std::to_string(x.current_level) + " outside 0.." + std::to_string(levels));
+  if (!x.gains.empty() && x.gains.size() != static_cast<std::size_t>(levels))
+    fail(std::to_string(x.gains.size()) + " gains, but a project of " + std::to_string(levels) + " levels takes " +
+         std::to_string(levels) + " (one per level below the finest) or none");
+  for (std::size_t i = 0; i < x.gains.size(); ++i)
+    if (!std::isfinite(x.gains[i])) fail("gain of level " + std::to_string(i) + " is not finite");
+}
+
+}  // namespace
+
+void write_project(const std::string& path, const Hierarchy& h) { write_project(path, h, ProjectExtras{}); }
+
+void write_project(const std::string& path, const Hierarchy& h, const ProjectExtras& extras) {
+  const Complex& b = h.levels.at(0);
+  check_extras(extras, h.finest_level(), [&](const std::string& why) { throw Error(path + ": cannot save project: " + why); });
+  nlohmann::json j;
+  j["format"] = "sublift-project";
+  j["version"] = 1;
+  j["scheme"] = scheme_name(h.scheme);
+  j["integer"] = h.integer;
+  if (scheme_is_tri(h.scheme)) j["disc"] = h.disc;
+  j["levels"] = h.finest_level();
+  j["channels"] = h.channels;
+  j["dim"] = b.dim;
+  j["base"] = {{"vertices", b.num_vertices},           {"edges", b.num_edges()},
+               {"faces", b.num_faces()},               {"cells", b.num_cells()},
+               {"face_corners", b.faces.items.size()}, {"cell_faces", b.cell_faces.items.size()}};
+  j["coefficients"] = h.coeffs.size();
+  j["current_level"] = extras.current_level;
+  j["gains"] = extras.gains.empty() ? std::vector<double>(static_cast<std::size_t>(h.finest_level()), 1.0) : extras.gains;
+  j["local_frames"] = extras.local_frames;
+  j["payload"] =
+      "little-endian u32 edge_verts[2*edges] face_offsets[faces+1] face_verts[face_corners] "
+      "face_edges[face_corners] cell_offsets[cells+1] cell_faces[cell_faces]; u8 vertex_dim[vertices] "
+      "edge_dim[edges] face_dim[faces]; f64 coefficients[coefficients]";
+  write_file_atomic(
+      path,
+      [&](std::ostream& out) {
+        out << kMagic << " 1\n" << j.dump() << '\n';
+        put(out, b.edge_verts);
+        put(out, b.faces.offsets);
+        put(out, b.faces.items);
+        put(out, b.face_edges.items);
+        put(out, b.cell_faces.offsets);
+        put(out, b.cell_faces.items);
+        put(out, b.vertex_dim);
+        put(out, b.edge_dim);
+        put(out, b.face_dim);
+        put(out, h.coeffs);
+      },
+      true);
+}
+
+Hierarchy read_project_from_memory(const std::string& file, const std::string& bytes) {
+  return read_project_from_memory(file, bytes, nullptr);
+}
+
+Hierarchy read_project_from_memory(const std::string& file, const std::string& bytes_in, ProjectExtras* extras_out) {
+  const std::string_view bytes(bytes_in);
+  // Line 1: magic and version.
+  const std::size_t nl1 = bytes.find('\n');
+  if (nl1 == std::string_view::npos || nl1 > 64 || bytes.substr(0, kMagic.size()) != kMagic)
+    throw InputError(file, 1, "not a Sublift project (the first line must be 'sublift-project 1')");
+  std::string_view first = bytes.substr(0, nl1);
+  if (!first.empty() && first.back() == '\r') first.remove_suffix(1);
+  if (first != "sublift-project 1") {
+    const std::string_view ver = first.substr(std::min(first.size(), kMagic.size() + 1));
+    throw InputError(file, 1, "unsupported project version '" + std::string(ver) + "' (this Sublift reads version 1)");
+  }
+  // Line 2: JSON header.
+  const std::size_t nl2 = bytes.find('\n', nl1 + 1);
+  if (nl2 == std::string_view::npos || nl2 - nl1 - 1 > kMaxHeader)
+    throw InputError(file, 2, "missing or over-long header line");
+  nlohmann::json j;
+  std::uint64_t V, E, F, C, SF, CF, N;
+  int levels, channels, dim, disc = 2;
+  bool integer;
+  Scheme scheme;
+  ProjectExtras extras;
+  std::int64_t current_level = 0;
+  try {
+    j = nlohmann::json::parse(bytes.substr(nl1 + 1, nl2 - nl1 - 1));
+    if (j.at("format").get<std::string>() != "sublift-project") throw InputError(file, 2, "header 'format' is not sublift-project");
+    if (j.at("version").get<int>() != 1) throw InputError(file, 2, "header version is not 1");
+    try {
+      scheme = parse_scheme(j.at("scheme").get<std::string>());
+    } catch (const std::invalid_argument&) {
+      throw InputError(file, 2, "unknown scheme '" + j.at("scheme").get<std::string>() + "'");
+    }
+    integer = j.at("integer").get<bool>();
+    disc = j.value("disc", 2);
+    if (disc < 1 || disc > 3) throw InputError(file, 2, "header 'disc' must be 1, 2 or 3, got " + std::to_string(disc));
+    levels = j.at("levels").get<int>();
+    channels = j.at("channels").get<int>();
+    dim = j.at("dim").get<int>();
+    const auto& b = j.at("base");
+    V = b.at("vertices").get<std::uint64_t>();
+    E = b.at("edges").get<std::uint64_t>();
+    F = b.at("faces").get<std::uint64_t>();
+    C = b.at("cells").get<std::uint64_t>();
+    SF = b.at("face_corners").get<std::uint64_t>();
+    CF = b.at("cell_faces").get<std::uint64_t>();
+    N = j.at("coefficients").get<std::uint64_t>();
+    // Optional session keys (absent in older version-1 files).
+    if (const auto it = j.find("current_level"); it != j.end()) {
+      if (!it->is_number_integer()) throw InputError(file, 2, "header 'current_level' is not an integer");
+      current_level = it->get<std::int64_t>();
+    }
+    if (const auto it = j.find("gains"); it != j.end()) {
+      if (!it->is_array()) throw InputError(file, 2, "header 'gains' is not an array");
+      if (it->size() > static_cast<std::size_t>(max_levels(scheme)))
+        throw InputError(file, 2, std::to_string(it->size()) + " gains, more than " + std::to_string(max_levels(scheme)) + " levels");
+      for (std::size_t i = 0; i < it->size(); ++i) {
+        if (!(*it)[i].is_number()) throw InputError(file, 2, "gain of level " + std::to_string(i) + " is not a number");
+        extras.gains.push_back((*it)[i].get<double>());
+      }
+    }
+    if (const auto it = j.find("local_frames"); it != j.end()) {
+      if (!it->is_boolean()) throw InputError(file, 2, "header 'local_frames' is not true or false");
+      extras.local_frames = it->get<bool>();
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(file, 2, std::string("malformed header: ") + e.what());
+  }
+  if (levels < 0 || levels > max_levels(scheme))
+    throw InputError(file, 2, "levels " + std::to_string(levels) + " outside 0.." + std::to_string(max_levels(scheme)));
+  if (channels < 1 || channels > 64) throw InputError(file, 2, "channels " + std::to_string(channels) + " outside 1..64");
+  if (dim < 1 || dim > 3) throw InputError(file, 2, "dim " + std::to_string(dim) + " outside 1..3");
+  constexpr std::uint64_t kMax = 0xfffffffeu;
+  for (std::uint64_t n : {V, E, F, C, SF, CF})
+    if (n > kMax) throw InputError(file, 2, "a base count exceeds 2^32 - 2");
+  // Payload size, computed in doubles first so that lying counts cannot wrap.
+  const std::size_t start = nl2 + 1;
+  const std::size_t have = bytes.size() - start;
+  const double want_d = 4.0 * (2.0 * E + (F + 1) + 2.0 * SF + (C + 1) + CF) + double(V) + double(E) + double(F) + 8.0 * double(N);
+  if (want_d > static_cast<double>(have) + 0.5)
+    throw InputError(file, 0, "truncated payload: the header announces " + std::to_string(static_cast<unsigned long long>(want_d)) +
+                                  " bytes, the file holds " + std::to_string(have));
+  const std::size_t want = 4 * (2 * E + (F + 1) + 2 * SF + (C + 1) + CF) + V + E + F + 8 * N;
+  if (want != have)
+    throw InputError(file, 0, "payload of " + std::to_string(have) + " bytes, but the header announces " + std::to_string(want));
+
+  std::size_t pos = start;
+  Complex c;
+  c.dim = dim;
+  c.num_vertices = static_cast<std::uint32_t>(V);
+  c.edge_verts = take<std::uint32_t>(bytes, pos, 2 * E);
+  c.faces.offsets = take<std::uint32_t>(bytes, pos, F + 1);
+  c.faces.items = take<std::uint32_t>(bytes, pos, SF);
+  c.face_edges.offsets = c.faces.offsets;
+  c.face_edges.items = take<std::uint32_t>(bytes, pos, SF);
+  c.cell_faces.offsets = take<std::uint32_t>(bytes, pos, C + 1);
+  c.cell_faces.items = take<std::uint32_t>(bytes, pos, CF);
+  c.vertex_dim = take<std::uint8_t>(bytes, pos, V);
+  c.edge_dim = take<std::uint8_t>(bytes, pos, E);
+  c.face_dim = take<std::uint8_t>(bytes, pos, F);
+  // Offsets and indices before anything walks them.
+  auto check_csr = [&](const Csr& r, std::uint64_t items, std::uint64_t bound, const char* what) {
+    if (r.offsets.front() != 0 || r.offsets.back() != items)
+      throw InputError(file, 0, std::string(what) + " offsets do not run from 0 to " + std::to_string(items));
+    for (std::size_t i = 1; i < r.offsets.size(); ++i)
+      if (r.offsets[i] < r.offsets[i - 1]) throw InputError(file, 0, std::string(what) + " offsets decrease at row " + std::to_string(i - 1));
+    for (std::uint32_t x : r.items)
+      if (x >= bound) throw InputError(file, 0, std::string(what) + " names " + std::to_string(x) + ", beyond " + std::to_string(bound));
+  };
+  for (std::uint32_t v : c.edge_verts)
+    if (v >= V) throw InputError(file, 0, "an edge names vertex " + std::to_string(v) + ", beyond " + std::to_string(V));
+  check_csr(c.faces, SF, V, "face");
+  check_csr(c.face_edges, SF, E, "face-edge");
+  check_csr(c.cell_faces, CF, F, "cell");
+  if ((dim < 3 && C) || (dim < 2 && F) || (dim >= 2 && F == 0))
+    throw InputError(file, 2, "counts do not fit a complex of dimension " + std::to_string(dim));
+  if (scheme_info(scheme).surfaces_only && dim != 2)
+    throw InputError(file, 2, "the " + scheme_name(scheme) + " scheme needs a surface (dim 2), the header says dim " +
+                                  std::to_string(dim));
+  try {
+    build_adjacency(c);
+    validate(c);
+  } catch (const TopologyError& e) {
+    throw InputError(file, 0, std::string("base complex: ") + e.what());
+  }
+  const std::vector<double> counts = predicted_level_counts(c, levels, scheme);
+  if (static_cast<double>(N) != counts.back() * channels)
+    throw InputError(file, 2, std::to_string(N) + " coefficients, but " + std::to_string(levels) + " levels of this base with " +
+                                  std::to_string(channels) + " channels need " +
+                                  std::to_string(static_cast<unsigned long long>(counts.back() * channels)));
+  // The session keys, once the levels are known to fit the payload.
+  if (current_level < 0 || current_level > levels)
+    throw InputError(file, 2, "current_level " + std::to_string(current_level) + " outside 0.." + std::to_string(levels));
+  extras.current_level = static_cast<int>(current_level);
+  check_extras(extras, levels, [&](const std::string& why) { throw InputError(file, 2, why); });
+  std::vector<double> coeffs = take<double>(bytes, pos, N);
+  for (std::size_t i = 0; i < coeffs.size(); ++i)
+    if (!std::isfinite(coeffs[i])) throw InputError(file, 0, "coefficient " + std::to_string(i) + " is not finite");
+  Hierarchy h;
+  try {
+    h = make_hierarchy(std::move(c), levels, scheme, channels, integer, 0, disc);
+  } catch (const TopologyError& e) {  // sqrt2 needs consistently oriented faces
+    throw InputError(file, 0, std::string("base complex: ") + e.what());
+  }
+  if (h.coeffs.size() != coeffs.size())
+    throw InputError(file, 2, "coefficient count does not match the refined base");
+  h.coeffs = std::move(coeffs);
+  if (extras_out) {
+    if (extras.gains.empty()) extras.gains.assign(static_cast<std::size_t>(levels), 1.0);
+    *extras_out = std::move(extras);
+  }
+  return h;
+}
+
+Hierarchy read_project(const std::string& path) { return read_project(path, nullptr); }
+
+Hierarchy read_project(const std::string& path, ProjectExtras* extras) {
+  return read_project_from_memory(path, read_file_bytes(path), extras);
+}
+
+}  // namespace sublift

@@ -1,0 +1,50 @@
+#pragma once
+// `.sublift` projects (docs/file_formats.md): a hierarchy saved exactly — base complex with
+// every feature dim, scheme, integer flag, levels, channels and all coefficients, bit for bit.
+//
+// Layout: line 1 `sublift-project 1`; line 2 a one-line JSON header (counts, scheme, ...);
+// then a little-endian binary payload whose size the header fixes (checked against the file
+// size before anything is read): u32 edge_verts[2E], face_offsets[F+1], face_verts[SF],
+// face_edges[SF], cell_offsets[C+1], cell_faces[CF]; u8 vertex_dim[V], edge_dim[E],
+// face_dim[F]; f64 coefficients[N] in hierarchy.h's layout.
+// Optional header keys (still version 1; files without them read with the defaults):
+// `current_level`, `gains` and `local_frames`, the modeler's session state (ProjectExtras).
+#include <string>
+#include <vector>
+
+#include "core/multires/hierarchy.h"
+
+namespace sublift {
+
+/// Session state a project keeps beside the hierarchy. Defaults are what a version-1 file
+/// without the optional header keys means.
+struct ProjectExtras {
+  int current_level = 0;      // edit level the modeler shows, 0..J
+  std::vector<double> gains;  // detail gain per level 0..J-1; empty means all 1
+  bool local_frames = false;  // detail kept in local frames (session.h DetailFrames::Local)
+};
+
+/// Writes `h` to `path` atomically. Throws IoError.
+void write_project(const std::string& path, const Hierarchy& h);
+
+/// Writes `h` and the session `extras` to `path` atomically. Throws Error (current_level
+/// outside 0..J, gains neither empty nor J finite values) or IoError.
+void write_project(const std::string& path, const Hierarchy& h, const ProjectExtras& extras);
+
+/// Reads a project and rebuilds its hierarchy (levels, tables, coefficients). Throws
+/// InputError (bad magic or version, malformed header, truncated or oversized payload,
+/// inconsistent counts, invalid base complex, non-finite coefficients) or IoError.
+Hierarchy read_project(const std::string& path);
+
+/// The same, also filling `*extras` (if not null) from the optional header keys; its gains
+/// always hold J values (all 1 when the file has none). Throws InputError naming line 2 for
+/// current_level outside 0..J or gains that are not J finite numbers.
+Hierarchy read_project(const std::string& path, ProjectExtras* extras);
+
+/// The same from memory; `name` is used in messages.
+Hierarchy read_project_from_memory(const std::string& name, const std::string& bytes);
+Hierarchy read_project_from_memory(const std::string& name, const std::string& bytes, ProjectExtras* extras);
+
+// The level limits are the scheme registry's (kMaxLevels, max_levels in core/schemes/registry.h).
+
+}  // namespace sublift

@@ -1,0 +1,89 @@
+#pragma once
+// Exact inner products of the triangle schemes' scaling functions on any triangle mesh
+// (paper 004 sec. 5), assembled face by face.
+//
+// <phi_a, phi_b> = sum over faces f of the integral over f of phi_a phi_b. On face f only the
+// functions of N(f), the vertices within `support_rings` of f's corners, are non-zero, so face f
+// contributes one small symmetric matrix G_f (rows and columns N(f) in canonical order,
+// core/schemes/tri/tri_local.h). Subdividing f into its four children gives the recurrence
+//
+//     G_f = 1/4 sum_k S_k^T G_{child k} S_k        (004 eq. 10 restricted to f; 1/4 = area)
+//
+// with S_k the subdivision rows of N(child k) over N(f). G_f depends only on the neighbourhood
+// of f, so it is cached by the neighbourhood's signature (its "type"). Types close under
+// subdivision: a regular face's children are regular, the corner child of a face at an
+// isolated extraordinary vertex has the type of its parent (the self-similarity of sec. 5.2), and
+// faces near several extraordinary vertices reach such types after a few steps. The cached
+// types form a finite system G = T(G), solved by sweeps with every G_f rescaled to the area of
+// its face (its entries sum to 1: the functions sum to 1 on f). The sweeps contract by the
+// scheme's subdominant eigenvalue over 4 per step or better; they stop at 1e-16.
+//
+// Units: a face's area is 1 on its own level (level-j faces of a hierarchy have area 4^-j
+// times that of a base face).
+#include <array>
+#include <deque>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "core/complex/complex.h"
+#include "core/schemes/tri/tri_local.h"
+#include "core/schemes/tri/tri_rules.h"
+
+namespace sublift {
+
+struct TriGramRadii {
+  int support = 1;    // N(f): vertices within this many rings of f's corners
+  int signature = 3;  // the neighbourhood that decides a type
+  int patch = 4;      // the patch copied around a face to subdivide it
+};
+TriGramRadii tri_gram_radii(TriScheme s);
+
+class FaceGramCache {
+ public:
+  explicit FaceGramCache(TriScheme s);
+  TriScheme scheme() const { return scheme_; }
+  const TriGramRadii& radii() const { return radii_; }
+
+  /// The Gram block of face f of `c` (rings `r` of c): `verts` are N(f) as vertices of c, G
+  /// their integrals over f. Solves new types on first use.
+  struct FaceGram {
+    std::vector<std::uint32_t> verts;
+    const Eigen::MatrixXd* G = nullptr;
+    int type = -1;
+  };
+  FaceGram face_gram(const Complex& c, const TriRings& r, std::uint32_t f);
+
+  std::size_t num_types() const { return types_.size(); }
+  /// Largest change of the last solve's final sweep, and its sweep count.
+  double last_change() const { return last_change_; }
+  int last_sweeps() const { return last_sweeps_; }
+
+ private:
+  struct Type {
+    int n = 0;                       // |N(f)|
+    std::array<int, 4> child{};      // child types
+    std::array<Eigen::MatrixXd, 4> S;  // rows N(child k), cols N(f)
+    Eigen::MatrixXd G;
+    bool solved = false;
+  };
+  int type_of(const Complex& c, const TriRings& r, std::uint32_t f, LocalOrder* order_out);
+  void solve_pending();
+
+  TriScheme scheme_;
+  TriGramRadii radii_;
+  std::unordered_map<std::string, int> index_;
+  std::deque<Type> types_;  // stable addresses: FaceGram points into it
+  std::vector<int> pending_;
+  double last_change_ = 0;
+  int last_sweeps_ = 0;
+};
+
+/// Seeds for a face's canonical order: its corners in cycle order, each walking from the next.
+void face_seeds(const Complex& c, std::uint32_t f, std::uint32_t seeds[3], std::uint32_t starts[3]);
+
+}  // namespace sublift

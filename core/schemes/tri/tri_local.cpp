@@ -1,0 +1,224 @@
+#include "core/schemes/tri/tri_local.h"
+
+#include <algorithm>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "core/complex/complex_build.h"
+#include "core/base/errors.h"
+
+namespace sublift {
+
+TriRings build_tri_rings(const Complex& c) {
+  TriRings r;
+  const std::uint32_t nv = c.num_vertices;
+  r.ring.offsets.assign(nv + 1, 0);
+  r.ring_edge.offsets.assign(nv + 1, 0);
+  r.closed.assign(nv, 0);
+  for (std::uint32_t f = 0; f < c.num_faces(); ++f)
+    if (c.faces.size(f) != 3)
+      throw TopologyError("face " + std::to_string(f) + " has " + std::to_string(c.faces.size(f)) +
+                          " corners; the triangle schemes need triangles");
+  for (std::uint32_t e = 0; e < c.num_edges(); ++e)
+    if (c.edge_faces.size(e) > 2)
+      throw TopologyError("edge " + std::to_string(e) + " (vertices " + std::to_string(c.edge_verts[2 * e]) + ", " +
+                          std::to_string(c.edge_verts[2 * e + 1]) + ") has " + std::to_string(c.edge_faces.size(e)) +
+                          " faces; the triangle schemes need a manifold surface");
+  struct Wedge { std::uint32_t next, prev, e_next, e_prev; };
+  std::vector<Wedge> w;
+  std::vector<std::uint32_t> out, out_e;
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    w.clear();
+    for (std::uint32_t f : c.vertex_faces.row(v)) {
+      const std::uint32_t b = c.faces.offsets[f];
+      for (std::uint32_t s = b; s < b + 3; ++s) {
+        if (c.faces.items[s] != v) continue;
+        const std::uint32_t sn = face_next_slot(c, f, s), sp = face_prev_slot(c, f, s);
+        w.push_back({c.faces.items[sn], c.faces.items[sp], c.face_edges.items[s], c.face_edges.items[sp]});
+      }
+    }
+    const auto fail = [&] {
+      throw TopologyError("the faces around vertex " + std::to_string(v) +
+                          " do not form one fan; the triangle schemes need a manifold surface");
+    };
+    if (w.empty()) {  // isolated vertex: an empty closed ring
+      r.ring.offsets[v + 1] = static_cast<std::uint32_t>(r.ring.items.size());
+      r.ring_edge.offsets[v + 1] = r.ring.offsets[v + 1];
+      continue;
+    }
+    // The wedge whose `next` is nobody's `prev` starts an open fan.
+    std::size_t first = 0;
+    bool open = false;
+    for (std::size_t i = 0; i < w.size(); ++i) {
+      bool has_pred = false;
+      for (const Wedge& x : w) has_pred |= x.prev == w[i].next;
+      if (!has_pred) {
+        if (open) fail();
+        open = true;
+        first = i;
+      }
+    }
+    out.clear();
+    out_e.clear();
+    std::size_t cur = first;
+    for (std::size_t k = 0; k < w.size(); ++k) {
+      out.push_back(w[cur].next);
+      out_e.push_back(w[cur].e_next);
+      std::size_t nxt = w.size();
+      for (std::size_t i = 0; i < w.size(); ++i)
+        if (w[i].next == w[cur].prev) {
+          if (nxt != w.size()) fail();
+          nxt = i;
+        }
+      if (k + 1 == w.size()) {
+        if (open ? nxt != w.size() : nxt != first) fail();
+        if (open) {
+          out.push_back(w[cur].prev);
+          out_e.push_back(w[cur].e_prev);
+        }
+      } else {
+        if (nxt == w.size() || nxt == first) fail();
+        cur = nxt;
+      }
+    }
+    if (out.size() != c.vertex_edges.size(v)) fail();
+    r.closed[v] = open ? 0 : 1;
+    r.ring.items.insert(r.ring.items.end(), out.begin(), out.end());
+    r.ring_edge.items.insert(r.ring_edge.items.end(), out_e.begin(), out_e.end());
+    r.ring.offsets[v + 1] = static_cast<std::uint32_t>(r.ring.items.size());
+    r.ring_edge.offsets[v + 1] = r.ring.offsets[v + 1];
+  }
+  return r;
+}
+
+namespace {
+
+// A per-thread vertex -> label table, cleared by epoch instead of by value: local orders are
+// taken millions of times on big meshes, each touching a few hundred vertices.
+struct LabelTable {
+  std::vector<std::uint32_t> label, stamp;
+  std::uint32_t epoch = 0;
+  void begin(std::uint32_t n) {
+    if (stamp.size() < n) {
+      label.resize(n);
+      stamp.assign(n, 0);
+      epoch = 0;
+    }
+    if (++epoch == 0) {
+      std::fill(stamp.begin(), stamp.end(), 0);
+      epoch = 1;
+    }
+  }
+  bool has(std::uint32_t v) const { return stamp[v] == epoch; }
+  std::uint32_t get(std::uint32_t v) const { return stamp[v] == epoch ? label[v] : UINT32_MAX; }
+  void set(std::uint32_t v, std::uint32_t l) {
+    stamp[v] = epoch;
+    label[v] = l;
+  }
+};
+thread_local LabelTable table;
+
+// Position of `start` in v's fan (the walk begins there).
+std::uint32_t fan_index(const TriRings& r, std::uint32_t v, std::uint32_t start) {
+  const auto row = r.ring.row(v);
+  for (std::uint32_t i = 0; i < row.size(); ++i)
+    if (row[i] == start) return i;
+  throw TopologyError("vertex " + std::to_string(start) + " is not a neighbour of " + std::to_string(v));
+}
+
+}  // namespace
+
+LocalOrder local_order(const TriRings& r, std::span<const std::uint32_t> seeds,
+                       std::span<const std::uint32_t> seed_start, int radius) {
+  LocalOrder o;
+  table.begin(static_cast<std::uint32_t>(r.closed.size()));
+  for (std::size_t i = 0; i < seeds.size(); ++i) {
+    table.set(seeds[i], static_cast<std::uint32_t>(o.vertex.size()));
+    o.vertex.push_back(seeds[i]);
+    o.dist.push_back(0);
+    o.start.push_back(seed_start[i]);
+  }
+  for (std::size_t l = 0; l < o.vertex.size(); ++l) {
+    if (o.dist[l] >= radius) continue;
+    const std::uint32_t u = o.vertex[l];
+    const auto row = r.ring.row(u);
+    if (row.empty()) continue;
+    const std::uint32_t i0 = fan_index(r, u, o.start[l]);
+    for (std::uint32_t k = 0; k < row.size(); ++k) {
+      const std::uint32_t x = row[(i0 + k) % row.size()];
+      if (!table.has(x)) {
+        table.set(x, static_cast<std::uint32_t>(o.vertex.size()));
+        o.vertex.push_back(x);
+        o.dist.push_back(static_cast<std::uint8_t>(o.dist[l] + 1));
+        o.start.push_back(u);
+      }
+    }
+  }
+  return o;
+}
+
+std::uint32_t label_of(const LocalOrder& o, std::uint32_t v) {
+  for (std::uint32_t l = 0; l < o.vertex.size(); ++l)
+    if (o.vertex[l] == v) return l;
+  return UINT32_MAX;
+}
+
+std::string local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius) {
+  table.begin(c.num_vertices);
+  for (std::uint32_t l = 0; l < o.vertex.size(); ++l)
+    if (o.dist[l] <= radius) table.set(o.vertex[l], l);
+  std::vector<std::int32_t> s;
+  s.reserve(o.vertex.size() * 12);
+  for (std::uint32_t l = 0; l < o.vertex.size(); ++l) {
+    if (o.dist[l] > radius) continue;
+    const std::uint32_t u = o.vertex[l];
+    const auto row = r.ring.row(u);
+    const auto erow = r.ring_edge.row(u);
+    s.push_back(-1000 - o.dist[l]);
+    s.push_back(r.closed[u]);
+    s.push_back(static_cast<std::int32_t>(row.size()));
+    s.push_back(c.vertex_dim.empty() ? 2 : c.vertex_dim[u]);
+    if (row.empty()) continue;
+    const std::uint32_t i0 = fan_index(r, u, o.start[l]);
+    for (std::uint32_t k = 0; k < row.size(); ++k) {
+      const std::uint32_t i = (i0 + k) % static_cast<std::uint32_t>(row.size());
+      const std::uint32_t l2 = table.get(row[i]);
+      s.push_back(l2 == UINT32_MAX ? -1 : static_cast<std::int32_t>(l2));
+      s.push_back(c.edge_dim.empty() ? 2 : c.edge_dim[erow[i]]);
+    }
+  }
+  return std::string(reinterpret_cast<const char*>(s.data()), s.size() * sizeof(std::int32_t));
+}
+
+Complex local_patch(const Complex& c, const LocalOrder& o) {
+  std::unordered_map<std::uint32_t, std::uint32_t> label;
+  label.reserve(o.vertex.size() * 2);
+  for (std::uint32_t l = 0; l < o.vertex.size(); ++l) label.emplace(o.vertex[l], l);
+  std::unordered_set<std::uint32_t> seen;
+  Csr faces;
+  for (std::uint32_t l = 0; l < o.vertex.size(); ++l)
+    for (std::uint32_t f : c.vertex_faces.row(o.vertex[l])) {
+      if (!seen.insert(f).second) continue;
+      std::uint32_t tri[3];
+      bool all = true;
+      for (int k = 0; k < 3; ++k) {
+        const auto it = label.find(c.faces.items[c.faces.offsets[f] + k]);
+        if (it == label.end()) { all = false; break; }
+        tri[k] = it->second;
+      }
+      if (!all) continue;
+      faces.items.insert(faces.items.end(), tri, tri + 3);
+      faces.offsets.push_back(static_cast<std::uint32_t>(faces.items.size()));
+    }
+  Complex p = complex_from_polygons(static_cast<std::uint32_t>(o.vertex.size()), faces);
+  // Original dims: the patch's own rim is not a feature of the surface.
+  for (std::uint32_t l = 0; l < o.vertex.size(); ++l) p.vertex_dim[l] = c.vertex_dim[o.vertex[l]];
+  for (std::uint32_t e = 0; e < p.num_edges(); ++e) {
+    const std::uint32_t a = o.vertex[p.edge_verts[2 * e]], b = o.vertex[p.edge_verts[2 * e + 1]];
+    for (std::uint32_t oe : c.vertex_edges.row(a))
+      if (c.edge_verts[2 * oe] == b || c.edge_verts[2 * oe + 1] == b) p.edge_dim[e] = c.edge_dim[oe];
+  }
+  return p;
+}
+
+}  // namespace sublift

@@ -1,0 +1,59 @@
+#pragma once
+// Local neighbourhoods of a triangle mesh, labelled canonically: the machinery behind the exact
+// inner products (core/schemes/tri/tri_gram.h) and the per-edge wavelets (core/schemes/tri/tri_wavelets.h) of paper 004.
+//
+// Two neighbourhoods that are the same up to an orientation-preserving isomorphism (same
+// valences, boundaries and feature dims, the same way round) get the same labels and the same
+// signature, so everything computed from a neighbourhood can be cached by its signature and
+// moved to another place of the same kind through the labels.
+//
+// Canonical order: breadth first from seed vertices (a face's corners in cycle order, an edge's
+// two ends), each visited vertex walking its fan counterclockwise starting at the vertex it was
+// reached from (a seed at the next seed). Topology alone decides the order.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/complex/complex.h"
+
+namespace sublift {
+
+/// Every vertex's neighbours counterclockwise (as the faces run). An open fan (a boundary
+/// vertex) starts at the neighbour across its first boundary edge.
+struct TriRings {
+  Csr ring;                        // neighbours per vertex
+  Csr ring_edge;                   // the edge to each neighbour (aligned with ring)
+  std::vector<std::uint8_t> closed;  // 1 when the fan closes (interior vertex)
+};
+
+/// Throws TopologyError for a non-triangle face, an edge with more than two faces, or a vertex
+/// whose faces do not form one fan. `c` needs its derived rows.
+TriRings build_tri_rings(const Complex& c);
+
+/// Canonical labelling of the vertices within graph distance `radius` of the seeds.
+struct LocalOrder {
+  std::vector<std::uint32_t> vertex;  // label -> mesh vertex
+  std::vector<std::uint8_t> dist;     // label -> distance to the seeds
+  std::vector<std::uint32_t> start;   // label -> the neighbour its fan walk starts at
+};
+
+/// `seed_start[i]` is the neighbour seed i's walk starts at (it must be a neighbour).
+LocalOrder local_order(const TriRings& r, std::span<const std::uint32_t> seeds,
+                       std::span<const std::uint32_t> seed_start, int radius);
+
+/// Label of mesh vertex v in `o` (UINT32_MAX when absent): a linear scan for small orders,
+/// callers with many lookups build a map.
+std::uint32_t label_of(const LocalOrder& o, std::uint32_t v);
+
+/// The signature of the labelled neighbourhood up to distance `radius` (<= the order's): per
+/// label its distance, fan closure, valence, vertex dim, and its fan as labels (-1 beyond) with
+/// the edges' dims. Equal signatures <=> isomorphic labelled neighbourhoods.
+std::string local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius);
+
+/// The sub-mesh of the faces whose corners all carry labels, vertices numbered by label, with
+/// the original vertex and edge dims (so the fans of labels closer than the order's radius are
+/// complete copies). Derived rows built.
+Complex local_patch(const Complex& c, const LocalOrder& o);
+
+}  // namespace sublift

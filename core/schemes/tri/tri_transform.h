@@ -1,0 +1,45 @@
+#pragma once
+// One transition (level j -> j+1) of the triangle-mesh wavelet transform of Lounsbery, DeRose
+// & Warren (paper 004 sec. 6) as explicit sparse lifting sub-steps, in the same form as the
+// sqrt(2) transform (core/schemes/sqrt2/sqrt2_transform.h): Weighted steps and, for Loop, a Matrix step
+// (core/engine/transition.h), run by the one executor.
+//
+// Fine layout (core/complex/refine_tri.h): [old vertices | edge midpoints], the wavelet of coarse edge e
+// on fine vertex nv + e. With psi_m = phi_m^{j+1} - sum_i alpha_{i,m} phi_i^j
+// (core/schemes/tri/tri_wavelets.h) the fine coefficients are c^{j+1} = P (c^j - A d) + [0; d], so
+// synthesis runs
+//   update   old vertex i += sum_m (-alpha_{i,m}) d_m           (u = c^j - A d)
+//   predict  new vertex m += sum_i P(m, i) u_i                   (the edge rule)
+//   smooth   old = P_oo u                                       (Loop only: its vertex rule)
+// and analysis backwards; Loop's first analysis step solves P_oo u = c_old (Eigen BiCGSTAB,
+// sec. 6.3: not local, so slower), the interpolating schemes have P_oo = I and are linear time
+// both ways (integer mode exact, as for sqrt2).
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/complex/complex.h"
+#include "core/engine/transition.h"
+#include "core/schemes/tri/tri_rules.h"
+
+namespace sublift {
+
+struct TriTransitionResult {
+  Transition transition;
+  std::vector<double> norm2;  // ||psi||^2 per coarse edge, a level-j face having area 1
+  double max_residual = 0;    // largest |<psi, phi_i>| over all discs
+  std::size_t irregular_edges = 0;  // edges whose wavelet needed their own neighbourhood
+};
+
+/// Builds the sub-steps for the 1-to-4 split of `coarse` into `fine` (= refine_tri(coarse); both
+/// with derived rows) with k-disc wavelets. Uses a process-wide cache of face and edge types per
+/// (scheme, disc).
+TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, TriScheme s, int disc);
+
+/// Loop's limit positions (rows over the vertices of `c`, a triangle mesh; derived rows not
+/// needed): smooth or dart vertex (1 - n g) v + g sum of neighbours, g = 1 / (3 / (8 beta) + n);
+/// on two feature edges (boundary or crease) 2/3 v + 1/6 (x0 + x1); a corner stays. The feature
+/// rules are those of core/schemes/tri/tri_rules.h.
+void loop_limit_rows(const Complex& c, Csr& rows, std::vector<double>& weights);
+
+}  // namespace sublift

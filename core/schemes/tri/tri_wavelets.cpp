@@ -1,0 +1,208 @@
+#include "core/schemes/tri/tri_wavelets.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <unordered_map>
+
+#include <Eigen/Dense>
+
+#include "core/complex/complex_build.h"
+#include "core/complex/refine_tri.h"
+
+namespace sublift {
+
+TriWaveletBuilder::TriWaveletBuilder(TriScheme s, int disc) : disc_(disc), gram_(s) {
+  if (disc < 1 || disc > 3) throw std::invalid_argument("the disc of a wavelet has 1, 2 or 3 rings");
+}
+
+int TriWaveletBuilder::edge_radius() const {
+  const TriGramRadii& g = gram_.radii();
+  return disc_ + g.support + g.patch + 1;
+}
+
+int TriWaveletBuilder::signature_radius() const {
+  const TriGramRadii& g = gram_.radii();
+  return disc_ + g.support + g.signature;
+}
+
+EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
+  const TriGramRadii& g = gram_.radii();
+  const Complex& c = *lv.coarse;
+  const Complex& fine = *lv.fine;
+  const TriStencils& st = *lv.stencils;
+  const std::uint32_t a = c.edge_verts[2 * e], b = c.edge_verts[2 * e + 1];
+  const std::uint32_t seeds[2] = {a, b}, starts[2] = {b, a};
+  // D and the vertices whose faces touch D's supports.
+  const LocalOrder order = local_order(*lv.coarse_rings, seeds, starts, disc_ + g.support);
+  std::uint32_t nd = 0;
+  while (nd < order.dist.size() && order.dist[nd] <= disc_) ++nd;
+  std::unordered_map<std::uint32_t, std::uint32_t> label;
+  label.reserve(nd * 2);
+  for (std::uint32_t l = 0; l < nd; ++l) label.emplace(order.vertex[l], l);
+  const auto in_disc = [&](std::uint32_t v) {
+    const auto it = label.find(v);
+    return it == label.end() ? UINT32_MAX : it->second;
+  };
+  const auto gram_of = [&](std::unordered_map<std::uint32_t, FaceGramCache::FaceGram>& memo, const Complex& mesh,
+                           const TriRings& rings, std::uint32_t f) -> const FaceGramCache::FaceGram& {
+    auto it = memo.find(f);
+    if (it == memo.end()) it = memo.emplace(f, gram_.face_gram(mesh, rings, f)).first;
+    return it->second;
+  };
+
+  // Left side: <phi_i^j, phi_l^j> over the level-j faces that touch D's supports.
+  std::vector<std::uint32_t> faces;
+  for (std::uint32_t v : order.vertex)
+    for (std::uint32_t f : c.vertex_faces.row(v)) faces.push_back(f);
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nd, nd);
+  std::vector<std::uint32_t> idx;
+  for (std::uint32_t f : faces) {
+    const auto& fg = gram_of(lv.coarse_faces, c, *lv.coarse_rings, f);
+    idx.resize(fg.verts.size());
+    for (std::size_t p = 0; p < fg.verts.size(); ++p) idx[p] = in_disc(fg.verts[p]);
+    for (std::size_t p = 0; p < idx.size(); ++p) {
+      if (idx[p] == UINT32_MAX) continue;
+      for (std::size_t q = 0; q < idx.size(); ++q)
+        if (idx[q] != UINT32_MAX) G(idx[p], idx[q]) += (*fg.G)(static_cast<int>(p), static_cast<int>(q));
+    }
+  }
+
+  // Right side: <phi_c^{j+1}, phi_m^{j+1}> over the level-(j+1) faces around m, pulled back.
+  const std::uint32_t nv = c.num_vertices;
+  const std::uint32_t m = nv + e;
+  const std::uint32_t mseed[1] = {m}, mstart[1] = {lv.fine_rings->ring.row(m)[0]};
+  const LocalOrder around_m = local_order(*lv.fine_rings, mseed, mstart, g.support);
+  std::vector<std::uint32_t> fine_faces;
+  for (std::uint32_t v : around_m.vertex)
+    for (std::uint32_t f : fine.vertex_faces.row(v)) fine_faces.push_back(f);
+  std::sort(fine_faces.begin(), fine_faces.end());
+  fine_faces.erase(std::unique(fine_faces.begin(), fine_faces.end()), fine_faces.end());
+  std::unordered_map<std::uint32_t, double> with_m;  // fine vertex c -> <phi_c, phi_m>
+  for (std::uint32_t f : fine_faces) {
+    const auto& fg = gram_of(lv.fine_faces, fine, *lv.fine_rings, f);
+    int im = -1;
+    for (std::size_t p = 0; p < fg.verts.size(); ++p)
+      if (fg.verts[p] == m) im = static_cast<int>(p);
+    if (im < 0) continue;
+    for (std::size_t p = 0; p < fg.verts.size(); ++p) with_m[fg.verts[p]] += 0.25 * (*fg.G)(static_cast<int>(p), im);
+  }
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nd);
+  for (const auto& [cv, value] : with_m)
+    for_each_stencil_weight(st, nv, cv, [&](std::uint32_t i, double w) {
+      if (const std::uint32_t l = in_disc(i); l != UINT32_MAX) rhs(l) += w * value;
+    });
+
+  EdgeWavelet out;
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(G);
+  const Eigen::VectorXd alpha = ldlt.solve(rhs);
+  out.alpha.assign(alpha.data(), alpha.data() + nd);
+  out.self = with_m[m];
+  out.norm2 = out.self - alpha.dot(rhs);
+  out.residual = (G * alpha - rhs).cwiseAbs().maxCoeff();
+  return out;
+}
+
+const EdgeWavelet& TriWaveletBuilder::edge_wavelet(TriLevel& lv, std::uint32_t e, std::vector<std::uint32_t>* disc_out,
+                                                   bool regular_hint) {
+  const Complex& c = *lv.coarse;
+  const TriRings& r = *lv.coarse_rings;
+  const std::uint32_t a = c.edge_verts[2 * e], b = c.edge_verts[2 * e + 1];
+  const std::uint32_t seeds[2] = {a, b}, starts[2] = {b, a};
+  if (regular_hint && regular_) {
+    if (disc_out) *disc_out = local_order(r, seeds, starts, disc_).vertex;
+    return *regular_;
+  }
+  const LocalOrder order = local_order(r, seeds, starts, signature_radius() + 1);
+  if (disc_out) {
+    std::uint32_t nd = 0;
+    while (nd < order.dist.size() && order.dist[nd] <= disc_) ++nd;
+    disc_out->assign(order.vertex.begin(), order.vertex.begin() + nd);
+  }
+  std::string sig = local_signature(c, r, order, signature_radius());
+  auto it = edges_.find(sig);
+  if (it == edges_.end()) it = edges_.emplace(std::move(sig), std::make_unique<EdgeWavelet>(compute(lv, e))).first;
+  if (regular_hint) regular_ = std::make_unique<EdgeWavelet>(*it->second);
+  return *it->second;
+}
+
+const EdgeWavelet& TriWaveletBuilder::edge_wavelet(const Complex& c, const TriRings& r, std::uint32_t e,
+                                                   std::vector<std::uint32_t>* disc_out) {
+  const Complex fine = refine_tri(c);
+  const TriRings fr = build_tri_rings(fine);
+  const TriStencils st = build_tri_stencils(c, gram_.scheme());
+  TriLevel lv;
+  lv.coarse = &c;
+  lv.coarse_rings = &r;
+  lv.fine = &fine;
+  lv.fine_rings = &fr;
+  lv.stencils = &st;
+  return edge_wavelet(lv, e, disc_out);
+}
+
+std::vector<std::uint8_t> distance_to_irregular(const Complex& c, const TriRings& r, int cap) {
+  const std::uint32_t nv = c.num_vertices;
+  std::vector<std::uint8_t> d(nv, static_cast<std::uint8_t>(cap));
+  std::vector<std::uint32_t> frontier, next;
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    bool irregular = r.ring.size(v) != 6 || !r.closed[v] || (!c.vertex_dim.empty() && c.vertex_dim[v] < 2);
+    if (!irregular && !c.edge_dim.empty())
+      for (std::uint32_t e : r.ring_edge.row(v)) irregular |= c.edge_dim[e] < 2;
+    if (irregular) {
+      d[v] = 0;
+      frontier.push_back(v);
+    }
+  }
+  for (int k = 1; k < cap && !frontier.empty(); ++k) {
+    next.clear();
+    for (std::uint32_t v : frontier)
+      for (std::uint32_t w : r.ring.row(v))
+        if (d[w] > k) {
+          d[w] = static_cast<std::uint8_t>(k);
+          next.push_back(w);
+        }
+    frontier.swap(next);
+  }
+  return d;
+}
+
+Complex extraordinary_disc(int valence, int radius, std::vector<double>* xy) {
+  if (valence < 3 || radius < 1) throw std::invalid_argument("extraordinary_disc: valence >= 3, radius >= 1");
+  // Vertex (s, p, q) = p e_s + q e_{s+1} in wedge s, p >= 1, q >= 0, p + q <= radius; (s, 0, q)
+  // is spoke s+1's (s+1, q, 0).
+  const int n = valence;
+  std::vector<std::vector<std::uint32_t>> id(static_cast<std::size_t>(n));
+  std::uint32_t next = 1;
+  const auto slot = [&](int p, int q) { return static_cast<std::size_t>(p * (radius + 1) + q); };
+  if (xy) xy->assign(2, 0.0);
+  for (int s = 0; s < n; ++s) {
+    id[static_cast<std::size_t>(s)].assign(static_cast<std::size_t>((radius + 1) * (radius + 1)), UINT32_MAX);
+    const double a0 = 2 * M_PI * s / n, a1 = 2 * M_PI * (s + 1) / n;
+    for (int p = 1; p <= radius; ++p)
+      for (int q = 0; p + q <= radius; ++q) {
+        id[static_cast<std::size_t>(s)][slot(p, q)] = next++;
+        if (xy) xy->insert(xy->end(), {p * std::cos(a0) + q * std::cos(a1), p * std::sin(a0) + q * std::sin(a1)});
+      }
+  }
+  const auto vid = [&](int s, int p, int q) -> std::uint32_t {
+    if (p == 0 && q == 0) return 0;
+    if (p == 0) return id[static_cast<std::size_t>((s + 1) % n)][slot(q, 0)];
+    return id[static_cast<std::size_t>(s)][slot(p, q)];
+  };
+  Csr faces;
+  const auto tri = [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+    faces.items.insert(faces.items.end(), {x, y, z});
+    faces.offsets.push_back(static_cast<std::uint32_t>(faces.items.size()));
+  };
+  for (int s = 0; s < n; ++s)
+    for (int p = 0; p < radius; ++p)
+      for (int q = 0; p + q < radius; ++q) {
+        tri(vid(s, p, q), vid(s, p + 1, q), vid(s, p, q + 1));
+        if (p + q + 2 <= radius) tri(vid(s, p + 1, q), vid(s, p + 1, q + 1), vid(s, p, q + 1));
+      }
+  return complex_from_polygons(next, faces);
+}
+
+}  // namespace sublift

@@ -1,0 +1,96 @@
+#pragma once
+// The wavelets of Lounsbery, DeRose & Warren (paper 004 sec. 6.2-6.3) on triangle meshes:
+// for the new vertex m on coarse edge e = (a, b), with D the k-disc of e (the level-j vertices
+// within k rings of a or b),
+//
+//     psi_m = phi_m^{j+1} - sum_{i in D} alpha_i phi_i^j                    (004 eq. 15, 16, 18)
+//
+// where alpha solves the local least-squares problem <psi_m, phi_i^j> = 0 for all i in D:
+//
+//     sum_l <phi_i^j, phi_l^j> alpha_l = <phi_i^j, phi_m^{j+1}>,   i in D.
+//
+// Both sides come from the exact face-by-face inner products (core/schemes/tri/tri_gram.h): the left on the
+// level-j faces, the right on the level-(j+1) faces (area 1/4 each) pulled back through the
+// subdivision rows, r_i = sum_c P(c, i) <phi_c^{j+1}, phi_m^{j+1}>. Then
+// ||psi_m||^2 = <phi_m, phi_m> - alpha . r, in units of a level-j face.
+//
+// D's order (the `alpha` order of `sublift-cli coefficients`): a, b, then breadth first, each
+// vertex walking its neighbours counterclockwise from the vertex it was reached from (a from b,
+// b from a); core/schemes/tri/tri_local.h. The result depends only on the neighbourhood of e up to
+// edge_radius() rings, so it is cached by that neighbourhood's signature; edges with no
+// irregular vertex (valence != 6, boundary, feature) that close share one entry without
+// computing a signature at all.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "core/complex/complex.h"
+#include "core/schemes/tri/tri_gram.h"
+#include "core/schemes/tri/tri_local.h"
+#include "core/schemes/tri/tri_rules.h"
+
+namespace sublift {
+
+struct EdgeWavelet {
+  std::vector<double> alpha;   // over D in canonical order
+  double norm2 = 0;            // ||psi||^2, a level-j face has area 1
+  double residual = 0;         // max_i |<psi, phi_i>| (orthogonality check)
+  double self = 0;             // <phi_m, phi_m> (level-j face area 1)
+};
+
+/// One level and its 1-to-4 refinement, as the wavelets of that step read them; the face Grams
+/// found on either mesh are kept per face (faces near many irregular edges are asked often).
+struct TriLevel {
+  const Complex* coarse = nullptr;  // derived rows needed
+  const TriRings* coarse_rings = nullptr;
+  const Complex* fine = nullptr;    // refine_tri(*coarse), derived rows needed
+  const TriRings* fine_rings = nullptr;
+  const TriStencils* stencils = nullptr;  // build_tri_stencils(*coarse, scheme)
+  std::unordered_map<std::uint32_t, FaceGramCache::FaceGram> coarse_faces, fine_faces;
+};
+
+class TriWaveletBuilder {
+ public:
+  TriWaveletBuilder(TriScheme s, int disc);
+  TriScheme scheme() const { return gram_.scheme(); }
+  int disc() const { return disc_; }
+  /// Rings of the patch an edge's wavelet is computed on.
+  int edge_radius() const;
+  /// Rings of the neighbourhood the wavelet depends on (its cache signature): the disc, the
+  /// supports of its functions and the faces' own signatures.
+  int signature_radius() const;
+
+  /// The wavelet of coarse edge e of `level`. `disc_out` receives D as coarse vertices.
+  /// `regular_hint`: the caller knows no irregular vertex lies within signature_radius().
+  const EdgeWavelet& edge_wavelet(TriLevel& level, std::uint32_t e, std::vector<std::uint32_t>* disc_out,
+                                  bool regular_hint = false);
+  /// The same for one edge of a small mesh (refines it on each call: tables, tests).
+  const EdgeWavelet& edge_wavelet(const Complex& c, const TriRings& r, std::uint32_t e,
+                                  std::vector<std::uint32_t>* disc_out);
+
+  FaceGramCache& gram() { return gram_; }
+  bool has_regular() const { return regular_ != nullptr; }
+  std::size_t cached_edges() const { return edges_.size(); }
+
+ private:
+  EdgeWavelet compute(TriLevel& level, std::uint32_t e);
+
+  int disc_;
+  FaceGramCache gram_;
+  std::unordered_map<std::string, std::unique_ptr<EdgeWavelet>> edges_;
+  std::unique_ptr<EdgeWavelet> regular_;
+};
+
+/// Per vertex: graph distance to the nearest irregular vertex (valence != 6, open fan, vertex
+/// dim < 2, or on a feature edge), capped at `cap`.
+std::vector<std::uint8_t> distance_to_irregular(const Complex& c, const TriRings& r, int cap);
+
+/// A disc of `radius` rings around one vertex of valence n (vertex 0), every other inner
+/// vertex of valence 6: n wedges of the triangular lattice. Vertex 1 is on spoke 0. `xy`
+/// (optional) receives a drawing: wedge s spans the angle 2 pi s / n .. 2 pi (s + 1) / n, its
+/// vertex p e_s + q e_{s+1} at p u_s + q u_{s+1}, u_s the unit vector at angle 2 pi s / n.
+Complex extraordinary_disc(int valence, int radius, std::vector<double>* xy = nullptr);
+
+}  // namespace sublift

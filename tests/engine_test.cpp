@@ -1,0 +1,156 @@
+// The one executor (core/engine/executor.h), checked once for every scheme of the registry:
+// perfect reconstruction (bit-exact in integer mode), sparse = dense in both directions, and
+// the adjoint = the rows of the analysis operator.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/base/errors.h"
+#include "core/engine/executor.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/multires/hierarchy.h"
+#include "core/schemes/registry.h"
+#include "tests/test_shapes.h"
+
+using namespace sublift;
+
+namespace {
+
+std::string asset(const std::string& name) { return std::string(SUBLIFT_ASSETS_DIR) + "/" + name; }
+
+// Bundled bases each scheme refines: lattices and curves only for the Split refinement.
+std::vector<std::string> bases_for(const SchemeInfo& s) {
+  if (s.triangles_only) return {"octahedron.obj", "tri_crease_grid.obj"};
+  if (s.surfaces_only) return {"cube.obj", "crease_grid_flat.obj", "pyramid.obj"};
+  return {"cube.obj", "crease_grid_flat.obj", "pyramid_cell.lattice", "curves/curve.obj"};
+}
+
+
+
+class Engine : public ::testing::TestWithParam<Scheme> {
+ protected:
+  const SchemeInfo& info() const { return scheme_info(GetParam()); }
+  int levels() const { return 2 * info().levels_per_split; }
+  // Loop's analysis is a BiCGSTAB solve (relative residual 1e-12): less exact than the others.
+  double tolerance() const { return info().limit == LimitRule::LoopMasks ? 1e-9 : 1e-12; }
+  Hierarchy hierarchy(const std::string& name, int J, int channels, bool integer = false) const {
+    Shape s = read_shape(asset(name));
+    return make_hierarchy(std::move(s.base), J, GetParam(), channels, integer);
+  }
+};
+
+TEST_P(Engine, PerfectReconstruction) {
+  for (const std::string& name : bases_for(info())) {
+    SCOPED_TRACE(name);
+    Hierarchy h = hierarchy(name, levels(), 3);
+    const std::vector<double> coeffs = sublift::testing::random_coefficients(h.coeffs.size(), 5, false);
+    h.coeffs = coeffs;
+    const std::vector<double> fine = synthesize(h, h.finest_level());
+    analyze(h, fine);
+    EXPECT_LT(sublift::testing::max_abs_diff(h.coeffs, coeffs), tolerance());
+    if (!info().integer) continue;
+    Hierarchy hi = hierarchy(name, levels(), 2, true);
+    const std::vector<double> ic = sublift::testing::random_coefficients(hi.coeffs.size(), 9, true);
+    hi.coeffs = ic;
+    const std::vector<double> ifine = synthesize(hi, hi.finest_level());
+    for (double v : ifine) ASSERT_EQ(v, std::round(v));
+    analyze(hi, ifine);
+    EXPECT_EQ(hi.coeffs, ic);  // bit for bit
+  }
+}
+
+TEST_P(Engine, IntegerModeIsRefusedWhereTheSchemeHasNone) {
+  if (info().integer) GTEST_SKIP() << info().name << " has an integer mode";
+  EXPECT_THROW(hierarchy(bases_for(info()).front(), 1, 3, true), Error);
+}
+
+// A change on a few vertices of level j+1, run sparsely, equals the dense run of the whole
+// (mostly zero) array, both ways, on every transition of the hierarchy.
+TEST_P(Engine, SparseEqualsDense) {
+  for (const std::string& name : bases_for(info())) {
+    SCOPED_TRACE(name);
+    const Hierarchy h = hierarchy(name, levels(), 3);
+    for (int j = 0; j < h.finest_level(); ++j) {
+      const auto J = static_cast<std::size_t>(j);
+      const Transition& t = h.transitions[J];
+      const SparseIndex index = build_sparse_index(t);
+      const std::uint32_t n = h.num_vertices(j + 1);
+      std::mt19937 rng(31 + j);
+      std::uniform_int_distribution<std::uint32_t> pick(0, n - 1);
+      for (bool analysis : {false, true}) {
+        SparseDelta d;
+        d.reset(n);
+        std::vector<double> dense(std::size_t(n) * 3, 0.0);
+        for (int k = 0; k < 4; ++k) {  // old and new vertices alike
+          const std::uint32_t v = k == 0 ? 0 : k == 1 ? n - 1 : pick(rng);
+          double* x = d.at(v);
+          for (int c = 0; c < 3; ++c) dense[std::size_t(v) * 3 + c] = x[c] = 0.5 + k + c;
+        }
+        if (analysis) {
+          run_analysis_sparse(t, h.levels[J], index, d);
+          run_analysis(t, h.levels[J], dense.data(), 3, false);
+        } else {
+          run_synthesis_sparse(t, h.levels[J], index, d);
+          run_synthesis(t, h.levels[J], dense.data(), 3, false);
+        }
+        EXPECT_LT(sublift::testing::max_abs_diff(d.x, dense), tolerance()) << "level " << j << (analysis ? " analysis" : " synthesis");
+        // Everything non-zero is on the list.
+        std::vector<std::uint8_t> listed(n, 0);
+        for (std::uint32_t v : d.list) listed[v] = 1;
+        for (std::uint32_t v = 0; v < n; ++v)
+          if (!listed[v]) ASSERT_EQ(d.x[std::size_t(v) * 3], 0.0) << "vertex " << v << " changed but is not listed";
+      }
+    }
+  }
+}
+
+// Analysis is linear: column i of its matrix A is the analysis of unit vector e_i. The adjoint
+// applied to e_k must give row k of A, entry for entry.
+TEST_P(Engine, AdjointIsTheAnalysisRows) {
+  const Hierarchy h = hierarchy(bases_for(info()).front(), 1, 1);
+  const Transition& t = h.transitions[0];
+  const std::uint32_t n = h.num_vertices(1);
+  std::vector<std::vector<double>> column(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    column[i].assign(n, 0.0);
+    column[i][i] = 1.0;
+    run_analysis(t, h.levels[0], column[i].data(), 1, false);
+  }
+  double worst = 0;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    std::vector<double> row(n, 0.0);
+    row[k] = 1.0;
+    run_analysis_adjoint(t, h.levels[0], row.data());
+    for (std::uint32_t i = 0; i < n; ++i) worst = std::max(worst, std::abs(row[i] - column[i][k]));
+  }
+  EXPECT_LT(worst, tolerance());
+}
+
+// Zero wavelets: the skip rule gives what the full run gives, bit for bit.
+TEST_P(Engine, SkippingZeroWaveletsChangesNothing) {
+  const Hierarchy h = hierarchy(bases_for(info()).front(), 1, 3);
+  const std::uint32_t nv = h.num_vertices(0), n = h.num_vertices(1);
+  std::vector<double> x = sublift::testing::random_coefficients(std::size_t(n) * 3, 3, false);
+  std::fill(x.begin() + std::ptrdiff_t(nv) * 3, x.end(), 0.0);
+  std::vector<double> skipped = x;
+  run_synthesis(h.transitions[0], h.levels[0], x.data(), 3, false, false);
+  run_synthesis(h.transitions[0], h.levels[0], skipped.data(), 3, false, true);
+  EXPECT_EQ(skipped, x);
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryScheme, Engine, ::testing::ValuesIn([] {
+                           std::vector<Scheme> all;
+                           for (const SchemeInfo& s : all_schemes()) all.push_back(s.id);
+                           return all;
+                         }()),
+                         [](const ::testing::TestParamInfo<Scheme>& p) {
+                           std::string n = scheme_name(p.param);
+                           std::replace(n.begin(), n.end(), '-', '_');
+                           return n;
+                         });
+
+}  // namespace

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/surface_mesh.h"
+#include "core/base/surface_mesh.h"
 #include "render/camera.h"
 #include "render/mesh_renderer.h"
 

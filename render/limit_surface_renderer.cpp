@@ -11,7 +11,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/errors.h"
+#include "core/base/errors.h"
 #include "render/net_renderer.h"
 #include "render/render_errors.h"
 #include "render/shader_program.h"

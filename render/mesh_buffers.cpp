@@ -6,7 +6,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "core/polygon_normal.h"
+#include "core/complex/polygon_normal.h"
 
 namespace sublift {
 

@@ -15,7 +15,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "core/surface_mesh.h"
+#include "core/base/surface_mesh.h"
 
 namespace sublift {
 

@@ -2,7 +2,7 @@
 // Draws a SurfaceMesh: flat-shaded clay fill plus a wireframe of the polygon edges on top.
 #include <memory>
 
-#include "core/surface_mesh.h"
+#include "core/base/surface_mesh.h"
 #include "render/camera.h"
 #include "render/mesh_buffers.h"
 

@@ -13,7 +13,7 @@
 #include <system_error>
 #include <unistd.h>
 
-#include "core/errors.h"
+#include "core/base/errors.h"
 #include "render/render_errors.h"
 
 namespace sublift {

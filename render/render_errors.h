@@ -1,7 +1,7 @@
 #pragma once
 // Errors raised by the render layer. NoDisplayError is its own type so the GUI can tell "no
 // window system here" (fall back to headless) from a real rendering failure.
-#include "core/errors.h"
+#include "core/base/errors.h"
 
 namespace sublift {
 

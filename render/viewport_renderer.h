@@ -3,7 +3,7 @@
 // the mesh, inside a rectangle of the current framebuffer.
 #include <glm/vec3.hpp>
 
-#include "core/surface_mesh.h"
+#include "core/base/surface_mesh.h"
 #include "render/background.h"
 #include "render/camera.h"
 #include "render/mesh_renderer.h"

@@ -131,7 +131,7 @@ int parse_int_option(const Args& a, const char* name, int fallback, int lo, int 
 
 int run_tri(const Args& a) {
   const std::string name = *a.value("--scheme");
-  const TriScheme s = name == "loop" ? TriScheme::Loop : name == "butterfly" ? TriScheme::Butterfly : TriScheme::Linear;
+  const Scheme s = name == "loop" ? Scheme::Loop : name == "butterfly" ? Scheme::Butterfly : Scheme::LinearTri;
   const int n = parse_int_option(a, "--valence", 6, 3, 16);
   const int k = parse_int_option(a, "--disc", 2, 1, 3);
   TriWaveletBuilder b(s, k);

@@ -9,10 +9,13 @@
 #include <vector>
 
 #include "core/base/errors.h"
+#include "core/schemes/registry.h"
 
 namespace {
 
 using namespace sublift::ip;
+using sublift::Scheme;
+using sublift::scheme_name;
 
 // ---------------------------------------------------------------------------------------------
 // An independent subdivision of a coefficient grid on the triangular lattice (the schemes'
@@ -35,7 +38,7 @@ P2 rot(P2 p) { return {-p.j, p.i + p.j}; }     // +60 degrees
 P2 rotinv(P2 p) { return {p.i + p.j, -p.i}; }  // -60 degrees
 P2 plus(P2 a, P2 b) { return {a.i + b.i, a.j + b.j}; }
 
-Grid subdivide(const Grid& g, RegularScheme s) {
+Grid subdivide(const Grid& g, Scheme s) {
   Grid f;
   f.n = 2 * g.n;
   f.v.assign(std::size_t(2 * f.n + 1) * std::size_t(2 * f.n + 1), 0.0);
@@ -45,7 +48,7 @@ Grid subdivide(const Grid& g, RegularScheme s) {
       double val = 0;
       if ((p & 1) == 0 && (q & 1) == 0) {
         const P2 a{p / 2, q / 2};
-        if (s == RegularScheme::Loop) {
+        if (s == Scheme::Loop) {
           double nb = 0;
           P2 e{1, 0};
           for (int r = 0; r < 6; ++r, e = rot(e)) nb += c(plus(a, e));
@@ -62,9 +65,9 @@ Grid subdivide(const Grid& g, RegularScheme s) {
         const P2 b = plus(a, u);
         const P2 wc = plus(a, rot(u)), wd = plus(a, rotinv(u));  // the two wing tips
         switch (s) {
-          case RegularScheme::Linear: val = 0.5 * (c(a) + c(b)); break;
-          case RegularScheme::Loop: val = 3.0 / 8 * (c(a) + c(b)) + 1.0 / 8 * (c(wc) + c(wd)); break;
-          case RegularScheme::Butterfly: {
+          case Scheme::LinearTri: val = 0.5 * (c(a) + c(b)); break;
+          case Scheme::Loop: val = 3.0 / 8 * (c(a) + c(b)) + 1.0 / 8 * (c(wc) + c(wd)); break;
+          case Scheme::Butterfly: {
             // Outer points: across the edges a-wc, b-wc, a-wd, b-wd.
             const double outer = c(plus(a, rot(rot(u)))) + c(plus(b, rot(u))) + c(plus(a, rotinv(rotinv(u)))) +
                                  c(plus(b, rotinv(u)));
@@ -112,7 +115,7 @@ std::vector<double> mass_smoothed(const Grid& g) {
 
 // I(d) by numerical integration at levels K = k0, k0+1, k0+2 and two Richardson steps (ratios
 // 4 and 16: the error expands in even powers of 2^-K for these symmetric functions).
-std::vector<double> integrate(RegularScheme s, const std::vector<Offset>& ds, int k0, bool verbose) {
+std::vector<double> integrate(Scheme s, const std::vector<Offset>& ds, int k0, bool verbose) {
   Grid g;
   g.n = 4;  // support of phi_0 lies in the hexagon of radius 3
   g.v.assign(81, 0.0);
@@ -131,7 +134,7 @@ std::vector<double> integrate(RegularScheme s, const std::vector<Offset>& ds, in
     const double r1a = (4 * J[1][m] - J[0][m]) / 3, r1b = (4 * J[2][m] - J[1][m]) / 3;
     const double r2 = (16 * r1b - r1a) / 15;
     if (verbose)
-      std::printf("  %s d=(%d,%d): J %.12f %.12f %.12f  R1 %.12f %.12f  R2 %.12f\n", scheme_name(s), ds[m].i,
+      std::printf("  %s d=(%d,%d): J %.12f %.12f %.12f  R1 %.12f %.12f  R2 %.12f\n", scheme_name(s).c_str(), ds[m].i,
                   ds[m].j, J[0][m], J[1][m], J[2][m], r1a, r1b, r2);
     out.push_back(r2);
   }
@@ -204,7 +207,7 @@ TEST(InnerProducts, SolverRejectsMissingOrMultipleEigenvalueOne) {
 }
 
 TEST(InnerProducts, MasksSumRulesAndSymmetry) {
-  for (auto s : {RegularScheme::Linear, RegularScheme::Butterfly, RegularScheme::Loop}) {
+  for (auto s : {Scheme::LinearTri, Scheme::Butterfly, Scheme::Loop}) {
     const auto m = regular_mask(s);
     // Each coset of 2Z^2 sums to 1 (every fine rule is an affine combination), total 4.
     double coset[2][2] = {{0, 0}, {0, 0}};
@@ -219,9 +222,9 @@ TEST(InnerProducts, MasksSumRulesAndSymmetry) {
         EXPECT_EQ(found, w) << scheme_name(s);
       }
   }
-  EXPECT_EQ(regular_mask(RegularScheme::Linear).coefficients.size(), 7u);
-  EXPECT_EQ(regular_mask(RegularScheme::Loop).coefficients.size(), 19u);
-  EXPECT_EQ(regular_mask(RegularScheme::Butterfly).coefficients.size(), 25u);
+  EXPECT_EQ(regular_mask(Scheme::LinearTri).coefficients.size(), 7u);
+  EXPECT_EQ(regular_mask(Scheme::Loop).coefficients.size(), 19u);
+  EXPECT_EQ(regular_mask(Scheme::Butterfly).coefficients.size(), 25u);
   EXPECT_EQ(lattice_symmetries(2).size(), 12u);
 }
 
@@ -229,7 +232,7 @@ TEST(InnerProducts, ButterflyMaskReproducesCubics) {
   // The butterfly scheme reproduces cubic polynomials (in Cartesian coordinates): refining the
   // samples of a cubic by the mask gives its samples at the fine points. Checks the stencil's
   // geometry (a wrong outer point breaks it).
-  const auto m = regular_mask(RegularScheme::Butterfly);
+  const auto m = regular_mask(Scheme::Butterfly);
   auto cubic = [](double u, double v) {
     const double x = u + 0.5 * v, y = std::sqrt(3.0) / 2 * v;
     return 1 + 2 * x - y + x * y - 3 * x * x * y + 0.5 * y * y * y + x * x * x - 2 * y * y;
@@ -271,7 +274,7 @@ TEST(InnerProducts, PolyhedralClosedForm) {
 TEST(InnerProducts, LinearLatticeEqualsClosedForm) {
   for (bool sym : {true, false}) {
     const double A = 0.37;
-    const auto ip = lattice_inner_products(regular_mask(RegularScheme::Linear), {A, sym});
+    const auto ip = lattice_inner_products(regular_mask(Scheme::LinearTri), {A, sym});
     const auto cf = polyhedral_inner_products(6, A);
     EXPECT_NEAR(ip.at({0, 0}), cf.self, 1e-14);
     Offset e{1, 0};
@@ -288,7 +291,7 @@ TEST(InnerProducts, LinearLatticeEqualsClosedForm) {
 }
 
 TEST(InnerProducts, PartitionOfUnityAndSymmetry) {
-  for (auto s : {RegularScheme::Linear, RegularScheme::Butterfly, RegularScheme::Loop}) {
+  for (auto s : {Scheme::LinearTri, Scheme::Butterfly, Scheme::Loop}) {
     // Solve without the symmetry reduction, then check the symmetries hold.
     const auto ip = lattice_inner_products(regular_mask(s), {1.0, false});
     EXPECT_TRUE(ip.diagnostics.simple) << scheme_name(s);
@@ -309,40 +312,40 @@ TEST(InnerProducts, PartitionOfUnityAndSymmetry) {
   }
 }
 
-void check_against_integration(RegularScheme s, int k0) {
+void check_against_integration(Scheme s, int k0) {
   const auto ip = lattice_inner_products(regular_mask(s));
   const auto reps = orbit_reps(ip);
   const auto num = integrate(s, reps, k0, verbose());
   for (std::size_t m = 0; m < reps.size(); ++m) {
     EXPECT_NEAR(ip.at(reps[m]), num[m], 1e-6) << scheme_name(s) << " d=(" << reps[m].i << "," << reps[m].j << ")";
     if (verbose())
-      std::printf("%s I(%d,%d) = %.17g  numeric %.12f  diff %.2e\n", scheme_name(s), reps[m].i, reps[m].j,
+      std::printf("%s I(%d,%d) = %.17g  numeric %.12f  diff %.2e\n", scheme_name(s).c_str(), reps[m].i, reps[m].j,
                   ip.at(reps[m]), num[m], ip.at(reps[m]) - num[m]);
   }
   if (verbose())
-    std::printf("%s: %zu offsets, %zu orbit unknowns, sigma_next %.3e, subdominant |lambda| %.6f\n", scheme_name(s),
+    std::printf("%s: %zu offsets, %zu orbit unknowns, sigma_next %.3e, subdominant |lambda| %.6f\n", scheme_name(s).c_str(),
                 ip.offsets.size(), ip.unknowns, ip.diagnostics.sigma_next, ip.diagnostics.subdominant);
 }
 
-TEST(InnerProducts, LoopMatchesNumericalIntegration) { check_against_integration(RegularScheme::Loop, 4); }
-TEST(InnerProducts, ButterflyMatchesNumericalIntegration) { check_against_integration(RegularScheme::Butterfly, 4); }
-TEST(InnerProducts, LinearMatchesNumericalIntegration) { check_against_integration(RegularScheme::Linear, 1); }
+TEST(InnerProducts, LoopMatchesNumericalIntegration) { check_against_integration(Scheme::Loop, 4); }
+TEST(InnerProducts, ButterflyMatchesNumericalIntegration) { check_against_integration(Scheme::Butterfly, 4); }
+TEST(InnerProducts, LinearMatchesNumericalIntegration) { check_against_integration(Scheme::LinearTri, 1); }
 // Heavier variant (levels 6, 7, 8; about 16x the work): run with --gtest_also_run_disabled_tests.
 TEST(InnerProducts, DISABLED_DeepNumericalIntegration) {
-  check_against_integration(RegularScheme::Loop, 6);
-  check_against_integration(RegularScheme::Butterfly, 6);
+  check_against_integration(Scheme::Loop, 6);
+  check_against_integration(Scheme::Butterfly, 6);
 }
 
 TEST(InnerProducts, CacheSolvesOncePerConfiguration) {
   const std::size_t before = inner_product_cache_solves();
-  const auto& a = cached_inner_products({RegularScheme::Loop, 6});
+  const auto& a = cached_inner_products({Scheme::Loop, 6});
   const std::size_t after = inner_product_cache_solves();
   EXPECT_LE(after, before + 1);
-  const auto& b = cached_inner_products({RegularScheme::Loop, 6});
+  const auto& b = cached_inner_products({Scheme::Loop, 6});
   EXPECT_EQ(&a, &b);
   EXPECT_EQ(inner_product_cache_solves(), after);
-  EXPECT_NEAR(a.at({0, 0}), lattice_inner_products(regular_mask(RegularScheme::Loop)).at({0, 0}), 0.0);
-  EXPECT_THROW(cached_inner_products({RegularScheme::Loop, 5}), sublift::Error);
+  EXPECT_NEAR(a.at({0, 0}), lattice_inner_products(regular_mask(Scheme::Loop)).at({0, 0}), 0.0);
+  EXPECT_THROW(cached_inner_products({Scheme::Loop, 5}), sublift::Error);
 }
 
 }  // namespace

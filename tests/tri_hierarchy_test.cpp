@@ -95,10 +95,6 @@ double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) 
 
 const Scheme kTri[] = {Scheme::LinearTri, Scheme::Butterfly, Scheme::Loop};
 
-TriScheme tri(Scheme s) {
-  return s == Scheme::Loop ? TriScheme::Loop : s == Scheme::Butterfly ? TriScheme::Butterfly : TriScheme::Linear;
-}
-
 }  // namespace
 
 TEST(TriHierarchy, NamesCountsAndRefusals) {
@@ -139,7 +135,7 @@ TEST(TriHierarchy, ZeroDetailsAreThePureSubdivision) {
       std::vector<double> x = b.xyz;
       Complex level = b.c;
       for (int l = 1; l <= J; ++l) {
-        const TriStencils st = build_tri_stencils(level, tri(s));
+        const TriStencils st = build_tri_stencils(level, s);
         std::vector<double> fine = subdivide_tri(st, x.data(), level.num_vertices, 3);
         const std::vector<double> ours = synthesize(h, l);
         EXPECT_LT(max_abs_diff(ours, fine), 1e-14) << "level " << l;

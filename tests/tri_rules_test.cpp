@@ -191,7 +191,7 @@ Mesh tri_torus(std::uint32_t nu, std::uint32_t nv, bool regular) {
 }
 
 // One level of our scheme: the refined complex and the fine positions.
-Mesh step(const Mesh& m, TriScheme s) {
+Mesh step(const Mesh& m, Scheme s) {
   const TriStencils st = build_tri_stencils(m.c, s);
   return {refine_tri(m.c), subdivide_tri(st, m.xyz.data(), m.c.num_vertices, 3)};
 }
@@ -251,7 +251,7 @@ double compare_butterfly_with(Mesh m, OmTri& om, std::vector<std::uint32_t> om_t
     const auto edges = sublift::testing::edge_map(m.c);
     const std::uint32_t nv = m.c.num_vertices;
     const auto onv = static_cast<std::uint32_t>(om.n_vertices());
-    m = step(m, TriScheme::Butterfly);
+    m = step(m, Scheme::Butterfly);
     bf(1);
     std::vector<std::uint32_t> next(om.n_vertices());
     std::vector<char> hit(m.c.num_vertices, 0);
@@ -384,7 +384,7 @@ double loop_vs_osd(Mesh m, int levels, const std::string& name) {
     std::vector<OsdVertex> next(static_cast<std::size_t>(r->GetLevel(l).GetNumVertices()));
     OsdVertex* dst = next.data();
     pr.Interpolate(l, peer.data(), dst);
-    m = step(m, TriScheme::Loop);
+    m = step(m, Scheme::Loop);
     EXPECT_EQ(next.size(), m.c.num_vertices);
     std::vector<int> sorted = child;
     std::sort(sorted.begin(), sorted.end());
@@ -414,27 +414,27 @@ double loop_vs_osd(Mesh m, int levels, const std::string& name) {
 TEST(TriRules, LinearIsMidpointsAndOldVerticesAreKept) {
   for (const Mesh& m : {octahedron(), tri_grid(4, 3, false), bipyramid(7, true)}) {
     const std::uint32_t nv = m.c.num_vertices, ne = m.c.num_edges();
-    for (TriScheme s : {TriScheme::Linear, TriScheme::Butterfly}) {
+    for (Scheme s : {Scheme::LinearTri, Scheme::Butterfly}) {
       const TriStencils st = build_tri_stencils(m.c, s);
       EXPECT_EQ(st.new_rows.rows(), ne);
       EXPECT_EQ(st.old_rows.rows(), 0u);  // interpolating: no rows for old vertices
       const std::vector<double> fine = subdivide_tri(st, m.xyz.data(), nv, 3);
       ASSERT_EQ(fine.size(), 3 * std::size_t(nv + ne));
       for (std::size_t i = 0; i < 3 * std::size_t(nv); ++i) EXPECT_EQ(fine[i], m.xyz[i]) << "coordinate " << i;  // bit for bit
-      if (s != TriScheme::Linear) continue;
+      if (s != Scheme::LinearTri) continue;
       for (std::uint32_t e = 0; e < ne; ++e)
         for (int k = 0; k < 3; ++k)
           EXPECT_EQ(fine[3 * (nv + e) + k], (m.xyz[3 * m.c.edge_verts[2 * e] + k] + m.xyz[3 * m.c.edge_verts[2 * e + 1] + k]) / 2)
               << "edge " << e;
     }
     // Loop moves old vertices: one row each.
-    EXPECT_EQ(build_tri_stencils(m.c, TriScheme::Loop).old_rows.rows(), nv);
+    EXPECT_EQ(build_tri_stencils(m.c, Scheme::Loop).old_rows.rows(), nv);
   }
 }
 
 TEST(TriRules, ChannelsAreIndependent) {
   const Mesh m = stellate(icosahedron(), {0, 7});
-  for (TriScheme s : {TriScheme::Linear, TriScheme::Butterfly, TriScheme::Loop}) {
+  for (Scheme s : {Scheme::LinearTri, Scheme::Butterfly, Scheme::Loop}) {
     const TriStencils st = build_tri_stencils(m.c, s);
     const std::vector<double> fine = subdivide_tri(st, m.xyz.data(), m.c.num_vertices, 3);
     for (int k = 0; k < 3; ++k) {
@@ -568,7 +568,7 @@ TEST(TriRules, ButterflyCreaseLoopsEqualOpenMeshOnTheCutMesh) {
   const FeatureTags equator{{{0, 2}, {2, 1}, {1, 3}, {3, 0}}, {}, {}};
   o.c = complex_from_polygons(o.c.num_vertices, o.c.faces, equator);
   butterfly_vs_openmesh_cut(o, 2, "octahedron, equator crease");
-  Mesh o1 = step(o, TriScheme::Linear);
+  Mesh o1 = step(o, Scheme::LinearTri);
   wobble(o1.xyz, 0.03);
   butterfly_vs_openmesh_cut(o1, 2, "octahedron L1, equator crease");
   // A closed crease loop inside an open grid: the square around the middle of a 6 x 6 grid.
@@ -600,7 +600,7 @@ TEST(TriRules, ButterflyCreaseEndsAndCornersReflect) {
   g.xyz = sublift::testing::random_values(g.xyz.size(), 7);
   const auto edges = sublift::testing::edge_map(g.c);
   const std::uint32_t nv = g.c.num_vertices;
-  const TriStencils st = build_tri_stencils(g.c, TriScheme::Butterfly);
+  const TriStencils st = build_tri_stencils(g.c, Scheme::Butterfly);
   const std::vector<double> fine = subdivide_tri(st, g.xyz.data(), nv, 3);
   auto x = [&](std::uint32_t i, int k) { return g.xyz[3 * id(i, 3) + k]; };
   auto mid = [&](std::uint32_t i, int k) { return fine[3 * (nv + sublift::testing::edge_of(edges, id(i, 3), id(i + 1, 3))) + k]; };
@@ -672,7 +672,7 @@ TEST(TriRules, LoopEqualsOpenSubdivOnSharedShapes) {
       continue;
     }
     try {
-      build_tri_stencils(s.base, TriScheme::Loop);
+      build_tri_stencils(s.base, Scheme::Loop);
     } catch (const TopologyError& e) {
       std::printf("note: %s has no stencils: %s\n", name.c_str(), e.what());
       continue;
@@ -701,7 +701,7 @@ TEST(TriRules, RowsSumToOneAndPlanesStayPlanar) {
   const std::vector<Mesh> meshes = {stellate(bipyramid(9), {0, 4, 11}), tri_grid(n, 5, false, tags), tri_torus(6, 4, false),
                                     icosahedron()};
   for (const Mesh& m : meshes)
-    for (TriScheme s : {TriScheme::Linear, TriScheme::Butterfly, TriScheme::Loop}) {
+    for (Scheme s : {Scheme::LinearTri, Scheme::Butterfly, Scheme::Loop}) {
       const TriStencils st = build_tri_stencils(m.c, s);
       auto sums = [](const Csr& rows, const std::vector<double>& w) {
         ASSERT_EQ(rows.items.size(), w.size());
@@ -726,8 +726,8 @@ TEST(TriRules, HighValenceRowsAreMergedAndSorted) {
   // Apexes of valence 70 000 for Linear and Loop (rows are built in n log n; one item per
   // vertex, items increasing). The butterfly's K-point rule reads the whole ring for each of the
   // K edges (K^2 weights), so it gets valence 1 000.
-  for (TriScheme s : {TriScheme::Linear, TriScheme::Loop, TriScheme::Butterfly}) {
-    const std::uint32_t n = s == TriScheme::Butterfly ? 1000 : 70000;
+  for (Scheme s : {Scheme::LinearTri, Scheme::Loop, Scheme::Butterfly}) {
+    const std::uint32_t n = s == Scheme::Butterfly ? 1000 : 70000;
     const Mesh m = bipyramid(n);
     const TriStencils st = build_tri_stencils(m.c, s);
     for (const Csr* rows : {&st.new_rows, &st.old_rows})
@@ -735,10 +735,10 @@ TEST(TriRules, HighValenceRowsAreMergedAndSorted) {
         const auto items = rows->row(r);
         EXPECT_TRUE(std::adjacent_find(items.begin(), items.end(), std::greater_equal<>()) == items.end()) << "row " << r;
       }
-    if (s == TriScheme::Loop) {
+    if (s == Scheme::Loop) {
       EXPECT_EQ(st.old_rows.size(n), n + 1);  // the apex and its ring
     }
-    if (s == TriScheme::Butterfly) {
+    if (s == Scheme::Butterfly) {
       // An apex-equator edge averages the apex's K-point stencil (n + 1 items) with the
       // equator end's (valence 4), which shares 3 of its 5 vertices with it.
       const auto edges = sublift::testing::edge_map(m.c);
@@ -755,7 +755,7 @@ TEST(TriRules, ButterflyReproducesLinearAndCubicFunctionsOnARegularPatch) {
   const std::uint32_t n = 8, last = (n + 1) * (n + 1) - 1;
   const Mesh g = tri_grid(n, n, true, FeatureTags{{}, {0, n, last - n, last}, {}}, 0.0);
   const std::uint32_t nv = g.c.num_vertices;
-  const TriStencils st = build_tri_stencils(g.c, TriScheme::Butterfly);
+  const TriStencils st = build_tri_stencils(g.c, Scheme::Butterfly);
   auto uv = [&](std::uint32_t v) { return std::pair<double, double>{double(v % (n + 1)), double(v / (n + 1))}; };
   const std::function<double(double, double)> linear = [](double u, double v) { return 0.7 * u - 1.3 * v + 0.25; };
   const std::function<double(double, double)> cubic = [](double u, double v) {
@@ -796,7 +796,7 @@ TEST(TriRules, ErrorsNameTheFaceOrEdge) {
   fixtures::push_row(faces, {0, 1, 2});
   fixtures::push_row(faces, {0, 2, 3, 4});
   const Complex quad = complex_from_polygons(5, faces);
-  for (TriScheme s : {TriScheme::Linear, TriScheme::Butterfly, TriScheme::Loop})
+  for (Scheme s : {Scheme::LinearTri, Scheme::Butterfly, Scheme::Loop})
     expect_topology_error([&] { build_tri_stencils(quad, s); }, {"face 1", "4 corners"});
   // Three faces on edge 0-1.
   Csr fan;
@@ -805,18 +805,18 @@ TEST(TriRules, ErrorsNameTheFaceOrEdge) {
   fixtures::push_row(fan, {0, 1, 4});
   const Complex nm = complex_from_polygons(5, fan);
   const auto e01 = sublift::testing::edge_of(sublift::testing::edge_map(nm), 0, 1);
-  for (TriScheme s : {TriScheme::Linear, TriScheme::Butterfly, TriScheme::Loop})
+  for (Scheme s : {Scheme::LinearTri, Scheme::Butterfly, Scheme::Loop})
     expect_topology_error([&] { build_tri_stencils(nm, s); }, {("edge " + std::to_string(e01) + " ").c_str(), "3 faces"});
   std::vector<double> xyz;
-  expect_topology_error([&] { build_tri_stencils(make_hex_block(1, xyz), TriScheme::Loop); }, {"dim 3"});
+  expect_topology_error([&] { build_tri_stencils(make_hex_block(1, xyz), Scheme::Loop); }, {"dim 3"});
   // Stencils applied to the wrong number of vertices.
   const Mesh o = octahedron();
-  const TriStencils st = build_tri_stencils(o.c, TriScheme::Loop);
+  const TriStencils st = build_tri_stencils(o.c, Scheme::Loop);
   expect_topology_error([&] { subdivide_tri(st, o.xyz.data(), o.c.num_vertices - 1, 3); }, {"5 vertices"});
   // Derived rows absent: built on a copy, same stencils.
   Complex bare = o.c;
   bare.vertex_edges.clear(), bare.vertex_faces.clear(), bare.edge_faces.clear();
-  const TriStencils again = build_tri_stencils(bare, TriScheme::Loop);
+  const TriStencils again = build_tri_stencils(bare, Scheme::Loop);
   EXPECT_EQ(again.old_rows.items, st.old_rows.items);
   EXPECT_EQ(again.new_weights, st.new_weights);
 }

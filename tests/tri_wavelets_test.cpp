@@ -48,11 +48,6 @@ std::map<std::pair<std::uint32_t, std::uint32_t>, double> assemble(FaceGramCache
   return g;
 }
 
-ip::RegularScheme regular(TriScheme s) {
-  return s == TriScheme::Loop ? ip::RegularScheme::Loop
-         : s == TriScheme::Butterfly ? ip::RegularScheme::Butterfly : ip::RegularScheme::Linear;
-}
-
 }  // namespace
 
 // On the regular lattice the face-by-face Grams must sum to the lattice solution I(d) of
@@ -60,11 +55,11 @@ ip::RegularScheme regular(TriScheme s) {
 TEST(TriGram, RegularTorusEqualsLatticeSolution) {
   const int w = 16, h = 16;
   const Complex torus = regular_torus(w, h);
-  for (TriScheme s : {TriScheme::Linear, TriScheme::Loop, TriScheme::Butterfly}) {
+  for (Scheme s : {Scheme::LinearTri, Scheme::Loop, Scheme::Butterfly}) {
     SCOPED_TRACE(static_cast<int>(s));
     FaceGramCache cache(s);
     const auto g = assemble(cache, torus);
-    const ip::LatticeInnerProducts& lat = ip::cached_inner_products({regular(s), 6});
+    const ip::LatticeInnerProducts& lat = ip::cached_inner_products({s, 6});
     EXPECT_LE(cache.last_change(), 1e-16);
     double worst = 0;
     for (int dj = -5; dj <= 5; ++dj)
@@ -84,7 +79,7 @@ TEST(TriGram, RegularTorusEqualsLatticeSolution) {
 // Around an extraordinary vertex: the inner products sum to the area (partition of unity),
 // are symmetric, and the n wedges give the same numbers (rotational symmetry).
 TEST(TriGram, ExtraordinaryVertexSymmetricAndSumsToArea) {
-  for (TriScheme s : {TriScheme::Loop, TriScheme::Butterfly}) {
+  for (Scheme s : {Scheme::Loop, Scheme::Butterfly}) {
     for (int n : {3, 4, 5, 7, 9}) {
       SCOPED_TRACE(std::to_string(static_cast<int>(s)) + " valence " + std::to_string(n));
       const Complex disc = extraordinary_disc(n, 14);
@@ -115,7 +110,7 @@ TEST(TriGram, ExtraordinaryVertexSymmetricAndSumsToArea) {
 // The k-disc wavelet is orthogonal to every scaling function of its disc (by construction, to
 // rounding) and has a positive norm; with n = 6 it equals the regular one.
 TEST(TriWavelets, OrthogonalToItsDiscAndRegularAtValenceSix) {
-  for (TriScheme s : {TriScheme::Linear, TriScheme::Loop, TriScheme::Butterfly}) {
+  for (Scheme s : {Scheme::LinearTri, Scheme::Loop, Scheme::Butterfly}) {
     for (int k : {1, 2, 3}) {
       TriWaveletBuilder b(s, k);
       for (int n : {3, 4, 6, 8}) {
@@ -145,10 +140,10 @@ TEST(TriWavelets, OrthogonalToItsDiscAndRegularAtValenceSix) {
 // lambda^K next to the extraordinary vertex (lambda = 3/8 + cos(2 pi / n) / 4, its subdominant
 // eigenvalue), over an area 4^-K: K = 3..6 with ratios 1/4, lambda/4, 1/16.
 TEST(TriGram, ExtraordinaryVertexMatchesNumericalIntegration) {
-  for (TriScheme s : {TriScheme::Loop, TriScheme::Butterfly}) {
+  for (Scheme s : {Scheme::Loop, Scheme::Butterfly}) {
     for (int n : {3, 5, 8}) {
       SCOPED_TRACE(std::to_string(static_cast<int>(s)) + " valence " + std::to_string(n));
-      const bool loop = s == TriScheme::Loop;
+      const bool loop = s == Scheme::Loop;
       const Complex disc = extraordinary_disc(n, loop ? 4 : 6);
       const TriRings r = build_tri_rings(disc);
       FaceGramCache cache(s);
@@ -223,7 +218,7 @@ TEST(TriWavelets, LinearEqualsClosedFormPolyhedralSolve) {
   for (int n : {3, 5, 6, 7}) {
     for (int k : {1, 2}) {
       SCOPED_TRACE("valence " + std::to_string(n) + " k " + std::to_string(k));
-      TriWaveletBuilder b(TriScheme::Linear, k);
+      TriWaveletBuilder b(Scheme::LinearTri, k);
       const Complex disc = extraordinary_disc(n, b.edge_radius() + 3);
       const TriRings r = build_tri_rings(disc);
       std::uint32_t e = UINT32_MAX;

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/base/errors.h"
+#include "core/schemes/registry.h"
 
 namespace sublift::ip {
 namespace {
@@ -26,22 +27,22 @@ Offset scale(int s, Offset a) { return {s * a.i, s * a.j}; }
 // c = (0,1) (triangle a b c above the edge) and d = (1,-1) (below); the butterfly's outer
 // vertices sit across the four other edges of those two triangles: across a-c (-1,1), across
 // b-c (1,1), across a-d (0,-1), across b-d (2,-1).
-Stencil edge_stencil(RegularScheme s) {
+Stencil edge_stencil(Scheme s) {
   switch (s) {
-    case RegularScheme::Linear:
+    case Scheme::LinearTri:
       return {{{0, 0}, 0.5}, {{1, 0}, 0.5}};
-    case RegularScheme::Loop:
+    case Scheme::Loop:
       return {{{0, 0}, 3.0 / 8}, {{1, 0}, 3.0 / 8}, {{0, 1}, 1.0 / 8}, {{1, -1}, 1.0 / 8}};
-    case RegularScheme::Butterfly:
+    case Scheme::Butterfly:
       return {{{0, 0}, 0.5},        {{1, 0}, 0.5},        {{0, 1}, 1.0 / 8},   {{1, -1}, 1.0 / 8},
               {{-1, 1}, -1.0 / 16}, {{1, 1}, -1.0 / 16},  {{0, -1}, -1.0 / 16}, {{2, -1}, -1.0 / 16}};
+    default: throw Error(scheme_name(s) + " has no triangle-lattice mask");
   }
-  return {};
 }
 
 // Vertex stencil for the old vertex (0,0): weights of (0,0) and its neighbours.
-Stencil vertex_stencil(RegularScheme s) {
-  if (s != RegularScheme::Loop) return {{{0, 0}, 1.0}};  // interpolating: the vertex is kept
+Stencil vertex_stencil(Scheme s) {
+  if (s != Scheme::Loop) return {{{0, 0}, 1.0}};  // interpolating: the vertex is kept
   Stencil st{{{0, 0}, 5.0 / 8}};  // Loop, n = 6: beta = 3/(8n) = 1/16, 1 - n beta = 5/8
   Offset e{1, 0};
   for (int r = 0; r < 6; ++r, e = rotate60(e)) st.push_back({e, 1.0 / 16});
@@ -144,15 +145,6 @@ HomogeneousSolution solve_homogeneous(const HomogeneousSystem& sys, double tol) 
 
 // ---------------------------------------------------------------------------------------------
 
-const char* scheme_name(RegularScheme s) {
-  switch (s) {
-    case RegularScheme::Linear: return "linear";
-    case RegularScheme::Butterfly: return "butterfly";
-    case RegularScheme::Loop: return "loop";
-  }
-  return "?";
-}
-
 Offset rotate60(Offset d) { return {-d.j, d.i + d.j}; }
 
 Offset apply(const std::array<int, 4>& m, Offset d) { return {m[0] * d.i + m[1] * d.j, m[2] * d.i + m[3] * d.j}; }
@@ -174,7 +166,7 @@ std::vector<std::array<int, 4>> lattice_symmetries(int dim) {
 
 LatticeMask curve_hat_mask() { return {1, {{{-1, 0}, 0.5}, {{0, 0}, 1.0}, {{1, 0}, 0.5}}}; }
 
-LatticeMask regular_mask(RegularScheme s) {
+LatticeMask regular_mask(Scheme s) {
   // a_k = weight of coarse vertex 0 in the rule of fine vertex k (fine lattice coordinates:
   // old vertex p is 2p, the midpoint of edge (p, p + u) is 2p + u).
   std::map<Offset, double> a;

@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "core/schemes/scheme.h"
+
 namespace sublift::ip {
 
 // ---------------------------------------------------------------------------------------------
@@ -73,14 +75,12 @@ struct LatticeMask {
   std::vector<std::pair<Offset, double>> coefficients;
 };
 
-enum class RegularScheme : std::uint8_t { Linear, Butterfly, Loop };
-const char* scheme_name(RegularScheme s);
 
 /// 1-D hat: a_0 = 1, a_{+-1} = 1/2 (004 eq. 12).
 LatticeMask curve_hat_mask();
 /// The refinement mask of the scheme on the regular (valence-6) triangular lattice, converted
 /// from its subdivision stencils (docs/inner_products.md, "Masks").
-LatticeMask regular_mask(RegularScheme s);
+LatticeMask regular_mask(Scheme s);
 
 /// 60-degree rotation of the 2-D lattice: e1 -> e2, e2 -> e2 - e1, i.e. (i, j) -> (-j, i + j).
 Offset rotate60(Offset d);
@@ -131,7 +131,7 @@ std::vector<double> polyhedral_matrix(std::size_t nv, const std::vector<std::arr
 /// A local configuration: the scheme and the valence of the (one) vertex it is built around.
 /// Only valence 6 (the regular lattice) exists so far; extraordinary valences come with issue 8.
 struct ConfigKey {
-  RegularScheme scheme = RegularScheme::Linear;
+  Scheme scheme = Scheme::LinearTri;
   int valence = 6;
   auto operator<=>(const ConfigKey&) const = default;
 };

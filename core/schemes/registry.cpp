@@ -12,9 +12,9 @@ namespace {
 
 LevelBuild linear_level(Complex& parent, const LevelContext& ctx) { return build_bertram_level(parent, linear_program(), ctx); }
 LevelBuild cubic_level(Complex& parent, const LevelContext& ctx) { return build_bertram_level(parent, cubic_program(), ctx); }
-LevelBuild linear_tri_level(Complex& parent, const LevelContext& ctx) { return build_tri_level(parent, TriScheme::Linear, ctx); }
-LevelBuild butterfly_level(Complex& parent, const LevelContext& ctx) { return build_tri_level(parent, TriScheme::Butterfly, ctx); }
-LevelBuild loop_level(Complex& parent, const LevelContext& ctx) { return build_tri_level(parent, TriScheme::Loop, ctx); }
+LevelBuild linear_tri_level(Complex& parent, const LevelContext& ctx) { return build_tri_level(parent, Scheme::LinearTri, ctx); }
+LevelBuild butterfly_level(Complex& parent, const LevelContext& ctx) { return build_tri_level(parent, Scheme::Butterfly, ctx); }
+LevelBuild loop_level(Complex& parent, const LevelContext& ctx) { return build_tri_level(parent, Scheme::Loop, ctx); }
 
 using R = Refinement;
 using L = LimitRule;

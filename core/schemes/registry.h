@@ -9,12 +9,9 @@
 #include <vector>
 
 #include "core/engine/level_build.h"
+#include "core/schemes/scheme.h"
 
 namespace sublift {
-
-// LinearTri, Butterfly, Loop: the triangle-mesh schemes of Lounsbery, DeRose & Warren (paper
-// 004) on the 1-to-4 triangle split (refine_tri.h), wavelets on the edge midpoints [v | e].
-enum class Scheme : std::uint8_t { Linear, Cubic, Sqrt2, LinearTri, Butterfly, Loop };
 
 enum class Refinement : std::uint8_t {
   Split,  // 1-to-2^dim splits of any polyhedral complex, [v | e | f | c] (refine.h)

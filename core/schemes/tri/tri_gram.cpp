@@ -5,24 +5,26 @@
 #include <unordered_map>
 #include <stdexcept>
 
+#include "core/base/errors.h"
 #include "core/complex/refine_tri.h"
+#include "core/schemes/registry.h"
 
 namespace sublift {
 
-TriGramRadii tri_gram_radii(TriScheme s) {
+TriGramRadii tri_gram_radii(Scheme s) {
   // support: N(f) must hold every function that is non-zero on f and close under one step
   // (checked when a type is built). signature >= support + 2 decides the stencils of N(child)
   // and the children's own signatures; patch >= signature + 1 keeps the copied fans complete
   // out to where one subdivided step still reads them.
   switch (s) {
-    case TriScheme::Linear: return {0, 2, 4};
-    case TriScheme::Loop: return {1, 3, 4};
-    case TriScheme::Butterfly: return {3, 5, 6};
+    case Scheme::LinearTri: return {0, 2, 4};
+    case Scheme::Loop: return {1, 3, 4};
+    case Scheme::Butterfly: return {3, 5, 6};
+    default: throw Error(scheme_name(s) + " is not a triangle scheme");
   }
-  return {};
 }
 
-FaceGramCache::FaceGramCache(TriScheme s) : scheme_(s), radii_(tri_gram_radii(s)) {}
+FaceGramCache::FaceGramCache(Scheme s) : scheme_(s), radii_(tri_gram_radii(s)) {}
 
 void face_seeds(const Complex& c, std::uint32_t f, std::uint32_t seeds[3], std::uint32_t starts[3]) {
   const std::uint32_t b = c.faces.offsets[f];

@@ -41,12 +41,12 @@ struct TriGramRadii {
   int signature = 3;  // the neighbourhood that decides a type
   int patch = 4;      // the patch copied around a face to subdivide it
 };
-TriGramRadii tri_gram_radii(TriScheme s);
+TriGramRadii tri_gram_radii(Scheme s);
 
 class FaceGramCache {
  public:
-  explicit FaceGramCache(TriScheme s);
-  TriScheme scheme() const { return scheme_; }
+  explicit FaceGramCache(Scheme s);
+  Scheme scheme() const { return scheme_; }
   const TriGramRadii& radii() const { return radii_; }
 
   /// The Gram block of face f of `c` (rings `r` of c): `verts` are N(f) as vertices of c, G
@@ -74,7 +74,7 @@ class FaceGramCache {
   int type_of(const Complex& c, const TriRings& r, std::uint32_t f, LocalOrder* order_out);
   void solve_pending();
 
-  TriScheme scheme_;
+  Scheme scheme_;
   TriGramRadii radii_;
   std::unordered_map<std::string, int> index_;
   std::deque<Type> types_;  // stable addresses: FaceGram points into it

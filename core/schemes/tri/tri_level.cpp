@@ -8,7 +8,7 @@
 
 namespace sublift {
 
-LevelBuild build_tri_level(Complex& parent, TriScheme scheme, const LevelContext& ctx) {
+LevelBuild build_tri_level(Complex& parent, Scheme scheme, const LevelContext& ctx) {
   LevelBuild b;
   // The wavelets read the child's neighbourhoods too; its derived rows go again if not wanted.
   b.fine = refine_tri(parent, true);

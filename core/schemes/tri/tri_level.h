@@ -7,6 +7,6 @@
 namespace sublift {
 
 /// `ctx.level` j scales the norms: a level-j face has 4^-j of a base face's area.
-LevelBuild build_tri_level(Complex& parent, TriScheme s, const LevelContext& ctx);
+LevelBuild build_tri_level(Complex& parent, Scheme s, const LevelContext& ctx);
 
 }  // namespace sublift

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "core/base/errors.h"
+#include "core/schemes/registry.h"
 
 namespace sublift {
 
@@ -295,7 +296,7 @@ void loop_rules(const TriTopo& t, TriStencils& st) {
 
 }  // namespace
 
-TriStencils build_tri_stencils(const Complex& coarse, TriScheme s) {
+TriStencils build_tri_stencils(const Complex& coarse, Scheme s) {
   const bool derived = coarse.vertex_edges.rows() == coarse.num_vertices &&
                        coarse.vertex_faces.rows() == coarse.num_vertices &&
                        coarse.edge_faces.rows() == coarse.num_edges();
@@ -309,9 +310,10 @@ TriStencils build_tri_stencils(const Complex& coarse, TriScheme s) {
   const TriTopo topo(c);
   TriStencils st;
   switch (s) {
-    case TriScheme::Linear: linear_rules(topo, st); break;
-    case TriScheme::Butterfly: butterfly_rules(topo, st); break;
-    case TriScheme::Loop: loop_rules(topo, st); break;
+    case Scheme::LinearTri: linear_rules(topo, st); break;
+    case Scheme::Butterfly: butterfly_rules(topo, st); break;
+    case Scheme::Loop: loop_rules(topo, st); break;
+    default: throw Error(scheme_name(s) + " is not a triangle scheme");
   }
   return st;
 }

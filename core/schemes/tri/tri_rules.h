@@ -84,10 +84,9 @@
 
 #include "core/complex/complex.h"
 #include "core/base/csr.h"
+#include "core/schemes/scheme.h"
 
 namespace sublift {
-
-enum class TriScheme : std::uint8_t { Linear, Butterfly, Loop };
 
 /// Rows over coarse vertex indices. new_rows.row(e) / new_weights: the fine vertex nv + e
 /// (midpoint of coarse edge e). old_rows/old_weights: fine vertex i (old vertex i); left EMPTY
@@ -102,7 +101,7 @@ struct TriStencils {
 /// `coarse`: a triangle surface with its derived rows (build_adjacency; built on a copy when
 /// absent). Throws TopologyError naming the face for a non-triangle, the edge for an edge with
 /// more than two faces (non-manifold) or none, and for another dim or cells. Linear time.
-TriStencils build_tri_stencils(const Complex& coarse, TriScheme s);
+TriStencils build_tri_stencils(const Complex& coarse, Scheme s);
 
 /// Applies the stencils: fine values (refine_tri order, (nv + ne) * channels, channel-minor)
 /// from coarse values (nv * channels). Throws TopologyError when old_rows has neither 0 nor nv

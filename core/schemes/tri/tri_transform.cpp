@@ -27,7 +27,7 @@ std::map<std::pair<int, int>, std::unique_ptr<TriWaveletBuilder>>& builders() {
 
 }  // namespace
 
-TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, TriScheme s, int disc) {
+TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, Scheme s, int disc) {
   const TriRings rings = build_tri_rings(coarse);
   const TriStencils st = build_tri_stencils(coarse, s);
   std::unique_ptr<TriRings> fine_rings;  // built when an edge first needs its neighbourhood

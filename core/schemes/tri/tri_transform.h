@@ -34,7 +34,7 @@ struct TriTransitionResult {
 /// Builds the sub-steps for the 1-to-4 split of `coarse` into `fine` (= refine_tri(coarse); both
 /// with derived rows) with k-disc wavelets. Uses a process-wide cache of face and edge types per
 /// (scheme, disc).
-TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, TriScheme s, int disc);
+TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, Scheme s, int disc);
 
 /// Loop's limit positions (rows over the vertices of `c`, a triangle mesh; derived rows not
 /// needed): smooth or dart vertex (1 - n g) v + g sum of neighbours, g = 1 / (3 / (8 beta) + n);

@@ -12,7 +12,7 @@
 
 namespace sublift {
 
-TriWaveletBuilder::TriWaveletBuilder(TriScheme s, int disc) : disc_(disc), gram_(s) {
+TriWaveletBuilder::TriWaveletBuilder(Scheme s, int disc) : disc_(disc), gram_(s) {
   if (disc < 1 || disc > 3) throw std::invalid_argument("the disc of a wavelet has 1, 2 or 3 rings");
 }
 

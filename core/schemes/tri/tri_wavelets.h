@@ -53,8 +53,8 @@ struct TriLevel {
 
 class TriWaveletBuilder {
  public:
-  TriWaveletBuilder(TriScheme s, int disc);
-  TriScheme scheme() const { return gram_.scheme(); }
+  TriWaveletBuilder(Scheme s, int disc);
+  Scheme scheme() const { return gram_.scheme(); }
   int disc() const { return disc_; }
   /// Rings of the patch an edge's wavelet is computed on.
   int edge_radius() const;

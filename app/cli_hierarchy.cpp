@@ -77,14 +77,6 @@ bool is_project_path(const std::string& path) {
   return true;
 }
 
-std::vector<double> xyz_of(std::span<const double> values, int channels) {
-  const std::size_t n = values.size() / static_cast<std::size_t>(channels);
-  std::vector<double> xyz(3 * n, 0.0);
-  for (std::size_t v = 0; v < n; ++v)
-    for (int k = 0; k < 3 && k < channels; ++k) xyz[3 * v + k] = values[v * channels + k];
-  return xyz;
-}
-
 nlohmann::json complex_counts_json(const Complex& c) {
   return {{"dim", c.dim},
           {"vertices", c.num_vertices},

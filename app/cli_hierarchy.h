@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli_args.h"
+#include "core/base/channels.h"
 #include "core/complex/complex.h"
 #include "core/multires/hierarchy.h"
 
@@ -35,8 +36,6 @@ std::string output_option(const Args& a, int dim);
 /// Whether `path` names a .sublift project (case-insensitive extension).
 bool is_project_path(const std::string& path);
 
-/// x, y, z of every vertex from values with `channels` per vertex (missing channels are 0).
-std::vector<double> xyz_of(std::span<const double> values, int channels);
 
 /// Counts of a complex: dim, vertices, edges, faces, cells.
 nlohmann::json complex_counts_json(const Complex& c);

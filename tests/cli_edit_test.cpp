@@ -18,17 +18,12 @@
 namespace sublift {
 namespace {
 
+using sublift::testing::max_abs_diff;
+
 using testing::ProcessResult;
 using testing::TempDir;
 
 ProcessResult cli(const std::vector<std::string>& args) { return testing::run_cli(args); }
-
-double max_diff(std::span<const double> a, std::span<const double> b) {
-  EXPECT_EQ(a.size(), b.size());
-  double m = 0;
-  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
-  return m;
-}
 
 // A torus project with detail at every level.
 Hierarchy project_hierarchy() {
@@ -67,7 +62,7 @@ TEST(CliEdit, MatchesFullResynthesisAndReportsTiming) {
     ref.move_full(1, v, {}, d);
     ProjectExtras extras;
     const Hierarchy out = read_project(dir.file("out.sublift"), &extras);
-    EXPECT_LT(max_diff(out.coeffs, ref.hierarchy().coeffs), 1e-12);
+    EXPECT_LT(max_abs_diff(out.coeffs, ref.hierarchy().coeffs), 1e-12);
     EXPECT_EQ(extras.current_level, 1);
     EXPECT_EQ(extras.local_frames, local);
   }
@@ -80,7 +75,7 @@ TEST(CliEdit, MatchesFullResynthesisAndReportsTiming) {
   const std::uint32_t v[1] = {3};
   const double d[3] = {0, 0, 0.3};
   ref.move_full(0, v, {}, d);
-  EXPECT_LT(max_diff(read_shape(dir.file("out.obj")).positions, ref.positions(3)), 1e-12);
+  EXPECT_LT(max_abs_diff(read_shape(dir.file("out.obj")).positions, ref.positions(3)), 1e-12);
   // synthesize --json reports the full synthesis time to compare with.
   const ProcessResult s = cli({"synthesize", dir.file("in.sublift"), "-o", dir.file("s.obj"), "--json"});
   ASSERT_EQ(s.exit_code, 0) << s.err;

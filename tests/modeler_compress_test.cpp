@@ -5,6 +5,8 @@
 // script commands.
 #include <gtest/gtest.h>
 
+#include "tests/test_shapes.h"
+
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -25,6 +27,8 @@
 
 namespace sublift {
 namespace {
+
+using sublift::testing::max_abs_diff;
 
 namespace fs = std::filesystem;
 
@@ -68,13 +72,6 @@ std::vector<double> limit_of(const Hierarchy& h, const std::vector<double>& cont
   return out;
 }
 
-double max_diff(const std::vector<double>& a, std::span<const double> b) {
-  EXPECT_EQ(a.size(), b.size());
-  double m = 0;
-  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
-  return m;
-}
-
 TEST(ModelerCompressTest, SliderShowsTheShapeOfThatFractionAndLeavesTheSessionAlone) {
   Fixture f;
   const std::vector<double> full_limit = f.limit();
@@ -85,8 +82,8 @@ TEST(ModelerCompressTest, SliderShowsTheShapeOfThatFractionAndLeavesTheSessionAl
     // Independently: keep_largest on a copy of the hierarchy, synthesised, through the stencils.
     Hierarchy copy = f.h;
     const std::size_t kept = keep_largest(copy, fraction);
-    EXPECT_LT(max_diff(limit_of(copy, synthesize(copy, 3)), f.app.model.limit_positions()), 1e-12);
-    EXPECT_LT(max_diff(synthesize(copy, 1), f.app.model.net_positions()), 1e-12);
+    EXPECT_LT(max_abs_diff(limit_of(copy, synthesize(copy, 3)), f.app.model.limit_positions()), 1e-12);
+    EXPECT_LT(max_abs_diff(synthesize(copy, 1), f.app.model.net_positions()), 1e-12);
     CompressionPanelData d;
     f.app.fill_compression_data(d);
     EXPECT_TRUE(d.on);
@@ -101,7 +98,7 @@ TEST(ModelerCompressTest, SliderShowsTheShapeOfThatFractionAndLeavesTheSessionAl
     std::vector<double> lim(control.size()), normals(control.size());
     eval_limit(st, control.data(), lim.data());
     limit_normals(st, f.app.model.surface_faces(), control.data(), lim.data(), normals.data());
-    EXPECT_LT(max_diff(normals, f.app.model.limit_normals()), 1e-12);
+    EXPECT_LT(max_abs_diff(normals, f.app.model.limit_normals()), 1e-12);
   }
   // Non-destructive: the session's coefficients are the project's, bit for bit, and no history.
   EXPECT_EQ(f.app.model.session().hierarchy().coeffs, f.h.coeffs);
@@ -110,12 +107,12 @@ TEST(ModelerCompressTest, SliderShowsTheShapeOfThatFractionAndLeavesTheSessionAl
   f.slider(1.0);
   EXPECT_EQ(f.limit(), full_limit);
   f.slider(0.05);
-  EXPECT_GT(max_diff(full_limit, f.app.model.limit_positions()), 1e-3);
+  EXPECT_GT(max_abs_diff(full_limit, f.app.model.limit_positions()), 1e-3);
   f.button(false);
   EXPECT_FALSE(f.app.model.compression_on());
   EXPECT_EQ(f.limit(), full_limit);
   const auto net = f.app.model.session().positions(1);
-  EXPECT_EQ(max_diff({net.begin(), net.end()}, f.app.model.net_positions()), 0.0);
+  EXPECT_EQ(max_abs_diff({net.begin(), net.end()}, f.app.model.net_positions()), 0.0);
 }
 
 TEST(ModelerCompressTest, EditingIsRefusedWhileTheViewIsOn) {
@@ -168,14 +165,14 @@ TEST(ModelerCompressTest, ApplyIsOneUndoableEdit) {
   // The session now holds the compressed shape: coefficients to round-off, removed ones ~0.
   double scale = 0;
   for (const double c : f.h.coeffs) scale = std::max(scale, std::abs(c));
-  EXPECT_LT(max_diff(copy.coeffs, s.hierarchy().coeffs), 1e-12 * scale);
-  EXPECT_LT(max_diff(shown, f.limit()), 1e-12 * scale);
+  EXPECT_LT(max_abs_diff(copy.coeffs, s.hierarchy().coeffs), 1e-12 * scale);
+  EXPECT_LT(max_abs_diff(shown, f.limit()), 1e-12 * scale);
   // Undo restores the project's coefficients bit for bit, redo the compressed ones.
   ASSERT_TRUE(f.app.model.undo());
   EXPECT_EQ(s.hierarchy().coeffs, f.h.coeffs);
-  EXPECT_LT(max_diff(full_limit, f.limit()), 1e-12 * scale);
+  EXPECT_LT(max_abs_diff(full_limit, f.limit()), 1e-12 * scale);
   ASSERT_TRUE(f.app.model.redo());
-  EXPECT_LT(max_diff(copy.coeffs, s.hierarchy().coeffs), 1e-12 * scale);
+  EXPECT_LT(max_abs_diff(copy.coeffs, s.hierarchy().coeffs), 1e-12 * scale);
   // Apply with the view off says so.
   f.button(true);
   EXPECT_NE(f.app.error.find("nothing to apply"), std::string::npos) << f.app.error;
@@ -192,7 +189,7 @@ TEST(ModelerCompressTest, GainsAreTheSessionsAndAMutedBandRefusesApply) {
   o.gains = {1.0, 0.0, 1.5};
   const Compressor c(f.h, o);
   const Compression expect = c.evaluate(c.count_for_fraction(0.1));
-  EXPECT_LT(max_diff(limit_of(f.h, expect.finest), f.app.model.limit_positions()), 1e-12);
+  EXPECT_LT(max_abs_diff(limit_of(f.h, expect.finest), f.app.model.limit_positions()), 1e-12);
   EXPECT_DOUBLE_EQ(f.app.model.compression().l2_error, expect.l2_error);
   f.button(true);
   EXPECT_NE(f.app.error.find("gain of level 1 is 0"), std::string::npos) << f.app.error;

@@ -18,6 +18,8 @@
 namespace sublift {
 namespace {
 
+using sublift::testing::max_abs_diff;
+
 // A hierarchy whose wavelets are not zero: the pure subdivision of `base` plus noise at the
 // finest level, analysed.
 Hierarchy noisy(const Complex& base, const std::vector<double>& xyz, int levels, Scheme scheme, double noise = 0.02) {
@@ -40,27 +42,20 @@ Hierarchy from_asset(const std::string& name, int levels, Scheme scheme) {
   return noisy(s.base, s.positions, levels, scheme);
 }
 
-double max_diff(std::span<const double> a, std::span<const double> b) {
-  EXPECT_EQ(a.size(), b.size());
-  double m = 0;
-  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
-  return m;
-}
-
 bool same_bits(std::span<const double> a, std::span<const double> b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
 void expect_sessions_equal(const Session& a, const Session& b, double tol) {
   for (int l = 0; l <= a.finest_level(); ++l)
-    EXPECT_LT(max_diff(a.positions(l), b.positions(l)), tol) << "level " << l;
-  EXPECT_LT(max_diff(a.hierarchy().coeffs, b.hierarchy().coeffs), tol) << "coefficients";
+    EXPECT_LT(max_abs_diff(a.positions(l), b.positions(l)), tol) << "level " << l;
+  EXPECT_LT(max_abs_diff(a.hierarchy().coeffs, b.hierarchy().coeffs), tol) << "coefficients";
 }
 
 // The session's levels are the synthesis of its own coefficients.
 void expect_consistent(const Session& s, double tol) {
   for (int l = 0; l <= s.finest_level(); ++l)
-    EXPECT_LT(max_diff(synthesize(s.hierarchy(), l), s.positions(l)), tol) << "level " << l;
+    EXPECT_LT(max_abs_diff(synthesize(s.hierarchy(), l), s.positions(l)), tol) << "level " << l;
 }
 
 struct Case {
@@ -202,8 +197,8 @@ TEST(Session, UndoRedoRestoreBitsAndOppositeEditIsIdentity) {
     s.move(0, v0, {}, back);  // undoes move(0, d1) arithmetically
     const double back2[3] = {-0.1, -0.2, -0.05};
     s.move(2, v, {}, back2);
-    EXPECT_LT(max_diff(s.hierarchy().coeffs, c0), 1e-13);
-    EXPECT_LT(max_diff(s.positions(3), p0[3]), 1e-13);
+    EXPECT_LT(max_abs_diff(s.hierarchy().coeffs, c0), 1e-13);
+    EXPECT_LT(max_abs_diff(s.positions(3), p0[3]), 1e-13);
   }
 }
 
@@ -239,19 +234,19 @@ TEST(Session, GainOneIsIdentityAndGainZeroIsPureSubdivision) {
   const std::vector<double> coeffs = s.hierarchy().coeffs;
   s.set_gain(1, 1.0);
   EXPECT_EQ(s.history().size(), 1u) << "a gain that does not change is not an undo step";
-  EXPECT_LT(max_diff(s.positions(3), fine), 1e-13);
+  EXPECT_LT(max_abs_diff(s.positions(3), fine), 1e-13);
   s.set_gain(1, 2.0);
-  EXPECT_GT(max_diff(s.positions(3), fine), 1e-3);
+  EXPECT_GT(max_abs_diff(s.positions(3), fine), 1e-3);
   s.set_gain(1, 1.0);
-  EXPECT_LT(max_diff(s.positions(3), fine), 1e-13);
+  EXPECT_LT(max_abs_diff(s.positions(3), fine), 1e-13);
   EXPECT_TRUE(same_bits(s.hierarchy().coeffs, coeffs)) << "gains do not touch the stored coefficients";
   for (int l = 0; l < s.finest_level(); ++l) s.set_gain(l, 0.0);
   // Independently: a fresh hierarchy with the edited level 0 and no wavelets.
   Hierarchy pure = make_hierarchy(s.hierarchy().levels[0], 3, Scheme::Cubic, 3);
   set_base(pure, s.positions(0));
-  EXPECT_LT(max_diff(s.positions(3), synthesize(pure, 3)), 1e-13);
+  EXPECT_LT(max_abs_diff(s.positions(3), synthesize(pure, 3)), 1e-13);
   // The noise was real: with gains 1 the shape differs from the pure subdivision.
-  EXPECT_GT(max_diff(fine, synthesize(pure, 3)), 1e-3);
+  EXPECT_GT(max_abs_diff(fine, synthesize(pure, 3)), 1e-3);
   // Edits above a muted band are refused, edits at level 0 are not.
   const std::uint32_t v2[1] = {100};
   EXPECT_THROW(s.move(2, v2, {}, d), Error);
@@ -296,8 +291,8 @@ TEST(Session, LocalFrameDetailFollowsRotation) {
       want[i + 1] = fine[i + 1];
       want[i + 2] = sn * fine[i] + c * fine[i + 2];
     }
-    if (mode == DetailFrames::Local) EXPECT_LT(max_diff(s.positions(J), want), 1e-12);
-    else EXPECT_GT(max_diff(s.positions(J), want), 1e-3) << "world-coordinate detail only translates";
+    if (mode == DetailFrames::Local) EXPECT_LT(max_abs_diff(s.positions(J), want), 1e-12);
+    else EXPECT_GT(max_abs_diff(s.positions(J), want), 1e-3) << "world-coordinate detail only translates";
   }
 }
 

@@ -4,6 +4,8 @@
 // 001 sec. 4 index-set rule next to a crease that ends inside the surface.
 #include <gtest/gtest.h>
 
+#include "tests/test_shapes.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -28,6 +30,9 @@ using namespace sublift;
 
 namespace {
 
+using sublift::testing::max_abs_diff;
+using sublift::testing::random_coefficients;
+
 struct Base {
   Complex c;
   std::vector<double> xyz;
@@ -41,22 +46,6 @@ Base asset(const std::string& name) {
 Base torus(int n, int m) {
   const SurfaceMesh t = make_quad_torus(n, m);
   return {complex_from_surface_mesh(t), flatten_positions(t)};
-}
-
-std::vector<double> random_values(std::size_t n, unsigned seed, bool integer) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<double> x(n);
-  // + 0.0: round() of a small negative value is -0, which sums turn into +0 (not a bit-exact test).
-  for (double& v : x) v = integer ? std::round(1000.0 * u(rng)) + 0.0 : u(rng);
-  return x;
-}
-
-double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
-  EXPECT_EQ(a.size(), b.size());
-  double m = 0;
-  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
-  return m;
 }
 
 // Bases with a boundary, a crease loop, a crease ending inside (dart), polygons, a closed cube.
@@ -103,7 +92,7 @@ TEST(Sqrt2Hierarchy, StartingAtAnOddLevelContinuesTheHierarchy) {
     EXPECT_EQ(a.edge_verts, t.edge_verts) << "level " << l;
     EXPECT_EQ(a.faces.items, t.faces.items) << "level " << l;
   }
-  full.coeffs = random_values(full.coeffs.size(), 3, false);
+  full.coeffs = random_coefficients(full.coeffs.size(), 3, false);
   std::copy(full.coeffs.begin(), full.coeffs.end(), tail.coeffs.begin());  // same layout from level 1 on
   std::vector<double> x1 = synthesize(full, 1);
   std::copy(x1.begin(), x1.end(), tail.coeffs.begin());
@@ -119,14 +108,14 @@ TEST(Sqrt2Hierarchy, PerfectReconstruction) {
       SCOPED_TRACE(std::string(name) + " J " + std::to_string(J));
       const Base b = asset(name);
       Hierarchy h = make_hierarchy(b.c, J, Scheme::Sqrt2, 3);
-      const std::vector<double> coeffs = random_values(h.coeffs.size(), 11 + J, false);
+      const std::vector<double> coeffs = random_coefficients(h.coeffs.size(), 11 + J, false);
       h.coeffs = coeffs;
       const std::vector<double> fine = synthesize(h, J);
       analyze(h, fine);
       EXPECT_LT(max_abs_diff(h.coeffs, coeffs), 1e-12);
       // Integer mode: bit-exact.
       Hierarchy hi = make_hierarchy(b.c, J, Scheme::Sqrt2, 3, true);
-      const std::vector<double> ic = random_values(hi.coeffs.size(), 5 + J, true);
+      const std::vector<double> ic = random_coefficients(hi.coeffs.size(), 5 + J, true);
       hi.coeffs = ic;
       const std::vector<double> ifine = synthesize(hi, J);
       for (const double v : ifine) ASSERT_EQ(v, std::round(v));
@@ -184,7 +173,7 @@ TEST(Sqrt2Hierarchy, ProjectRoundTrip) {
   const sublift::testing::TempDir dir("sublift_sqrt2_project");
   const Base b = asset("crease_dart_flat.obj");
   Hierarchy h = make_hierarchy(b.c, 5, Scheme::Sqrt2, 3);
-  h.coeffs = random_values(h.coeffs.size(), 9, false);
+  h.coeffs = random_coefficients(h.coeffs.size(), 9, false);
   write_project(dir.file("p.sublift"), h);
   const Hierarchy r = read_project(dir.file("p.sublift"));
   EXPECT_EQ(r.scheme, Scheme::Sqrt2);
@@ -231,7 +220,7 @@ TEST(Sqrt2Basis, DualFunctionsAreAnalysisRows) {
       const Complex& cj = h.levels.back();
       const int K = 3;
       Hierarchy a = make_hierarchy(cj, K, Scheme::Sqrt2, 1, false, j);
-      const std::vector<double> x = random_values(a.coeffs.size(), 21 + j, false);
+      const std::vector<double> x = random_coefficients(a.coeffs.size(), 21 + j, false);
       analyze(a, x);
       for (const BasisKind kind : {BasisKind::Scaling, BasisKind::Wavelet}) {
         BasisRequest r;

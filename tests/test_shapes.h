@@ -1,8 +1,10 @@
 #pragma once
 // Helpers for engine tests: edge lookup by end vertices, random values.
 #include <cmath>
+#include <limits>
 #include <map>
 #include <random>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -38,11 +40,14 @@ inline std::vector<double> random_coefficients(std::size_t n, unsigned seed, boo
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<double> x(n);
-  for (double& v : x) v = integer ? std::round(1000.0 * u(rng)) : u(rng);
+  // + 0.0: round() of a small negative value is -0; keep every zero +0.
+  for (double& v : x) v = integer ? std::round(1000.0 * u(rng)) + 0.0 : u(rng);
   return x;
 }
 
-inline double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
+/// Largest |a[i] - b[i]|; infinite when the sizes differ, so any tolerance check fails.
+inline double max_abs_diff(std::span<const double> a, std::span<const double> b) {
+  if (a.size() != b.size()) return std::numeric_limits<double>::infinity();
   double m = 0;
   for (std::size_t i = 0; i < a.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
   return m;

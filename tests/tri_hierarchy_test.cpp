@@ -4,6 +4,8 @@
 // exact L2 norms, projects.
 #include <gtest/gtest.h>
 
+#include "tests/test_shapes.h"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -22,6 +24,9 @@
 using namespace sublift;
 
 namespace {
+
+using sublift::testing::max_abs_diff;
+using sublift::testing::random_coefficients;
 
 struct Base {
   std::string name;
@@ -76,21 +81,6 @@ std::vector<Base> bases() {
     out.push_back({"loop_icosahedron", std::move(s.base), std::move(s.positions)});
   }
   return out;
-}
-
-std::vector<double> random_values(std::size_t n, unsigned seed, bool integer) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<double> x(n);
-  for (double& v : x) v = integer ? std::round(1000.0 * u(rng)) + 0.0 : u(rng);
-  return x;
-}
-
-double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
-  EXPECT_EQ(a.size(), b.size());
-  double m = 0;
-  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
-  return m;
 }
 
 const Scheme kTri[] = {Scheme::LinearTri, Scheme::Butterfly, Scheme::Loop};
@@ -160,12 +150,12 @@ TEST(TriHierarchy, PerfectReconstruction) {
       for (int J : {1, 3}) {
         SCOPED_TRACE(b.name + " " + scheme_name(s) + " J=" + std::to_string(J));
         Hierarchy h = make_hierarchy(b.c, J, s, 3);
-        const std::vector<double> fine = random_values(h.coeffs.size(), 7u + static_cast<unsigned>(J), false);
+        const std::vector<double> fine = random_coefficients(h.coeffs.size(), 7u + static_cast<unsigned>(J), false);
         analyze(h, fine);
         EXPECT_LT(max_abs_diff(synthesize(h, J), fine), s == Scheme::Loop ? 1e-9 : 1e-12);
         if (s == Scheme::Loop) continue;
         Hierarchy hi = make_hierarchy(b.c, J, s, 3, /*integer=*/true);
-        const std::vector<double> ints = random_values(hi.coeffs.size(), 11u, true);
+        const std::vector<double> ints = random_coefficients(hi.coeffs.size(), 11u, true);
         analyze(hi, ints);
         for (double v : hi.coeffs) ASSERT_EQ(v, std::round(v));
         const std::vector<double> back = synthesize(hi, J);
@@ -254,7 +244,7 @@ TEST(TriHierarchy, SynthesisedWaveletsAreOrthogonalToTheirDisc) {
 TEST(TriHierarchy, ProjectRoundTrip) {
   const Base b = open_grid();
   Hierarchy h = make_hierarchy(b.c, 2, Scheme::Butterfly, 3, false, 0, 3);
-  analyze(h, random_values(h.coeffs.size(), 3, false));
+  analyze(h, random_coefficients(h.coeffs.size(), 3, false));
   const std::string path = (std::filesystem::temp_directory_path() / "sublift_tri_project.sublift").string();
   write_project(path, h);
   const Hierarchy back = read_project(path);

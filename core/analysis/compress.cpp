@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "core/base/bounds.h"
+#include "core/base/channels.h"
 #include "core/base/errors.h"
 #include "core/analysis/experiments.h"
 #include "core/base/text_lines.h"
@@ -16,15 +17,6 @@ double norm(const double* v, int channels) {
   double s = 0;
   for (int c = 0; c < channels; ++c) s += v[c] * v[c];
   return std::sqrt(s);
-}
-
-// x, y, z of every vertex (first three channels, missing ones 0).
-std::vector<double> xyz_of(std::span<const double> values, int channels) {
-  const std::size_t n = values.size() / static_cast<std::size_t>(channels);
-  std::vector<double> xyz(3 * n, 0.0);
-  for (std::size_t v = 0; v < n; ++v)
-    for (int k = 0; k < 3 && k < channels; ++k) xyz[3 * v + k] = values[v * channels + k];
-  return xyz;
 }
 
 void check_gains(const Hierarchy& h, std::span<const double> gains) {

@@ -1,7 +1,7 @@
 # The layering of docs/architecture.md, checked on every #include (ctest: Layers.Includes):
 #   - a core/ layer includes only its own files and the layers core/layers.cmake lets it use;
 #   - core/ includes nothing of app/, ui/ or render/, nor GL, GLFW or ImGui;
-#   - ui/ and render/ do not include each other.
+#   - ui/ and render/ do not include each other, nor app/cli/ and app/modeler/.
 # Run as: cmake -DSUBLIFT_ROOT=<source dir> -P tests/check_layers.cmake
 include(${SUBLIFT_ROOT}/core/layers.cmake)
 set(failures "")
@@ -63,7 +63,7 @@ foreach(f ${core_files})
   endforeach()
 endforeach()
 
-foreach(pair "ui;render" "render;ui")
+foreach(pair "ui;render" "render;ui" "app/cli;app/modeler" "app/modeler;app/cli")
   list(GET pair 0 from)
   list(GET pair 1 to)
   file(GLOB_RECURSE files RELATIVE ${SUBLIFT_ROOT} ${SUBLIFT_ROOT}/${from}/*.h ${SUBLIFT_ROOT}/${from}/*.cpp)
@@ -82,4 +82,4 @@ if(failures)
   list(JOIN failures "\n  " text)
   message(FATAL_ERROR "layering violated:\n  ${text}")
 endif()
-message(STATUS "layering holds: ${checked} includes of ${n_core} core files and ui/, render/ checked")
+message(STATUS "layering holds: ${checked} includes of ${n_core} core files, ui/, render/ and app/ checked")

@@ -3,19 +3,19 @@
 # display, so it needs xvfb, xauth and Mesa's EGL (TOOLCHAIN.md); missing ones fail, not skip.
 include(GoogleTest)
 
-add_executable(camera_test ${CMAKE_CURRENT_LIST_DIR}/camera_test.cpp)
+add_executable(camera_test ${CMAKE_CURRENT_LIST_DIR}/render/camera_test.cpp)
 target_link_libraries(camera_test PRIVATE sublift_render GTest::gtest_main)
 gtest_discover_tests(camera_test DISCOVERY_MODE PRE_TEST)
 
-add_executable(viewport_input_test ${CMAKE_CURRENT_LIST_DIR}/viewport_input_test.cpp)
+add_executable(viewport_input_test ${CMAKE_CURRENT_LIST_DIR}/ui/viewport_input_test.cpp)
 target_link_libraries(viewport_input_test PRIVATE sublift_ui GTest::gtest_main)
 gtest_discover_tests(viewport_input_test DISCOVERY_MODE PRE_TEST)
 
-add_executable(render_test ${CMAKE_CURRENT_LIST_DIR}/render_test.cpp)
+add_executable(render_test ${CMAKE_CURRENT_LIST_DIR}/render/render_test.cpp)
 target_link_libraries(render_test PRIVATE sublift_render PkgConfig::STB GTest::gtest_main)
 gtest_discover_tests(render_test DISCOVERY_MODE PRE_TEST PROPERTIES TIMEOUT 60)
 
-add_executable(gui_test ${CMAKE_CURRENT_LIST_DIR}/gui_test.cpp)
+add_executable(gui_test ${CMAKE_CURRENT_LIST_DIR}/modeler/gui_test.cpp)
 target_link_libraries(gui_test PRIVATE PkgConfig::STB GTest::gtest_main)
 target_compile_definitions(gui_test PRIVATE
   SUBLIFT_GUI_EXE="$<TARGET_FILE:sublift>"
@@ -24,18 +24,18 @@ add_dependencies(gui_test sublift)
 gtest_discover_tests(gui_test DISCOVERY_MODE PRE_TEST PROPERTIES TIMEOUT 120 LABELS gui)
 
 # The modeler's limit surface and control net renderers (issue 4); PNGs go to the build folder.
-add_executable(modeler_render_test ${CMAKE_CURRENT_LIST_DIR}/modeler_render_test.cpp)
+add_executable(modeler_render_test ${CMAKE_CURRENT_LIST_DIR}/render/modeler_render_test.cpp)
 target_link_libraries(modeler_render_test PRIVATE sublift_render GTest::gtest_main)
 target_compile_definitions(modeler_render_test PRIVATE
   SUBLIFT_TEST_PNG_DIR="${CMAKE_CURRENT_BINARY_DIR}/modeler_render_png")
 gtest_discover_tests(modeler_render_test DISCOVERY_MODE PRE_TEST PROPERTIES TIMEOUT 60)
 
 # The modeler: key/mouse bindings as data, and `sublift --script` end to end (Xvfb and EGL).
-add_executable(modeler_keys_test ${CMAKE_CURRENT_LIST_DIR}/modeler_keys_test.cpp)
+add_executable(modeler_keys_test ${CMAKE_CURRENT_LIST_DIR}/ui/modeler_keys_test.cpp)
 target_link_libraries(modeler_keys_test PRIVATE sublift_ui GTest::gtest_main)
 gtest_discover_tests(modeler_keys_test DISCOVERY_MODE PRE_TEST)
 
-add_executable(modeler_gui_test ${CMAKE_CURRENT_LIST_DIR}/modeler_gui_test.cpp)
+add_executable(modeler_gui_test ${CMAKE_CURRENT_LIST_DIR}/modeler/modeler_gui_test.cpp)
 target_link_libraries(modeler_gui_test PRIVATE PkgConfig::STB GTest::gtest_main)
 target_compile_definitions(modeler_gui_test PRIVATE
   SUBLIFT_GUI_EXE="$<TARGET_FILE:sublift>"
@@ -45,18 +45,18 @@ add_dependencies(modeler_gui_test sublift)
 gtest_discover_tests(modeler_gui_test DISCOVERY_MODE PRE_TEST PROPERTIES TIMEOUT 120 LABELS gui)
 
 # The modeler's mouse and keys on the controller, without a window or GL context.
-add_executable(modeler_controller_test ${CMAKE_CURRENT_LIST_DIR}/modeler_controller_test.cpp)
+add_executable(modeler_controller_test ${CMAKE_CURRENT_LIST_DIR}/modeler/modeler_controller_test.cpp)
 target_link_libraries(modeler_controller_test PRIVATE sublift_modeler GTest::gtest_main)
 target_compile_definitions(modeler_controller_test PRIVATE SUBLIFT_ASSETS_DIR="${PROJECT_SOURCE_DIR}/assets")
 gtest_discover_tests(modeler_controller_test DISCOVERY_MODE PRE_TEST)
 
 # The modeler's compression view (docs/compression.md): on the controller, and `sublift --script`
 # under Xvfb with screenshots (PNGs in modeler_compress_gui_out/).
-add_executable(modeler_compress_test ${CMAKE_CURRENT_LIST_DIR}/modeler_compress_test.cpp)
+add_executable(modeler_compress_test ${CMAKE_CURRENT_LIST_DIR}/modeler/modeler_compress_test.cpp)
 target_link_libraries(modeler_compress_test PRIVATE sublift_modeler GTest::gtest_main)
 target_compile_definitions(modeler_compress_test PRIVATE SUBLIFT_ASSETS_DIR="${PROJECT_SOURCE_DIR}/assets")
 gtest_discover_tests(modeler_compress_test DISCOVERY_MODE PRE_TEST)
-add_executable(modeler_compress_gui_test ${CMAKE_CURRENT_LIST_DIR}/modeler_compress_gui_test.cpp)
+add_executable(modeler_compress_gui_test ${CMAKE_CURRENT_LIST_DIR}/modeler/modeler_compress_gui_test.cpp)
 target_link_libraries(modeler_compress_gui_test PRIVATE sublift_core PkgConfig::STB GTest::gtest_main)
 target_compile_definitions(modeler_compress_gui_test PRIVATE
   SUBLIFT_GUI_EXE="$<TARGET_FILE:sublift>"

@@ -1,7 +1,7 @@
 #pragma once
 // The basis-function mode's settings (issue 5): which function — core's BasisRequest, as it is —
 // and how the modeler shows it. The one struct that carries a basis request from the Basis
-// panel (ui/modeler_panels.h) through ModelerState and app/basis_view_state.h to core's
+// panel (ui/modeler_panels.h) through ModelerState and app/modeler/basis_view_state.h to core's
 // basis_function(). Plain data: no GL, no ImGui.
 #include "core/multires/basis.h"
 
@@ -11,7 +11,7 @@ struct BasisSettings {
   bool on = false;
   // The function. request.level: j; -1: the edit level (ModelerState stores the level it used).
   // request.extra_levels: K; -1: core's default, capped at kModelerBasisVertices
-  // (app/basis_view_state.h). request.index: level-j vertex (scaling) or e/f/c vertex of level
+  // (app/modeler/basis_view_state.h). request.index: level-j vertex (scaling) or e/f/c vertex of level
   // j+1 (wavelet).
   BasisRequest request{.level = -1};
   bool follow = false;        // a click on the net picks the function there (basis_target_at)

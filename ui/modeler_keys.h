@@ -2,7 +2,7 @@
 // Modeler hotkeys and mouse gestures as pure data: key (with modifiers) -> command, the grab
 // tool's state machine (axis constraint, typed distance), and what a left press/release in the
 // viewport means. No GLFW, no ImGui, no GL, so the bindings are unit-tested
-// (tests/modeler_keys_test.cpp); the app executes the commands on the session.
+// (tests/ui/modeler_keys_test.cpp); the app executes the commands on the session.
 #include <optional>
 #include <string>
 #include <string_view>

@@ -77,7 +77,7 @@
 //     corner (s > 2, vertex_dim 0, no edge at all, or a non-manifold vertex, which OpenSubdiv
 //     sharpens too):   v
 //
-// Peers (tests/tri_rules_test.cpp): Butterfly vs OpenMesh ModifiedButterflyT, Loop vs OpenSubdiv
+// Peers (tests/schemes/tri_rules_test.cpp): Butterfly vs OpenMesh ModifiedButterflyT, Loop vs OpenSubdiv
 // Far (TopologyRefiner + PrimvarRefiner). See docs/triangle_schemes.md.
 #include <cstdint>
 #include <vector>

@@ -1,0 +1,136 @@
+// sublift-cli compress PROJECT (--keep F | --threshold T | --linf E) [--region SPEC] [--raw]
+//             -o OUT [--json]
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+#include "app/cli/cli_args.h"
+#include "app/cli/cli_commands.h"
+#include "app/cli/cli_hierarchy.h"
+#include "core/analysis/compress.h"
+#include "core/base/errors.h"
+#include "core/io/project/project_io.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/base/text_lines.h"
+
+namespace sublift::cli {
+namespace {
+
+constexpr const char* kHelp =
+    "usage: sublift-cli compress PROJECT (--keep F | --threshold T | --linf E) [--region SPEC] [--raw]\n"
+    "                            -o OUT [--json]\n"
+    "  Drops the wavelet coefficients of a .sublift project that contribute least and writes the\n"
+    "  result (docs/compression.md). Wavelets are ranked by normalised magnitude |w| x ||psi||_2\n"
+    "  (the wavelet's L2 norm; the level's detail gain applied); exactly one mode:\n"
+    "  --keep F       keep the largest fraction F (0..1) of the wavelets (the ranking and rounding\n"
+    "                 of 'synthesize --keep')\n"
+    "  --threshold T  keep wavelets whose normalised magnitude is >= T x the bounding-box diagonal\n"
+    "                 of the finest shape (T is scale-free)\n"
+    "  --linf E       remove as many of the smallest wavelets as found while the largest finest-\n"
+    "                 vertex error stays <= E x the diagonal (bisection over the ranking: the\n"
+    "                 largest prefix removal found, not a global optimum)\n"
+    "  --region SPEC  only wavelets whose vertex lies inside may be removed: box:x0,y0,z0,x1,y1,z1\n"
+    "                 or sphere:cx,cy,cz,r (position on the level the wavelet lives on); F then\n"
+    "                 counts the wavelets inside\n"
+    "  --raw          rank by the raw magnitude |w| instead (for experiments)\n"
+    "  OUT            a .sublift project (the compressed coefficients, gains and level kept), or\n"
+    "                 the finest level as a mesh by extension (.obj .off .ply .vtk .lattice)\n"
+    "  --json         prints kept, total, l2_error, linf_error (relative to the diagonal), mode,\n"
+    "                 value and timings\n";
+
+double mode_value(const std::string& option, const std::string& text) {
+  const auto v = parse_double(text);
+  if (!v) throw UsageError(option + " needs a number, got '" + text + "'");
+  if (option == "--keep" && (*v < 0 || *v > 1)) throw UsageError("--keep must be a fraction in 0..1, got '" + text + "'");
+  if (*v < 0) throw UsageError(option + " must not be negative, got '" + text + "'");
+  return *v;
+}
+
+}  // namespace
+
+int run_compress(int argc, char** argv) {
+  const Args a = parse_args(argc, argv, 2, {"-o", "--keep", "--threshold", "--linf", "--region"},
+                            {"--json", "--help", "--raw"});
+  if (a.has("--help")) {
+    std::cout << kHelp;
+    return 0;
+  }
+  if (a.positional.size() != 1) throw UsageError("expected exactly one PROJECT file");
+  struct Choice {
+    const char* option;
+    CompressMode mode;
+  };
+  const Choice choices[] = {{"--keep", CompressMode::Keep}, {"--threshold", CompressMode::Threshold},
+                            {"--linf", CompressMode::Linf}};
+  std::optional<CompressMode> mode;
+  double value = 0;
+  for (const Choice& c : choices) {
+    const auto v = a.value(c.option);
+    if (!v) continue;
+    if (mode) throw UsageError("give exactly one of --keep F, --threshold T, --linf E (got more than one)");
+    mode = c.mode;
+    value = mode_value(c.option, *v);
+  }
+  if (!mode) throw UsageError("give exactly one of --keep F, --threshold T, --linf E");
+  if (!a.value("-o")) throw UsageError("missing -o OUT");
+  CompressOptions options;
+  options.normalise = !a.has("--raw");
+  if (const auto r = a.value("--region")) {
+    try {
+      options.region = parse_region(*r);
+    } catch (const Error& e) {
+      throw UsageError(std::string("--region: ") + e.what());
+    }
+  }
+
+  const std::string& in = a.positional[0];
+  ProjectExtras extras;
+  const Hierarchy h = read_project(in, &extras);
+  const bool project_out = is_project_path(*a.value("-o"));
+  const std::string out = output_option(a, project_out ? 0 : h.levels.front().dim);
+  options.gains = extras.gains;
+
+  const auto t0 = std::chrono::steady_clock::now();
+  const Compressor compressor(h, options);
+  const auto t1 = std::chrono::steady_clock::now();
+  const Compression c = compressor.run(*mode, value);
+  const auto t2 = std::chrono::steady_clock::now();
+
+  std::vector<std::string> notes;
+  if (project_out) {
+    Hierarchy compressed = h;
+    compressed.coeffs = c.coeffs;
+    write_project(out, compressed, extras);
+  } else {
+    notes = write_shape(out, h.levels.back(), xyz_of(c.finest, h.channels));
+  }
+  for (const std::string& n : notes) std::cerr << out << ": warning: " << n << "\n";
+  const auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
+  if (a.has("--json")) {
+    nlohmann::json j = {{"input", in},
+                        {"output", out},
+                        {"mode", compress_mode_name(*mode)},
+                        {"value", value},
+                        {"kept", c.kept},
+                        {"total", c.total},
+                        {"candidates", compressor.candidates()},
+                        {"candidates_kept", c.keep},
+                        {"l2_error", c.l2_error},
+                        {"linf_error", c.linf_error},
+                        {"diagonal", compressor.diagonal()},
+                        {"normalise", options.normalise},
+                        {"region", a.value("--region").value_or("")},
+                        {"ranking_ms", ms(t0, t1)},
+                        {"compress_ms", ms(t1, t2)},
+                        {"notes", notes}};
+    std::cout << j.dump(2) << "\n";
+  } else {
+    char line[200];
+    std::snprintf(line, sizeof line, "kept %zu of %zu wavelets; error relative to the diagonal: L2 %.3g, L-infinity %.3g\n",
+                  c.kept, c.total, c.l2_error, c.linf_error);
+    std::cout << line;
+  }
+  return 0;
+}
+
+}  // namespace sublift::cli

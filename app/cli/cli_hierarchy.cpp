@@ -1,0 +1,88 @@
+#include <cctype>
+#include "app/cli/cli_hierarchy.h"
+
+#include <charconv>
+#include <cstdio>
+
+#include "core/complex/level_counts.h"
+#include "core/io/project/project_io.h"
+#include "core/io/lattice/shape_io.h"
+
+namespace sublift::cli {
+
+int levels_option(const Args& a, Scheme scheme) {
+  const auto v = a.value("--levels");
+  if (!v) throw UsageError("missing --levels N");
+  int n = -1;
+  const int most = max_levels(scheme);
+  auto [p, ec] = std::from_chars(v->data(), v->data() + v->size(), n);
+  if (ec != std::errc() || p != v->data() + v->size() || n < 0 || n > most)
+    throw UsageError("--levels must be an integer in 0.." + std::to_string(most) + ", got '" + *v + "'");
+  return n;
+}
+
+Scheme scheme_option(const Args& a) {
+  const auto v = a.value("--scheme");
+  if (!v) {
+    std::string names;
+    for (const SchemeInfo& s : all_schemes()) names += (names.empty() ? "" : "|") + std::string(s.name);
+    throw UsageError("missing --scheme " + names);
+  }
+  try {
+    return parse_scheme(*v);
+  } catch (const std::invalid_argument&) {
+    throw UsageError("--scheme must be " + scheme_names_list() + ", got '" + *v + "'");
+  }
+}
+
+int disc_option(const Args& a, Scheme scheme) {
+  const auto v = a.value("--disc");
+  if (!v) return 2;
+  if (!scheme_is_tri(scheme)) throw UsageError("--disc applies to the triangle schemes (linear-tri, butterfly, loop)");
+  if (*v != "1" && *v != "2" && *v != "3") throw UsageError("--disc must be 1, 2 or 3, got '" + *v + "'");
+  return *v == "1" ? 1 : *v == "2" ? 2 : 3;
+}
+
+void check_refined_size(const Complex& base, int levels, Scheme scheme) {
+  if (scheme_info(scheme).surfaces_only && base.dim != 2)
+    throw UsageError("the " + scheme_name(scheme) + " scheme refines surfaces only; this input is a " +
+                     (base.dim == 1 ? "curve" : "volume lattice") + " (use --scheme linear or cubic)");
+  if (scheme_info(scheme).triangles_only)
+    for (std::uint32_t f = 0; f < base.num_faces(); ++f)
+      if (base.faces.size(f) != 3)
+        throw UsageError("the " + scheme_name(scheme) + " scheme needs a triangle mesh; face " + std::to_string(f) + " has " +
+                         std::to_string(base.faces.size(f)) + " corners (use linear, cubic or sqrt2 for polygon meshes)");
+  const double n = predicted_level_counts(base, levels, scheme).back();
+  if (n > kMaxOutputVertices) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%d levels of this base make %.0f vertices, more than the limit of %.0f; use fewer levels",
+                  levels, n, kMaxOutputVertices);
+    throw UsageError(buf);
+  }
+}
+
+std::string output_option(const Args& a, int dim) {
+  const auto out = a.value("-o");
+  if (!out) throw UsageError("missing -o OUT");
+  if (dim > 0)
+    if (const std::string why = shape_output_problem(*out, dim); !why.empty()) throw UsageError(why);
+  return *out;
+}
+
+bool is_project_path(const std::string& path) {
+  const std::string ext = ".sublift";
+  if (path.size() < ext.size()) return false;
+  for (std::size_t i = 0; i < ext.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(path[path.size() - ext.size() + i])) != ext[i]) return false;
+  return true;
+}
+
+nlohmann::json complex_counts_json(const Complex& c) {
+  return {{"dim", c.dim},
+          {"vertices", c.num_vertices},
+          {"edges", c.num_edges()},
+          {"faces", c.num_faces()},
+          {"cells", c.num_cells()}};
+}
+
+}  // namespace sublift::cli

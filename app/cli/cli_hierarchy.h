@@ -1,0 +1,43 @@
+#pragma once
+// Shared pieces of the hierarchy commands (subdivide, analyze, synthesize, info on projects):
+// option parsing with range checks, the output-size guard and JSON forms of complexes.
+#include <span>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/cli/cli_args.h"
+#include "core/base/channels.h"
+#include "core/complex/complex.h"
+#include "core/multires/hierarchy.h"
+
+namespace sublift::cli {
+
+/// Largest finest level a command builds (vertices); more is refused before allocating.
+inline constexpr double kMaxOutputVertices = 50e6;
+
+/// `--levels N`, required, 0..max_levels(scheme). Throws UsageError.
+int levels_option(const Args& a, Scheme scheme);
+
+/// `--scheme linear|cubic|sqrt2`, required. Throws UsageError.
+Scheme scheme_option(const Args& a);
+
+/// Throws UsageError when `levels` refinements of `base` would exceed kMaxOutputVertices, or
+/// when the scheme cannot refine this kind of complex (sqrt2 takes surfaces only).
+/// --disc K of the triangle schemes (default 2); refused for the other schemes.
+int disc_option(const Args& a, Scheme scheme);
+void check_refined_size(const Complex& base, int levels, Scheme scheme);
+
+/// The output path `-o OUT`, required; UsageError when missing or when `dim` cannot be written
+/// to its extension (an empty `dim` check when dim is 0).
+std::string output_option(const Args& a, int dim);
+
+/// Whether `path` names a .sublift project (case-insensitive extension).
+bool is_project_path(const std::string& path);
+
+
+/// Counts of a complex: dim, vertices, edges, faces, cells.
+nlohmann::json complex_counts_json(const Complex& c);
+
+}  // namespace sublift::cli

@@ -1,0 +1,763 @@
+#include "app/modeler/modeler_controller.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <utility>
+
+#include "app/modeler/modeler_view.h"
+#include "core/base/errors.h"
+
+namespace sublift {
+namespace {
+
+constexpr double kPickRadiusPx = 10.0;
+constexpr double kAutosaveSeconds = 120.0;
+constexpr float kStatusHeight = 28.0f;
+constexpr glm::vec3 kWindowClear{0.11f, 0.12f, 0.13f};
+
+std::string trimmed(std::string s) {
+  while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+  return s;
+}
+
+}  // namespace
+
+ModelerController::ModelerController(bool interactive) : interactive_(interactive) {}
+
+std::string ModelerController::recovery_path() {
+  namespace fs = std::filesystem;
+  fs::path dir;
+  if (const char* d = std::getenv("SUBLIFT_RECOVERY_DIR"); d != nullptr && *d != '\0') {
+    dir = d;
+  } else if (const char* x = std::getenv("XDG_STATE_HOME"); x != nullptr && *x != '\0') {
+    dir = fs::path(x) / "sublift";
+  } else if (const char* h = std::getenv("HOME"); h != nullptr && *h != '\0') {
+    dir = fs::path(h) / ".local" / "state" / "sublift";
+  } else {
+    dir = fs::temp_directory_path() / "sublift";
+  }
+  return (dir / "recovery.sublift").string();
+}
+
+void ModelerController::fail(const std::exception& e, const std::string& context) {
+  error = context + trimmed(e.what());
+  message.clear();
+}
+
+void ModelerController::open(const std::string& path, bool ask) {
+  if (ask && interactive_ && model.has_session() && model.session().dirty()) {
+    pending_ = Pending{Pending::Kind::Open, path};
+    unsaved_prompt_ = true;
+    return;
+  }
+  try {
+    model.open(path);
+    framed = false;
+    pick_dirty_ = stats_dirty_ = true;
+    error.clear();
+    message = "Opened " + path;
+    recent_.erase(std::remove(recent_.begin(), recent_.end(), path), recent_.end());
+    recent_.insert(recent_.begin(), path);
+    if (recent_.size() > 8) recent_.pop_back();
+    if (fields.save_path.empty() || !model.project_path().empty()) fields.save_path = model.project_path();
+  } catch (const std::exception& e) {
+    fail(e, "Cannot open: ");  // the current model stays
+  }
+}
+
+std::string ModelerController::default_save_path() const {
+  if (!model.project_path().empty()) return model.project_path();
+  if (!fields.save_path.empty()) return fields.save_path;
+  std::filesystem::path p(model.file_path());
+  return (p.parent_path() / (p.stem().string() + ".sublift")).string();
+}
+
+bool ModelerController::save(const std::string& path) {
+  try {
+    model.save_project(path);
+    fields.save_path = path;
+    error.clear();
+    message = "Saved " + path;
+    return true;
+  } catch (const std::exception& e) {
+    fail(e, "Cannot save: ");
+    return false;
+  }
+}
+
+void ModelerController::export_to(const std::string& path, bool finest) {
+  try {
+    const auto notes = model.export_shape(path, finest);
+    error.clear();
+    message = "Exported " + path;
+    for (const std::string& n : notes) message += "\n" + n;
+  } catch (const std::exception& e) {
+    fail(e, "Cannot export: ");
+  }
+}
+
+void ModelerController::load_model(const std::string& path) {
+  try {
+    model.load_model(path);
+    error.clear();
+    const FfdModelState* f = model.ffd();
+    pick_dirty_ = true;
+    message = "Loaded " + path + (f->bound ? " (bound to the lattice)" : " (wrap it in a box lattice or open one)");
+    framed = false;
+  } catch (const std::exception& e) {
+    fail(e, "Cannot load the model: ");
+  }
+}
+
+bool ModelerController::request_quit() {
+  if (!interactive_ || !model.has_session() || !model.session().dirty() || quit_confirmed_) return true;
+  pending_ = Pending{Pending::Kind::Quit, {}};
+  unsaved_prompt_ = true;
+  return false;
+}
+
+void ModelerController::proceed(const Pending& p) {
+  if (p.kind == Pending::Kind::Open) open(p.path, false);
+  if (p.kind == Pending::Kind::Quit) quit_confirmed_ = true;
+}
+
+void ModelerController::tick(double now) {
+  if (!interactive_ || !model.has_session()) return;
+  if (last_autosave_ < 0.0) last_autosave_ = now;
+  const bool busy = model.dragging() || grab_.active || gain_active_ || press_ != Press::None;
+  if (busy || !model.session().dirty() || now - last_autosave_ < kAutosaveSeconds) return;
+  last_autosave_ = now;
+  try {
+    const std::string path = recovery_path();
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+    model.write_recovery(path);
+  } catch (const std::exception& e) {
+    fail(e, "Autosave failed: ");
+  }
+}
+
+void ModelerController::clean_exit() {
+  if (!interactive_) return;
+  std::error_code ec;
+  std::filesystem::remove(recovery_path(), ec);
+}
+
+void ModelerController::check_recovery() {
+  if (!interactive_) return;
+  std::error_code ec;
+  recovery_prompt_ = std::filesystem::exists(recovery_path(), ec);
+}
+
+bool ModelerController::in_viewport(double x, double y) const {
+  return x >= view_x_ && y >= view_y_ && x < view_x_ + view_w_ && y < view_y_ + view_h_;
+}
+
+PickView ModelerController::pick_view() const {
+  return PickView{camera.projection() * camera.view(), camera.viewport_width, camera.viewport_height};
+}
+
+const PickIndex& ModelerController::pick_index() {
+  const PickView v = pick_view();
+  if (pick_dirty_ || v.view_proj != pick_matrix_ || clip_now_ != pick_clip_ || display.xray != pick_xray_) {
+    // Points the clipping plane removed from view cannot be picked either.
+    const auto xyz = model.net_positions();  // as drawn (compressed while that view is on)
+    pick_visible_.clear();
+    if (clip_now_ != glm::vec4(0.0f)) {
+      pick_visible_.resize(xyz.size() / 3);
+      for (std::size_t i = 0; i < pick_visible_.size(); ++i)
+        pick_visible_[i] = clip_now_.x * xyz[3 * i] + clip_now_.y * xyz[3 * i + 1] + clip_now_.z * xyz[3 * i + 2] +
+                               clip_now_.w >= 0.0;
+    }
+    std::vector<float> depth;
+    if (!display.xray && depth_source_) depth = depth_source_(camera, v.width, v.height, display);
+    const OcclusionDepth occlusion{depth};
+    pick_.build(v, xyz, pick_visible_, depth.size() == std::size_t(v.width) * std::size_t(v.height) ? &occlusion : nullptr);
+    pick_xray_ = display.xray;
+    pick_matrix_ = v.view_proj;
+    pick_clip_ = clip_now_;
+    pick_dirty_ = false;
+  }
+  return pick_;
+}
+
+void ModelerController::apply_camera(const CameraAction& action) {
+  Bounds bounds;
+  bounds.empty = true;
+  switch (action.type) {
+    case CameraActionType::None: break;
+    case CameraActionType::Orbit: camera.orbit(action.dx, action.dy); break;
+    case CameraActionType::Pan: camera.pan(action.dx, action.dy); break;
+    case CameraActionType::Zoom: camera.zoom(action.steps); break;
+    case CameraActionType::Frame: framed = false; break;  // framed at the next draw
+    case CameraActionType::ViewFront: camera.set_view(ViewPreset::Front); break;
+    case CameraActionType::ViewBack: camera.set_view(ViewPreset::Back); break;
+    case CameraActionType::ViewRight: camera.set_view(ViewPreset::Right); break;
+    case CameraActionType::ViewLeft: camera.set_view(ViewPreset::Left); break;
+    case CameraActionType::ViewTop: camera.set_view(ViewPreset::Top); break;
+    case CameraActionType::ViewBottom: camera.set_view(ViewPreset::Bottom); break;
+    case CameraActionType::ToggleOrthographic: display.orthographic = !display.orthographic; break;
+  }
+}
+
+void ModelerController::update_grab() {
+  if (!model.dragging()) return;
+  glm::dvec3 total(0.0);
+  if (const auto typed = grab_.typed_value()) {
+    total[grab_.axis < 0 ? 0 : grab_.axis] = *typed;
+  } else {
+    const double s = scale_;
+    total = view_plane_delta(pick_view(), grab_anchor_, (mouse_x_ - grab_x_) * s, (mouse_y_ - grab_y_) * s);
+    if (grab_.axis >= 0) {
+      const double along = total[grab_.axis];
+      total = glm::dvec3(0.0);
+      total[grab_.axis] = along;
+    }
+  }
+  const double t[3] = {total.x, total.y, total.z};
+  try {
+    model.drag_to(t);
+  } catch (const std::exception& e) {
+    fail(e, "Cannot move: ");
+  }
+  pick_dirty_ = true;
+}
+
+void ModelerController::run_command(ModelerCommandType type) {
+  if (!model.has_session()) return;
+  try {
+    switch (type) {
+      case ModelerCommandType::None: break;
+      case ModelerCommandType::SelectAll: model.select_all(); break;
+      case ModelerCommandType::SelectNone: model.set_selection({}); break;
+      case ModelerCommandType::LevelUp: model.set_level(model.level() + 1); break;
+      case ModelerCommandType::LevelDown: model.set_level(model.level() - 1); break;
+      case ModelerCommandType::Subdivide: model.subdivide(); break;
+      case ModelerCommandType::Undo: model.undo(); break;
+      case ModelerCommandType::Redo: model.redo(); break;
+      case ModelerCommandType::Save: save(default_save_path()); break;
+      case ModelerCommandType::SaveAs:
+        if (fields.save_path.empty()) {
+          error = "Type a project path in Files, then Save.";
+        } else {
+          save(fields.save_path);
+        }
+        break;
+      case ModelerCommandType::Open:
+        if (fields.open_path.empty()) {
+          error = "Type a path in Files (or drop a file on the window), then Open.";
+        } else {
+          open(fields.open_path);
+        }
+        break;
+      case ModelerCommandType::Export:
+        if (fields.export_path.empty()) {
+          error = "Type an export path in Files, then Export.";
+        } else {
+          export_to(fields.export_path, fields.export_finest);
+        }
+        break;
+      case ModelerCommandType::GrabStart: {
+        glm::dvec3 sum(0.0);
+        const auto pos = model.session().positions(model.level());
+        for (const unsigned v : model.selection()) sum += glm::dvec3(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
+        grab_anchor_ = sum / static_cast<double>(std::max<std::size_t>(model.selection().size(), 1));
+        grab_x_ = mouse_x_;
+        grab_y_ = mouse_y_;
+        model.begin_drag("Grab");
+        break;
+      }
+      case ModelerCommandType::GrabUpdate: update_grab(); break;
+      case ModelerCommandType::GrabConfirm: model.end_drag(); break;
+      case ModelerCommandType::GrabCancel: model.cancel_drag(); break;
+    }
+  } catch (const std::exception& e) {
+    if (!model.dragging()) grab_ = GrabState{};  // a refused grab (compression view) ends here
+    fail(e, "");
+  }
+  pick_dirty_ = stats_dirty_ = true;
+}
+
+void ModelerController::handle(const WindowEvent& ev) {
+  const double dx = ev.x - mouse_x_, dy = ev.y - mouse_y_;
+  if (ev.type != WindowEvent::Type::Key) {
+    mouse_x_ = ev.x;
+    mouse_y_ = ev.y;
+  }
+  mods_ = ev.mods;
+  if (!model.has_session() || unsaved_prompt_ || recovery_prompt_ || scheme_prompt_) return;
+  const double s = scale_;
+  const double vx = (ev.x - view_x_) * s, vy = (ev.y - view_y_) * s;  // viewport pixels
+  switch (ev.type) {
+    case WindowEvent::Type::Key: {
+      if (ev.over_ui) return;
+      const ModelerCommand c = map_modeler_key(ev.key, ev.mods, grab_, !model.selection().empty());
+      if (c.type != ModelerCommandType::None || grab_.active) {
+        run_command(c.type);
+      } else {
+        InputEvent in;
+        in.type = InputEvent::Type::KeyPress;
+        in.key = ev.key;
+        in.mods = ev.mods;
+        apply_camera(map_viewport_input(in));
+      }
+      return;
+    }
+    case WindowEvent::Type::Wheel: {
+      if (ev.over_ui || !in_viewport(ev.x, ev.y)) return;
+      if (ev.mods.ctrl) {
+        model.set_soft_radius(soft_radius_after_wheel(model.soft_radius(), ev.wheel, model.default_soft_radius()));
+      } else {
+        InputEvent in;
+        in.type = InputEvent::Type::Wheel;
+        in.wheel = ev.wheel;
+        in.mods = ev.mods;
+        apply_camera(map_viewport_input(in));
+      }
+      return;
+    }
+    case WindowEvent::Type::Press: {
+      if (ev.over_ui || !in_viewport(ev.x, ev.y)) return;
+      held_[ev.button] = true;
+      if (grab_.active) {
+        grab_ = GrabState{};
+        run_command(ev.button == 1 ? ModelerCommandType::GrabCancel : ModelerCommandType::GrabConfirm);
+        held_[ev.button] = false;
+        return;
+      }
+      if (ev.button != 0 || ev.mods.alt || !display.net) return;
+      press_x_ = ev.x;
+      press_y_ = ev.y;
+      moved_ = false;
+      press_hit_ = pick_index().nearest(vx, vy, kPickRadiusPx, display.xray);
+      const auto& sel = model.selection();
+      const bool hit_selected = press_hit_ >= 0 && std::binary_search(sel.begin(), sel.end(), static_cast<unsigned>(press_hit_));
+      switch (classify_left_press(press_hit_ >= 0, hit_selected, ev.mods.shift)) {
+        case PressAction::DragSelection: {
+          press_ = Press::Drag;
+          const auto pos = model.session().positions(model.level());
+          const std::size_t v = static_cast<std::size_t>(press_hit_);
+          drag_anchor_ = glm::dvec3(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
+          break;
+        }
+        case PressAction::ClickSelect: press_ = Press::Click; break;
+        case PressAction::BoxSelect: press_ = Press::Box; break;
+        case PressAction::None: press_ = Press::None; break;
+      }
+      return;
+    }
+    case WindowEvent::Type::Release: {
+      const bool was_held = held_[ev.button];
+      held_[ev.button] = false;
+      if (ev.button != 0 || !was_held) return;
+      const Press press = std::exchange(press_, Press::None);
+      std::vector<unsigned> sel = model.selection();
+      if (press == Press::Drag) {
+        if (model.dragging()) {
+          model.end_drag();
+          stats_dirty_ = true;
+        } else {
+          apply_click(sel, press_hit_, false);  // a click on a selected point selects it alone
+          model.set_selection(sel);
+        }
+      } else if (press == Press::Click && !moved_) {
+        apply_click(sel, press_hit_, ev.mods.shift);
+        model.set_selection(sel);
+      } else if (press == Press::Box) {
+        if (moved_) {
+          const double px = (press_x_ - view_x_) * s, py = (press_y_ - view_y_) * s;
+          const auto inside = pick_index().in_rect(px, py, vx, vy, display.xray);
+          apply_box(sel, std::vector<unsigned>(inside.begin(), inside.end()), ev.mods.shift);
+        } else if (!ev.mods.shift) {
+          sel.clear();
+        }
+        model.set_selection(sel);
+      }
+      pick_dirty_ = true;
+      return;
+    }
+    case WindowEvent::Type::Move: {
+      if (grab_.active) {
+        if (!grab_.typed_value()) update_grab();
+        return;
+      }
+      if (press_ != Press::None &&
+          std::hypot(ev.x - press_x_, ev.y - press_y_) * s > kDragThresholdPx) {
+        moved_ = true;
+      }
+      if (press_ == Press::Drag && moved_) {
+        try {
+          if (!model.dragging()) model.begin_drag("Move");
+          const glm::dvec3 t = view_plane_delta(pick_view(), drag_anchor_, (ev.x - press_x_) * s, (ev.y - press_y_) * s);
+          const double total[3] = {t.x, t.y, t.z};
+          model.drag_to(total);
+        } catch (const std::exception& e) {
+          fail(e, "Cannot move: ");
+        }
+        pick_dirty_ = true;
+        return;
+      }
+      if (held_[1] || held_[2] || (held_[0] && ev.mods.alt)) {
+        InputEvent in;
+        in.type = InputEvent::Type::MouseMove;
+        in.mods = ev.mods;
+        in.left = held_[0];
+        in.right = held_[1];
+        in.middle = held_[2];
+        in.dx = dx * s;
+        in.dy = dy * s;
+        apply_camera(map_viewport_input(in));
+        return;
+      }
+      if (press_ == Press::None && display.net && !ev.over_ui && in_viewport(ev.x, ev.y)) {
+        model.set_hover(pick_index().nearest(vx, vy, kPickRadiusPx, display.xray));
+      } else if (model.hover() >= 0 && !in_viewport(ev.x, ev.y)) {
+        model.set_hover(-1);
+      }
+      return;
+    }
+  }
+}
+
+void ModelerController::apply_requests(const ModelerPanelRequests& r) {
+  try {
+    if (r.scheme && !model.session().history().empty()) {
+      scheme_prompt_ = *r.scheme;  // edits would be lost: ask first
+    } else if (r.scheme) {
+      const Scheme s = static_cast<Scheme>(*r.scheme);  // the combo lists the enum in order
+      model.set_scheme(s);
+      message = "Rebuilt with the " + scheme_name(s) + " scheme (detail and history cleared)";
+    }
+    if (r.level) model.set_level(*r.level);
+    if (r.subdivide) model.subdivide();
+    if (r.undo) model.undo();
+    if (r.redo) model.redo();
+    if (r.history_jump) model.jump_to(*r.history_jump);
+    if (r.local_frames) model.set_local_frames(*r.local_frames);
+    if (r.colour_level) model.set_colour_level(*r.colour_level);
+    if (r.soft_radius) model.set_soft_radius(*r.soft_radius);
+    if (r.basis) {
+      basis_request_ = *r.basis;  // kept even when it fails, so the panel shows what was typed
+      try {
+        model.set_basis(*r.basis);
+      } catch (const std::exception& e) {
+        fail(e, "Basis: ");
+      }
+    }
+    if (r.pin_basis) model.pin_basis();
+    if (r.clear_pin) model.clear_pin();
+    if (r.wrap_box) {
+      model.wrap_model_in_box(fields.box[0], fields.box[1], fields.box[2], fields.box_margin);
+      pick_dirty_ = stats_dirty_ = true;
+      framed = false;
+    }
+    if (r.bind) model.bind_model(*r.bind == 1 ? Outside::Nearest : Outside::Stay);
+    if (r.unbind) model.unbind_model();
+    if (r.remove_model) model.remove_model();
+    if (r.gain_begin && !gain_active_) {
+      model.begin_gain(r.gain_level);
+      gain_active_ = true;
+    }
+    if (r.gain_level >= 0 && r.gain_value != model.session().gain(r.gain_level)) {
+      model.set_gain(r.gain_level, r.gain_value);
+    }
+    if (r.gain_end && gain_active_) {
+      model.end_gain();
+      gain_active_ = false;
+    }
+  } catch (const std::exception& e) {
+    fail(e, "");
+  }
+  try {
+    if (r.compress_fraction) {
+      compress_fraction_ = *r.compress_fraction;
+      model.set_compression(compress_fraction_);
+      pick_dirty_ = true;
+    }
+    if (r.compress_apply) {
+      const std::size_t kept = model.compression_on() ? model.compression().kept : 0;
+      model.apply_compression();
+      error.clear();
+      message = "Applied the compression (" + std::to_string(kept) + " wavelets kept); Undo restores the full shape";
+      pick_dirty_ = stats_dirty_ = true;
+    }
+    if (r.compress_off) {
+      model.compression_off();
+      pick_dirty_ = true;
+    }
+  } catch (const std::exception& e) {
+    fail(e, "Compression: ");
+  }
+  if (r.open) open(*r.open);
+  if (r.load_model) load_model(*r.load_model);
+  if (r.export_model) {
+    try {
+      model.export_model(*r.export_model);
+      error.clear();
+      message = "Exported the model to " + *r.export_model;
+    } catch (const std::exception& e) {
+      fail(e, "Cannot export the model: ");
+    }
+  }
+  if (r.save) save(*r.save);
+  if (r.export_path) export_to(*r.export_path, r.export_finest);
+  apply_camera(r.camera);
+  if (r.scheme || r.level || r.subdivide || r.undo || r.redo || r.history_jump || r.gain_level >= 0 || r.gain_end) {
+    pick_dirty_ = stats_dirty_ = true;
+  }
+}
+
+namespace {
+
+BasisReadout readout_of(const BasisDisplay& d) {
+  const BasisFunction& f = d.function;
+  BasisReadout o;
+  char title[160];
+  const BasisRequest& q = d.settings.request;
+  std::snprintf(title, sizeof title, "%s %s %u of level %d, K = %d (%s)", q.dual ? "dual" : "primal",
+                q.kind == BasisKind::Scaling ? "scaling" : "wavelet", q.index, d.level,
+                f.extra_levels, f.limit ? "limit values" : "control values");
+  o.title = title;
+  o.support = f.support.size();
+  o.support_per_level = f.support_per_level;
+  o.integral = f.integral;
+  o.min = f.min;
+  o.max = f.max;
+  std::copy(f.moment, f.moment + 3, o.moment);
+  o.plot = d.plot;
+  return o;
+}
+
+}  // namespace
+
+void ModelerController::fill_ffd_data(FfdPanelData& p) const {
+  const FfdModelState* f = model.ffd();
+  p.lattice = model.has_session() && model.dim() == 3;
+  if (f == nullptr) return;
+  p.loaded = true;
+  p.model_name = std::filesystem::path(f->model.path).filename().string();
+  p.notes = f->model.notes;
+  p.note = f->note;
+  p.vertices = f->model.num_vertices();
+  p.faces = f->model.faces.rows();
+  p.bound = f->bound;
+  p.outside_mode = f->outside == Outside::Nearest ? 1 : 0;
+  if (f->bound) {
+    const FfdReport& rep = f->binding.report;
+    p.bound_count = rep.bound;
+    p.outside = rep.outside;
+    p.nearest = rep.nearest;
+    p.bind_ms = rep.ms;
+    p.moved = f->last_moved;
+    p.deform_ms = f->last_deform_ms;
+  }
+}
+
+void ModelerController::fill_compression_data(CompressionPanelData& c) const {
+  const Session& s = model.session();
+  c.on = model.compression_on();
+  c.fraction = compress_fraction_;
+  c.total = s.num_vertices(s.finest_level()) - s.num_vertices(0);
+  if (!c.on) return;
+  const CompressionReadout& r = model.compression();
+  c.fraction = r.fraction;
+  c.kept = r.kept;
+  c.total = r.total;
+  c.l2_error = r.l2_error;
+  c.linf_error = r.linf_error;
+  c.ms = r.ms;
+}
+
+void ModelerController::fill_basis_data(BasisPanelData& b) const {
+  const Session& s = model.session();
+  const BasisSettings& set = model.basis_on() ? model.basis_settings() : basis_request_;
+  const int level = set.request.level >= 0 && set.request.level <= s.finest_level() ? set.request.level : model.level();
+  const Complex& cj = s.hierarchy().levels[static_cast<std::size_t>(level)];
+  b.settings = set;
+  b.settings.on = model.basis_on();
+  b.settings.request.level = level;
+  b.finest = s.finest_level();
+  b.default_extra_levels = default_extra_levels(cj, kModelerBasisVertices, s.hierarchy().scheme, level);
+  b.scaling_count = cj.num_vertices;
+  b.wavelet_end = static_cast<unsigned>(predicted_level_counts(cj, 1, s.hierarchy().scheme, level).back());
+  b.curve = cj.dim == 1;
+  b.lattice = cj.dim == 3;
+  if (!model.selection().empty()) {
+    const unsigned v = model.selection().front();
+    if (const auto t = basis_target_at(s.hierarchy(), model.level(), BasisKind::Scaling, v)) {
+      b.selected_scaling_level = t->level, b.selected = t->index;
+    }
+    if (const auto t = basis_target_at(s.hierarchy(), model.level(), BasisKind::Wavelet, v)) {
+      b.selected_wavelet_level = t->level, b.selected_wavelet = t->index;
+    }
+  }
+  if (model.basis_on()) {
+    b.computed = true;
+    b.current = readout_of(model.basis());
+  }
+  if (model.pinned() != nullptr) {
+    b.pinned = true;
+    b.pin = readout_of(*model.pinned());
+  }
+}
+
+void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_height) {
+  const ImGuiIO& io = ImGui::GetIO();
+  const float dw = io.DisplaySize.x, dh = io.DisplaySize.y;
+  const PanelLayout layout;
+  const ScreenRect r = viewport_rect(dw, dh, layout);
+  view_x_ = r.x;
+  view_y_ = r.y;
+  view_w_ = r.width;
+  view_h_ = r.height;
+  scale_ = dw > 0.0f ? static_cast<float>(fb_width) / dw : 1.0f;
+  clip_now_ = display.clip ? view.clip_plane(display) : glm::vec4(0.0f);
+
+  ImGui::NewFrame();
+  ModelerPanelData d;
+  if (model.has_session()) {
+    const Session& s = model.session();
+    d.file_name = std::filesystem::path(model.file_path()).filename().string();
+    d.file_path = model.file_path();
+    d.warnings = model.import_warnings();
+    d.dim = model.dim();
+    d.scheme = static_cast<int>(s.hierarchy().scheme);
+    d.level = model.level();
+    d.finest = s.finest_level();
+    const std::size_t key[4] = {s.undo_position(), s.history().size(), static_cast<std::size_t>(s.topology_version()),
+                                static_cast<std::size_t>(model.serial())};
+    if (!std::equal(key, key + 4, stats_key_)) stats_dirty_ = true;
+    if (stats_dirty_ && !model.dragging() && !gain_active_) {
+      std::copy(key, key + 4, stats_key_);
+      level_cache_ = model.level_rows();
+      stats_dirty_ = false;
+    }
+    d.levels = level_cache_;
+    d.gains.assign(s.gains().begin(), s.gains().end());
+    d.local_frames = s.detail_frames() == DetailFrames::Local;
+    for (const HistoryEntry& e : s.history()) d.history.push_back(e.label);
+    d.undo_position = s.undo_position();
+    d.resynthesis_ms = s.last_report().resynthesis_ms;
+    d.vertices_updated = s.last_report().vertices_updated;
+    d.selected = model.selection().size();
+    d.soft_radius = model.soft_radius();
+    d.colour_level = model.colour_level();
+    d.dirty = s.dirty();
+    fill_basis_data(d.basis);
+    fill_compression_data(d.compression);
+  }
+  fill_ffd_data(d.ffd);
+  d.error = error;
+  d.message = message;
+  d.frame_ms = frame_ms;
+  d.recent = recent_;
+  const ModelerPanelRequests req = draw_modeler_panel(d, display, fields, 0.0f, 0.0f, r.x, r.height);
+
+  char right[96];
+  std::snprintf(right, sizeof right, "resynthesis %.2f ms   frame %.2f ms", d.resynthesis_ms, frame_ms);
+  std::string left = d.file_name + "   level " + std::to_string(d.level) + "/" + std::to_string(d.finest);
+  if (model.has_session()) {
+    left += "   " + std::to_string(model.session().num_vertices(d.level)) + " control points   " +
+            std::to_string(model.limit_positions().size() / 3) + " limit vertices   " +
+            std::to_string(d.selected) + " selected";
+    if (d.soft_radius > 0.0) {
+      char soft[48];
+      std::snprintf(soft, sizeof soft, "   soft %.3g", d.soft_radius);
+      left += soft;
+    }
+    if (model.compression_on()) {
+      char shown[48];
+      std::snprintf(shown, sizeof shown, "   COMPRESSED %.3g%%", 100.0 * model.compression().fraction);
+      left += shown;
+    }
+    if (grab_.active) {
+      left += "   GRAB " + std::string(grab_.axis < 0 ? "free" : (grab_.axis == 0 ? "X" : grab_.axis == 1 ? "Y" : "Z"));
+      if (!grab_.typed.empty()) left += " " + grab_.typed;
+    }
+  }
+  draw_modeler_status(left, right, dw, dh, kStatusHeight);
+
+  // Overlays: rubber band and soft-selection circle.
+  ImDrawList* overlay = ImGui::GetForegroundDrawList();
+  if (press_ == Press::Box && moved_) {
+    overlay->AddRectFilled(ImVec2(static_cast<float>(press_x_), static_cast<float>(press_y_)),
+                           ImVec2(static_cast<float>(mouse_x_), static_cast<float>(mouse_y_)), IM_COL32(255, 160, 40, 40));
+    overlay->AddRect(ImVec2(static_cast<float>(press_x_), static_cast<float>(press_y_)),
+                     ImVec2(static_cast<float>(mouse_x_), static_cast<float>(mouse_y_)), IM_COL32(255, 140, 0, 220));
+  }
+  if (model.has_session() && model.soft_radius() > 0.0 && in_viewport(mouse_x_, mouse_y_)) {
+    const double px = model.soft_radius() / std::max(camera.world_per_pixel(), 1e-12) / std::max(scale_, 0.01f);
+    overlay->AddCircle(ImVec2(static_cast<float>(mouse_x_), static_cast<float>(mouse_y_)), static_cast<float>(px),
+                       IM_COL32(255, 200, 40, 200), 48, 1.5f);
+  }
+
+  // Prompts.
+  const PromptChoice choice =
+      draw_unsaved_prompt(unsaved_prompt_, pending_.kind == Pending::Kind::Quit ? "quitting" : "opening another file");
+  if (choice != PromptChoice::None) {
+    unsaved_prompt_ = false;
+    const Pending p = std::exchange(pending_, Pending{});
+    if (choice == PromptChoice::Save) {
+      if (save(default_save_path())) proceed(p);
+    } else if (choice == PromptChoice::Discard) {
+      proceed(p);
+    }
+  }
+  const PromptChoice confirm = draw_confirm_prompt(
+      scheme_prompt_.has_value(), "Changing the scheme rebuilds the hierarchy from level 0:\nall detail and the undo history are lost.");
+  if (confirm != PromptChoice::None) {
+    if (confirm == PromptChoice::Discard) {
+      try {
+        const Scheme s = static_cast<Scheme>(*scheme_prompt_);
+        model.set_scheme(s);
+        message = "Rebuilt with the " + scheme_name(s) + " scheme (detail and history cleared)";
+        pick_dirty_ = true;
+      } catch (const std::exception& e) {
+        fail(e, "");
+      }
+    }
+    scheme_prompt_.reset();
+  }
+  const PromptChoice recover = draw_recovery_prompt(recovery_prompt_, recovery_path());
+  if (recover != PromptChoice::None) {
+    recovery_prompt_ = false;
+    const std::string path = recovery_path();
+    if (recover == PromptChoice::Recover) {
+      open(path, false);
+      model.set_project_path({});  // Save must not write over the recovery file
+      fields.save_path.clear();
+      message = "Recovered the autosave; save it under a name of your own.";
+    }
+    std::error_code ec;
+    std::filesystem::remove(path, ec);
+  }
+  ImGui::Render();
+
+  apply_requests(req);
+  clear_framebuffer(fb_width, fb_height, kWindowClear);
+  if (!model.has_session()) return;
+
+  const ViewportRect rect{static_cast<int>(std::lround(r.x * scale_)),
+                          static_cast<int>(std::lround((dh - r.y - r.height) * scale_)),
+                          static_cast<int>(std::lround(r.width * scale_)),
+                          static_cast<int>(std::lround(r.height * scale_))};
+  camera.set_viewport(rect.width, rect.height);
+  camera.orthographic = display.orthographic;
+  view.sync(model);
+  const UpAxis up = display.z_up ? UpAxis::Z : UpAxis::Y;
+  if (camera.up_axis != up) {
+    camera.up_axis = up;
+    framed = false;
+  }
+  if (!framed) {
+    frame_bounds(camera, view.bounds());
+    framed = true;
+  }
+  if (rect.width > 0 && rect.height > 0) view.draw(camera, rect, display);
+}
+
+}  // namespace sublift

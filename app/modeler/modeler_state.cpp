@@ -1,0 +1,742 @@
+#include "app/modeler/modeler_state.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "core/analysis/boundary_surface.h"
+#include "core/base/bounds.h"
+#include "core/base/errors.h"
+#include "core/ffd/ffd_scene.h"
+#include "core/io/project/project_io.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/complex/polygon_normal.h"
+#include "core/io/model/surface_export.h"
+
+namespace sublift {
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+// The model's size for soft radii; 1 for an empty or degenerate shape.
+double model_size_of(const std::vector<double>& xyz) {
+  const double d = bbox_diagonal(xyz);
+  return d > 0.0 ? d : 1.0;
+}
+
+}  // namespace
+
+bool is_project_file(const std::string& path) { return lower_extension(path) == ".sublift"; }
+
+void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
+  // Everything is built aside first: a failure leaves the current session as it was.
+  std::unique_ptr<Session> session;
+  std::vector<std::string> warnings;
+  int level = 0;
+  bool project = false;
+  if (is_project_file(path)) {
+    ProjectExtras extras;
+    Hierarchy h = read_project(path, &extras);
+    session = std::make_unique<Session>(std::move(h), extras.gains);
+    if (extras.local_frames) session->set_detail_frames(DetailFrames::Local);
+    level = extras.current_level;
+    project = true;
+  } else {
+    Shape shape = read_shape(path);
+    if (!shape.report.empty()) {
+      std::istringstream in(shape.report.format(std::filesystem::path(path).filename().string()));
+      for (std::string line; std::getline(in, line);) {
+        if (!line.empty()) warnings.push_back(line);
+      }
+    }
+    Hierarchy h = make_hierarchy(std::move(shape.base), levels, scheme, 3);
+    set_base(h, shape.positions);
+    session = std::make_unique<Session>(std::move(h));
+  }
+  file_path_ = path;
+  project_path_ = project ? path : std::string();
+  warnings_ = std::move(warnings);
+  clear_pin();  // a new model: the comparison belonged to the old one
+  install(std::move(session));
+  level_ = std::clamp(level, 0, session_->finest_level());
+  selection_.clear();
+  update_.topology = true;
+  refresh_state();
+}
+
+void ModelerState::install(std::unique_ptr<Session> session) {
+  compress_.reset();  // ranked the old session's wavelets
+  session_ = std::move(session);
+  ++serial_;
+  dragging_ = false;
+  hover_ = -1;
+  seen_topology_ = session_->topology_version();
+  basis_off();
+  if (ffd_) ffd_->bound = false;  // bound to the old session's lattice
+  rebuild_limit();
+  model_size_ = model_size_of(limit_);
+  if (colour_level_ >= session_->finest_level()) colour_level_ = -1;
+  refresh_colour();
+}
+
+void ModelerState::rebuild_limit() {
+  const Hierarchy& h = session_->hierarchy();
+  const int J = h.finest_level();
+  stencils_ = build_limit_stencils(h);
+  const std::size_t n = h.num_vertices(J);
+  limit_.assign(n * 3, 0.0);
+  normals_.assign(n * 3, 0.0);
+  eval_limit(stencils_, session_->positions(J).data(), limit_.data());
+  const Complex& finest = h.levels[static_cast<std::size_t>(J)];
+  faces_ = finest.dim >= 2 ? boundary_faces(finest, limit_) : Csr{};
+  vertex_faces_ = transpose(faces_, n);
+  if (faces_.rows() > 0) {
+    sublift::limit_normals(stencils_, faces_, session_->positions(J).data(), limit_.data(), normals_.data());
+    orient_tangents(stencils_, faces_, session_->positions(J).data(), limit_.data());
+  }
+  stamp_.assign(n, 0);
+  epoch_ = 0;
+}
+
+void ModelerState::after_operation() {
+  const Session& s = *session_;
+  if (s.topology_version() != seen_topology_) {
+    seen_topology_ = s.topology_version();
+    level_ = std::min(level_, s.finest_level());
+    rebuild_limit();
+    clamp_selection();
+    if (colour_level_ >= s.finest_level()) colour_level_ = -1;
+    update_.topology = true;
+    basis_off();
+    if (ffd_ && ffd_->bound) {  // an undone subdivide: the finest level the binding used is gone
+      ffd_->bound = false;
+      ffd_->note = "unbound: the lattice's levels changed (bind again)";
+    }
+    refresh_state();
+    refresh_colour();
+    return;
+  }
+  const int J = s.finest_level();
+  const auto changed_fine = s.changed(J);
+  if (!changed_fine.empty()) {
+    std::vector<std::uint32_t> moved;
+    eval_limit_subset(stencils_, s.positions(J).data(), changed_fine, limit_.data(), moved);
+    if (faces_.rows() > 0 && !moved.empty()) {
+      // Fallback (face) normals also depend on the neighbours: take the moved vertices' faces.
+      if (++epoch_ == 0) {
+        std::fill(stamp_.begin(), stamp_.end(), 0u);
+        epoch_ = 1;
+      }
+      // Vertices with exact tangents read only control points, so the moved ones suffice there.
+      const std::vector<std::int8_t>& exact = stencils_.tangent_sign;
+      auto face_based = [&](std::uint32_t w) { return w >= exact.size() || exact[w] == 0; };
+      std::vector<std::uint32_t> shade;
+      for (const std::uint32_t v : moved) {
+        if (stamp_[v] != epoch_) stamp_[v] = epoch_, shade.push_back(v);
+        for (const std::uint32_t f : vertex_faces_.row(v)) {
+          for (const std::uint32_t w : faces_.row(f)) {
+            if (stamp_[w] != epoch_ && face_based(w)) stamp_[w] = epoch_, shade.push_back(w);
+          }
+        }
+      }
+      limit_normals_subset(stencils_, faces_, vertex_faces_, s.positions(J).data(), limit_.data(), shade,
+                           normals_.data());
+      update_.surface.insert(update_.surface.end(), shade.begin(), shade.end());
+    } else {
+      update_.surface.insert(update_.surface.end(), moved.begin(), moved.end());
+    }
+  }
+  const auto changed_net = s.changed(level_);
+  update_.net.insert(update_.net.end(), changed_net.begin(), changed_net.end());
+  if (soft_radius_ > 0.0 && !changed_net.empty() && !dragging_) refresh_state();  // weights follow the shape
+  if (colour_level_ >= 0) refresh_colour();
+  if (basis_ && !s.changed(basis_->level).empty()) basis_stale_ = true;
+  ffd_follow();
+  if (!dragging_) refresh_basis();
+}
+
+void ModelerState::refresh_basis() {
+  if (!basis_ || !basis_stale_) return;
+  try {
+    set_basis(basis_settings_);  // the level-j geometry moved: new positions and moments
+  } catch (const Error&) {
+    basis_off();
+  }
+}
+
+void ModelerState::set_scheme(Scheme scheme) {
+  ffd_check_free("changing the scheme");
+  check_unlocked("changing the scheme");
+  const Hierarchy& old = session_->hierarchy();
+  if (scheme_info(scheme).surfaces_only && old.levels.front().dim != 2)
+    throw Error("the " + scheme_name(scheme) + " scheme refines surfaces only; this is a " +
+                (old.levels.front().dim == 1 ? "curve" : "volume lattice") + " (use linear or cubic)");
+  if (scheme_info(scheme).triangles_only)
+    for (std::uint32_t f = 0; f < old.levels.front().num_faces(); ++f)
+      if (old.levels.front().faces.size(f) != 3)
+        throw Error("the " + scheme_name(scheme) + " scheme needs a triangle mesh; face " + std::to_string(f) + " has " +
+                    std::to_string(old.levels.front().faces.size(f)) + " corners");
+  const auto base_positions = session_->positions(0);
+  // The same finest resolution: two sqrt(2) levels make one 1-to-4 split.
+  const int from = scheme_levels_per_split(old.scheme), to = scheme_levels_per_split(scheme);
+  const int levels = std::min((old.finest_level() * to + from - 1) / from, max_levels(scheme));
+  const int edit_level = std::min((level_ * to + from - 1) / from, levels);
+  Hierarchy h = make_hierarchy(old.levels.front(), levels, scheme, 3);
+  set_base(h, base_positions);
+  const bool local = session_->detail_frames() == DetailFrames::Local;
+  auto session = std::make_unique<Session>(std::move(h));
+  if (local) session->set_detail_frames(DetailFrames::Local);
+  install(std::move(session));
+  level_ = edit_level;
+  update_.topology = true;
+  refresh_state();
+}
+
+void ModelerState::set_level(int level) {
+  level = std::clamp(level, 0, session_->finest_level());
+  if (level == level_) return;
+  level_ = level;
+  refresh_compression_net();
+  selection_.clear();
+  hover_ = -1;
+  update_.topology = true;  // the function keeps its own level
+  refresh_state();
+}
+
+void ModelerState::subdivide() {
+  ffd_check_free("subdividing the lattice");
+  check_unlocked("subdividing");
+  session_->subdivide();
+  after_operation();
+}
+
+bool ModelerState::undo() {
+  if (dragging_) return false;
+  check_unlocked("undo");
+  const bool done = session_->undo();
+  if (done) after_operation();
+  return done;
+}
+
+bool ModelerState::redo() {
+  if (dragging_) return false;
+  check_unlocked("redo");
+  const bool done = session_->redo();
+  if (done) after_operation();
+  return done;
+}
+
+void ModelerState::jump_to(std::size_t position) {
+  check_unlocked("jumping in the history");
+  while (session_->undo_position() > position && undo()) {}
+  while (session_->undo_position() < position && redo()) {}
+}
+
+void ModelerState::begin_gain(int level) {
+  check_unlocked("changing a gain");
+  session_->begin_edit("Gain " + std::to_string(level));
+}
+
+void ModelerState::set_gain(int level, double factor) {
+  check_unlocked("changing a gain");
+  session_->set_gain(level, factor);
+  after_operation();
+}
+
+void ModelerState::end_gain() { session_->end_edit(); }
+
+void ModelerState::set_local_frames(bool local) {
+  session_->set_detail_frames(local ? DetailFrames::Local : DetailFrames::World);
+}
+
+void ModelerState::begin_drag(const std::string& label) {
+  check_unlocked("moving control points");
+  if (dragging_) end_drag();
+  drag_undo_position_ = session_->undo_position();
+  drag_weights_ = soft_selection(session_->positions(level_), selection_, soft_radius_);
+  drag_total_[0] = drag_total_[1] = drag_total_[2] = 0.0;
+  session_->begin_edit(label);
+  dragging_ = true;
+}
+
+void ModelerState::drag_to(const double total[3]) {
+  if (!dragging_) return;
+  const double delta[3] = {total[0] - drag_total_[0], total[1] - drag_total_[1], total[2] - drag_total_[2]};
+  if (delta[0] == 0.0 && delta[1] == 0.0 && delta[2] == 0.0) return;
+  session_->move(level_, drag_weights_.vertices, drag_weights_.weights, delta);
+  for (int c = 0; c < 3; ++c) drag_total_[c] = total[c];
+  after_operation();
+}
+
+void ModelerState::end_drag() {
+  if (!dragging_) return;
+  session_->end_edit();
+  dragging_ = false;
+  if (soft_radius_ > 0.0) refresh_state();
+  refresh_basis();  // recomputed once per drag, at its end
+}
+
+void ModelerState::cancel_drag() {
+  if (!dragging_) return;
+  session_->cancel_edit();
+  dragging_ = false;
+  after_operation();
+  drag_total_[0] = drag_total_[1] = drag_total_[2] = 0.0;
+}
+
+void ModelerState::set_selection(std::vector<unsigned> selection) {
+  std::sort(selection.begin(), selection.end());
+  selection.erase(std::unique(selection.begin(), selection.end()), selection.end());
+  selection_ = std::move(selection);
+  clamp_selection();
+  refresh_state();
+  if (selection_.size() == 1) follow_selection();
+}
+
+void ModelerState::select_all() {
+  std::vector<unsigned> all(session_->num_vertices(level_));
+  for (unsigned i = 0; i < all.size(); ++i) all[i] = i;
+  selection_ = std::move(all);
+  refresh_state();
+}
+
+void ModelerState::set_hover(long long vertex) {
+  if (vertex == hover_) return;
+  hover_ = vertex;
+  refresh_flags();
+}
+
+void ModelerState::set_soft_radius(double radius) {
+  soft_radius_ = std::max(radius, 0.0);
+  refresh_state();
+}
+
+double ModelerState::default_soft_radius() const { return 0.05 * model_size_; }
+
+void ModelerState::clamp_selection() {
+  const unsigned n = session_->num_vertices(level_);
+  selection_.erase(std::remove_if(selection_.begin(), selection_.end(), [n](unsigned v) { return v >= n; }),
+                   selection_.end());
+  if (hover_ >= static_cast<long long>(n)) hover_ = -1;
+}
+
+void ModelerState::refresh_state() {
+  const std::size_t n = session_->num_vertices(level_);
+  net_soft_.assign(n, 0.0f);
+  if (soft_radius_ > 0.0 && !selection_.empty()) {
+    const SoftWeights w = soft_selection(session_->positions(level_), selection_, soft_radius_);
+    for (std::size_t k = 0; k < w.vertices.size(); ++k) net_soft_[w.vertices[k]] = static_cast<float>(w.weights[k]);
+  }
+  net_state_.assign(n, 0);
+  flagged_.clear();
+  refresh_flags();
+}
+
+void ModelerState::refresh_flags() {
+  const std::size_t n = session_->num_vertices(level_);
+  if (net_state_.size() != n) net_state_.assign(n, 0);
+  for (const unsigned v : flagged_) {
+    if (v < n) net_state_[v] = 0;
+  }
+  flagged_.clear();
+  for (const unsigned v : selection_) net_state_[v] = 2, flagged_.push_back(v);
+  if (hover_ >= 0 && static_cast<std::size_t>(hover_) < n) {
+    net_state_[static_cast<std::size_t>(hover_)] = 1;
+    flagged_.push_back(static_cast<unsigned>(hover_));
+  }
+  update_.state = true;
+}
+
+void ModelerState::set_colour_level(int level) {
+  colour_level_ = level < 0 || level >= session_->finest_level() ? -1 : level;
+  refresh_colour();
+}
+
+void ModelerState::refresh_colour() {
+  update_.scalar = true;
+  colour_.clear();
+  if (colour_level_ < 0) return;
+  const Hierarchy& h = session_->hierarchy();
+  const int l = colour_level_;
+  const std::uint32_t lo = h.num_vertices(l), hi = h.num_vertices(l + 1);
+  const std::size_t n = h.num_vertices(h.finest_level());
+  colour_.assign(n, 0.0f);
+  float largest = 0.0f;
+  for (std::uint32_t v = lo; v < hi; ++v) {
+    const double* w = &h.coeffs[std::size_t(v) * 3];
+    const auto m = static_cast<float>(std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]) * session_->gain(l));
+    colour_[v] = m;
+    largest = std::max(largest, m);
+  }
+  // Carry the values to the finest level by linear refinement (children numbered [v|e|f|c]).
+  for (int k = l + 1; k < h.finest_level(); ++k) {
+    const Complex& c = h.levels[static_cast<std::size_t>(k)];
+    const std::uint32_t nv = c.num_vertices, ne = c.num_edges(), nf = c.num_faces();
+    for (std::uint32_t e = 0; e < ne; ++e) {
+      colour_[nv + e] = 0.5f * (colour_[c.edge_verts[2 * e]] + colour_[c.edge_verts[2 * e + 1]]);
+    }
+    for (std::uint32_t f = 0; f < nf; ++f) {
+      float sum = 0.0f;
+      for (const std::uint32_t v : c.faces.row(f)) sum += colour_[v];
+      colour_[nv + ne + f] = c.faces.size(f) > 0 ? sum / static_cast<float>(c.faces.size(f)) : 0.0f;
+    }
+    if (c.cell_verts.rows() == c.num_cells()) {
+      for (std::uint32_t cell = 0; cell < c.num_cells(); ++cell) {
+        float sum = 0.0f;
+        for (const std::uint32_t v : c.cell_verts.row(cell)) sum += colour_[v];
+        const auto count = c.cell_verts.size(cell);
+        colour_[nv + ne + nf + cell] = count > 0 ? sum / static_cast<float>(count) : 0.0f;
+      }
+    }
+  }
+  if (largest > 0.0f) {
+    for (float& v : colour_) v /= largest;
+  }
+}
+
+void ModelerState::save_project(const std::string& path) {
+  ProjectExtras extras;
+  extras.current_level = level_;
+  extras.gains.assign(session_->gains().begin(), session_->gains().end());
+  extras.local_frames = session_->detail_frames() == DetailFrames::Local;
+  write_project(path, session_->hierarchy(), extras);
+  session_->mark_saved();
+  project_path_ = path;
+}
+
+void ModelerState::write_recovery(const std::string& path) const {
+  ProjectExtras extras;
+  extras.current_level = level_;
+  extras.gains.assign(session_->gains().begin(), session_->gains().end());
+  extras.local_frames = session_->detail_frames() == DetailFrames::Local;
+  write_project(path, session_->hierarchy(), extras);
+}
+
+std::vector<std::string> ModelerState::export_shape(const std::string& path, bool finest) {
+  const Hierarchy& h = session_->hierarchy();
+  const int level = finest ? h.finest_level() : level_;
+  const Complex& c = h.levels[static_cast<std::size_t>(level)];
+  if (surface_export_supported(path) && c.dim >= 2) {
+    if (finest) {
+      write_surface_with_normals(path, faces_, limit_, normals_);
+      return {};
+    }
+    // The control net of the current level, with area-weighted face normals.
+    const auto xyz = session_->positions(level);
+    const Csr faces = boundary_faces(c, xyz);
+    const std::vector<double> normals = area_weighted_normals(faces, xyz);
+    write_surface_with_normals(path, faces, xyz, normals);
+    return {};
+  }
+  if (const std::string problem = shape_output_problem(path, c.dim); !problem.empty()) {
+    throw Error(path + ": " + problem);
+  }
+  if (finest) return write_shape(path, c, limit_);
+  return write_shape(path, c, session_->positions(level));
+}
+
+std::vector<LevelStats> ModelerState::level_rows() const {
+  const Hierarchy& h = session_->hierarchy();
+  std::vector<LevelStats> rows(static_cast<std::size_t>(h.finest_level()) + 1);
+  for (int l = 0; l <= h.finest_level(); ++l) {
+    rows[static_cast<std::size_t>(l)].level = l;
+    rows[static_cast<std::size_t>(l)].vertices = h.num_vertices(l);
+  }
+  for (const LevelStats& s : level_stats(h)) {
+    if (s.level >= 0 && s.level <= h.finest_level()) rows[static_cast<std::size_t>(s.level)] = s;
+  }
+  return rows;
+}
+
+const std::vector<std::uint32_t>& ModelerState::net_edges() const {
+  return session_->hierarchy().levels[static_cast<std::size_t>(level_)].edge_verts;
+}
+
+std::vector<std::uint8_t> ModelerState::net_edge_features() const {
+  const Complex& c = session_->hierarchy().levels[static_cast<std::size_t>(level_)];
+  std::vector<std::uint8_t> f(c.num_edges(), 0);
+  if (c.edge_dim.size() != f.size()) return f;
+  for (std::size_t e = 0; e < f.size(); ++e) f[e] = c.edge_dim[e] == 1 && c.dim > 1 ? 1 : (c.edge_dim[e] == 0 ? 2 : 0);
+  return f;
+}
+
+std::vector<std::uint8_t> ModelerState::net_vertex_features() const {
+  const Complex& c = session_->hierarchy().levels[static_cast<std::size_t>(level_)];
+  std::vector<std::uint8_t> f(c.num_vertices, 0);
+  if (c.vertex_dim.size() != f.size()) return f;
+  for (std::size_t v = 0; v < f.size(); ++v) f[v] = c.vertex_dim[v] == 0 ? 2 : (c.vertex_dim[v] == 1 && c.dim > 1 ? 1 : 0);
+  return f;
+}
+
+void ModelerState::basis_off() {
+  if (basis_) update_.basis = true;
+  basis_.reset();
+  basis_settings_.on = false;
+}
+
+void ModelerState::set_basis(const BasisSettings& settings_in) {
+  if (!settings_in.on || !session_) {
+    basis_off();
+    return;
+  }
+  BasisSettings settings = settings_in;
+  if (compress_) compression_off();  // both replace the surface: the newer request wins
+  int& j = settings.request.level;
+  if (j < 0) j = level_;
+  if (j > session_->finest_level()) {
+    basis_off();
+    throw Error("basis: level " + std::to_string(j) + " does not exist (finest is " +
+                std::to_string(session_->finest_level()) + ")");
+  }
+  if (basis_ && same_function(basis_->settings, settings) && !basis_stale_) {
+    basis_->settings = settings;
+    basis_settings_ = settings;
+    apply_basis_view(*basis_);
+    update_.basis = true;
+    return;
+  }
+  try {
+    basis_ = std::make_unique<BasisDisplay>(compute_basis_display(*session_, j, settings));
+  } catch (...) {
+    basis_off();
+    throw;
+  }
+  basis_settings_ = settings;
+  basis_stale_ = false;
+  update_.basis = true;
+}
+
+void ModelerState::pin_basis() {
+  if (!basis_) throw Error("basis: nothing to pin (show a function first)");
+  pinned_ = std::make_unique<BasisDisplay>(*basis_);
+  update_.basis = true;
+}
+
+void ModelerState::clear_pin() {
+  if (pinned_) update_.basis = true;
+  pinned_.reset();
+}
+
+void ModelerState::follow_selection() {
+  if (!basis_ || !basis_settings_.follow || selection_.empty()) return;
+  const auto target = basis_target_at(session_->hierarchy(), level_, basis_settings_.request.kind, selection_.front());
+  if (!target) return;
+  BasisSettings b = basis_settings_;
+  b.request.level = target->level;
+  b.request.index = target->index;
+  try {
+    set_basis(b);
+  } catch (const Error&) {
+    basis_off();  // K too large for that level: the panel says the mode is off
+  }
+}
+
+void ModelerState::ffd_check_free(const char* what) const {
+  if (ffd_ && ffd_->bound) throw Error(std::string(what) + " is not possible while a model is bound (unbind it first)");
+}
+
+void ModelerState::ffd_follow() {
+  if (!ffd_ || !ffd_->bound) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<std::uint32_t> moved = update_deformation(ffd_->binding, *session_, ffd_->positions);
+  ffd_->last_moved = moved.size();
+  if (moved.empty()) return;
+  ffd_->normals = model_normals(ffd_->model, ffd_->positions);
+  ffd_->last_deform_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  update_.model = true;
+}
+
+void ModelerState::load_model(const std::string& path) {
+  const bool lattice = session_ && session_->dim() == 3;
+  if (session_ && !lattice && session_->dirty()) {
+    throw Error("the open " + std::string(session_->dim() == 2 ? "surface" : "curve") +
+                " has unsaved changes: save it first (loading a model replaces it by a box lattice)");
+  }
+  auto f = std::make_unique<FfdModelState>();
+  f->model = import_model(path);
+  f->positions = f->model.positions;
+  f->normals = f->model.normals;
+  if (ffd_) f->outside = ffd_->outside;
+  std::unique_ptr<FfdModelState> old = std::move(ffd_);
+  ffd_ = std::move(f);
+  try {
+    if (lattice) {
+      bind_model(ffd_->outside);
+    } else {
+      wrap_model_in_box(4, 4, 4, 0.05);
+    }
+  } catch (...) {
+    ffd_ = std::move(old);  // keep what was there
+    throw;
+  }
+  update_.model_topology = true;
+}
+
+void ModelerState::wrap_model_in_box(int nx, int ny, int nz, double margin) {
+  if (!ffd_) throw Error("wrap in a box: load a model first");
+  Model shape = ffd_->model;
+  shape.positions = ffd_->positions;  // around the model as it is now
+  const Shape box = box_lattice_around(shape, nx, ny, nz, margin);
+  // A box lattice is a volume: sqrt2 (surfaces only) falls back to cubic.
+  const Scheme current = session_ ? session_->hierarchy().scheme : Scheme::Cubic;
+  const Scheme scheme = scheme_info(current).surfaces_only ? Scheme::Cubic : current;
+  Hierarchy h = make_hierarchy(box.base, kDefaultLevels, scheme, 3);
+  set_base(h, box.positions);
+  install(std::make_unique<Session>(std::move(h)));
+  char name[64];
+  std::snprintf(name, sizeof name, "box lattice %dx%dx%d", nx, ny, nz);
+  file_path_ = name;
+  project_path_.clear();
+  warnings_.clear();
+  level_ = 0;
+  selection_.clear();
+  update_.topology = true;
+  refresh_state();
+  bind_model(ffd_->outside);
+}
+
+void ModelerState::bind_model(Outside outside) {
+  if (!ffd_) throw Error("bind: load a model first");
+  if (!session_ || session_->dim() != 3) throw Error("bind: the open shape is not a lattice (open one or wrap the model in a box)");
+  const int J = session_->finest_level();
+  ffd_->binding = sublift::bind_model(session_->hierarchy().levels[static_cast<std::size_t>(J)], session_->positions(J),
+                                      ffd_->positions, FfdOptions{outside});
+  ffd_->outside = outside;
+  ffd_->bound = true;
+  ffd_->note.clear();
+}
+
+void ModelerState::unbind_model() {
+  if (ffd_) ffd_->bound = false;
+}
+
+void ModelerState::remove_model() {
+  if (!ffd_) return;
+  ffd_.reset();
+  update_.model_topology = true;
+}
+
+void ModelerState::export_model(const std::string& path) const {
+  if (!ffd_) throw Error("export model: no model loaded");
+  sublift::export_model(ffd_->model, ffd_->positions, path);
+}
+
+// ---- compression view ---------------------------------------------------------------------------
+
+void ModelerState::check_unlocked(const char* what) const {
+  if (compress_)
+    throw Error(std::string("the compression view is on: Apply it or turn it Off before ") + what);
+}
+
+std::span<const double> ModelerState::net_positions() const {
+  if (compress_) return compress_->net;
+  return session_->positions(level_);
+}
+
+void ModelerState::refresh_compression_net() {
+  if (!compress_) return;
+  CompressionView& v = *compress_;
+  if (v.full) {
+    const auto p = session_->positions(level_);
+    v.net.assign(p.begin(), p.end());
+  } else {
+    v.net = synthesize_coefficients(session_->hierarchy(), v.coeffs, session_->gains(), level_);
+  }
+  update_.topology = true;
+}
+
+void ModelerState::set_compression(double fraction) {
+  if (!session_) throw Error("compression: no model is open");
+  if (!(fraction >= 0.0 && fraction <= 1.0)) throw Error("compression: the kept fraction must be in 0..1");
+  if (dragging_) throw Error("compression: finish the drag first");
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!compress_) {
+    CompressOptions options;
+    options.gains.assign(session_->gains().begin(), session_->gains().end());
+    auto view = std::make_unique<CompressionView>(CompressionView{Compressor(session_->hierarchy(), options), {}, false, {}, {}, {}, {}, {}});
+    basis_off();  // the compressed surface replaces the function
+    compress_ = std::move(view);
+  }
+  CompressionView& v = *compress_;
+  const std::size_t keep = v.compressor.count_for_fraction(fraction);
+  Compression c = v.compressor.evaluate(keep);
+  v.full = keep == v.compressor.candidates();
+  v.coeffs = std::move(c.coeffs);
+  v.finest = std::move(c.finest);
+  if (v.full) {  // nothing removed: the session's own shape, bit for bit
+    v.limit = limit_;
+    v.normals = normals_;
+  } else {
+    v.limit.assign(limit_.size(), 0.0);
+    v.normals.assign(normals_.size(), 0.0);
+    eval_limit(stencils_, v.finest.data(), v.limit.data());
+    if (faces_.rows() > 0) sublift::limit_normals(stencils_, faces_, v.finest.data(), v.limit.data(), v.normals.data());
+  }
+  v.readout.fraction = fraction;
+  v.readout.kept = c.kept;
+  v.readout.total = c.total;
+  v.readout.l2_error = c.l2_error;
+  v.readout.linf_error = c.linf_error;
+  refresh_compression_net();
+  v.readout.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void ModelerState::compression_off() {
+  if (!compress_) return;
+  compress_.reset();
+  update_.topology = true;
+}
+
+void ModelerState::apply_compression() {
+  if (!compress_) throw Error("compression: nothing to apply (show a compressed shape first)");
+  const CompressionView& v = *compress_;
+  const int J = session_->finest_level();
+  // The finest control net moves onto the compressed one, one axis at a time (a move takes one
+  // delta, weighted per vertex); the fold-back then stores the compressed wavelets.
+  const auto now = session_->positions(J);
+  std::vector<std::uint32_t> vertices[3];
+  std::vector<double> weights[3];
+  for (std::uint32_t p = 0; p < session_->num_vertices(J); ++p) {
+    for (int c = 0; c < 3; ++c) {
+      const double d = v.finest[3 * std::size_t(p) + c] - now[3 * std::size_t(p) + c];
+      if (d == 0.0) continue;
+      vertices[c].push_back(p);
+      weights[c].push_back(d);
+    }
+  }
+  char label[64];
+  std::snprintf(label, sizeof label, "Compress %.4g%%", 100.0 * v.readout.fraction);
+  std::unique_ptr<CompressionView> view = std::move(compress_);  // unlocked for the moves
+  session_->begin_edit(label);
+  try {
+    for (int c = 0; c < 3; ++c) {
+      if (vertices[c].empty()) continue;
+      double delta[3] = {0.0, 0.0, 0.0};
+      delta[c] = 1.0;
+      session_->move(J, vertices[c], weights[c], delta);
+      after_operation();
+    }
+  } catch (...) {
+    session_->cancel_edit();
+    after_operation();
+    compress_ = std::move(view);
+    throw;
+  }
+  session_->end_edit();
+  update_.topology = true;
+}
+
+ViewUpdate ModelerState::take_view_update() {
+  ViewUpdate out = std::move(update_);
+  update_ = ViewUpdate{};
+  return out;
+}
+
+}  // namespace sublift

@@ -1,0 +1,269 @@
+#pragma once
+// ModelerState: everything the modeler shows and edits, without GL or ImGui — the editing
+// Session, the open file, the current edit level, the selection and soft-selection radius, the
+// finest level's limit surface (positions, normals, display faces) and what changed since the
+// viewport last uploaded. The GUI's mouse/keys and `sublift --script` both drive it, so a
+// scripted `move` and a mouse drag run the same code (begin_drag / drag_to / end_drag).
+//
+// Display faces: a surface shows the finest complex's own faces; a lattice the outward
+// boundary faces of the finest complex (boundary_surface.h); a curve none (its limit polyline
+// is drawn from the finest edges instead).
+//
+// Wavelet colouring (colour_by_level >= 0): the level-l wavelets live on the e/f/c vertices of
+// level l+1; each level-(l+1) vertex gets |w| (Euclidean norm; 0 on the v-class vertices, which
+// carry no level-l wavelet), the values are carried to the finest level by linear refinement
+// (an edge/face/cell child takes the mean of its parent's corners) and divided by the largest
+// |w| of the level, so 0..1 maps onto viridis.
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "app/modeler/basis_view_state.h"
+#include "app/modeler/ffd_view_state.h"
+#include "core/analysis/compress.h"
+#include "core/base/csr.h"
+#include "core/multires/hierarchy.h"
+#include "core/multires/limit.h"
+#include "core/edit/session.h"
+
+namespace sublift {
+
+/// What changed since the viewport last synchronised (take_view_update()).
+struct ViewUpdate {
+  bool topology = false;               // new file, subdivide, level change: re-upload everything
+  std::vector<std::uint32_t> surface;  // finest limit vertices whose position/normal changed
+  std::vector<std::uint32_t> net;      // control points of the current level that moved
+  bool state = false;                  // selection, hover or soft weights changed
+  bool scalar = false;                 // wavelet colouring changed
+  bool basis = false;                  // the basis-function display changed (on, off, new values)
+  bool model_topology = false;         // FFD: a model was loaded or removed
+  bool model = false;                  // FFD: the model's positions and normals changed
+};
+
+/// The compression view's numbers (docs/compression.md).
+struct CompressionReadout {
+  double fraction = 1.0;                     // kept fraction asked for, 0..1
+  std::size_t kept = 0, total = 0;           // wavelets kept / in all
+  double l2_error = 0.0, linf_error = 0.0;   // vs the full shape, / its bounding-box diagonal
+  double ms = 0.0;                           // the last synthesis, limit and normals
+};
+
+class ModelerState {
+ public:
+  static constexpr int kDefaultLevels = 2;
+
+  /// Opens a shape (OBJ/OFF/PLY, curve OBJ, .lattice, .vtk) as a hierarchy of `levels` levels
+  /// of `scheme`, or a `.sublift` project with its gains, frames and current level. Throws
+  /// sublift::Error; on failure the current session is left untouched.
+  void open(const std::string& path, int levels = kDefaultLevels, Scheme scheme = Scheme::Cubic);
+  bool has_session() const { return session_ != nullptr; }
+  /// Bumped whenever a new session is installed (open, scheme change).
+  std::uint64_t serial() const { return serial_; }
+
+  // ---- editing (each catches nothing: callers show sublift::Error messages) -----------------
+  /// Rebuilds the hierarchy with another scheme from level 0's control points, keeping the
+  /// finest resolution (wavelets are lost: confirm first when dirty): J levels of a 1-to-4
+  /// scheme become 2J sqrt2 levels and back (rounded up). Undo history is cleared. Refused
+  /// (Error) while a model is bound, as is subdivide(), and sqrt2 for curves and lattices.
+  void set_scheme(Scheme scheme);
+  void set_level(int level);
+  void subdivide();
+  bool undo();
+  bool redo();
+  /// Jumps in the history so that entries [0, position) are applied.
+  void jump_to(std::size_t position);
+  void set_gain(int level, double factor);  // within begin_gain/end_gain: one history entry
+  void begin_gain(int level);
+  void end_gain();
+  void set_local_frames(bool local);
+
+  // A drag of the selection: one history entry; drag_to sets the total translation so far.
+  void begin_drag(const std::string& label);
+  void drag_to(const double total[3]);
+  void end_drag();
+  /// Ends the drag and reverts its moves exactly (undo of its entry).
+  void cancel_drag();
+  bool dragging() const { return dragging_; }
+  /// Translation applied by the current drag so far.
+  const double* drag_total() const { return drag_total_; }
+
+  // ---- selection ----------------------------------------------------------------------------
+  const std::vector<unsigned>& selection() const { return selection_; }
+  /// Replaces the selection (indices of the current level; sorted and deduplicated here).
+  void set_selection(std::vector<unsigned> selection);
+  void select_all();
+  void set_hover(long long vertex);
+  long long hover() const { return hover_; }
+  double soft_radius() const { return soft_radius_; }
+  void set_soft_radius(double radius);
+  /// A reasonable first soft radius: 5% of the model's bounding-box diagonal.
+  double default_soft_radius() const;
+
+  // ---- files --------------------------------------------------------------------------------
+  /// Saves the project (.sublift, atomic) and marks the session saved.
+  void save_project(const std::string& path);
+  /// Exports the finest level (finest = true) or the current level by extension: .obj/.ply/
+  /// .gltf/.glb with normals (the limit surface for the finest level; lattices: their boundary),
+  /// .lattice/.vtk (and .off) through write_shape. Returns notes on what the format dropped.
+  std::vector<std::string> export_shape(const std::string& path, bool finest);
+  /// Writes a recovery project without touching the saved state.
+  void write_recovery(const std::string& path) const;
+
+  // ---- what the viewport and panel read -----------------------------------------------------
+  const Session& session() const { return *session_; }
+  int level() const { return level_; }
+  int dim() const { return session_->dim(); }
+  const std::string& file_path() const { return file_path_; }
+  /// Where Save writes: the project opened or last saved; empty after opening a mesh.
+  const std::string& project_path() const { return project_path_; }
+  void set_project_path(std::string path) { project_path_ = std::move(path); }
+  const std::vector<std::string>& import_warnings() const { return warnings_; }
+  /// Per-level numbers for the panel: level_stats() with a row for the finest level too (its
+  /// vertices, no wavelets of its own).
+  std::vector<LevelStats> level_rows() const;
+
+  const Csr& surface_faces() const { return faces_; }
+  /// The finest limit surface shown (the compressed one while the compression view is on).
+  const std::vector<double>& limit_positions() const { return compress_ ? compress_->limit : limit_; }
+  const std::vector<double>& limit_normals() const { return compress_ ? compress_->normals : normals_; }
+  /// Edges of the current level as vertex pairs, with feature classes for the net renderer.
+  const std::vector<std::uint32_t>& net_edges() const;
+  std::vector<std::uint8_t> net_edge_features() const;
+  std::vector<std::uint8_t> net_vertex_features() const;
+  const std::vector<std::uint8_t>& net_state() const { return net_state_; }
+  const std::vector<float>& net_soft() const { return net_soft_; }
+
+  /// Wavelet level shown as colour (-1: clay). Values 0..1 per finest vertex.
+  int colour_level() const { return colour_level_; }
+  void set_colour_level(int level);
+  const std::vector<float>& colour_values() const { return colour_; }
+
+  /// Basis-function mode (issue 5, app/modeler/basis_view_state.h): computes the function of
+  /// `settings` on level settings.request.level (-1: the edit level; the level used is stored)
+  /// (settings.on false: off). Throws Error and leaves the mode off on a bad level or index. A
+  /// change of view settings alone (height, slice, iso) only redraws. Kept when the edit level
+  /// changes; turned off when the scheme, file or topology changes; recomputed after edits of
+  /// its level's shape (once per drag, at its end). With settings.follow, selecting one control
+  /// point shows the function basis_target_at() picks there.
+  void set_basis(const BasisSettings& settings);
+  bool basis_on() const { return basis_ != nullptr; }
+  const BasisSettings& basis_settings() const { return basis_settings_; }
+  /// The current function's display (only while basis_on()).
+  const BasisDisplay& basis() const { return *basis_; }
+  /// Side-by-side comparison: a copy of the current function, kept (and drawn beside it) until
+  /// cleared or another file is opened, across level and scheme changes. Throws Error when the
+  /// mode is off.
+  void pin_basis();
+  void clear_pin();
+  const BasisDisplay* pinned() const { return pinned_.get(); }
+
+  // ---- compression view (docs/compression.md) ------------------------------------------------
+  /// Shows the shape synthesised from the largest `fraction` (0..1) of the wavelets (ranked
+  /// once when the view turns on, with the session's gains; the session is not changed): the
+  /// limit surface and the edit level's net are the compressed ones. While it is on the shape is
+  /// locked: moves, grabs, subdivide, gains, scheme changes, undo, redo and history jumps throw
+  /// Error ("Apply or Off first"); levels, selection, display and camera still work; Save and
+  /// Export write the full shape. Opening a file or turning the basis mode on turns it off.
+  /// Throws Error outside 0..1.
+  void set_compression(double fraction);
+  /// Back to the full shape (nothing changes when the view is off).
+  void compression_off();
+  /// Makes the shown compression one undoable edit ("Compress 20%": the finest control net moved
+  /// onto the compressed one, folded back into every level) and turns the view off. Throws
+  /// Error when the view is off, or when a detail gain is 0 (as any edit at the finest level).
+  void apply_compression();
+  bool compression_on() const { return compress_ != nullptr; }
+  /// The view's numbers (only while compression_on()).
+  const CompressionReadout& compression() const { return compress_->readout; }
+  /// The edit level's control net as shown: the compressed one while the view is on.
+  std::span<const double> net_positions() const;
+
+  // ---- free-form deformation (issue 6, app/modeler/ffd_view_state.h) -------------------------------
+  /// Imports a model (.gltf/.glb/.obj/.ply/.off) and binds it to the open lattice; with no
+  /// lattice open, wraps it in a 4x4x4 box lattice first (refused when an open surface or curve
+  /// has unsaved changes). Throws Error; a failure keeps the current model.
+  void load_model(const std::string& path);
+  /// Replaces the session by a box lattice of nx x ny x nz hexahedra around the model's current
+  /// shape (margin times its bounding-box diagonal on every side, kDefaultLevels levels of the
+  /// current scheme) and binds the model to it. Throws Error without a model.
+  void wrap_model_in_box(int nx, int ny, int nz, double margin);
+  /// Binds the model, as it is now, to the lattice as it is now (its finest level). Throws Error
+  /// without a model or when the session is not a lattice.
+  void bind_model(Outside outside = Outside::Stay);
+  /// The model stays where it is and no longer follows the lattice.
+  void unbind_model();
+  void remove_model();
+  /// Writes the model as it is now in its own format family (core/io/model/model.h export_model).
+  void export_model(const std::string& path) const;
+  const FfdModelState* ffd() const { return ffd_.get(); }
+
+  /// Accumulated changes since the last call, for the GPU buffers.
+  ViewUpdate take_view_update();
+
+ private:
+  void install(std::unique_ptr<Session> session);  // fresh topology
+  void after_operation();                           // pull changed() into limit and update
+  void rebuild_limit();
+  void refresh_state();   // soft weights, then the per-vertex state
+  void refresh_flags();   // the per-vertex state only (hover changes)
+  void refresh_colour();
+  void clamp_selection();
+
+  std::unique_ptr<Session> session_;
+  std::string file_path_, project_path_;
+  std::vector<std::string> warnings_;
+  int level_ = 0;
+  std::vector<unsigned> selection_;
+  long long hover_ = -1;
+  double soft_radius_ = 0.0;
+  double model_size_ = 1.0;
+
+  bool dragging_ = false;
+  double drag_total_[3] = {0, 0, 0};
+  SoftWeights drag_weights_;
+  std::size_t drag_undo_position_ = 0;
+  std::uint64_t seen_topology_ = 0;
+  std::uint64_t serial_ = 0;
+
+  LimitStencils stencils_;
+  Csr faces_, vertex_faces_;
+  std::vector<double> limit_, normals_;
+  std::vector<std::uint32_t> stamp_;
+  std::uint32_t epoch_ = 0;
+
+  std::vector<std::uint8_t> net_state_;
+  std::vector<float> net_soft_;
+  std::vector<unsigned> flagged_;  // vertices with a non-zero state
+  int colour_level_ = -1;
+  std::vector<float> colour_;
+  ViewUpdate update_;
+  BasisSettings basis_settings_;
+  std::unique_ptr<FfdModelState> ffd_;
+  void ffd_follow();       // after a lattice operation: move the bound model
+  void ffd_check_free(const char* what) const;  // throws while a model is bound
+  std::unique_ptr<BasisDisplay> basis_, pinned_;
+  bool basis_stale_ = false;
+  void follow_selection();
+  void basis_off();
+  void refresh_basis();  // recomputes a stale function (after edits of the shape)
+
+  // The compression view: the ranking of the session's wavelets, built when the view turns on,
+  // and the shape of the current fraction (finest net, its limit and normals, the edit level's
+  // net). `full`: every wavelet kept, so the session's own shape is shown.
+  struct CompressionView {
+    Compressor compressor;
+    CompressionReadout readout;
+    bool full = false;
+    std::vector<double> coeffs, finest, limit, normals, net;
+  };
+  std::unique_ptr<CompressionView> compress_;
+  void check_unlocked(const char* what) const;  // throws while the compression view is on
+  void refresh_compression_net();
+};
+
+/// True when `path` names a `.sublift` project (by extension, any case).
+bool is_project_file(const std::string& path);
+
+}  // namespace sublift

@@ -1,0 +1,358 @@
+#include "app/modeler/script_runner.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "core/base/errors.h"
+
+namespace sublift {
+namespace {
+
+// A command's own mistake (bad arguments); reported like any other failure.
+struct ScriptError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+double number(const std::string& word, const char* what) {
+  double v = 0.0;
+  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), v);
+  if (error != std::errc() || end != word.data() + word.size() || !std::isfinite(v)) {
+    throw ScriptError(std::string(what) + " must be a number, got '" + word + "'");
+  }
+  return v;
+}
+
+long long integer(const std::string& word, const char* what) {
+  long long v = 0;
+  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), v);
+  if (error != std::errc() || end != word.data() + word.size()) {
+    throw ScriptError(std::string(what) + " must be a whole number, got '" + word + "'");
+  }
+  return v;
+}
+
+// The rest of the line after the command word: paths may contain spaces.
+std::string rest_of(const std::string& line, const std::string& command) {
+  std::size_t at = line.find(command) + command.size();
+  while (at < line.size() && (line[at] == ' ' || line[at] == '\t')) ++at;
+  std::string out = line.substr(at);
+  while (!out.empty() && (out.back() == ' ' || out.back() == '\t' || out.back() == '\r')) out.pop_back();
+  return out;
+}
+
+// What a handler gets: the words (w[0] is the command), the raw rest of the line and what it may change.
+struct Call {
+  const std::vector<std::string>& w;
+  const std::string& raw;
+  ModelerState& state;
+  ModelerDisplay& show;
+  ScriptStep& step;
+  const char* usage;
+  [[noreturn]] void usage_error() const { throw ScriptError(std::string("usage: ") + usage); }
+};
+
+constexpr int kMany = 1 << 30;  // max: no upper limit on the argument words
+constexpr int kPath = -1;       // min: the raw rest of the line must not be empty (max unused)
+struct Command {
+  const char* name;
+  int min, max;       // argument words allowed, else "usage: " + usage
+  const char* usage;
+  void (*run)(const Call&);
+  bool needs_model = true;
+};
+
+void ffd(const Call& c) {
+  const std::vector<std::string>& w = c.w;
+  ModelerState& state = c.state;
+  if (w[1] == "unbind" && w.size() == 2) return state.unbind_model();
+  if (w[1] == "remove" && w.size() == 2) return state.remove_model();
+  if (w[1] == "export" && w.size() >= 3) return state.export_model(c.raw.substr(c.raw.find("export") + 7));
+  if (w[1] == "bind" && w.size() <= 3) {
+    if (w.size() == 3 && w[2] != "nearest") throw ScriptError("ffd bind takes 'nearest' or nothing, got '" + w[2] + "'");
+    return state.bind_model(w.size() == 3 ? Outside::Nearest : Outside::Stay);
+  }
+  if (w[1] != "box" || (w.size() != 5 && w.size() != 6)) c.usage_error();
+  int n[3];
+  for (std::size_t k = 0; k < 3; ++k) {
+    const long long v = integer(w[2 + k], "cell count");
+    if (v < 1 || v > 64) throw ScriptError("cell counts must be 1..64, got " + w[2 + k]);
+    n[k] = static_cast<int>(v);
+  }
+  const double margin = w.size() == 6 ? number(w[5], "MARGIN") : 0.05;
+  if (margin < 0.0) throw ScriptError("MARGIN must not be negative");
+  state.wrap_model_in_box(n[0], n[1], n[2], margin);
+  c.step.reframe = true;
+}
+
+void colour(const Call& c) {
+  if (c.w[1] == "off") return c.state.set_colour_level(-1);
+  const long long l = integer(c.w[1], "LEVEL");
+  const int top = c.state.session().finest_level() - 1;
+  if (l < 0 || l > top) throw ScriptError("colour level " + c.w[1] + " is outside 0.." + std::to_string(top));
+  c.state.set_colour_level(static_cast<int>(l));
+}
+
+void basis(const Call& c) {
+  const std::vector<std::string>& w = c.w;
+  ModelerState& state = c.state;
+  if (w.size() == 2 && w[1] == "off") return state.set_basis(BasisSettings{});
+  if (w.size() == 2 && w[1] == "pin") return state.pin_basis();
+  if (w.size() == 2 && w[1] == "unpin") return state.clear_pin();
+  auto current = [&](const char* what) {
+    if (!state.basis_on()) throw ScriptError(std::string("basis ") + what + " needs the basis mode on (use 'basis scaling|wavelet INDEX')");
+    return state.basis_settings();
+  };
+  auto fraction = [&](const std::string& word, const char* name) {
+    const double f = number(word, name);
+    if (f < 0.0 || f > 1.0) throw ScriptError(std::string(name) + " must be in 0..1, got " + word);
+    return f;
+  };
+  if (w.size() >= 3 && w[1] == "slice") {
+    BasisSettings b = current("slice");
+    if (w.size() == 3 && w[2] == "off") {
+      b.slice_axis = -1;
+    } else if (w.size() == 4 && (w[2] == "x" || w[2] == "y" || w[2] == "z")) {
+      b.slice_axis = w[2][0] - 'x';
+      b.slice_pos = fraction(w[3], "FRACTION");
+    } else {
+      throw ScriptError("usage: basis slice x|y|z FRACTION | basis slice off");
+    }
+    if (state.dim() != 3) throw ScriptError("basis slice needs a lattice");
+    return state.set_basis(b);
+  }
+  if (w.size() == 3 && w[1] == "iso") {
+    BasisSettings b = current("iso");
+    if (state.dim() != 3) throw ScriptError("basis iso needs a lattice");
+    b.iso = w[2] != "off";
+    if (b.iso) b.iso_level = fraction(w[2], "FRACTION");
+    return state.set_basis(b);
+  }
+  if (w.size() == 3 && w[1] == "follow") {
+    if (w[2] != "on" && w[2] != "off") throw ScriptError("basis follow takes 'on' or 'off', got '" + w[2] + "'");
+    BasisSettings b = current("follow");
+    b.follow = w[2] == "on";
+    return state.set_basis(b);
+  }
+  if (w.size() == 3 && w[1] == "height") {
+    BasisSettings b = current("height");
+    if (w[2] == "off") {
+      b.height = false;
+    } else {
+      const double scale = number(w[2], "SCALE");
+      if (scale < 0.0) throw ScriptError("SCALE must not be negative");
+      b.height = scale > 0.0;
+      if (scale > 0.0) b.height_scale = scale;
+    }
+    return state.set_basis(b);
+  }
+  if (w.size() < 3 || w.size() > 4 || (w[1] != "scaling" && w[1] != "wavelet")) c.usage_error();
+  if (w.size() == 4 && w[3] != "dual") throw ScriptError("basis takes 'dual' after the index, got '" + w[3] + "'");
+  const long long index = integer(w[2], "INDEX");
+  const Complex& cj = state.session().hierarchy().levels[static_cast<std::size_t>(state.level())];
+  const long long nv = cj.num_vertices, nc = static_cast<long long>(predicted_level_counts(cj, 1, state.session().hierarchy().scheme, state.level()).back());
+  BasisSettings b = state.basis_on() ? state.basis_settings() : BasisSettings{};
+  b.on = true;
+  b.request.kind = w[1] == "scaling" ? BasisKind::Scaling : BasisKind::Wavelet;
+  b.request.dual = w.size() == 4;
+  if (b.request.kind == BasisKind::Scaling && (index < 0 || index >= nv)) {
+    throw ScriptError("scaling index " + w[2] + " is outside 0.." + std::to_string(nv - 1) + " of level " +
+                      std::to_string(state.level()));
+  }
+  if (b.request.kind == BasisKind::Wavelet && (index < nv || index >= nc)) {
+    throw ScriptError("wavelet index " + w[2] + " is outside " + std::to_string(nv) + ".." + std::to_string(nc - 1) +
+                      " (e/f/c vertices of level " + std::to_string(state.level() + 1) + ")");
+  }
+  b.request.index = static_cast<std::uint32_t>(index);
+  b.request.level = state.level();
+  state.set_basis(b);
+}
+
+// One entry per command, in the order `sublift --help` lists them. Handlers run after the
+// argument count passed, so they index w[1..min] freely.
+constexpr Command kCommands[] = {
+    {"open", kPath, 0, "open PATH", [](const Call& c) { c.state.open(c.raw); c.step.reframe = true; }, false},
+    {"model", kPath, 0, "model PATH", [](const Call& c) { c.state.load_model(c.raw); c.step.reframe = true; }, false},
+    {"ffd", 1, kMany, "ffd box NX NY NZ [MARGIN] | ffd bind [nearest] | ffd unbind | ffd remove | ffd export PATH", ffd},
+    {"scheme", 1, 1, "scheme linear|cubic|sqrt2|linear-tri|butterfly|loop", [](const Call& c) {
+      Scheme s;
+      try {
+        s = parse_scheme(c.w[1]);
+      } catch (const std::exception&) {
+        throw ScriptError("unknown scheme '" + c.w[1] + "' (linear, cubic, sqrt2, linear-tri, butterfly or loop)");
+      }
+      c.state.set_scheme(s);
+    }},
+    {"subdivide", 0, 1, "subdivide [N]", [](const Call& c) {
+      const long long n = c.w.size() == 2 ? integer(c.w[1], "N") : 1;
+      if (n < 1 || n > 12) throw ScriptError("subdivide N needs N from 1 to 12");
+      for (long long i = 0; i < n; ++i) c.state.subdivide();
+    }},
+    {"level", 1, 1, "level L", [](const Call& c) {
+      const long long l = integer(c.w[1], "L");
+      const int finest = c.state.session().finest_level();
+      if (l < 0 || l > finest) throw ScriptError("level " + c.w[1] + " is outside 0.." + std::to_string(finest));
+      c.state.set_level(static_cast<int>(l));
+    }},
+    {"select", 0, kMany, "select [INDEX...]", [](const Call& c) {
+      std::vector<unsigned> sel;
+      const long long n = c.state.session().num_vertices(c.state.level());
+      for (std::size_t i = 1; i < c.w.size(); ++i) {
+        const long long v = integer(c.w[i], "INDEX");
+        if (v < 0 || v >= n) {
+          throw ScriptError("vertex " + c.w[i] + " is outside 0.." + std::to_string(n - 1) + " of level " +
+                            std::to_string(c.state.level()));
+        }
+        sel.push_back(static_cast<unsigned>(v));
+      }
+      c.state.set_selection(std::move(sel));
+    }},
+    {"soft", 1, 1, "soft RADIUS", [](const Call& c) {
+      const double r = number(c.w[1], "RADIUS");
+      if (r < 0.0) throw ScriptError("RADIUS must not be negative");
+      c.state.set_soft_radius(r);
+    }},
+    {"move", 3, 3, "move DX DY DZ", [](const Call& c) {
+      if (c.state.selection().empty()) throw ScriptError("move needs a selection (use 'select INDEX...')");
+      const double d[3] = {number(c.w[1], "DX"), number(c.w[2], "DY"), number(c.w[3], "DZ")};
+      c.state.begin_drag("Move");
+      try {
+        c.state.drag_to(d);
+      } catch (...) {
+        c.state.cancel_drag();  // no half-applied drag in the history
+        throw;
+      }
+      c.state.end_drag();
+    }},
+    {"gain", 2, 2, "gain LEVEL FACTOR", [](const Call& c) {
+      const long long l = integer(c.w[1], "LEVEL");
+      const double f = number(c.w[2], "FACTOR");
+      const int top = c.state.session().finest_level() - 1;
+      if (l < 0 || l > top) throw ScriptError("gain level " + c.w[1] + " is outside 0.." + std::to_string(top));
+      c.state.begin_gain(static_cast<int>(l));
+      c.state.set_gain(static_cast<int>(l), f);
+      c.state.end_gain();
+    }},
+    {"frames", 1, 1, "frames world|local", [](const Call& c) {
+      if (c.w[1] != "world" && c.w[1] != "local") throw ScriptError("frames must be 'world' or 'local'");
+      c.state.set_local_frames(c.w[1] == "local");
+    }},
+    {"undo", 0, 0, "undo", [](const Call& c) { if (!c.state.undo()) throw ScriptError("nothing to undo"); }},
+    {"redo", 0, 0, "redo", [](const Call& c) { if (!c.state.redo()) throw ScriptError("nothing to redo"); }},
+    {"save", kPath, 0, "save PATH", [](const Call& c) {
+      if (!is_project_file(c.raw)) throw ScriptError("save writes a .sublift project; use export for '" + c.raw + "'");
+      c.state.save_project(c.raw);
+    }},
+    {"export", kPath, 0, "export PATH", [](const Call& c) { c.state.export_shape(c.raw, true); }},
+    {"screenshot", kPath, 0, "screenshot PATH",
+     [](const Call& c) { c.step.kind = ScriptStep::Kind::Screenshot; c.step.path = c.raw; }},
+    {"colour", 1, 1, "colour LEVEL|off", colour},
+    {"color", 1, 1, "colour LEVEL|off", colour},
+    {"basis", 1, kMany,
+     "basis scaling|wavelet INDEX [dual] | basis height SCALE|off | basis slice x|y|z FRACTION | basis slice off | "
+     "basis iso FRACTION|off | basis follow on|off | basis pin | basis unpin | basis off",
+     basis},
+    {"compress", 1, 2, "compress keep F | compress apply | compress off", [](const Call& c) {
+      if (c.w.size() == 2 && c.w[1] == "apply") return c.state.apply_compression();
+      if (c.w.size() == 2 && c.w[1] == "off") return c.state.compression_off();
+      if (c.w.size() != 3 || c.w[1] != "keep") c.usage_error();
+      const double f = number(c.w[2], "F");
+      if (f < 0.0 || f > 1.0) throw ScriptError("compress keep F needs F in 0..1, got " + c.w[2]);
+      c.state.set_compression(f);
+    }},
+    {"display", 2, 2, "display smooth|wireframe|net|xray|depth_cue|clip|ortho on|off", [](const Call& c) {
+      using D = ModelerDisplay;
+      using Switch = std::pair<const char*, bool D::*>;
+      static constexpr Switch kSwitches[] = {{"smooth", &D::smooth}, {"wireframe", &D::wireframe}, {"net", &D::net},
+                                             {"xray", &D::xray},     {"depth_cue", &D::depth_cue}, {"clip", &D::clip},
+                                             {"ortho", &D::orthographic}};
+      if (c.w[2] != "on" && c.w[2] != "off") throw ScriptError("display takes 'on' or 'off', got '" + c.w[2] + "'");
+      const Switch* s = std::ranges::find(kSwitches, c.w[1], &Switch::first);
+      if (s == std::end(kSwitches)) throw ScriptError("unknown display switch '" + c.w[1] + "'");
+      c.show.*s->second = c.w[2] == "on";
+    }},
+    {"clip", 2, 2, "clip X|Y|Z OFFSET01", [](const Call& c) {
+      const std::string& axis = c.w[1];
+      if (axis != "X" && axis != "Y" && axis != "Z" && axis != "x" && axis != "y" && axis != "z") {
+        throw ScriptError("clip axis must be X, Y or Z");
+      }
+      const double at = number(c.w[2], "OFFSET01");
+      if (at < 0.0 || at > 1.0) throw ScriptError("OFFSET01 must be between 0 and 1");
+      c.show.clip = true;
+      c.show.clip_axis = (axis[0] | 0x20) - 'x';
+      c.show.clip_offset = static_cast<float>(at);
+    }},
+    {"view", 1, 1, "view front|back|right|left|top|bottom", [](const Call& c) {
+      static const char* kViews[] = {"front", "back", "right", "left", "top", "bottom"};
+      if (std::ranges::find(kViews, c.w[1]) == std::end(kViews)) throw ScriptError("unknown view '" + c.w[1] + "'");
+      c.step.view = c.w[1];
+    }},
+    {"quit", 0, 0, "quit", [](const Call& c) { c.step.kind = ScriptStep::Kind::Quit; }},
+};
+
+void run_line(ModelerState& state, ModelerDisplay* display, const std::vector<std::string>& w, const std::string& raw,
+              ScriptStep& step) {
+  const Command* cmd = std::ranges::find(kCommands, w[0], &Command::name);
+  const bool known = cmd != std::end(kCommands);
+  // Without a model only open and model run; an unknown word gets this message too.
+  if ((!known || cmd->needs_model) && !state.has_session()) {
+    throw ScriptError("no model is open (use 'open PATH' or 'model PATH')");
+  }
+  if (!known) throw ScriptError("unknown command '" + w[0] + "'");
+  ModelerDisplay ignored;
+  const Call call{w, raw, state, display != nullptr ? *display : ignored, step, cmd->usage};
+  const int n = static_cast<int>(w.size()) - 1;
+  if (cmd->min == kPath ? raw.empty() : n < cmd->min || n > cmd->max) call.usage_error();
+  cmd->run(call);
+}
+
+}  // namespace
+
+std::vector<std::string_view> script_commands() {
+  std::vector<std::string_view> names;
+  for (const Command& k : kCommands) names.emplace_back(k.name);
+  return names;
+}
+
+ScriptRunner::ScriptRunner(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(path + ": cannot read the script");
+  for (std::string line; std::getline(in, line);) lines_.push_back(line);
+}
+
+ScriptRunner::ScriptRunner(const std::string& /*name*/, const std::string& text) {
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines_.push_back(line);
+}
+
+ScriptStep ScriptRunner::next(ModelerState& state, ModelerDisplay* display) {
+  ScriptStep step;
+  while (line_ < lines_.size()) {
+    const std::size_t number = ++line_;
+    std::string line = lines_[number - 1];
+    if (const std::size_t hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    std::istringstream words_in(line);
+    std::vector<std::string> words;
+    for (std::string w; words_in >> w;) words.push_back(w);
+    if (words.empty()) continue;
+    try {
+      ScriptStep::Kind before = step.kind;
+      run_line(state, display, words, rest_of(line, words[0]), step);
+      if (step.kind != before) return step;  // screenshot or quit
+    } catch (const std::exception& e) {
+      std::string what = e.what();
+      while (!what.empty() && (what.back() == '\n' || what.back() == ' ')) what.pop_back();
+      step.kind = ScriptStep::Kind::Error;
+      step.message = "script:" + std::to_string(number) + ": " + what;
+      return step;
+    }
+  }
+  step.kind = ScriptStep::Kind::End;
+  return step;
+}
+
+}  // namespace sublift

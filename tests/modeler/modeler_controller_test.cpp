@@ -1,0 +1,806 @@
+// ModelerController: clicks, Shift+clicks, box selection, drags and the grab tool on a real
+// session, with synthetic window events and no GL context (picking is core math).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <unistd.h>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "app/modeler/modeler_controller.h"
+#include "app/modeler/modeler_view.h"
+#include "app/modeler/script_runner.h"
+#include "core/multires/basis.h"
+#include "core/base/errors.h"
+#include "core/io/model/model.h"
+#include "core/multires/limit.h"
+#include "core/edit/picking.h"
+#include "render/headless_context.h"
+#include "render/net_renderer.h"
+#include "render/viewport_renderer.h"
+
+#ifndef SUBLIFT_ASSETS_DIR
+#error "SUBLIFT_ASSETS_DIR must name the assets folder"
+#endif
+
+namespace sublift {
+namespace {
+
+constexpr float kViewX = 330.0f, kViewW = 800.0f, kViewH = 600.0f;
+
+struct Fixture {
+  ModelerController app{false};
+  explicit Fixture(const std::string& file = "torus_quad.obj") {
+    app.model.open(std::string(SUBLIFT_ASSETS_DIR) + "/" + file);
+    app.set_view_rect(kViewX, 0.0f, kViewW, kViewH, 1.0f);
+    app.camera.set_viewport(static_cast<int>(kViewW), static_cast<int>(kViewH));
+    frame_bounds(app.camera, point_bounds(app.model.limit_positions()));
+  }
+  PickView view() const {
+    return PickView{app.camera.projection() * app.camera.view(), app.camera.viewport_width,
+                    app.camera.viewport_height};
+  }
+  // Window position of control point v of the edit level; false when it is off screen.
+  bool window_position(unsigned v, double& x, double& y) const {
+    const auto p = app.model.session().positions(app.model.level());
+    glm::dvec2 s;
+    double depth = 0.0;
+    if (!project_point(view(), glm::dvec3(p[3 * v], p[3 * v + 1], p[3 * v + 2]), s, depth)) return false;
+    x = s.x + kViewX;
+    y = s.y;
+    return true;
+  }
+  // The front-most control point: the one a click at its projection picks.
+  unsigned visible_point() {
+    PickIndex index;
+    index.build(view(), app.model.session().positions(app.model.level()));
+    const auto n = app.model.session().num_vertices(app.model.level());
+    for (unsigned v = 0; v < n; ++v) {
+      double x = 0, y = 0;
+      if (window_position(v, x, y) && index.nearest(x - kViewX, y, 10.0, false) == v) return v;
+    }
+    return 0;
+  }
+  void send(WindowEvent::Type type, double x, double y, int button = 0, Modifiers mods = {}) {
+    WindowEvent e;
+    e.type = type;
+    e.x = x;
+    e.y = y;
+    e.button = button;
+    e.mods = mods;
+    app.handle(e);
+  }
+  void key(Key k, Modifiers mods = {}) {
+    WindowEvent e;
+    e.type = WindowEvent::Type::Key;
+    e.key = k;
+    e.mods = mods;
+    app.handle(e);
+  }
+  void click(double x, double y, Modifiers mods = {}) {
+    send(WindowEvent::Type::Move, x, y, 0, mods);
+    send(WindowEvent::Type::Press, x, y, 0, mods);
+    send(WindowEvent::Type::Release, x, y, 0, mods);
+  }
+  std::vector<double> positions() const {
+    const auto p = app.model.session().positions(app.model.level());
+    return {p.begin(), p.end()};
+  }
+};
+
+// What the viewport shows after the incremental updates equals a fresh evaluation.
+void expect_shown_equals_fresh(const Fixture& f) {
+  const Hierarchy& h = f.app.model.session().hierarchy();
+  const int J = h.finest_level();
+  const LimitStencils st = build_limit_stencils(h);
+  const auto control = f.app.model.session().positions(J);
+  std::vector<double> limit(control.size()), normals(control.size());
+  eval_limit(st, control.data(), limit.data());
+  limit_normals(st, h.levels[std::size_t(J)].faces, control.data(), limit.data(), normals.data());
+  const auto shown = f.app.model.limit_positions();
+  const auto shown_normals = f.app.model.limit_normals();
+  ASSERT_EQ(shown.size(), limit.size());
+  for (std::size_t i = 0; i < limit.size(); ++i) {
+    EXPECT_NEAR(shown[i], limit[i], 1e-12) << i;
+    EXPECT_NEAR(shown_normals[i], normals[i], 1e-12) << i;
+  }
+}
+
+TEST(ModelerControllerTest, ClickShiftClickAndClickOnEmptySpace) {
+  Fixture f;
+  const unsigned v = f.visible_point();
+  double x = 0, y = 0;
+  ASSERT_TRUE(f.window_position(v, x, y));
+  f.click(x, y);
+  EXPECT_EQ(f.app.model.selection(), (std::vector<unsigned>{v}));
+  f.click(x, y, Modifiers{true, false, false});  // Shift on a selected point toggles it off
+  EXPECT_TRUE(f.app.model.selection().empty());
+  f.click(x, y);
+  f.click(kViewX + 5, 5);  // empty corner: clears
+  EXPECT_TRUE(f.app.model.selection().empty());
+  EXPECT_TRUE(f.app.model.session().history().empty()) << "selection is not an undo step";
+}
+
+// With the surface's depth (the app's ModelerView::surface_depth), a click at a control point
+// hidden behind the surface does not pick it; with x-ray it does. Needs a GL context (EGL).
+TEST(ModelerControllerTest, ClicksSkipPointsBehindTheSurfaceUnlessXray) {
+  HeadlessContext context;
+  Fixture f;
+  ModelerView view;
+  view.sync(f.app.model);
+  const int w = f.app.camera.viewport_width, h = f.app.camera.viewport_height;
+  const std::vector<float> depth = view.surface_depth(f.app.camera, w, h, f.app.display);
+  ASSERT_EQ(depth.size(), std::size_t(w) * std::size_t(h));
+  // A point the depth-less front-cluster rule would pick, but that lies behind the surface.
+  PickIndex plain;
+  plain.build(f.view(), f.app.model.session().positions(0));
+  const auto p = f.app.model.session().positions(0);
+  int hidden = -1;
+  for (unsigned v = 0; v < f.app.model.session().num_vertices(0) && hidden < 0; ++v) {
+    glm::dvec2 s;
+    double ndc = 0.0;
+    if (!project_point(f.view(), glm::dvec3(p[3 * v], p[3 * v + 1], p[3 * v + 2]), s, ndc)) continue;
+    const int px = static_cast<int>(s.x), py = h - 1 - static_cast<int>(s.y);
+    if (px < 0 || py < 0 || px >= w || py >= h) continue;
+    const double surface = depth[std::size_t(py) * std::size_t(w) + std::size_t(px)];
+    if (surface < 0.5 * (ndc + 1.0) - 0.01 && plain.nearest(s.x, s.y, 10.0, false) == v) hidden = int(v);
+  }
+  ASSERT_GE(hidden, 0) << "no control point of the torus is hidden behind its surface from this view";
+  f.app.set_depth_source([&view](const OrbitCamera& c, int dw, int dh, const ModelerDisplay& d) {
+    return view.surface_depth(c, dw, dh, d);
+  });
+  double x = 0, y = 0;
+  ASSERT_TRUE(f.window_position(unsigned(hidden), x, y));
+  f.click(x, y);
+  EXPECT_NE(f.app.model.selection(), (std::vector<unsigned>{unsigned(hidden)}));
+  f.app.display.xray = true;
+  f.click(x, y);
+  EXPECT_EQ(f.app.model.selection(), (std::vector<unsigned>{unsigned(hidden)}));
+  f.app.set_depth_source({});
+}
+
+TEST(ModelerControllerTest, BoxSelectAndSelectAllNone) {
+  Fixture f;
+  f.send(WindowEvent::Type::Move, kViewX + 2, 2);
+  f.send(WindowEvent::Type::Press, kViewX + 2, 2);
+  f.send(WindowEvent::Type::Move, kViewX + kViewW - 2, kViewH - 2);
+  f.send(WindowEvent::Type::Release, kViewX + kViewW - 2, kViewH - 2);
+  EXPECT_EQ(f.app.model.selection().size(), f.app.model.session().num_vertices(0));
+  f.key(Key::A, Modifiers{false, false, true});
+  EXPECT_TRUE(f.app.model.selection().empty());
+  f.key(Key::A);
+  EXPECT_EQ(f.app.model.selection().size(), f.app.model.session().num_vertices(0));
+}
+
+TEST(ModelerControllerTest, DragMovesTheSelectionAsOneUndoStep) {
+  Fixture f;
+  const unsigned v = f.visible_point();
+  double x = 0, y = 0;
+  ASSERT_TRUE(f.window_position(v, x, y));
+  f.click(x, y);
+  const std::vector<double> before = f.positions();
+  f.send(WindowEvent::Type::Press, x, y);
+  for (int i = 1; i <= 5; ++i) f.send(WindowEvent::Type::Move, x + 8 * i, y - 4 * i);
+  f.send(WindowEvent::Type::Release, x + 40, y - 20);
+  ASSERT_EQ(f.app.model.session().history().size(), 1u);
+  EXPECT_FALSE(f.app.model.dragging());
+  // The point now projects where the mouse let go.
+  double nx = 0, ny = 0;
+  ASSERT_TRUE(f.window_position(v, nx, ny));
+  EXPECT_NEAR(nx, x + 40, 1.0);
+  EXPECT_NEAR(ny, y - 20, 1.0);
+  // Only the selected point moved on its level.
+  const std::vector<double> after = f.positions();
+  for (std::size_t i = 0; i < after.size(); ++i) {
+    if (i / 3 != v) {
+      EXPECT_EQ(after[i], before[i]) << i;
+    }
+  }
+  f.key(Key::Z, Modifiers{false, true, false});
+  EXPECT_EQ(f.positions(), before);
+  f.key(Key::Z, Modifiers{true, true, false});
+  EXPECT_EQ(f.positions(), after);
+  expect_shown_equals_fresh(f);
+}
+
+// Boundaries and creases take face-based normals, which also depend on the neighbours.
+TEST(ModelerControllerTest, DragOnBoundaryAndCreaseKeepsTheShownLimitExact) {
+  for (const char* file : {"quad_grid_boundary.obj", "crease_loop.obj"}) {
+    Fixture f(file);
+    for (unsigned v = 0; v < f.app.model.session().num_vertices(0); v += 3) {
+      double x = 0, y = 0;
+      if (!f.window_position(v, x, y)) continue;
+      f.app.model.set_selection({v});
+      f.app.model.begin_drag("Drag");
+      const double total[3] = {0.05, 0.1, -0.02};
+      f.app.model.drag_to(total);
+      f.app.model.end_drag();
+    }
+    SCOPED_TRACE(file);
+    expect_shown_equals_fresh(f);
+  }
+}
+
+
+TEST(ModelerControllerTest, GrabWithAxisAndTypedDistanceAndCancel) {
+  Fixture f;
+  const unsigned v = f.visible_point();
+  double x = 0, y = 0;
+  ASSERT_TRUE(f.window_position(v, x, y));
+  f.click(x, y);
+  const std::vector<double> before = f.positions();
+  f.key(Key::G);
+  ASSERT_TRUE(f.app.grabbing());
+  f.send(WindowEvent::Type::Move, x + 30, y + 10);
+  EXPECT_NE(f.positions(), before);
+  f.key(Key::Escape);  // cancel restores exactly and leaves no redo-able change behind
+  EXPECT_FALSE(f.app.grabbing());
+  EXPECT_EQ(f.positions(), before);
+  EXPECT_FALSE(f.app.model.session().can_redo());
+  EXPECT_TRUE(f.app.model.session().history().empty());
+
+  f.key(Key::G);
+  f.key(Key::Y);
+  f.key(Key::Digit0);
+  f.key(Key::Period);
+  f.key(Key::Digit5);
+  f.key(Key::Enter);
+  const std::vector<double> after = f.positions();
+  EXPECT_DOUBLE_EQ(after[3 * v + 0], before[3 * v + 0]);
+  EXPECT_NEAR(after[3 * v + 1], before[3 * v + 1] + 0.5, 1e-12);
+  EXPECT_DOUBLE_EQ(after[3 * v + 2], before[3 * v + 2]);
+  EXPECT_EQ(f.app.model.session().undo_position(), 1u);
+  EXPECT_EQ(f.app.model.session().history().size(), 1u);
+}
+
+TEST(ModelerControllerTest, SoftRadiusLevelsAndSubdivideKeys) {
+  Fixture f;
+  WindowEvent wheel;
+  wheel.type = WindowEvent::Type::Wheel;
+  wheel.x = kViewX + 100;
+  wheel.y = 100;
+  wheel.wheel = 1.0;
+  wheel.mods.ctrl = true;
+  f.app.handle(wheel);
+  EXPECT_NEAR(f.app.model.soft_radius(), f.app.model.default_soft_radius(), 1e-12);
+  EXPECT_EQ(f.app.model.level(), 0);
+  f.key(Key::PageUp);
+  EXPECT_EQ(f.app.model.level(), 1);
+  f.key(Key::D, Modifiers{true, false, false});
+  EXPECT_EQ(f.app.model.level(), 0);
+  const int finest = f.app.model.session().finest_level();
+  f.key(Key::D, Modifiers{false, true, false});
+  EXPECT_EQ(f.app.model.session().finest_level(), finest + 1);
+  f.key(Key::Z, Modifiers{false, true, false});
+  EXPECT_EQ(f.app.model.session().finest_level(), finest);
+}
+
+TEST(ModelerControllerTest, AutosaveRecoveryAndQuitPrompt) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("sublift_recovery_test_" + std::to_string(::getpid()));
+  ::setenv("SUBLIFT_RECOVERY_DIR", dir.c_str(), 1);
+  const std::filesystem::path file = dir / "recovery.sublift";
+  EXPECT_EQ(ModelerController::recovery_path(), file.string());
+  {
+    ModelerController app(true);
+    app.model.open(std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj");
+    EXPECT_TRUE(app.request_quit()) << "a clean session quits at once";
+    app.tick(0.0);
+    app.model.set_selection({1});
+    app.model.begin_drag("Move");
+    const double d[3] = {0.0, 0.1, 0.0};
+    app.model.drag_to(d);
+    app.tick(200.0);  // never during a drag
+    EXPECT_FALSE(std::filesystem::exists(file));
+    app.model.end_drag();
+    app.tick(100.0);  // not yet two minutes since the first tick
+    EXPECT_FALSE(std::filesystem::exists(file));
+    app.tick(200.0);
+    EXPECT_TRUE(std::filesystem::exists(file));
+    EXPECT_FALSE(app.request_quit()) << "unsaved changes must be asked about";
+    // The autosave reopens to the edited shape.
+    {
+      ModelerState copy;
+      copy.open(file.string());
+      const auto a = copy.session().positions(0), b = app.model.session().positions(0);
+      EXPECT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end()));
+    }
+    app.clean_exit();
+    EXPECT_FALSE(std::filesystem::exists(file));
+  }
+  {
+    ModelerController scripted(false);  // scripts and screenshots never autosave
+    scripted.model.open(std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj");
+    scripted.model.subdivide();
+    scripted.tick(0.0);
+    scripted.tick(500.0);
+    EXPECT_FALSE(std::filesystem::exists(file));
+    EXPECT_TRUE(scripted.request_quit());
+  }
+  std::filesystem::remove_all(dir);
+  ::unsetenv("SUBLIFT_RECOVERY_DIR");
+}
+
+// A Basis-section request for the edit level: on, kind (0 scaling, 1 wavelet), index.
+BasisSettings basis_request(int kind, long long index) {
+  BasisSettings q;
+  q.on = true;
+  q.request.kind = kind == 0 ? BasisKind::Scaling : BasisKind::Wavelet;
+  q.request.index = static_cast<std::uint32_t>(index);
+  return q;
+}
+
+// Basis mode (issue 5): the panel's request for the selected point computes the same function
+// as a direct basis_function call on the edit level, with the support outline around the point;
+// wavelets, duals, bad indices, level changes and edits.
+TEST(ModelerControllerTest, BasisModeComputesTheSelectedScalingFunctionAndWavelet) {
+  Fixture f;
+  ModelerState& m = f.app.model;
+  m.set_level(1);
+  const unsigned v = 2;
+  m.set_selection({v});
+  const Session& s = m.session();
+  const Complex& c1 = s.hierarchy().levels[1];
+
+  ModelerPanelRequests req;
+  req.basis = basis_request(0, static_cast<long long>(m.selection().front()));
+  f.app.apply_panel_requests(req);
+  ASSERT_TRUE(f.app.error.empty()) << f.app.error;
+  ASSERT_TRUE(m.basis_on());
+  EXPECT_TRUE(m.take_view_update().basis);
+
+  BasisRequest r;
+  r.level = 1;
+  r.index = v;
+  const BasisFunction direct = basis_function(c1, s.hierarchy().scheme, r, s.positions(1));
+  const BasisFunction& got = m.basis().function;
+  EXPECT_EQ(got.extra_levels, direct.extra_levels);
+  EXPECT_EQ(got.support, direct.support);
+  EXPECT_EQ(got.support_per_level, direct.support_per_level);
+  EXPECT_DOUBLE_EQ(got.integral, direct.integral);
+  EXPECT_DOUBLE_EQ(got.max, direct.max);
+  EXPECT_GT(got.integral, 0.0);
+  ASSERT_GE(got.support_per_level.size(), 2u);
+  EXPECT_EQ(got.support_per_level[0], 1u);  // the unit coefficient itself at level j
+  // Cubic on a quad torus: the limit function is non-zero on the 2-ring of faces around v.
+  const std::size_t nfinest = got.values.size();
+  EXPECT_GT(got.support.size(), 10u);
+  EXPECT_LT(got.support.size(), nfinest / 4);
+  const BasisDisplay& d = m.basis();
+  EXPECT_EQ(d.colour.size(), nfinest);
+  EXPECT_EQ(d.faces.rows(), got.finest.num_faces());
+  EXPECT_FALSE(d.symmetric);
+  EXPECT_FLOAT_EQ(*std::max_element(d.colour.begin(), d.colour.end()), 1.0f);
+  bool outline_at_v = false;
+  for (const std::uint32_t e : d.support_edges) outline_at_v |= e == v;
+  EXPECT_TRUE(outline_at_v);
+  EXPECT_LT(d.support_edges.size() / 2, c1.num_edges() / 4);
+
+  // Height field: displaced only where the function is non-zero.
+  req.basis->height = true;
+  f.app.apply_panel_requests(req);
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < d.positions.size(); ++i) moved += d.positions[i] != d.base_positions[i];
+  EXPECT_GT(moved, 0u);
+  EXPECT_EQ(m.basis().function.integral, direct.integral);  // not recomputed
+
+  // The edge wavelet at the selected point, and its dual.
+  const long long w = edge_wavelet_at(c1, v);
+  ASSERT_GE(w, static_cast<long long>(c1.num_vertices));
+  req.basis = basis_request(1, w);
+  f.app.apply_panel_requests(req);
+  ASSERT_TRUE(m.basis_on()) << f.app.error;
+  r.kind = BasisKind::Wavelet;
+  r.index = static_cast<std::uint32_t>(w);
+  const BasisFunction wd = basis_function(c1, s.hierarchy().scheme, r, s.positions(1));
+  EXPECT_EQ(m.basis().function.support, wd.support);
+  EXPECT_NEAR(m.basis().function.integral, wd.integral, 1e-15);
+  EXPECT_TRUE(m.basis().symmetric);
+  req.basis->request.dual = true;
+  f.app.apply_panel_requests(req);
+  ASSERT_TRUE(m.basis_on());
+  EXPECT_FALSE(m.basis().function.limit);
+
+  // A wavelet index on a v vertex fails like other actions and leaves the mode off.
+  req.basis = basis_request(1, 0);
+  f.app.apply_panel_requests(req);
+  EXPECT_FALSE(m.basis_on());
+  EXPECT_NE(f.app.error.find("Basis: "), std::string::npos);
+
+  // An edit of the level recomputes (moments follow the geometry); the function keeps its level
+  // when another level is edited.
+  f.app.error.clear();
+  req.basis = basis_request(0, v);
+  f.app.apply_panel_requests(req);
+  const double before = m.basis().function.moment[1];
+  m.begin_drag("Move");
+  const double t[3] = {0.0, 0.3, 0.0};
+  m.drag_to(t);
+  m.end_drag();
+  ASSERT_TRUE(m.basis_on());
+  EXPECT_NE(m.basis().function.moment[1], before);
+  const auto support = m.basis().function.support;
+  m.set_level(0);
+  ASSERT_TRUE(m.basis_on());
+  EXPECT_EQ(m.basis().level, 1);
+  EXPECT_EQ(m.basis().function.support, support);
+}
+
+// Follow: selecting an e/f/c point of the level j+1 net shows its level-j wavelet; a vertex
+// point shows the edge wavelet on its first edge at the edit level; scaling mode the point's
+// own scaling function. Each matches a direct basis_function call.
+TEST(ModelerControllerTest, BasisFollowPicksWaveletsOnTheNextLevelNet) {
+  Fixture f;
+  ModelerState& m = f.app.model;
+  m.set_level(1);
+  const Hierarchy& h = m.session().hierarchy();
+  const std::uint32_t nv0 = h.levels[0].num_vertices;
+  ModelerPanelRequests req;
+  req.basis = basis_request(1, h.levels[1].num_vertices);  // the first edge wavelet of level 1
+  req.basis->follow = true;
+  f.app.apply_panel_requests(req);
+  ASSERT_TRUE(m.basis_on()) << f.app.error;
+  auto direct = [&](int level, BasisKind kind, std::uint32_t index) {
+    BasisRequest r;
+    r.level = level;
+    r.kind = kind;
+    r.index = index;
+    return basis_function(h.levels[static_cast<std::size_t>(level)], h.scheme, r, m.session().positions(level));
+  };
+  const std::uint32_t face_point = nv0 + h.levels[0].num_edges() + 3;  // a face child of level 0
+  m.set_selection({face_point});
+  ASSERT_TRUE(m.basis_on());
+  EXPECT_EQ(m.basis().level, 0);
+  EXPECT_EQ(m.basis().settings.request.index, face_point);
+  EXPECT_EQ(m.basis().function.support, direct(0, BasisKind::Wavelet, face_point).support);
+  m.set_selection({5});  // a vertex point: the edge wavelet of level 1 on its first edge
+  const long long w = edge_wavelet_at(h.levels[1], 5);
+  EXPECT_EQ(m.basis().level, 1);
+  EXPECT_EQ(m.basis().settings.request.index, static_cast<std::uint32_t>(w));
+  EXPECT_EQ(m.basis().function.support, direct(1, BasisKind::Wavelet, static_cast<std::uint32_t>(w)).support);
+  // Scaling mode follows too; without follow nothing changes on a click.
+  req.basis = basis_request(0, 0);
+  req.basis->follow = true;
+  f.app.apply_panel_requests(req);
+  m.set_selection({face_point});
+  EXPECT_EQ(m.basis().level, 1);
+  EXPECT_EQ(m.basis().settings.request.index, face_point);
+  EXPECT_EQ(m.basis().function.integral, direct(1, BasisKind::Scaling, face_point).integral);
+  req.basis->follow = false;
+  req.basis->request.index = 7;
+  f.app.apply_panel_requests(req);
+  m.set_selection({9});
+  EXPECT_EQ(m.basis().settings.request.index, 7u);
+}
+
+// Pinning keeps a copy of the function across index and scheme changes (linear vs cubic) and
+// the panel shows both readouts.
+TEST(ModelerControllerTest, BasisPinKeepsAFunctionForComparison) {
+  Fixture f;
+  ModelerState& m = f.app.model;
+  ModelerPanelRequests req;
+  req.basis = basis_request(0, 4);
+  f.app.apply_panel_requests(req);
+  ASSERT_TRUE(m.basis_on());
+  const double cubic_max = m.basis().function.max;
+  ModelerPanelRequests pin;
+  pin.pin_basis = true;
+  f.app.apply_panel_requests(pin);
+  ASSERT_NE(m.pinned(), nullptr);
+  m.set_scheme(Scheme::Linear);
+  EXPECT_FALSE(m.basis_on());
+  f.app.apply_panel_requests(req);
+  ASSERT_TRUE(m.basis_on());
+  ASSERT_NE(m.pinned(), nullptr);
+  EXPECT_EQ(m.pinned()->function.max, cubic_max);
+  EXPECT_DOUBLE_EQ(m.basis().function.max, 1.0);  // the linear hat peaks at its own vertex
+  EXPECT_LT(cubic_max, 1.0);                        // the cubic one (limit values) does not
+  BasisPanelData data;
+  f.app.fill_basis_data(data);
+  EXPECT_TRUE(data.pinned && data.computed);
+  EXPECT_EQ(data.pin.max, cubic_max);
+  EXPECT_NE(data.current.title.find("scaling 4 of level 0"), std::string::npos) << data.current.title;
+  ModelerPanelRequests clear;
+  clear.clear_pin = true;
+  f.app.apply_panel_requests(clear);
+  EXPECT_EQ(m.pinned(), nullptr);
+  ModelerPanelRequests off;
+  off.basis = BasisSettings{};
+  f.app.apply_panel_requests(off);
+  f.app.apply_panel_requests(pin);  // nothing to pin: an error, not a crash
+  EXPECT_NE(f.app.error.find("nothing to pin"), std::string::npos) << f.app.error;
+}
+
+// Lattices: a slice plane lies in its plane and is coloured by the function; an iso-surface
+// carries the iso value's colour; both are view settings (the function is not recomputed).
+TEST(ModelerControllerTest, BasisLatticeSlicesAndIsoSurfaces) {
+  Fixture f("hex_block_4.lattice");
+  ModelerState& m = f.app.model;
+  ModelerPanelRequests req;
+  req.basis = basis_request(0, 62);  // the block's centre vertex (0, 0, 0)
+  f.app.apply_panel_requests(req);
+  ASSERT_TRUE(m.basis_on()) << f.app.error;
+  const BasisDisplay& d = m.basis();
+  const std::size_t boundary_faces = d.faces.rows();
+  EXPECT_EQ(d.faces.rows(), d.boundary.rows());
+  req.basis->slice_axis = 2;
+  req.basis->slice_pos = 0.5f;
+  f.app.apply_panel_requests(req);
+  const BasisDisplay& s = m.basis();
+  ASSERT_GT(s.faces.rows(), 0u);
+  EXPECT_EQ(s.faces.items.size(), 3 * s.faces.rows());
+  double zlo = 1e300, zhi = -1e300;
+  for (std::size_t v = 0; v < d.base_positions.size() / 3; ++v) {
+    zlo = std::min(zlo, d.base_positions[3 * v + 2]), zhi = std::max(zhi, d.base_positions[3 * v + 2]);
+  }
+  for (std::size_t v = 0; v < s.positions.size() / 3; ++v) EXPECT_NEAR(s.positions[3 * v + 2], 0.5 * (zlo + zhi), 1e-12);
+  // The centre vertex lies in that plane: the slice's brightest colour is the function's max.
+  EXPECT_FLOAT_EQ(*std::max_element(s.colour.begin(), s.colour.end()), 1.0f);
+  const double integral = s.function.integral;
+  req.basis->slice_axis = -1;
+  req.basis->iso = true;
+  req.basis->iso_level = 0.5f;
+  f.app.apply_panel_requests(req);
+  const BasisDisplay& iso = m.basis();
+  ASSERT_GT(iso.faces.rows(), 0u);
+  EXPECT_EQ(iso.function.integral, integral);
+  const float expected = basis_colour(iso, 0.5 * iso.function.max);
+  for (const float c : iso.colour) EXPECT_NEAR(c, expected, 1e-6);
+  req.basis->iso = false;
+  f.app.apply_panel_requests(req);
+  EXPECT_EQ(m.basis().faces.rows(), boundary_faces);
+}
+
+// Curves: the plot runs along the curve over the support with zero margins, and its peak is
+// the function's maximum.
+TEST(ModelerControllerTest, BasisCurvePlot) {
+  Fixture f("curves/curve.obj");
+  ModelerState& m = f.app.model;
+  ModelerPanelRequests req;
+  req.basis = basis_request(0, m.session().num_vertices(0) / 2);
+  f.app.apply_panel_requests(req);
+  ASSERT_TRUE(m.basis_on()) << f.app.error;
+  const std::vector<float>& plot = m.basis().plot;
+  ASSERT_GT(plot.size(), 8u);
+  EXPECT_EQ(plot.front(), 0.0f);
+  EXPECT_EQ(plot.back(), 0.0f);
+  EXPECT_FLOAT_EQ(*std::max_element(plot.begin(), plot.end()), static_cast<float>(m.basis().function.max));
+  std::size_t nonzero = 0;
+  for (const float x : plot) nonzero += x != 0.0f;
+  EXPECT_EQ(nonzero, m.basis().function.support.size());  // the whole support, in one piece
+}
+
+// Each (script, message) case stops with an error whose message contains the expected text.
+void expect_script_errors(ModelerState& m, std::span<const std::pair<std::string, std::string>> cases) {
+  for (const auto& [text, expect] : cases) {
+    ScriptRunner bad("bad", text);
+    const ScriptStep step = bad.next(m);
+    EXPECT_EQ(step.kind, ScriptStep::Kind::Error) << text;
+    EXPECT_NE(step.message.find(expect), std::string::npos) << step.message;
+  }
+}
+
+// The scheme menu's third entry (issue 7): the hierarchy is rebuilt as sqrt2 at the same finest
+// resolution (2 levels per 1-to-4 level), drags stay exact on the shown surface (the limit of an
+// interpolatory scheme is its control net), the scaling function of a clicked point peaks at
+// exactly 1 there, and lattices refuse the scheme with a message.
+TEST(ModelerControllerTest, Sqrt2SchemeFromTheMenu) {
+  Fixture f("quad_grid_boundary.obj");
+  ModelerState& m = f.app.model;
+  const int cubic_levels = m.session().finest_level();
+  const std::uint32_t finest = m.session().num_vertices(cubic_levels);
+  ModelerPanelRequests req;
+  req.scheme = 2;
+  f.app.apply_panel_requests(req);
+  ASSERT_EQ(m.session().hierarchy().scheme, Scheme::Sqrt2);
+  EXPECT_EQ(m.session().finest_level(), 2 * cubic_levels);
+  EXPECT_EQ(m.session().num_vertices(m.session().finest_level()), finest);  // Catmull-Clark topology
+  for (int level : {1, 2}) {
+    m.set_level(level);
+    m.set_selection({5});
+    m.begin_drag("Drag");
+    const double total[3] = {0.05, 0.1, -0.02};
+    m.drag_to(total);
+    m.end_drag();
+    expect_shown_equals_fresh(f);
+  }
+  // The shown surface passes through the finest control points.
+  const auto net = m.session().positions(m.session().finest_level());
+  const auto shown = m.limit_positions();
+  ASSERT_EQ(shown.size(), net.size());
+  for (std::size_t i = 0; i < net.size(); ++i) ASSERT_EQ(shown[i], net[i]) << i;
+  ModelerPanelRequests basis;
+  basis.basis = basis_request(0, 7);
+  f.app.apply_panel_requests(basis);
+  ASSERT_TRUE(m.basis_on());
+  EXPECT_EQ(m.basis().function.values[7], 1.0);
+  EXPECT_EQ(m.basis().function.max, 1.0);
+  // Back to cubic: the resolution comes back too.
+  ModelerPanelRequests back;
+  back.scheme = 1;
+  f.app.apply_panel_requests(back);  // with history: asks first
+  EXPECT_EQ(m.session().hierarchy().scheme, Scheme::Sqrt2);
+  m.set_scheme(Scheme::Cubic);
+  EXPECT_EQ(m.session().finest_level(), cubic_levels);
+
+  Fixture lattice("cube_cell.lattice");
+  EXPECT_THROW(lattice.app.model.set_scheme(Scheme::Sqrt2), Error);
+  ModelerPanelRequests to_sqrt2;
+  to_sqrt2.scheme = 2;
+  lattice.app.apply_panel_requests(to_sqrt2);
+  EXPECT_NE(lattice.app.error.find("surfaces only"), std::string::npos) << lattice.app.error;
+  EXPECT_EQ(lattice.app.model.session().hierarchy().scheme, Scheme::Cubic);
+}
+
+// The triangle schemes of paper 004 from the Scheme menu: drags keep the shown surface equal
+// to a fresh evaluation, butterfly shows its finest net (it interpolates), Loop its limit
+// masks; a quad mesh refuses them with the face named.
+TEST(ModelerControllerTest, TriangleSchemesFromTheMenu) {
+  Fixture f("octahedron.obj");
+  ModelerState& m = f.app.model;
+  for (int choice : {4, 5, 3}) {  // butterfly, loop, linear-tri
+    ModelerPanelRequests req;
+    req.scheme = choice;
+    f.app.apply_panel_requests(req);
+    if (m.session().hierarchy().scheme != static_cast<Scheme>(choice)) m.set_scheme(static_cast<Scheme>(choice));
+    ASSERT_EQ(m.session().hierarchy().scheme, static_cast<Scheme>(choice)) << f.app.error;
+    for (int level : {0, 1}) {
+      m.set_level(level);
+      m.set_selection({2});
+      m.begin_drag("Drag");
+      const double total[3] = {0.05, 0.1, -0.02};
+      m.drag_to(total);
+      m.end_drag();
+      expect_shown_equals_fresh(f);
+    }
+    const auto net = m.session().positions(m.session().finest_level());
+    const auto shown = m.limit_positions();
+    ASSERT_EQ(shown.size(), net.size());
+    double differs = 0;
+    for (std::size_t i = 0; i < net.size(); ++i) differs = std::max(differs, std::abs(shown[i] - net[i]));
+    if (static_cast<Scheme>(choice) == Scheme::Loop) {
+      EXPECT_GT(differs, 1e-3);
+    } else {
+      EXPECT_EQ(differs, 0.0);
+    }
+  }
+  Fixture quads("quad_grid_boundary.obj");
+  ModelerPanelRequests to_loop;
+  to_loop.scheme = 5;
+  quads.app.apply_panel_requests(to_loop);
+  EXPECT_NE(quads.app.error.find("needs a triangle mesh; face 0 has 4 corners"), std::string::npos) << quads.app.error;
+  EXPECT_EQ(quads.app.model.session().hierarchy().scheme, Scheme::Cubic);
+}
+
+TEST(ModelerControllerTest, BasisScriptCommands) {
+  ModelerState m;
+  const std::string torus = std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj";
+  ScriptRunner ok("ok", "open " + torus + "\nlevel 1\nbasis scaling 5\nbasis height 0.1\nbasis wavelet 400 dual\n");
+  EXPECT_EQ(ok.next(m).kind, ScriptStep::Kind::End);
+  ASSERT_TRUE(m.basis_on());
+  EXPECT_EQ(m.basis_settings().request.kind, BasisKind::Wavelet);
+  EXPECT_TRUE(m.basis_settings().request.dual);
+  EXPECT_TRUE(m.basis_settings().height);
+  EXPECT_EQ(m.basis().function.finest.num_vertices, m.basis().function.values.size());
+  ScriptRunner off("off", "basis off\n");
+  EXPECT_EQ(off.next(m).kind, ScriptStep::Kind::End);
+  EXPECT_FALSE(m.basis_on());
+  const std::pair<std::string, std::string> cases[] = {
+      {"basis wavelet 3\n", "script:1: wavelet index 3 is outside 384.."},
+      {"basis scaling 384\n", "script:1: scaling index 384 is outside 0..383"},
+      {"basis scaling 1 primal\n", "script:1: basis takes 'dual'"},
+      {"basis\n", "script:1: usage: basis scaling|wavelet"},
+      {"basis height 0.2\n", "script:1: basis height needs the basis mode on"},
+  };
+  expect_script_errors(m, cases);
+}
+
+}  // namespace
+}  // namespace sublift
+
+namespace sublift {
+namespace {
+
+// FFD mode (issue 6): a model loaded with no lattice open is wrapped in a 4x4x4 box lattice and
+// bound; a lattice drag moves it exactly as core/ffd/ffd.h's deform of the same binding does, undo
+// brings it back bit for bit, an unbound model stays put, topology changes are refused while
+// bound, and a dirty surface is not replaced.
+TEST(ModelerFfdTest, ModelFollowsLatticeEditsAndUndo) {
+  ModelerState m;
+  const std::string torus = std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj";
+  m.load_model(torus);
+  ASSERT_TRUE(m.has_session());
+  ASSERT_NE(m.ffd(), nullptr);
+  EXPECT_EQ(m.dim(), 3);
+  EXPECT_EQ(m.session().num_vertices(0), 125u);
+  EXPECT_TRUE(m.ffd()->bound);
+  EXPECT_EQ(m.ffd()->binding.report.bound, 96u);
+  EXPECT_TRUE(m.take_view_update().model_topology);
+  const std::vector<double> rest = m.ffd()->positions;
+
+  m.set_selection({62});  // the box's centre point
+  m.begin_drag("Move");
+  const double t[3] = {0.0, 0.0, 0.2};
+  m.drag_to(t);
+  m.end_drag();
+  EXPECT_TRUE(m.take_view_update().model);
+  const int J = m.session().finest_level();
+  std::vector<double> expected(rest.size());
+  deform(m.ffd()->binding, m.session().positions(J), expected);
+  EXPECT_EQ(m.ffd()->positions, expected);
+  EXPECT_NE(m.ffd()->positions, rest);
+  EXPECT_GT(m.ffd()->last_moved, 0u);
+
+  m.undo();
+  EXPECT_EQ(m.ffd()->positions, rest);  // bit for bit
+  m.redo();
+  EXPECT_EQ(m.ffd()->positions, expected);
+
+  EXPECT_THROW(m.subdivide(), Error);
+  EXPECT_THROW(m.set_scheme(Scheme::Linear), Error);
+  m.unbind_model();
+  m.set_selection({0});
+  m.begin_drag("Move");
+  m.drag_to(t);
+  m.end_drag();
+  EXPECT_EQ(m.ffd()->positions, expected);  // unbound: the model stays
+  EXPECT_NO_THROW(m.subdivide());
+  // Bound again to the lattice as it is: the model does not jump.
+  m.bind_model();
+  EXPECT_EQ(m.ffd()->positions, expected);
+  EXPECT_EQ(m.session().finest_level(), 3);
+
+  // Export and read back: the model as it is now.
+  const std::string out = (std::filesystem::temp_directory_path() / "sublift_ffd_state.obj").string();
+  m.export_model(out);
+  const Model back = import_model(out);
+  ASSERT_EQ(back.positions.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_NEAR(back.positions[i], expected[i], 1e-12);
+  std::filesystem::remove(out);
+}
+
+TEST(ModelerFfdTest, LoadBindsToAnOpenLatticeAndRefusesToDropADirtySurface) {
+  ModelerState m;
+  m.open(std::string(SUBLIFT_ASSETS_DIR) + "/hex_block_4.lattice");
+  m.load_model(std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj");
+  EXPECT_EQ(m.session().num_vertices(0), 125u);  // the open lattice, not a box
+  EXPECT_TRUE(m.ffd()->bound);
+  EXPECT_EQ(m.ffd()->binding.report.bound + m.ffd()->binding.report.outside, 96u);
+
+  ModelerState s;
+  s.open(std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj");
+  s.set_selection({3});
+  s.begin_drag("Move");
+  const double t[3] = {0.0, 0.1, 0.0};
+  s.drag_to(t);
+  s.end_drag();
+  EXPECT_THROW(s.load_model(std::string(SUBLIFT_ASSETS_DIR) + "/cube.obj"), Error);
+  EXPECT_EQ(s.dim(), 2);
+  EXPECT_EQ(s.ffd(), nullptr);
+  EXPECT_THROW(s.load_model("/nonexistent/model.obj"), Error);
+}
+
+TEST(ModelerFfdTest, ScriptCommands) {
+  ModelerState m;
+  const std::string torus = std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj";
+  ScriptRunner ok("ok", "model " + torus + "\nffd box 2 2 2 0.1\nffd bind nearest\nselect 13\nmove 0 0.3 0\n");
+  EXPECT_EQ(ok.next(m).kind, ScriptStep::Kind::End);
+  ASSERT_NE(m.ffd(), nullptr);
+  EXPECT_EQ(m.session().num_vertices(0), 27u);
+  EXPECT_EQ(m.ffd()->outside, Outside::Nearest);
+  EXPECT_NE(m.ffd()->positions, m.ffd()->model.positions);
+  const std::pair<std::string, std::string> cases[] = {
+      {"ffd box 2 0 2\n", "script:1: cell counts must be 1..64"},
+      {"ffd bind far\n", "script:1: ffd bind takes 'nearest'"},
+      {"ffd\n", "script:1: usage: ffd box"},
+      {"subdivide\n", "not possible while a model is bound"},
+  };
+  expect_script_errors(m, cases);
+}
+
+}  // namespace
+}  // namespace sublift

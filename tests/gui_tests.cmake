@@ -2,6 +2,8 @@
 # SUBLIFT_WITH_GUI is on. gui_test runs the real executable under xvfb-run and without any
 # display, so it needs xvfb, xauth and Mesa's EGL (TOOLCHAIN.md); missing ones fail, not skip.
 include(GoogleTest)
+# Shared helpers are included as "tests/..." (tests/ mirrors the code, helpers stay at its root).
+include_directories(${PROJECT_SOURCE_DIR})
 
 add_executable(camera_test ${CMAKE_CURRENT_LIST_DIR}/render/camera_test.cpp)
 target_link_libraries(camera_test PRIVATE sublift_render GTest::gtest_main)

@@ -91,6 +91,16 @@ void draw_levels_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   if (ImGui::SliderInt("Edit level", &level, 0, std::max(d.finest, 0)) && level != d.level) r.level = level;
   ImGui::SameLine();
   if (ImGui::Button("Subdivide")) r.subdivide = true;
+  if (d.rebuild_levels > 0) {
+    ImGui::TextColored(kAccent, "This mesh was subdivided %d time%s elsewhere.", d.rebuild_levels, d.rebuild_levels == 1 ? "" : "s");
+    char label[64];
+    std::snprintf(label, sizeof label, "Rebuild %d level%s", d.rebuild_levels, d.rebuild_levels == 1 ? "" : "s");
+    if (ImGui::Button(label)) r.rebuild = true;
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Find the base mesh and analyse this shape into %s wavelets: edit it at level 0\n"
+                        "with its detail kept (docs/rebuild.md). Clears the history.",
+                        d.rebuild_scheme.c_str());
+  }
 
   if (ImGui::BeginTable("levels", 5, ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_RowBg)) {
     ImGui::TableSetupColumn("L", ImGuiTableColumnFlags_WidthStretch, 0.25f);

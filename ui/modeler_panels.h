@@ -88,6 +88,8 @@ struct ModelerPanelData {
   int dim = 2;
   int scheme = 1;                     // Scheme's value: 0 linear, 1 cubic, 2 sqrt2
   int level = 0, finest = 0;
+  int rebuild_levels = 0;             // the opened mesh was subdivided this many times elsewhere
+  std::string rebuild_scheme;         // the scheme a rebuild would use
   std::vector<LevelStats> levels;     // levels 0..finest (the finest has no wavelets of its own)
   std::vector<double> gains;          // per level 0..finest-1
   bool local_frames = false;
@@ -123,6 +125,7 @@ struct ModelerPanelRequests {
   double gain_value = 1.0;
   bool gain_begin = false, gain_end = false;  // the slider drag started / ended
   bool subdivide = false, undo = false, redo = false;
+  bool rebuild = false;               // rebuild the opened mesh's levels (docs/rebuild.md)
   std::optional<std::string> open;    // path to open
   std::optional<std::string> save;    // path to save the project to
   std::optional<std::string> export_path;

@@ -26,7 +26,8 @@ constexpr const char* kHelp =
     "  features, scheme and every coefficient as a .sublift project (docs/file_formats.md).\n"
     "  FINE must have exactly the vertex count and the faces (edges for curves, faces and cells\n"
     "  for lattices) of the refined BASE, else it is refused with the first difference.\n"
-    "  --integer: lossless integer transform (use with integer coordinates).\n";
+    "  --integer: lossless integer transform (use with integer coordinates).\n"
+    "  Without --base: 'rebuild FINE' (the levels and base found from FINE itself, any order).\n";
 
 }  // namespace
 
@@ -39,7 +40,7 @@ int run_analyze(int argc, char** argv) {
   }
   if (a.positional.size() != 1) throw UsageError("expected exactly one FINE file");
   const auto base_path = a.value("--base");
-  if (!base_path) throw UsageError("missing --base BASE");
+  if (!base_path) return run_rebuild(argc, argv);  // no base: find it (docs/rebuild.md)
   const Scheme scheme = scheme_option(a);
   const int levels = levels_option(a, scheme);
   const std::string out = output_option(a, 0);

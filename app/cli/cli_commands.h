@@ -10,6 +10,8 @@ int run_render(int argc, char** argv);
 int run_convert(int argc, char** argv);
 int run_subdivide(int argc, char** argv);
 int run_analyze(int argc, char** argv);
+/// `rebuild`: the levels of a mesh another tool subdivided (docs/rebuild.md); also `analyze` without --base.
+int run_rebuild(int argc, char** argv);
 int run_synthesize(int argc, char** argv);
 int run_edit(int argc, char** argv);
 int run_basis(int argc, char** argv);

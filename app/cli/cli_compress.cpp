@@ -102,7 +102,7 @@ int run_compress(int argc, char** argv) {
     compressed.coeffs = c.coeffs;
     write_project(out, compressed, extras);
   } else {
-    notes = write_shape(out, h.levels.back(), xyz_of(c.finest, h.channels));
+    notes = write_level(out, h, h.finest_level(), c.finest, h.channels, extras.input_order);
   }
   for (const std::string& n : notes) std::cerr << out << ": warning: " << n << "\n";
   const auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };

@@ -96,7 +96,7 @@ int run_edit(int argc, char** argv) {
     write_project(out, session.hierarchy(), extras);
   } else {
     const int J = session.finest_level();
-    notes = write_shape(out, session.hierarchy().levels[static_cast<std::size_t>(J)], session.positions(J));
+    notes = write_level(out, session.hierarchy(), J, session.positions(J), 3, extras.input_order);
   }
   for (const std::string& n : notes) std::cerr << out << ": warning: " << n << "\n";
   if (a.has("--json")) {

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cstdio>
 
+#include "core/complex/complex_build.h"
 #include "core/complex/level_counts.h"
 #include "core/io/project/project_io.h"
 #include "core/io/lattice/shape_io.h"
@@ -75,6 +76,13 @@ bool is_project_path(const std::string& path) {
   for (std::size_t i = 0; i < ext.size(); ++i)
     if (std::tolower(static_cast<unsigned char>(path[path.size() - ext.size() + i])) != ext[i]) return false;
   return true;
+}
+
+std::vector<std::string> write_level(const std::string& out, const Hierarchy& h, int L, std::span<const double> x,
+                                     int channels, const InputOrder& order) {
+  if (order.level != L) return write_shape(out, h.levels[static_cast<std::size_t>(L)], xyz_of(x, channels));
+  const Complex c = complex_from_polygons(static_cast<std::uint32_t>(order.engine_vertex.size()), order.faces);
+  return write_shape(out, c, xyz_of(in_input_order(order, x, channels), channels));
 }
 
 nlohmann::json complex_counts_json(const Complex& c) {

@@ -10,6 +10,7 @@
 #include "app/cli/cli_args.h"
 #include "core/base/channels.h"
 #include "core/complex/complex.h"
+#include "core/io/project/project_io.h"
 #include "core/multires/hierarchy.h"
 
 namespace sublift::cli {
@@ -36,6 +37,11 @@ std::string output_option(const Args& a, int dim);
 /// Whether `path` names a .sublift project (case-insensitive extension).
 bool is_project_path(const std::string& path);
 
+
+/// Writes the control net `x` of level L (`channels` per vertex) to `out`; in the vertex and
+/// face order of the file the project was rebuilt from when `order` is of that level.
+std::vector<std::string> write_level(const std::string& out, const Hierarchy& h, int L, std::span<const double> x,
+                                     int channels, const InputOrder& order);
 
 /// Counts of a complex: dim, vertices, edges, faces, cells.
 nlohmann::json complex_counts_json(const Complex& c);

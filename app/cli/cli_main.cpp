@@ -26,6 +26,9 @@ constexpr const char* kUsage =
     "                                        subdivide a curve, surface or lattice N times\n"
     "  analyze FINE --base BASE --scheme S --levels N [--integer] -o PROJECT.sublift\n"
     "                                        wavelet coefficients of a finest-level shape\n"
+    "  rebuild FINE [--scheme auto|S] [--levels N|max] -o PROJECT.sublift\n"
+    "                                        find the levels of a mesh another tool subdivided\n"
+    "                                        (any vertex order) and analyse it into wavelets\n"
     "  synthesize PROJECT [--level L] [--keep F] -o OUT\n"
     "                                        control net of level L, optionally keeping only\n"
     "                                        the largest fraction F of the wavelets\n"
@@ -68,6 +71,7 @@ int main(int argc, char** argv) {
     if (cmd == "convert") return cli::run_convert(argc, argv);
     if (cmd == "subdivide") return cli::run_subdivide(argc, argv);
     if (cmd == "analyze") return cli::run_analyze(argc, argv);
+    if (cmd == "rebuild") return cli::run_rebuild(argc, argv);
     if (cmd == "synthesize") return cli::run_synthesize(argc, argv);
     if (cmd == "edit") return cli::run_edit(argc, argv);
     if (cmd == "basis") return cli::run_basis(argc, argv);

@@ -19,7 +19,8 @@ namespace {
 constexpr const char* kHelp =
     "usage: sublift-cli synthesize PROJECT [--level L] [--keep FRACTION] -o OUT [--json]\n"
     "  Writes the control net of level L (default: the finest) of a .sublift project, vertices\n"
-    "  in the order 'subdivide' writes. --keep F (0..1) first keeps only the largest fraction F\n"
+    "  in the order 'subdivide' writes (a project made by 'rebuild': the finest level in the\n"
+    "  order of the file it came from). --keep F (0..1) first keeps only the largest fraction F\n"
     "  of the wavelet coefficients, ranked by L2-normalised magnitude; --keep 0 gives the pure\n"
     "  subdivision of the base, --keep 1 the analysed shape. OUT by extension as in 'subdivide'.\n";
 
@@ -47,7 +48,8 @@ int run_synthesize(int argc, char** argv) {
     level = n;
   }
   const std::string& in = a.positional[0];
-  Hierarchy h = read_project(in);
+  ProjectExtras extras;
+  Hierarchy h = read_project(in, &extras);
   const std::string out = output_option(a, h.levels.front().dim);
   const int L = level.value_or(h.finest_level());
   if (L > h.finest_level())
@@ -58,7 +60,7 @@ int run_synthesize(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<double> x = synthesize(h, L);
   const double synthesis_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  const auto notes = write_shape(out, h.levels[static_cast<std::size_t>(L)], xyz_of(x, h.channels));
+  const auto notes = write_level(out, h, L, x, h.channels, extras.input_order);
   for (const std::string& n : notes) std::cerr << out << ": warning: " << n << "\n";
   if (a.has("--json")) {
     nlohmann::json j = {{"input", in}, {"output", out}, {"level", L}, {"vertices", h.num_vertices(L)},

@@ -61,6 +61,9 @@ void ModelerController::open(const std::string& path, bool ask) {
     pick_dirty_ = stats_dirty_ = true;
     error.clear();
     message = "Opened " + path;
+    if (const int n = model.rebuild_offer().levels; n > 0)
+      message += ": it was subdivided " + std::to_string(n) + " time" + (n == 1 ? "" : "s") +
+                 " elsewhere (Hierarchy > Rebuild " + std::to_string(n) + " level" + (n == 1 ? "" : "s") + ")";
     recent_.erase(std::remove(recent_.begin(), recent_.end(), path), recent_.end());
     recent_.insert(recent_.begin(), path);
     if (recent_.size() > 8) recent_.pop_back();
@@ -434,6 +437,12 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
     }
     if (r.level) model.set_level(*r.level);
     if (r.subdivide) model.subdivide();
+    if (r.rebuild) {
+      const int n = model.rebuild_offer().levels;
+      model.rebuild_levels();
+      message = "Rebuilt " + std::to_string(n) + " level" + (n == 1 ? "" : "s") + " with the " +
+                scheme_name(model.session().hierarchy().scheme) + " scheme: the detail is kept as wavelets (history cleared)";
+    }
     if (r.undo) model.undo();
     if (r.redo) model.redo();
     if (r.history_jump) model.jump_to(*r.history_jump);
@@ -506,7 +515,7 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
   if (r.save) save(*r.save);
   if (r.export_path) export_to(*r.export_path, r.export_finest);
   apply_camera(r.camera);
-  if (r.scheme || r.level || r.subdivide || r.undo || r.redo || r.history_jump || r.gain_level >= 0 || r.gain_end) {
+  if (r.scheme || r.level || r.subdivide || r.rebuild || r.undo || r.redo || r.history_jump || r.gain_level >= 0 || r.gain_end) {
     pick_dirty_ = stats_dirty_ = true;
   }
 }
@@ -628,6 +637,8 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     d.scheme = static_cast<int>(s.hierarchy().scheme);
     d.level = model.level();
     d.finest = s.finest_level();
+    d.rebuild_levels = model.rebuild_offer().levels;
+    d.rebuild_scheme = scheme_name(model.rebuild_offer().scheme);
     const std::size_t key[4] = {s.undo_position(), s.history().size(), static_cast<std::size_t>(s.topology_version()),
                                 static_cast<std::size_t>(model.serial())};
     if (!std::equal(key, key + 4, stats_key_)) stats_dirty_ = true;

@@ -15,6 +15,8 @@
 #include "core/io/lattice/shape_io.h"
 #include "core/complex/polygon_normal.h"
 #include "core/io/model/surface_export.h"
+#include "core/complex/complex_build.h"
+#include "core/multires/rebuild.h"
 
 namespace sublift {
 namespace {
@@ -41,9 +43,12 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   std::vector<std::string> warnings;
   int level = 0;
   bool project = false;
+  RebuildOffer offer;
+  InputOrder order;
   if (is_project_file(path)) {
     ProjectExtras extras;
     Hierarchy h = read_project(path, &extras);
+    order = std::move(extras.input_order);
     session = std::make_unique<Session>(std::move(h), extras.gains);
     if (extras.local_frames) session->set_detail_frames(DetailFrames::Local);
     level = extras.current_level;
@@ -56,6 +61,14 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
         if (!line.empty()) warnings.push_back(line);
       }
     }
+    // Subdivided elsewhere? Then offer to rebuild its levels (docs/rebuild.md).
+    if (shape.base.dim == 2) {
+      offer.scheme = rebuild_auto_scheme(shape.base.faces);
+      const DetectedLevels d = detect_levels(shape.base.num_vertices, shape.base.faces, rebuild_split(offer.scheme),
+                                             max_levels(offer.scheme), shape.positions);
+      offer.levels = d.levels;
+      offer.stop = d.stop;
+    }
     Hierarchy h = make_hierarchy(std::move(shape.base), levels, scheme, 3);
     set_base(h, shape.positions);
     session = std::make_unique<Session>(std::move(h));
@@ -65,7 +78,32 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   warnings_ = std::move(warnings);
   clear_pin();  // a new model: the comparison belonged to the old one
   install(std::move(session));
+  rebuild_offer_ = std::move(offer);
+  input_order_ = std::move(order);
   level_ = std::clamp(level, 0, session_->finest_level());
+  selection_.clear();
+  update_.topology = true;
+  refresh_state();
+}
+
+void ModelerState::rebuild_levels(int levels) {
+  if (!project_path_.empty() || file_path_.empty()) throw Error("rebuild takes a mesh file, not a project");
+  ffd_check_free("rebuilding levels");
+  check_unlocked("rebuilding levels");
+  Shape shape = read_shape(file_path_);
+  if (shape.base.dim != 2) throw Error("rebuild takes surface meshes");
+  const Scheme scheme = rebuild_offer_.levels > 0 ? rebuild_offer_.scheme : rebuild_auto_scheme(shape.base.faces);
+  Rebuilt r = rebuild_hierarchy(shape.base.num_vertices, shape.base.faces, shape.positions, scheme, levels, false, 2,
+                                feature_tags_of(shape.base));
+  for (const std::string& why : r.features.dropped) warnings_.push_back("feature tag dropped: " + why);
+  InputOrder order;
+  order.level = r.hierarchy.finest_level();
+  order.engine_vertex = std::move(r.engine_vertex);
+  order.faces = std::move(shape.base.faces);
+  install(std::make_unique<Session>(std::move(r.hierarchy)));
+  rebuild_offer_ = {};
+  input_order_ = std::move(order);
+  level_ = 0;
   selection_.clear();
   update_.topology = true;
   refresh_state();
@@ -73,6 +111,7 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
 
 void ModelerState::install(std::unique_ptr<Session> session) {
   compress_.reset();  // ranked the old session's wavelets
+  input_order_ = {};  // described the old session's levels; callers that keep it set it again
   session_ = std::move(session);
   ++serial_;
   dragging_ = false;
@@ -406,6 +445,7 @@ void ModelerState::save_project(const std::string& path) {
   extras.current_level = level_;
   extras.gains.assign(session_->gains().begin(), session_->gains().end());
   extras.local_frames = session_->detail_frames() == DetailFrames::Local;
+  if (!input_order_.empty() && input_order_.level <= session_->finest_level()) extras.input_order = input_order_;
   write_project(path, session_->hierarchy(), extras);
   session_->mark_saved();
   project_path_ = path;
@@ -416,6 +456,7 @@ void ModelerState::write_recovery(const std::string& path) const {
   extras.current_level = level_;
   extras.gains.assign(session_->gains().begin(), session_->gains().end());
   extras.local_frames = session_->detail_frames() == DetailFrames::Local;
+  if (!input_order_.empty() && input_order_.level <= session_->finest_level()) extras.input_order = input_order_;
   write_project(path, session_->hierarchy(), extras);
 }
 
@@ -428,9 +469,12 @@ std::vector<std::string> ModelerState::export_shape(const std::string& path, boo
       write_surface_with_normals(path, faces_, limit_, normals_);
       return {};
     }
-    // The control net of the current level, with area-weighted face normals.
-    const auto xyz = session_->positions(level);
-    const Csr faces = boundary_faces(c, xyz);
+    // The control net of the current level, with area-weighted face normals; a rebuilt mesh's
+    // level in the order of its file.
+    const bool file_order = level == input_order_.level;
+    const std::vector<double> xyz = file_order ? in_input_order(input_order_, session_->positions(level), 3)
+                                               : std::vector<double>(session_->positions(level).begin(), session_->positions(level).end());
+    const Csr faces = file_order ? input_order_.faces : boundary_faces(c, xyz);
     const std::vector<double> normals = area_weighted_normals(faces, xyz);
     write_surface_with_normals(path, faces, xyz, normals);
     return {};
@@ -439,6 +483,10 @@ std::vector<std::string> ModelerState::export_shape(const std::string& path, boo
     throw Error(path + ": " + problem);
   }
   if (finest) return write_shape(path, c, limit_);
+  if (level == input_order_.level) {  // a rebuilt mesh's level: in the order of its file
+    const Complex file = complex_from_polygons(static_cast<std::uint32_t>(input_order_.engine_vertex.size()), input_order_.faces);
+    return write_shape(path, file, in_input_order(input_order_, session_->positions(level), 3));
+  }
   return write_shape(path, c, session_->positions(level));
 }
 

@@ -27,6 +27,7 @@
 #include "core/multires/hierarchy.h"
 #include "core/multires/limit.h"
 #include "core/edit/session.h"
+#include "core/io/project/project_io.h"
 
 namespace sublift {
 
@@ -68,6 +69,19 @@ class ModelerState {
   /// scheme become 2J sqrt2 levels and back (rounded up). Undo history is cleared. Refused
   /// (Error) while a model is bound, as is subdivide(), and sqrt2 for curves and lattices.
   void set_scheme(Scheme scheme);
+  /// A mesh (not a project) that another tool subdivided: the levels it holds (0: none or not
+  /// checked), the scheme `rebuild` would use, and why it holds no more (docs/rebuild.md).
+  struct RebuildOffer {
+    int levels = 0;
+    Scheme scheme = Scheme::Cubic;
+    std::string stop;
+  };
+  const RebuildOffer& rebuild_offer() const { return rebuild_offer_; }
+  /// Rebuilds the opened mesh's levels (`levels` -1: all it holds) from its file, analysing its
+  /// positions: opens at level 0 with the detail as wavelets; history cleared. Throws Error.
+  void rebuild_levels(int levels = -1);
+  /// The file order of a rebuilt mesh (empty otherwise); saved with the project.
+  const InputOrder& input_order() const { return input_order_; }
   void set_level(int level);
   void subdivide();
   bool undo();
@@ -212,6 +226,8 @@ class ModelerState {
   void clamp_selection();
 
   std::unique_ptr<Session> session_;
+  RebuildOffer rebuild_offer_;
+  InputOrder input_order_;
   std::string file_path_, project_path_;
   std::vector<std::string> warnings_;
   int level_ = 0;

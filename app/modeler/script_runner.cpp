@@ -192,6 +192,14 @@ constexpr Command kCommands[] = {
       if (n < 1 || n > 12) throw ScriptError("subdivide N needs N from 1 to 12");
       for (long long i = 0; i < n; ++i) c.state.subdivide();
     }},
+    {"rebuild", 0, 1, "rebuild [N|max]", [](const Call& c) {
+      long long n = -1;
+      if (c.w.size() == 2 && c.w[1] != "max") {
+        n = integer(c.w[1], "N");
+        if (n < 1 || n > 24) throw ScriptError("rebuild N needs N from 1 to 24, or max");
+      }
+      c.state.rebuild_levels(static_cast<int>(n));
+    }},
     {"level", 1, 1, "level L", [](const Call& c) {
       const long long l = integer(c.w[1], "L");
       const int finest = c.state.session().finest_level();

@@ -251,7 +251,7 @@ TEST(CliHierarchy, UsageErrorsExitWithTwo) {
       {"subdivide", cube, "--scheme", "cubic", "--levels", "2", "-o", dir.file("o.lattice")},  // wrong dim
       {"subdivide", cube, "--scheme", "cubic", "--levels", "2", "-o", out, "--frobnicate"},
       {"subdivide", kAssets + "/hex_block_4.lattice", "--scheme", "cubic", "--levels", "9", "-o", dir.file("o.vtk")},
-      {"analyze", cube, "--scheme", "cubic", "--levels", "1", "-o", dir.file("p.sublift")},       // no base
+      {"analyze", cube, "--scheme", "cubic", "--levels", "1", "-o", dir.file("p.obj")},  // no base: rebuild; not .sublift
       {"analyze", cube, "--base", cube, "--scheme", "cubic", "--levels", "1", "-o", out},         // not .sublift
       {"synthesize", "p.sublift"},                                                                // no -o
       {"synthesize", "p.sublift", "--keep", "1.5", "-o", out},

@@ -10,6 +10,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
+#include "core/complex/connectivity_match.h"
 #include "core/complex/level_counts.h"
 
 namespace sublift {
@@ -66,6 +67,11 @@ void write_project(const std::string& path, const Hierarchy& h) { write_project(
 void write_project(const std::string& path, const Hierarchy& h, const ProjectExtras& extras) {
   const Complex& b = h.levels.at(0);
   check_extras(extras, h.finest_level(), [&](const std::string& why) { throw Error(path + ": cannot save project: " + why); });
+  if (!extras.input_order.empty()) {
+    if (extras.input_order.level > h.finest_level()) throw Error(path + ": cannot save project: input order of a level it lacks");
+    if (const std::string why = input_order_problem(extras.input_order, h.levels[static_cast<std::size_t>(extras.input_order.level)]); !why.empty())
+      throw Error(path + ": cannot save project: input order: " + why);
+  }
   nlohmann::json j;
   j["format"] = "sublift-project";
   j["version"] = 1;
@@ -82,6 +88,12 @@ void write_project(const std::string& path, const Hierarchy& h, const ProjectExt
   j["current_level"] = extras.current_level;
   j["gains"] = extras.gains.empty() ? std::vector<double>(static_cast<std::size_t>(h.finest_level()), 1.0) : extras.gains;
   j["local_frames"] = extras.local_frames;
+  const InputOrder& io = extras.input_order;
+  if (!io.empty())
+    j["input_order"] = {{"level", io.level},
+                        {"vertices", io.engine_vertex.size()},
+                        {"faces", io.faces.rows()},
+                        {"face_corners", io.faces.items.size()}};
   j["payload"] =
       "little-endian u32 edge_verts[2*edges] face_offsets[faces+1] face_verts[face_corners] "
       "face_edges[face_corners] cell_offsets[cells+1] cell_faces[cell_faces]; u8 vertex_dim[vertices] "
@@ -100,6 +112,11 @@ void write_project(const std::string& path, const Hierarchy& h, const ProjectExt
         put(out, b.edge_dim);
         put(out, b.face_dim);
         put(out, h.coeffs);
+        if (!io.empty()) {
+          put(out, io.engine_vertex);
+          put(out, io.faces.offsets);
+          put(out, io.faces.items);
+        }
       },
       true);
 }
@@ -131,6 +148,8 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   Scheme scheme;
   ProjectExtras extras;
   std::int64_t current_level = 0;
+  std::int64_t io_level = -1;
+  std::uint64_t IV = 0, IF = 0, IK = 0;  // input order: vertices, faces, face corners
   try {
     j = nlohmann::json::parse(bytes.substr(nl1 + 1, nl2 - nl1 - 1));
     if (j.at("format").get<std::string>() != "sublift-project") throw InputError(file, 2, "header 'format' is not sublift-project");
@@ -168,6 +187,14 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
         extras.gains.push_back((*it)[i].get<double>());
       }
     }
+    if (const auto it = j.find("input_order"); it != j.end()) {
+      if (!it->is_object()) throw InputError(file, 2, "header 'input_order' is not an object");
+      io_level = it->at("level").get<std::int64_t>();
+      IV = it->at("vertices").get<std::uint64_t>();
+      IF = it->at("faces").get<std::uint64_t>();
+      IK = it->at("face_corners").get<std::uint64_t>();
+      if (io_level < 0 || io_level > levels) throw InputError(file, 2, "input_order level " + std::to_string(io_level) + " outside 0.." + std::to_string(levels));
+    }
     if (const auto it = j.find("local_frames"); it != j.end()) {
       if (!it->is_boolean()) throw InputError(file, 2, "header 'local_frames' is not true or false");
       extras.local_frames = it->get<bool>();
@@ -180,16 +207,18 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   if (channels < 1 || channels > 64) throw InputError(file, 2, "channels " + std::to_string(channels) + " outside 1..64");
   if (dim < 1 || dim > 3) throw InputError(file, 2, "dim " + std::to_string(dim) + " outside 1..3");
   constexpr std::uint64_t kMax = 0xfffffffeu;
-  for (std::uint64_t n : {V, E, F, C, SF, CF})
+  for (std::uint64_t n : {V, E, F, C, SF, CF, IV, IF, IK})
     if (n > kMax) throw InputError(file, 2, "a base count exceeds 2^32 - 2");
   // Payload size, computed in doubles first so that lying counts cannot wrap.
   const std::size_t start = nl2 + 1;
   const std::size_t have = bytes.size() - start;
-  const double want_d = 4.0 * (2.0 * E + (F + 1) + 2.0 * SF + (C + 1) + CF) + double(V) + double(E) + double(F) + 8.0 * double(N);
+  const double io_d = io_level < 0 ? 0.0 : 4.0 * (double(IV) + double(IF) + 1.0 + double(IK));
+  const double want_d = 4.0 * (2.0 * E + (F + 1) + 2.0 * SF + (C + 1) + CF) + double(V) + double(E) + double(F) + 8.0 * double(N) + io_d;
   if (want_d > static_cast<double>(have) + 0.5)
     throw InputError(file, 0, "truncated payload: the header announces " + std::to_string(static_cast<unsigned long long>(want_d)) +
                                   " bytes, the file holds " + std::to_string(have));
-  const std::size_t want = 4 * (2 * E + (F + 1) + 2 * SF + (C + 1) + CF) + V + E + F + 8 * N;
+  const std::size_t want = 4 * (2 * E + (F + 1) + 2 * SF + (C + 1) + CF) + V + E + F + 8 * N +
+                           (io_level < 0 ? 0 : 4 * (IV + IF + 1 + IK));
   if (want != have)
     throw InputError(file, 0, "payload of " + std::to_string(have) + " bytes, but the header announces " + std::to_string(want));
 
@@ -254,11 +283,50 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   if (h.coeffs.size() != coeffs.size())
     throw InputError(file, 2, "coefficient count does not match the refined base");
   h.coeffs = std::move(coeffs);
+  if (io_level >= 0) {
+    InputOrder& io = extras.input_order;
+    io.level = static_cast<int>(io_level);
+    io.engine_vertex = take<std::uint32_t>(bytes, pos, IV);
+    io.faces.offsets = take<std::uint32_t>(bytes, pos, IF + 1);
+    io.faces.items = take<std::uint32_t>(bytes, pos, IK);
+    check_csr(io.faces, IK, IV, "input-order face");
+    if (const std::string why = input_order_problem(io, h.levels[static_cast<std::size_t>(io.level)]); !why.empty())
+      throw InputError(file, 0, "input order: " + why);
+  }
   if (extras_out) {
     if (extras.gains.empty()) extras.gains.assign(static_cast<std::size_t>(levels), 1.0);
     *extras_out = std::move(extras);
   }
   return h;
+}
+
+std::vector<double> in_input_order(const InputOrder& order, std::span<const double> level_values, int channels) {
+  const auto ch = static_cast<std::size_t>(channels);
+  std::vector<double> out(order.engine_vertex.size() * ch);
+  for (std::size_t i = 0; i < order.engine_vertex.size(); ++i)
+    for (std::size_t k = 0; k < ch; ++k) out[i * ch + k] = level_values[order.engine_vertex[i] * ch + k];
+  return out;
+}
+
+std::string input_order_problem(const InputOrder& order, const Complex& level) {
+  if (order.engine_vertex.size() != level.num_vertices)
+    return std::to_string(order.engine_vertex.size()) + " vertices, the level has " + std::to_string(level.num_vertices);
+  std::vector<std::uint8_t> hit(level.num_vertices, 0);
+  for (std::uint32_t v : order.engine_vertex) {
+    if (v >= level.num_vertices || hit[v]) return "the vertex map is not a permutation";
+    hit[v] = 1;
+  }
+  for (std::size_t f = 0; f < order.faces.rows(); ++f)
+    if (order.faces.size(f) < 3) return "face " + std::to_string(f) + " has fewer than 3 corners";
+  Complex mapped;
+  mapped.dim = level.dim;
+  mapped.num_vertices = level.num_vertices;
+  mapped.faces = order.faces;
+  for (std::uint32_t& v : mapped.faces.items) {
+    if (v >= order.engine_vertex.size()) return "a face names a vertex beyond the map";
+    v = order.engine_vertex[v];
+  }
+  return connectivity_mismatch(level, mapped);
 }
 
 Hierarchy read_project(const std::string& path) { return read_project(path, nullptr); }

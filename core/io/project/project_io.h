@@ -8,13 +8,30 @@
 // face_edges[SF], cell_offsets[C+1], cell_faces[CF]; u8 vertex_dim[V], edge_dim[E],
 // face_dim[F]; f64 coefficients[N] in hierarchy.h's layout.
 // Optional header keys (still version 1; files without them read with the defaults):
-// `current_level`, `gains` and `local_frames`, the modeler's session state (ProjectExtras).
+// `current_level`, `gains` and `local_frames`, the modeler's session state (ProjectExtras), and
+// `input_order` {level, vertices, faces, face_corners}: then the payload ends with u32
+// engine_vertex[vertices] face_offsets[faces+1] face_verts[face_corners] (InputOrder).
+#include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
+
+#include "core/base/csr.h"
+#include "core/complex/complex.h"
 
 #include "core/multires/hierarchy.h"
 
 namespace sublift {
+
+/// The vertex and face order of the file a project was rebuilt from (sublift-cli rebuild,
+/// docs/rebuild.md): level `level` written through it gives that file back. Empty (level -1)
+/// for projects made in Sublift's own order.
+struct InputOrder {
+  int level = -1;
+  std::vector<std::uint32_t> engine_vertex;  // the engine vertex of each file vertex
+  Csr faces;                                 // the file's faces, in file vertex numbers
+  bool empty() const { return level < 0; }
+};
 
 /// Session state a project keeps beside the hierarchy. Defaults are what a version-1 file
 /// without the optional header keys means.
@@ -22,7 +39,15 @@ struct ProjectExtras {
   int current_level = 0;      // edit level the modeler shows, 0..J
   std::vector<double> gains;  // detail gain per level 0..J-1; empty means all 1
   bool local_frames = false;  // detail kept in local frames (session.h DetailFrames::Local)
+  InputOrder input_order;     // header key `input_order` and a payload tail when not empty
 };
+
+/// The values of level `order.level` (channels per engine vertex) in the file's vertex order.
+std::vector<double> in_input_order(const InputOrder& order, std::span<const double> level_values, int channels);
+
+/// Empty when `order` fits `level` (a permutation of its vertices whose faces are the level's
+/// faces); else what is wrong, for messages.
+std::string input_order_problem(const InputOrder& order, const Complex& level);
 
 /// Writes `h` to `path` atomically. Throws IoError.
 void write_project(const std::string& path, const Hierarchy& h);

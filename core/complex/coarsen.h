@@ -1,0 +1,49 @@
+#pragma once
+// One coarsening of one connected component (detect_levels.h): the labelling from one of four
+// seed choices, its local checks and the coarser mesh. Internal to detect_levels.cpp.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/base/csr.h"
+#include "core/complex/detect_levels.h"
+
+namespace sublift::detect {
+
+/// A connected component in its own numbering (faces all of one split's shape).
+struct Mesh {
+  std::uint32_t n = 0;
+  Csr faces;
+  std::vector<std::uint32_t> input;  // input vertex id of each vertex
+};
+
+/// Per vertex: number of faces around it and whether it lies on the boundary.
+struct Star {
+  Csr vertex_faces;
+  std::vector<std::uint8_t> boundary;
+};
+Star build_star(const Mesh& m);
+
+struct Attempt {
+  bool ok = false;
+  int score = 0;                // old vertices that are extraordinary: more is likelier right
+  std::uint32_t progress = 0;   // vertices labelled before a failure: the best failure is named
+  std::string why;              // the failure, in words, naming input vertices
+  std::uint32_t where = UINT32_MAX;  // input vertex near the failure
+  Coarsening c;                 // in the component's numbering; c.input_vertex filled
+};
+
+/// candidate 0..3: which seed labelling (the four a component can have). Faces must be quads /
+/// triangles.
+Attempt coarsen_quads(const Mesh& m, const Star& s, int candidate);
+Attempt coarsen_tris(const Mesh& m, const Star& s, int candidate);
+
+/// Position of v in face row `q` (q must contain v).
+inline unsigned corner_of(std::span<const std::uint32_t> q, std::uint32_t v) {
+  unsigned k = 0;
+  while (q[k] != v) ++k;
+  return k;
+}
+
+}  // namespace sublift::detect

@@ -1,0 +1,342 @@
+// Level detection: split into connected components, coarsen each greedily (of the four seed
+// labellings that pass the local checks, the one whose old vertices hold the most
+// extraordinary vertices: extraordinary vertices of a split mesh are never edge points, and
+// preferring them as old vertices picks the cube over the octahedron for a refined cube), then
+// join the components' levels. engine_order composes the per-level labels top-down onto
+// Sublift's own refinement of the base.
+#include "core/complex/detect_levels.h"
+
+#include <algorithm>
+#include <string>
+
+#include "core/base/errors.h"
+#include "core/base/parallel.h"
+#include "core/complex/coarsen.h"
+
+namespace sublift {
+
+namespace detect {
+
+Star build_star(const Mesh& m) {
+  Star s;
+  s.vertex_faces = transpose(m.faces, m.n);
+  s.boundary.assign(m.n, 0);
+  // A vertex is on the boundary when some neighbour across a face edge is seen only once.
+  std::vector<std::uint32_t> nb;
+  for (std::uint32_t v = 0; v < m.n; ++v) {
+    nb.clear();
+    for (std::uint32_t f : s.vertex_faces.row(v)) {
+      const auto q = m.faces.row(f);
+      const unsigned k = corner_of(q, v), sz = static_cast<unsigned>(q.size());
+      nb.push_back(q[(k + 1) % sz]);
+      nb.push_back(q[(k + sz - 1) % sz]);
+    }
+    std::sort(nb.begin(), nb.end());
+    for (std::size_t i = 0; i < nb.size();) {
+      std::size_t j = i;
+      while (j < nb.size() && nb[j] == nb[i]) ++j;
+      if (j - i == 1) s.boundary[v] = 1;
+      i = j;
+    }
+  }
+  return s;
+}
+
+}  // namespace detect
+
+namespace {
+
+using detect::Attempt;
+using detect::Mesh;
+
+std::string count_phrase(std::uint32_t n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+// Why a mesh of the wrong face shapes cannot be a split; empty when every face fits.
+std::string shape_problem(const Mesh& m, SplitKind split, std::uint32_t& where) {
+  const unsigned want = split == SplitKind::Quads ? 4 : 3;
+  std::uint32_t good = 0, tris = 0, quads = 0, other = 0;
+  where = UINT32_MAX;
+  for (std::size_t f = 0; f < m.faces.rows(); ++f) {
+    const unsigned sz = m.faces.size(f);
+    if (sz == want) {
+      ++good;
+      continue;
+    }
+    (sz == 3 ? tris : sz == 4 ? quads : other)++;
+    if (where == UINT32_MAX) where = m.input[m.faces.row(f)[0]];
+  }
+  if (where == UINT32_MAX) return "";
+  std::string odd;
+  if (tris) odd = count_phrase(tris, "triangle", "triangles");
+  if (quads) odd += (odd.empty() ? "" : " and ") + count_phrase(quads, "quad", "quads");
+  if (other) odd += (odd.empty() ? "" : " and ") + count_phrase(other, "polygon of more than 4 sides", "polygons of more than 4 sides");
+  const char* kind = split == SplitKind::Quads ? "quads" : "triangles";
+  if (good == 0) return std::string("its faces are not ") + kind + ", as a " + (want == 4 ? "quad" : "triangle") + " split makes them";
+  return odd + " among " + std::to_string(good) + " " + kind + " near vertex " + std::to_string(where);
+}
+
+struct Chain {
+  std::vector<Attempt> steps;  // steps[t]: the t-th coarsening from the finest
+  std::string stop;
+  std::uint32_t stop_vertex = UINT32_MAX;
+};
+
+// How far the edge points lie from the midpoints of their edges (squared, summed).
+double midpoint_residual(const Mesh& m, const Coarsening& c, std::span<const double> p) {
+  double r = 0;
+  for (std::uint32_t v = 0; v < m.n; ++v) {
+    if (c.kind[v] != Coarsening::EdgePoint) continue;
+    const double* x = &p[3 * std::size_t(m.input[v])];
+    const double* a = &p[3 * std::size_t(c.input_vertex[c.a[v]])];
+    const double* b = &p[3 * std::size_t(c.input_vertex[c.b[v]])];
+    for (int k = 0; k < 3; ++k) r += (x[k] - 0.5 * (a[k] + b[k])) * (x[k] - 0.5 * (a[k] + b[k]));
+  }
+  return r;
+}
+
+Chain coarsen_component(Mesh m, SplitKind split, int limit, std::span<const double> positions) {
+  Chain ch;
+  while (static_cast<int>(ch.steps.size()) < limit) {
+    const std::string below = ch.steps.empty() ? std::string("the mesh")
+                                                : "the mesh " + std::to_string(ch.steps.size()) + " level" + (ch.steps.size() == 1 ? "" : "s") + " down";
+    std::uint32_t where = UINT32_MAX;
+    if (std::string why = shape_problem(m, split, where); !why.empty()) {
+      ch.stop = below + ": " + why;
+      ch.stop_vertex = where;
+      break;
+    }
+    const detect::Star star = detect::build_star(m);
+    // The four labellings are independent: two threads take two each.
+    Attempt tries[4];
+    double residual[4] = {0, 0, 0, 0};
+    parallel_for(4, 1, [&](std::uint32_t b, std::uint32_t e) {
+      for (std::uint32_t cand = b; cand < e; ++cand) {
+        try {
+          tries[cand] = split == SplitKind::Quads ? detect::coarsen_quads(m, star, int(cand)) : detect::coarsen_tris(m, star, int(cand));
+          if (tries[cand].ok && !positions.empty()) residual[cand] = midpoint_residual(m, tries[cand].c, positions);
+        } catch (const std::exception& ex) {  // out of memory: parallel_for bodies must not throw
+          tries[cand] = Attempt{};
+          tries[cand].why = ex.what();
+        }
+      }
+    });
+    Attempt best, failed;
+    double best_residual = 0;
+    for (int cand = 0; cand < 4; ++cand) {
+      Attempt& a = tries[cand];
+      if (a.ok) {
+        if (!best.ok || a.score > best.score || (a.score == best.score && residual[cand] < best_residual)) {
+          best_residual = residual[cand];
+          best = std::move(a);
+        }
+      } else if (failed.why.empty() || a.progress > failed.progress) {
+        failed = std::move(a);
+      }
+    }
+    if (!best.ok) {
+      ch.stop = below + ": " + failed.why;
+      ch.stop_vertex = failed.where;
+      break;
+    }
+    Mesh next;
+    next.n = best.c.coarse_vertices;
+    next.faces = best.c.coarse_faces;
+    next.input = best.c.input_vertex;
+    ch.steps.push_back(std::move(best));
+    m = std::move(next);
+  }
+  return ch;
+}
+
+}  // namespace
+
+DetectedLevels detect_levels(std::uint32_t num_vertices, const Csr& faces, SplitKind split, int max_levels,
+                             std::span<const double> positions) {
+  if (!positions.empty() && positions.size() != 3 * std::size_t(num_vertices))
+    throw Error("detect_levels: " + std::to_string(positions.size()) + " coordinates for " + std::to_string(num_vertices) + " vertices");
+  for (std::size_t f = 0; f < faces.rows(); ++f) {
+    if (faces.size(f) < 3) throw TopologyError("face " + std::to_string(f) + " has fewer than 3 corners");
+    for (std::uint32_t v : faces.row(f))
+      if (v >= num_vertices) throw TopologyError("face " + std::to_string(f) + " names vertex " + std::to_string(v) + " of " + std::to_string(num_vertices));
+  }
+  const Csr vf = transpose(faces, num_vertices);
+  for (std::uint32_t v = 0; v < num_vertices; ++v)
+    if (vf.size(v) == 0) throw TopologyError("vertex " + std::to_string(v) + " is in no face; remove loose vertices before rebuilding levels");
+
+  // Connected components (through shared vertices), each numbered in breadth-first order of
+  // its vertices and faces: files from other tools come in any order, and the labelling passes
+  // touch neighbours, so this order keeps them in cache (4x faster at a million vertices).
+  std::vector<std::uint32_t> comp(num_vertices, UINT32_MAX);
+  std::vector<std::vector<std::uint32_t>> members, member_faces;
+  std::vector<std::uint8_t> face_seen(faces.rows(), 0);
+  for (std::uint32_t s = 0; s < num_vertices; ++s) {
+    if (comp[s] != UINT32_MAX) continue;
+    const auto id = static_cast<std::uint32_t>(members.size());
+    members.emplace_back();
+    member_faces.emplace_back();
+    std::vector<std::uint32_t>& mem = members.back();
+    comp[s] = id;
+    mem.push_back(s);
+    for (std::size_t head = 0; head < mem.size(); ++head)
+      for (std::uint32_t f : vf.row(mem[head])) {
+        if (face_seen[f]) continue;
+        face_seen[f] = 1;
+        member_faces[id].push_back(f);
+        for (std::uint32_t w : faces.row(f))
+          if (comp[w] == UINT32_MAX) comp[w] = id, mem.push_back(w);
+      }
+  }
+  std::vector<std::uint32_t> local(num_vertices);
+  for (const auto& mem : members)
+    for (std::uint32_t i = 0; i < mem.size(); ++i) local[mem[i]] = i;
+
+  DetectedLevels d;
+  d.split = split;
+  std::vector<Chain> chains;
+  std::vector<Mesh> finest(members.size());
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    Mesh& m = finest[k];
+    m.n = static_cast<std::uint32_t>(members[k].size());
+    m.input = members[k];
+  }
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    Mesh& m = finest[k];
+    for (std::uint32_t f : member_faces[k]) {
+      for (std::uint32_t v : faces.row(f)) m.faces.items.push_back(local[v]);
+      m.faces.offsets.push_back(static_cast<std::uint32_t>(m.faces.items.size()));
+    }
+  }
+  int levels = max_levels;
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    ComponentLevels cl;
+    cl.vertices = finest[k].n;
+    cl.faces = static_cast<std::uint32_t>(finest[k].faces.rows());
+    cl.first_vertex = *std::min_element(members[k].begin(), members[k].end());
+    chains.push_back(coarsen_component(std::move(finest[k]), split, max_levels, positions));
+    cl.levels = static_cast<int>(chains.back().steps.size());
+    cl.stop = chains.back().stop;
+    if (cl.levels < levels) {
+      levels = cl.levels;
+      d.stop = (members.size() > 1 ? "the piece with vertex " + std::to_string(cl.first_vertex) + ": " : std::string()) + cl.stop;
+      d.stop_vertex = chains.back().stop_vertex;
+    }
+    d.components.push_back(std::move(cl));
+  }
+  if (levels == max_levels) {
+    d.stop.clear();
+    d.stop_vertex = UINT32_MAX;
+  }
+  d.levels = levels;
+
+  // Join the components level by level: the finest level keeps the input's numbering, coarser
+  // ones put the components one after another.
+  std::vector<std::uint32_t> fine_off(members.size(), 0), coarse_off(members.size()), face_off(members.size());
+  d.steps.resize(static_cast<std::size_t>(levels));
+  for (int t = 0; t < levels; ++t) {  // t-th coarsening from the finest: M_{L-t} -> M_{L-t-1}
+    Coarsening& out = d.steps[static_cast<std::size_t>(levels - 1 - t)];
+    const std::uint32_t n_fine = t == 0 ? num_vertices : d.steps[static_cast<std::size_t>(levels - t)].coarse_vertices;
+    out.kind.resize(n_fine);
+    out.a.resize(n_fine);
+    out.b.resize(n_fine);
+    out.coarse_faces.offsets.assign(1, 0);
+    std::uint32_t nv = 0, nf = 0;
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      coarse_off[k] = nv;
+      face_off[k] = nf;
+      const Coarsening& c = chains[k].steps[static_cast<std::size_t>(t)].c;
+      nv += c.coarse_vertices;
+      nf += static_cast<std::uint32_t>(c.coarse_faces.rows());
+    }
+    out.coarse_vertices = nv;
+    out.input_vertex.reserve(nv);
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      const Coarsening& c = chains[k].steps[static_cast<std::size_t>(t)].c;
+      for (std::uint32_t i = 0; i < c.kind.size(); ++i) {
+        const std::uint32_t g = t == 0 ? members[k][i] : fine_off[k] + i;
+        out.kind[g] = c.kind[i];
+        const std::uint32_t off = c.kind[i] == Coarsening::FacePoint ? face_off[k] : coarse_off[k];
+        out.a[g] = off + c.a[i];
+        out.b[g] = off + c.b[i];
+      }
+      for (std::uint32_t x : c.coarse_faces.items) out.coarse_faces.items.push_back(coarse_off[k] + x);
+      for (std::size_t f = 0; f < c.coarse_faces.rows(); ++f)
+        out.coarse_faces.offsets.push_back(out.coarse_faces.offsets.back() + c.coarse_faces.size(f));
+      out.input_vertex.insert(out.input_vertex.end(), c.input_vertex.begin(), c.input_vertex.end());
+    }
+    fine_off = coarse_off;
+  }
+  if (levels > 0) {
+    d.base_vertices = d.steps.front().coarse_vertices;
+    d.base_faces = d.steps.front().coarse_faces;
+  } else {
+    d.base_vertices = num_vertices;
+    d.base_faces = faces;
+  }
+  return d;
+}
+
+namespace {
+
+std::uint32_t edge_between(const Complex& c, std::uint32_t a, std::uint32_t b) {
+  for (std::uint32_t e : c.vertex_edges.row(a))
+    if (c.edge_verts[2 * e] == b || c.edge_verts[2 * e + 1] == b) return e;
+  throw TopologyError("rebuilt levels: no edge " + std::to_string(a) + "-" + std::to_string(b) + " in the engine's level");
+}
+
+// The face of c with exactly the corners `corners` (a quad or triangle of a refined level).
+std::uint32_t face_with(const Complex& c, std::span<const std::uint32_t> corners) {
+  for (std::uint32_t f : c.vertex_faces.row(corners[0])) {
+    const auto q = c.faces.row(f);
+    if (q.size() != corners.size()) continue;
+    bool all = true;
+    for (std::uint32_t x : corners) all = all && std::find(q.begin(), q.end(), x) != q.end();
+    if (all) return f;
+  }
+  throw TopologyError("rebuilt levels: a face is missing from the engine's level");
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> engine_order(const DetectedLevels& d, std::span<const Complex> levels) {
+  const auto L = static_cast<std::size_t>(d.levels);
+  if (levels.size() != L + 1) throw Error("engine_order: need levels 0.." + std::to_string(L));
+  // sigma: vertices of M_l -> vertices of the engine's level l; tau: faces likewise.
+  std::vector<std::uint32_t> sigma(d.base_vertices), tau(d.base_faces.rows()), next_sigma, corners;
+  for (std::uint32_t i = 0; i < sigma.size(); ++i) sigma[i] = i;
+  for (std::uint32_t i = 0; i < tau.size(); ++i) tau[i] = i;
+  for (std::size_t l = 1; l <= L; ++l) {
+    const Coarsening& st = d.steps[l - 1];
+    const Complex& coarse = levels[l - 1];
+    const std::uint32_t nv = coarse.num_vertices, ne = coarse.num_edges();
+    next_sigma.resize(st.kind.size());
+    for (std::size_t v = 0; v < st.kind.size(); ++v) {
+      switch (st.kind[v]) {
+        case Coarsening::Old: next_sigma[v] = sigma[st.a[v]]; break;
+        case Coarsening::EdgePoint: next_sigma[v] = nv + edge_between(coarse, sigma[st.a[v]], sigma[st.b[v]]); break;
+        default: next_sigma[v] = nv + ne + tau[st.a[v]]; break;
+      }
+    }
+    sigma.swap(next_sigma);
+    if (l < L) {  // faces of M_l are the coarse faces of the next step
+      const Csr& mf = d.steps[l].coarse_faces;
+      tau.resize(mf.rows());
+      for (std::size_t f = 0; f < mf.rows(); ++f) {
+        corners.clear();
+        for (std::uint32_t v : mf.row(f)) corners.push_back(sigma[v]);
+        tau[f] = face_with(levels[l], corners);
+      }
+    }
+  }
+  // A bijection onto the engine's finest vertices.
+  std::vector<std::uint8_t> hit(levels[L].num_vertices, 0);
+  if (sigma.size() != hit.size()) throw TopologyError("rebuilt levels: vertex counts differ from the engine's refinement");
+  for (std::uint32_t s : sigma) {
+    if (s >= hit.size() || hit[s]) throw TopologyError("rebuilt levels: two input vertices land on one vertex of the engine's refinement");
+    hit[s] = 1;
+  }
+  return sigma;
+}
+
+}  // namespace sublift

@@ -1,0 +1,67 @@
+#pragma once
+// Finding the levels of a mesh that another tool subdivided (docs/rebuild.md): in any vertex and
+// face order, in linear time, for the 1-to-4 quad split of polygon meshes (refine.h on
+// surfaces: linear and cubic schemes) and the 1-to-4 triangle split (refine_tri.h: linear-tri,
+// butterfly, Loop). Each coarsening labels every vertex an old vertex, an edge point or a face
+// point (Taubin 2002, "Detecting and reconstructing subdivision connectivity"), one connected
+// component at a time, then checks the labels locally; engine_order() then maps the input's
+// vertices onto Sublift's own refinement of the base found.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/base/csr.h"
+#include "core/complex/complex.h"
+
+namespace sublift {
+
+enum class SplitKind : std::uint8_t { Quads, Triangles };
+
+/// One coarsening M_l -> M_{l-1} of the whole mesh: what each vertex of M_l is in M_{l-1}.
+struct Coarsening {
+  enum Kind : std::uint8_t { Old, EdgePoint, FacePoint };
+  std::vector<std::uint8_t> kind;  // per vertex of M_l
+  // Old: a = its vertex of M_{l-1}; EdgePoint: a, b = the ends of its edge; FacePoint: a = its
+  // face of M_{l-1}.
+  std::vector<std::uint32_t> a, b;
+  std::uint32_t coarse_vertices = 0;  // M_{l-1}
+  Csr coarse_faces;                   // M_{l-1}, oriented as the input
+  std::vector<std::uint32_t> input_vertex;  // an input vertex id for each vertex of M_{l-1}
+};
+
+/// What one connected component allows on its own.
+struct ComponentLevels {
+  std::uint32_t vertices = 0, faces = 0;  // at the finest level
+  std::uint32_t first_vertex = 0;         // its smallest input vertex id, to name it
+  int levels = 0;                         // levels it holds alone (up to the limit asked)
+  std::string stop;                       // why not more; empty when the limit was reached
+};
+
+struct DetectedLevels {
+  SplitKind split = SplitKind::Quads;
+  int levels = 0;
+  std::uint32_t base_vertices = 0;
+  Csr base_faces;                  // the level-0 mesh (= steps.front().coarse_faces)
+  std::vector<Coarsening> steps;   // steps[l]: M_{l+1} -> M_l, l = 0..levels-1
+  std::vector<ComponentLevels> components;
+  std::string stop;                // why the whole mesh has no more levels (the first
+                                   // component that stops there); empty when the limit was met
+  std::uint32_t stop_vertex = UINT32_MAX;  // an input vertex near that, for highlighting
+};
+
+/// Finds up to `max_levels` levels (fewer where the mesh has fewer; every component gets the
+/// levels all of them hold). `positions` (3 per vertex, may be empty) break ties between
+/// labellings that topology cannot tell apart (a regular torus): the one whose edge points lie
+/// nearest the midpoints of their edges wins, which is the exact one for bilinear data. Throws
+/// TopologyError for faces of fewer than 3 corners, indices out of range, or a vertex in no face.
+DetectedLevels detect_levels(std::uint32_t num_vertices, const Csr& faces, SplitKind split, int max_levels,
+                             std::span<const double> positions = {});
+
+/// engine[i]: the vertex of Sublift's level-L complex (refine.h / refine_tri.h order, L =
+/// d.levels) that input vertex i is. `levels[0..L]` are the hierarchy's complexes built from
+/// complex_from_polygons(d.base_vertices, d.base_faces), all but the last with adjacency.
+/// Throws TopologyError if the input is not that refinement (a check, not expected).
+std::vector<std::uint32_t> engine_order(const DetectedLevels& d, std::span<const Complex> levels);
+
+}  // namespace sublift

@@ -1,0 +1,120 @@
+#include "core/multires/rebuild.h"
+
+#include <algorithm>
+#include <chrono>
+#include <string>
+
+#include "core/base/errors.h"
+#include "core/complex/complex_build.h"
+
+namespace sublift {
+
+Scheme rebuild_auto_scheme(const Csr& faces) {
+  for (std::size_t f = 0; f < faces.rows(); ++f)
+    if (faces.size(f) != 3) return Scheme::Cubic;
+  return faces.rows() ? Scheme::Loop : Scheme::Cubic;
+}
+
+SplitKind rebuild_split(Scheme s) {
+  switch (scheme_info(s).refinement) {
+    case Refinement::Split: return SplitKind::Quads;
+    case Refinement::Tri: return SplitKind::Triangles;
+    default: throw Error("rebuilding levels of the " + scheme_name(s) + " scheme's refinement is not supported yet (docs/rebuild.md)");
+  }
+}
+
+FeatureTags feature_tags_of(const Complex& c) {
+  FeatureTags t;
+  for (std::uint32_t e = 0; e < c.num_edges(); ++e)
+    if (c.edge_dim[e] == 1 && untagged_edge_dim(c, e) != 1) t.crease_edges.emplace_back(c.edge_verts[2 * e], c.edge_verts[2 * e + 1]);
+  for (std::uint32_t v = 0; v < c.num_vertices; ++v)
+    if (c.vertex_dim[v] == 0 && untagged_vertex_dim(c, v) != 0) t.corner_vertices.push_back(v);
+  return t;
+}
+
+CarriedFeatures carry_features_down(const DetectedLevels& d, const FeatureTags& fine) {
+  CarriedFeatures out;
+  out.creases = fine.crease_edges.size();
+  out.corners = fine.corner_vertices.size();
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> creases = fine.crease_edges;
+  std::vector<std::uint32_t> corners = fine.corner_vertices;
+  std::size_t more = 0;
+  auto drop = [&](std::string why) {
+    if (out.dropped.size() < 8) out.dropped.push_back(std::move(why));
+    else ++more;
+  };
+  for (int l = d.levels - 1; l >= 0; --l) {  // steps[l]: M_{l+1} -> M_l
+    const Coarsening& st = d.steps[static_cast<std::size_t>(l)];
+    auto input_of = [&](std::uint32_t v) {
+      return l + 1 == d.levels ? v : d.steps[static_cast<std::size_t>(l + 1)].input_vertex[v];
+    };
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> halves;
+    for (auto [x, y] : creases) {
+      if (st.kind[x] != Coarsening::Old) std::swap(x, y);
+      const bool half = st.kind[x] == Coarsening::Old && st.kind[y] == Coarsening::EdgePoint &&
+                        (st.a[y] == st.a[x] || st.b[y] == st.a[x]);
+      if (!half) {
+        drop("crease " + std::to_string(input_of(x)) + "-" + std::to_string(input_of(y)) + " runs inside a face of the mesh " +
+             std::to_string(d.levels - l) + " level(s) down");
+        continue;
+      }
+      halves.emplace_back(std::min(st.a[y], st.b[y]), std::max(st.a[y], st.b[y]));
+    }
+    std::sort(halves.begin(), halves.end());
+    creases.clear();
+    for (std::size_t i = 0; i < halves.size();) {
+      std::size_t j = i;
+      while (j < halves.size() && halves[j] == halves[i]) ++j;
+      if (j - i == 2) {
+        creases.push_back(halves[i]);
+      } else {
+        const auto& in = st.input_vertex;
+        drop("only half of the edge " + std::to_string(in[halves[i].first]) + "-" + std::to_string(in[halves[i].second]) +
+             " of the mesh " + std::to_string(d.levels - l) + " level(s) down is creased");
+      }
+      i = j;
+    }
+    std::vector<std::uint32_t> kept;
+    for (std::uint32_t v : corners) {
+      if (st.kind[v] == Coarsening::Old) kept.push_back(st.a[v]);
+      else drop("corner at vertex " + std::to_string(input_of(v)) + " is no vertex of the mesh " + std::to_string(d.levels - l) + " level(s) down");
+    }
+    corners.swap(kept);
+  }
+  if (more) out.dropped.push_back("and " + std::to_string(more) + " more");
+  out.base.crease_edges = std::move(creases);
+  out.base.corner_vertices = std::move(corners);
+  return out;
+}
+
+Rebuilt rebuild_hierarchy(std::uint32_t num_vertices, const Csr& faces, std::span<const double> positions, Scheme scheme,
+                          int levels, bool integer, int disc, const FeatureTags& fine_tags) {
+  if (positions.size() != 3 * static_cast<std::size_t>(num_vertices))
+    throw Error("rebuild: " + std::to_string(positions.size()) + " coordinates for " + std::to_string(num_vertices) + " vertices");
+  const SplitKind split = rebuild_split(scheme);
+  Rebuilt r;
+  using Clock = std::chrono::steady_clock;
+  auto ms_since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
+  auto t = Clock::now();
+  r.detected = detect_levels(num_vertices, faces, split, levels < 0 ? max_levels(scheme) : levels, positions);
+  const DetectedLevels& d = r.detected;
+  if (levels >= 0 && d.levels < levels)
+    throw Error("the mesh holds " + std::to_string(d.levels) + " level" + (d.levels == 1 ? "" : "s") + " of a " +
+                (split == SplitKind::Quads ? "quad" : "triangle") + " split, not " + std::to_string(levels) + ": " + d.stop);
+  r.detect_ms = ms_since(t);
+  t = Clock::now();
+  r.features = carry_features_down(d, fine_tags);
+  Complex base = complex_from_polygons(d.base_vertices, d.base_faces, r.features.base);
+  r.hierarchy = make_hierarchy(std::move(base), d.levels, scheme, 3, integer, 0, disc);
+  r.engine_vertex = engine_order(d, r.hierarchy.levels);
+  r.build_ms = ms_since(t);
+  t = Clock::now();
+  std::vector<double> fine(positions.size());
+  for (std::size_t i = 0; i < r.engine_vertex.size(); ++i)
+    for (std::size_t k = 0; k < 3; ++k) fine[3 * std::size_t(r.engine_vertex[i]) + k] = positions[3 * i + k];
+  analyze(r.hierarchy, fine);
+  r.analysis_ms = ms_since(t);
+  return r;
+}
+
+}  // namespace sublift

@@ -1,0 +1,329 @@
+// Level detection (core/complex/detect_levels.h): Sublift's own refinements with vertices and
+// faces shuffled, OpenSubdiv's refinements in OpenSubdiv's order (oracle), and meshes that break
+// subdivision connectivity.
+#include "core/complex/detect_levels.h"
+
+#include <gtest/gtest.h>
+
+#include <opensubdiv/far/topologyRefiner.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <numeric>
+#include <random>
+#include <set>
+
+#include "core/base/errors.h"
+#include "core/complex/complex_build.h"
+#include "core/complex/refine.h"
+#include "core/complex/refine_tri.h"
+#include "core/io/mesh/mesh_import.h"
+#include "tests/mesh_fixtures.h"
+#include "tests/osd_refiner.h"
+
+namespace sublift {
+namespace {
+
+using fixtures::Polygons;
+
+Polygons from_complex(const Complex& c) { return {c.num_vertices, c.faces, {}}; }
+
+// Sublift's refinement of `m`, `levels` times (quad split or triangle split).
+Polygons refined(const Polygons& m, int levels, SplitKind split) {
+  Complex c = complex_from_polygons(m.num_vertices, m.faces);
+  for (int l = 0; l < levels; ++l) c = split == SplitKind::Quads ? refine(c) : refine_tri(c);
+  return from_complex(c);
+}
+
+// The same mesh with vertices renumbered by a random permutation, faces reordered and each
+// face's corners rotated. perm[old] = new.
+Polygons shuffled(const Polygons& m, unsigned seed, std::vector<std::uint32_t>* perm_out = nullptr) {
+  std::mt19937 rng(seed);
+  std::vector<std::uint32_t> perm(m.num_vertices);
+  std::iota(perm.begin(), perm.end(), 0u);
+  std::shuffle(perm.begin(), perm.end(), rng);
+  std::vector<std::size_t> order(m.faces.rows());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::shuffle(order.begin(), order.end(), rng);
+  Polygons out{m.num_vertices, {}, {}};
+  for (std::size_t f : order) {
+    const auto row = m.faces.row(f);
+    const std::size_t r = rng() % row.size();
+    for (std::size_t k = 0; k < row.size(); ++k) out.faces.items.push_back(perm[row[(k + r) % row.size()]]);
+    out.faces.offsets.push_back(static_cast<std::uint32_t>(out.faces.items.size()));
+  }
+  if (perm_out) *perm_out = perm;
+  return out;
+}
+
+// The base found equals `base` up to the vertex map `to_base` (input vertex -> base vertex, or
+// UINT32_MAX for vertices that are no base vertex): a bijection carrying faces onto faces.
+void expect_same_base(const DetectedLevels& d, const Polygons& base, const std::vector<std::uint32_t>& to_base) {
+  ASSERT_EQ(d.base_vertices, base.num_vertices);
+  ASSERT_EQ(d.base_faces.rows(), base.faces.rows());
+  std::vector<std::uint32_t> map(d.base_vertices);
+  std::set<std::uint32_t> hit;
+  for (std::uint32_t v = 0; v < d.base_vertices; ++v) {
+    map[v] = to_base[d.steps.front().input_vertex[v]];
+    ASSERT_LT(map[v], base.num_vertices) << "rebuilt base vertex " << v << " is no vertex of the original base";
+    hit.insert(map[v]);
+  }
+  EXPECT_EQ(hit.size(), base.num_vertices);
+  std::set<std::vector<std::uint32_t>> want, got;
+  for (std::size_t f = 0; f < base.faces.rows(); ++f) {
+    std::vector<std::uint32_t> s(base.faces.row(f).begin(), base.faces.row(f).end());
+    std::sort(s.begin(), s.end());
+    want.insert(s);
+  }
+  for (std::size_t f = 0; f < d.base_faces.rows(); ++f) {
+    std::vector<std::uint32_t> s;
+    for (std::uint32_t v : d.base_faces.row(f)) s.push_back(map[v]);
+    std::sort(s.begin(), s.end());
+    got.insert(s);
+  }
+  EXPECT_EQ(got, want);
+}
+
+// Checks detection of `levels` levels of `base` refined by Sublift and shuffled, the base
+// found, and the engine order against Sublift's own level complexes. `symmetric`: the base's
+// connectivity has symmetries that move vertices to edge points (a regular torus), so topology
+// alone finds *a* base of the same shape, not necessarily the same vertices (positions decide
+// then: rebuild_test).
+void check_own_refinement(const Polygons& base, int levels, SplitKind split, unsigned seed, bool symmetric = false) {
+  SCOPED_TRACE("levels " + std::to_string(levels) + " seed " + std::to_string(seed));
+  std::vector<std::uint32_t> perm;
+  const Polygons fine = shuffled(refined(base, levels, split), seed, &perm);
+  const DetectedLevels d = detect_levels(fine.num_vertices, fine.faces, split, levels);
+  ASSERT_EQ(d.levels, levels) << d.stop;
+  EXPECT_TRUE(d.stop.empty());
+  // Base vertex b is fine vertex b before the shuffle ([v | e | f] keeps them first).
+  std::vector<std::uint32_t> to_base(fine.num_vertices, UINT32_MAX);
+  for (std::uint32_t b = 0; b < base.num_vertices; ++b) to_base[perm[b]] = b;
+  if (symmetric) {
+    EXPECT_EQ(d.base_vertices, base.num_vertices);
+    EXPECT_EQ(d.base_faces.rows(), base.faces.rows());
+  } else {
+    expect_same_base(d, base, to_base);
+  }
+  // engine_order maps the input onto the engine's level complexes built on the base found.
+  std::vector<Complex> cs{complex_from_polygons(d.base_vertices, d.base_faces)};
+  for (int l = 0; l < levels; ++l) cs.push_back(split == SplitKind::Quads ? refine(cs.back()) : refine_tri(cs.back()));
+  const std::vector<std::uint32_t> engine = engine_order(d, cs);
+  std::set<std::vector<std::uint32_t>> want, got;
+  for (std::size_t f = 0; f < cs.back().faces.rows(); ++f) {
+    std::vector<std::uint32_t> s(cs.back().faces.row(f).begin(), cs.back().faces.row(f).end());
+    std::sort(s.begin(), s.end());
+    want.insert(s);
+  }
+  for (std::size_t f = 0; f < fine.faces.rows(); ++f) {
+    std::vector<std::uint32_t> s;
+    for (std::uint32_t v : fine.faces.row(f)) s.push_back(engine[v]);
+    std::sort(s.begin(), s.end());
+    got.insert(s);
+  }
+  EXPECT_EQ(got, want);
+}
+
+// A polygon mesh with a quad, a pentagon and a triangle around one inner vertex (2), the rest
+// boundary: 7 vertices.
+Polygons mixed_patch() {
+  Polygons m;
+  m.num_vertices = 7;
+  fixtures::push_row(m.faces, {0, 1, 2, 3});
+  fixtures::push_row(m.faces, {1, 4, 5, 6, 2});
+  fixtures::push_row(m.faces, {3, 2, 6});
+  return m;
+}
+
+Polygons octahedron() {
+  Polygons m;
+  m.num_vertices = 6;
+  const std::uint32_t t[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (const auto& f : t) fixtures::push_row(m.faces, {f[0], f[1], f[2]});
+  return m;
+}
+
+Polygons joined(const Polygons& a, const Polygons& b) {
+  Polygons m = a;
+  for (std::uint32_t x : b.faces.items) m.faces.items.push_back(x + a.num_vertices);
+  for (std::size_t f = 0; f < b.faces.rows(); ++f) m.faces.offsets.push_back(m.faces.offsets.back() + b.faces.size(f));
+  m.num_vertices += b.num_vertices;
+  return m;
+}
+
+TEST(DetectLevels, OwnQuadSplitsInAnyOrder) {
+  for (int levels : {1, 2, 3}) {
+    check_own_refinement(fixtures::cube(), levels, SplitKind::Quads, 11u + static_cast<unsigned>(levels));
+    check_own_refinement(mixed_patch(), levels, SplitKind::Quads, 21u + static_cast<unsigned>(levels));
+  }
+  // A 3 x 5 torus cannot be coarsened (odd sides): all levels found are the applied ones.
+  check_own_refinement(fixtures::torus(3, 5), 2, SplitKind::Quads, 5, true);
+}
+
+TEST(DetectLevels, OwnTriangleSplitsInAnyOrder) {
+  for (int levels : {1, 2, 3}) check_own_refinement(octahedron(), levels, SplitKind::Triangles, 31u + static_cast<unsigned>(levels));
+  // A triangle fan with a boundary.
+  Polygons fan;
+  fan.num_vertices = 6;
+  for (std::uint32_t k = 0; k < 5; ++k) fixtures::push_row(fan.faces, {0, 1 + k, 1 + (k + 1) % 5});
+  check_own_refinement(fan, 2, SplitKind::Triangles, 41);
+}
+
+TEST(DetectLevels, MaxFindsEveryLevelAndPrefersTheCube) {
+  const Polygons fine = shuffled(refined(fixtures::cube(), 3, SplitKind::Quads), 7);
+  const DetectedLevels d = detect_levels(fine.num_vertices, fine.faces, SplitKind::Quads, 12);
+  EXPECT_EQ(d.levels, 3);
+  EXPECT_EQ(d.base_vertices, 8u);  // the cube, not the octahedron (same level-1 connectivity)
+  EXPECT_EQ(d.base_faces.rows(), 6u);
+  EXPECT_NE(d.stop.find("the mesh 3 levels down"), std::string::npos) << d.stop;
+}
+
+TEST(DetectLevels, ComponentsGetTheLevelsAllOfThemHold) {
+  const Polygons a = refined(fixtures::cube(), 2, SplitKind::Quads), b = refined(mixed_patch(), 1, SplitKind::Quads);
+  const Polygons m = shuffled(joined(a, b), 3);
+  const DetectedLevels d = detect_levels(m.num_vertices, m.faces, SplitKind::Quads, 12);
+  EXPECT_EQ(d.levels, 1);
+  ASSERT_EQ(d.components.size(), 2u);
+  std::multiset<int> each{d.components[0].levels, d.components[1].levels};
+  EXPECT_EQ(each, (std::multiset<int>{1, 2}));
+  // Each piece coarsened once: the cube refined once and the patch itself.
+  EXPECT_EQ(d.base_vertices, refined(fixtures::cube(), 1, SplitKind::Quads).num_vertices + mixed_patch().num_vertices);
+  EXPECT_NE(d.stop.find("the piece with vertex"), std::string::npos) << d.stop;
+}
+
+TEST(DetectLevels, TriangleAmongQuadsIsNamed) {
+  Polygons fine = refined(fixtures::cube(), 2, SplitKind::Quads);
+  // Split quad 0 into two triangles.
+  Polygons broken{fine.num_vertices, {}, {}};
+  for (std::size_t f = 0; f < fine.faces.rows(); ++f) {
+    const auto q = fine.faces.row(f);
+    if (f == 0) {
+      fixtures::push_row(broken.faces, {q[0], q[1], q[2]});
+      fixtures::push_row(broken.faces, {q[0], q[2], q[3]});
+    } else {
+      fixtures::push_row(broken.faces, {q[0], q[1], q[2], q[3]});
+    }
+  }
+  const DetectedLevels d = detect_levels(broken.num_vertices, broken.faces, SplitKind::Quads, 12);
+  EXPECT_EQ(d.levels, 0);
+  EXPECT_NE(d.stop.find("2 triangles among 95 quads near vertex"), std::string::npos) << d.stop;
+  EXPECT_NE(d.stop_vertex, UINT32_MAX);
+}
+
+TEST(DetectLevels, FlippedDiagonalStopsTheTriangleSplit) {
+  const Polygons fine = refined(octahedron(), 2, SplitKind::Triangles);
+  // Flip the edge shared by faces 0 and its neighbour across corners 1-2.
+  Polygons m = fine;
+  const auto q = fine.faces.row(0);
+  const std::uint32_t a = q[1], b = q[2];
+  std::size_t g = 0;
+  for (std::size_t f = 1; f < fine.faces.rows(); ++f) {
+    const auto r = fine.faces.row(f);
+    if (std::count(r.begin(), r.end(), a) && std::count(r.begin(), r.end(), b)) g = f;
+  }
+  ASSERT_NE(g, 0u);
+  std::uint32_t c = 0;
+  for (std::uint32_t x : fine.faces.row(g))
+    if (x != a && x != b) c = x;
+  m.faces.items[m.faces.offsets[0] + 0] = q[0];
+  m.faces.items[m.faces.offsets[0] + 1] = q[1];
+  m.faces.items[m.faces.offsets[0] + 2] = c;
+  m.faces.items[m.faces.offsets[g] + 0] = q[0];
+  m.faces.items[m.faces.offsets[g] + 1] = c;
+  m.faces.items[m.faces.offsets[g] + 2] = q[2];
+  const DetectedLevels d = detect_levels(m.num_vertices, m.faces, SplitKind::Triangles, 12);
+  EXPECT_LT(d.levels, 2);
+  EXPECT_FALSE(d.stop.empty());
+  EXPECT_NE(d.stop.find("vertex"), std::string::npos) << d.stop;
+}
+
+TEST(DetectLevels, NoSubdivisionConnectivity) {
+  const Polygons c = fixtures::cube();
+  const DetectedLevels d = detect_levels(c.num_vertices, c.faces, SplitKind::Quads, 12);
+  EXPECT_EQ(d.levels, 0);
+  EXPECT_EQ(d.base_vertices, 8u);
+  EXPECT_NE(d.stop.find("the mesh: "), std::string::npos) << d.stop;
+  EXPECT_NE(d.stop.find("vertex "), std::string::npos) << d.stop;
+  const Polygons o = octahedron();
+  const DetectedLevels t = detect_levels(o.num_vertices, o.faces, SplitKind::Triangles, 12);
+  EXPECT_EQ(t.levels, 0);
+  EXPECT_FALSE(t.stop.empty());
+  // Triangles asked to be quads, and the other way round.
+  EXPECT_NE(detect_levels(o.num_vertices, o.faces, SplitKind::Quads, 3).stop.find("its faces are not quads"), std::string::npos);
+  Polygons loose = c;
+  loose.num_vertices = 9;
+  EXPECT_THROW(detect_levels(loose.num_vertices, loose.faces, SplitKind::Quads, 3), TopologyError);
+}
+
+// ---- OpenSubdiv in its own vertex order -------------------------------------------------------
+
+namespace Far = OpenSubdiv::Far;
+namespace Sdc = OpenSubdiv::Sdc;
+
+// OpenSubdiv's level-L faces, and each base vertex's child at level L.
+struct OsdFine {
+  Polygons fine;
+  std::vector<std::uint32_t> to_base;  // fine vertex -> base vertex or UINT32_MAX
+};
+
+OsdFine osd_fine(const Polygons& base, Sdc::SchemeType scheme, int levels) {
+  const auto r = fixtures::osd_refiner(base, scheme, levels);
+  EXPECT_TRUE(r);
+  OsdFine out;
+  const Far::TopologyLevel& lv = r->GetLevel(levels);
+  out.fine.num_vertices = static_cast<std::uint32_t>(lv.GetNumVertices());
+  for (int f = 0; f < lv.GetNumFaces(); ++f) {
+    for (Far::Index v : lv.GetFaceVertices(f)) out.fine.faces.items.push_back(static_cast<std::uint32_t>(v));
+    out.fine.faces.offsets.push_back(static_cast<std::uint32_t>(out.fine.faces.items.size()));
+  }
+  out.to_base.assign(out.fine.num_vertices, UINT32_MAX);
+  for (std::uint32_t b = 0; b < base.num_vertices; ++b) {
+    Far::Index v = static_cast<Far::Index>(b);
+    for (int l = 0; l < levels; ++l) v = r->GetLevel(l).GetVertexChildVertex(v);
+    out.to_base[static_cast<std::uint32_t>(v)] = b;
+  }
+  return out;
+}
+
+Polygons load_polygons(const std::filesystem::path& p) {
+  const LoadedMesh lm = import_surface_mesh(p.string());
+  Polygons m;
+  m.num_vertices = static_cast<std::uint32_t>(lm.mesh.num_vertices());
+  m.faces.offsets = lm.mesh.face_offsets;
+  m.faces.items = lm.mesh.face_indices;
+  return m;
+}
+
+TEST(DetectLevels, OpenSubdivRefinementsInOpenSubdivOrder) {
+  struct Case {
+    Polygons base;
+    Sdc::SchemeType scheme;
+    const char* name;
+  };
+  std::vector<Case> cases{{fixtures::cube(), Sdc::SCHEME_CATMARK, "cube"},
+                          {mixed_patch(), Sdc::SCHEME_BILINEAR, "mixed patch"},
+                          {fixtures::torus(3, 5), Sdc::SCHEME_CATMARK, "torus 3x5"},
+                          {octahedron(), Sdc::SCHEME_LOOP, "octahedron"}};
+  const std::filesystem::path dir = std::filesystem::path(SUBLIFT_SHARED_DATA) / "control_meshes/opensubdiv_shapes";
+  if (std::filesystem::exists(dir)) {
+    // Non-quad faces and boundaries; several components; extraordinary vertices; triangles.
+    cases.push_back({load_polygons(dir / "bilinear_nonquads1.obj"), Sdc::SCHEME_BILINEAR, "bilinear_nonquads1"});
+    cases.push_back({load_polygons(dir / "catmark_edgecorner.obj"), Sdc::SCHEME_CATMARK, "catmark_edgecorner"});
+    cases.push_back({load_polygons(dir / "catmark_gregory_test1.obj"), Sdc::SCHEME_CATMARK, "catmark_gregory_test1"});
+    cases.push_back({load_polygons(dir / "loop_cube.obj"), Sdc::SCHEME_LOOP, "loop_cube"});
+  } else {
+    std::printf("no third-party data at %s (SUBLIFT_SHARED_DATA): built-in meshes only\n", dir.string().c_str());
+  }
+  for (const Case& c : cases)
+    for (int levels : {1, 3}) {
+      SCOPED_TRACE(std::string(c.name) + " levels " + std::to_string(levels));
+      const OsdFine o = osd_fine(c.base, c.scheme, levels);
+      const SplitKind split = c.scheme == Sdc::SCHEME_LOOP ? SplitKind::Triangles : SplitKind::Quads;
+      const DetectedLevels d = detect_levels(o.fine.num_vertices, o.fine.faces, split, levels);
+      ASSERT_EQ(d.levels, levels) << d.stop;
+      expect_same_base(d, c.base, o.to_base);
+    }
+}
+
+}  // namespace
+}  // namespace sublift

@@ -101,6 +101,12 @@ void draw_levels_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
                         "with its detail kept (docs/rebuild.md). Clears the history.",
                         d.rebuild_scheme.c_str());
   }
+  if (!d.rebuild_stop.empty()) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextColored(kMuted, "%s: %s", d.rebuild_levels > 0 ? "No more levels" : "Not a subdivided mesh", d.rebuild_stop.c_str());
+    ImGui::PopTextWrapPos();
+    if (d.rebuild_stop_located && ImGui::Button("Show where")) r.rebuild_show_stop = true;
+  }
 
   if (ImGui::BeginTable("levels", 5, ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_RowBg)) {
     ImGui::TableSetupColumn("L", ImGuiTableColumnFlags_WidthStretch, 0.25f);

@@ -90,6 +90,8 @@ struct ModelerPanelData {
   int level = 0, finest = 0;
   int rebuild_levels = 0;             // the opened mesh was subdivided this many times elsewhere
   std::string rebuild_scheme;         // the scheme a rebuild would use
+  std::string rebuild_stop;           // why it holds no more levels (empty: not checked)
+  bool rebuild_stop_located = false;  // a vertex near that can be shown
   std::vector<LevelStats> levels;     // levels 0..finest (the finest has no wavelets of its own)
   std::vector<double> gains;          // per level 0..finest-1
   bool local_frames = false;
@@ -126,6 +128,7 @@ struct ModelerPanelRequests {
   bool gain_begin = false, gain_end = false;  // the slider drag started / ended
   bool subdivide = false, undo = false, redo = false;
   bool rebuild = false;               // rebuild the opened mesh's levels (docs/rebuild.md)
+  bool rebuild_show_stop = false;     // select the vertex where detection stopped
   std::optional<std::string> open;    // path to open
   std::optional<std::string> save;    // path to save the project to
   std::optional<std::string> export_path;

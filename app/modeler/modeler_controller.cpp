@@ -443,6 +443,7 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
       message = "Rebuilt " + std::to_string(n) + " level" + (n == 1 ? "" : "s") + " with the " +
                 scheme_name(model.session().hierarchy().scheme) + " scheme: the detail is kept as wavelets (history cleared)";
     }
+    if (r.rebuild_show_stop && model.show_rebuild_stop()) message = "Selected the vertex near where the mesh stops being a split";
     if (r.undo) model.undo();
     if (r.redo) model.redo();
     if (r.history_jump) model.jump_to(*r.history_jump);
@@ -515,7 +516,7 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
   if (r.save) save(*r.save);
   if (r.export_path) export_to(*r.export_path, r.export_finest);
   apply_camera(r.camera);
-  if (r.scheme || r.level || r.subdivide || r.rebuild || r.undo || r.redo || r.history_jump || r.gain_level >= 0 || r.gain_end) {
+  if (r.scheme || r.level || r.subdivide || r.rebuild || r.rebuild_show_stop || r.undo || r.redo || r.history_jump || r.gain_level >= 0 || r.gain_end) {
     pick_dirty_ = stats_dirty_ = true;
   }
 }
@@ -639,6 +640,11 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     d.finest = s.finest_level();
     d.rebuild_levels = model.rebuild_offer().levels;
     d.rebuild_scheme = scheme_name(model.rebuild_offer().scheme);
+    // Why it holds no (more) levels: for meshes that hold some, and for dense ones (1000+
+    // vertices) a modeler may expect to hold some; small hand-made meshes stay quiet.
+    if (model.rebuild_offer().checked && (model.rebuild_offer().levels > 0 || s.num_vertices(0) >= 1000))
+      d.rebuild_stop = model.rebuild_offer().stop;
+    d.rebuild_stop_located = model.rebuild_offer().stop_vertex != UINT32_MAX;
     const std::size_t key[4] = {s.undo_position(), s.history().size(), static_cast<std::size_t>(s.topology_version()),
                                 static_cast<std::size_t>(model.serial())};
     if (!std::equal(key, key + 4, stats_key_)) stats_dirty_ = true;

@@ -66,8 +66,10 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
       offer.scheme = rebuild_auto_scheme(shape.base.faces);
       const DetectedLevels d = detect_levels(shape.base.num_vertices, shape.base.faces, rebuild_split(offer.scheme),
                                              max_levels(offer.scheme), shape.positions);
+      offer.checked = true;
       offer.levels = d.levels;
       offer.stop = d.stop;
+      offer.stop_vertex = d.stop_vertex;
     }
     Hierarchy h = make_hierarchy(std::move(shape.base), levels, scheme, 3);
     set_base(h, shape.positions);
@@ -84,6 +86,13 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   selection_.clear();
   update_.topology = true;
   refresh_state();
+}
+
+bool ModelerState::show_rebuild_stop() {
+  if (rebuild_offer_.stop_vertex == UINT32_MAX || rebuild_offer_.stop_vertex >= session_->num_vertices(0)) return false;
+  set_level(0);
+  set_selection({rebuild_offer_.stop_vertex});
+  return true;
 }
 
 void ModelerState::rebuild_levels(int levels) {

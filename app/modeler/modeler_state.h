@@ -72,10 +72,15 @@ class ModelerState {
   /// A mesh (not a project) that another tool subdivided: the levels it holds (0: none or not
   /// checked), the scheme `rebuild` would use, and why it holds no more (docs/rebuild.md).
   struct RebuildOffer {
+    bool checked = false;  // the opened file was looked at (a surface mesh, not a project)
     int levels = 0;
     Scheme scheme = Scheme::Cubic;
-    std::string stop;
+    std::string stop;                       // why it holds no more levels
+    std::uint32_t stop_vertex = UINT32_MAX;  // a file vertex (= level-0 vertex) near that
   };
+  /// Selects the vertex where detection stopped, at level 0 (the file's own vertices): the
+  /// region that breaks subdivision connectivity, drawn as the selection. False when none.
+  bool show_rebuild_stop();
   const RebuildOffer& rebuild_offer() const { return rebuild_offer_; }
   /// Rebuilds the opened mesh's levels (`levels` -1: all it holds) from its file, analysing its
   /// positions: opens at level 0 with the detail as wavelets; history cleared. Throws Error.

@@ -846,6 +846,14 @@ TEST(ModelerRebuildTest, OpeningASubdividedMeshOffersToRebuildItsLevels) {
   EXPECT_EQ(app.model.rebuild_offer().levels, 2);
   EXPECT_EQ(app.model.rebuild_offer().scheme, Scheme::Cubic);
   EXPECT_EQ(app.model.session().finest_level(), ModelerState::kDefaultLevels);  // opened as today: the dense mesh is level 0
+  EXPECT_NE(app.model.rebuild_offer().stop.find("the mesh 2 levels down"), std::string::npos) << app.model.rebuild_offer().stop;
+  // "Show where": the vertex near where the split stops, selected on the file's own level.
+  ModelerPanelRequests show;
+  show.rebuild_show_stop = true;
+  app.apply_panel_requests(show);
+  ASSERT_EQ(app.model.selection().size(), 1u);
+  EXPECT_EQ(app.model.selection()[0], app.model.rebuild_offer().stop_vertex);
+  EXPECT_EQ(app.model.level(), 0);
   ModelerPanelRequests r;
   r.rebuild = true;
   app.apply_panel_requests(r);

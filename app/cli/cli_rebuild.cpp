@@ -18,13 +18,14 @@ namespace sublift::cli {
 namespace {
 
 constexpr const char* kHelp =
-    "usage: sublift-cli rebuild FINE [--scheme auto|linear|cubic|linear-tri|butterfly|loop]\n"
+    "usage: sublift-cli rebuild FINE [--scheme auto|linear|cubic|sqrt2|linear-tri|butterfly|loop]\n"
     "                           [--levels N|max] [--integer] [--disc K] -o PROJECT.sublift [--json]\n"
     "  Finds the levels of a mesh that another tool subdivided (Blender, ZBrush, OpenSubdiv...),\n"
     "  in any vertex and face order: the base mesh and every level between (docs/rebuild.md).\n"
     "  Then analyses the mesh's own positions into wavelets, so the finest level is the file\n"
     "  exactly and every coarser level an exact coarse approximation, ready for coarse edits.\n"
-    "  --scheme auto (default): cubic for quad meshes, loop for triangle meshes. --levels max\n"
+    "  --scheme auto (default): cubic for quad meshes, loop for triangle meshes (sqrt2 only when\n"
+    "  asked: closed meshes, one level per sqrt(2) step). --levels max\n"
     "  (default): as many as every piece of the mesh holds; N: exactly N or an error saying\n"
     "  where the mesh stops. The project remembers the file's vertex and face order: synthesize,\n"
     "  edit and compress write the finest level in that order. 'analyze FINE' without --base\n"
@@ -52,7 +53,6 @@ int run_rebuild(int argc, char** argv) {
                      " (volume lattices are not detected yet: docs/rebuild.md)");
   const bool automatic = !a.value("--scheme") || *a.value("--scheme") == "auto";
   const Scheme scheme = automatic ? rebuild_auto_scheme(fine.base.faces) : scheme_option(a);
-  if (scheme == Scheme::Sqrt2) throw UsageError("rebuild does not detect sqrt(2) refinement yet (docs/rebuild.md)");
   int levels = -1;
   if (const auto v = a.value("--levels"); v && *v != "max") levels = levels_option(a, scheme);
   const int disc = disc_option(a, scheme);
@@ -70,7 +70,7 @@ int run_rebuild(int argc, char** argv) {
   write_project(out, r.hierarchy, extras);
   const Hierarchy& h = r.hierarchy;
 
-  const char* split = d.split == SplitKind::Quads ? "quad split" : "triangle split";
+  const char* split = d.split == SplitKind::Quads ? "quad split" : d.split == SplitKind::Triangles ? "triangle split" : "sqrt(2) step";
   if (a.has("--json")) {
     nlohmann::json per_level = nlohmann::json::array(), components = nlohmann::json::array();
     const std::vector<LevelStats> stats = level_stats(h);

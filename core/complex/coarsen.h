@@ -38,6 +38,8 @@ struct Attempt {
 /// triangles.
 Attempt coarsen_quads(const Mesh& m, const Star& s, int candidate);
 Attempt coarsen_tris(const Mesh& m, const Star& s, int candidate);
+/// sqrt(2): candidates 0 and 1 only (the seed vertex is an old vertex or a face point).
+Attempt coarsen_sqrt2(const Mesh& m, const Star& s, int candidate);
 
 /// Position of v in face row `q` (q must contain v).
 inline unsigned corner_of(std::span<const std::uint32_t> q, std::uint32_t v) {

@@ -55,7 +55,7 @@ std::string count_phrase(std::uint32_t n, const char* one, const char* many) {
 
 // Why a mesh of the wrong face shapes cannot be a split; empty when every face fits.
 std::string shape_problem(const Mesh& m, SplitKind split, std::uint32_t& where) {
-  const unsigned want = split == SplitKind::Quads ? 4 : 3;
+  const unsigned want = split == SplitKind::Triangles ? 3 : 4;
   std::uint32_t good = 0, tris = 0, quads = 0, other = 0;
   where = UINT32_MAX;
   for (std::size_t f = 0; f < m.faces.rows(); ++f) {
@@ -72,8 +72,9 @@ std::string shape_problem(const Mesh& m, SplitKind split, std::uint32_t& where) 
   if (tris) odd = count_phrase(tris, "triangle", "triangles");
   if (quads) odd += (odd.empty() ? "" : " and ") + count_phrase(quads, "quad", "quads");
   if (other) odd += (odd.empty() ? "" : " and ") + count_phrase(other, "polygon of more than 4 sides", "polygons of more than 4 sides");
-  const char* kind = split == SplitKind::Quads ? "quads" : "triangles";
-  if (good == 0) return std::string("its faces are not ") + kind + ", as a " + (want == 4 ? "quad" : "triangle") + " split makes them";
+  const char* kind = want == 4 ? "quads" : "triangles";
+  const char* maker = split == SplitKind::Quads ? "a quad split" : split == SplitKind::Triangles ? "a triangle split" : "a sqrt(2) step";
+  if (good == 0) return std::string("its faces are not ") + kind + ", as " + maker + " makes them";
   return odd + " among " + std::to_string(good) + " " + kind + " near vertex " + std::to_string(where);
 }
 
@@ -83,15 +84,23 @@ struct Chain {
   std::uint32_t stop_vertex = UINT32_MAX;
 };
 
-// How far the edge points lie from the midpoints of their edges (squared, summed).
+// How far the new points lie from where linear refinement puts them (squared, summed): edge
+// points from the midpoints of their edges, face points from the centroids of their faces.
 double midpoint_residual(const Mesh& m, const Coarsening& c, std::span<const double> p) {
   double r = 0;
+  auto pos = [&](std::uint32_t coarse_vertex) { return &p[3 * std::size_t(c.input_vertex[coarse_vertex])]; };
   for (std::uint32_t v = 0; v < m.n; ++v) {
-    if (c.kind[v] != Coarsening::EdgePoint) continue;
+    if (c.kind[v] == Coarsening::Old) continue;
+    double want[3] = {0, 0, 0};
+    if (c.kind[v] == Coarsening::EdgePoint) {
+      for (int k = 0; k < 3; ++k) want[k] = 0.5 * (pos(c.a[v])[k] + pos(c.b[v])[k]);
+    } else {
+      const auto corners = c.coarse_faces.row(c.a[v]);
+      for (std::uint32_t w : corners)
+        for (int k = 0; k < 3; ++k) want[k] += pos(w)[k] / double(corners.size());
+    }
     const double* x = &p[3 * std::size_t(m.input[v])];
-    const double* a = &p[3 * std::size_t(c.input_vertex[c.a[v]])];
-    const double* b = &p[3 * std::size_t(c.input_vertex[c.b[v]])];
-    for (int k = 0; k < 3; ++k) r += (x[k] - 0.5 * (a[k] + b[k])) * (x[k] - 0.5 * (a[k] + b[k]));
+    for (int k = 0; k < 3; ++k) r += (x[k] - want[k]) * (x[k] - want[k]);
   }
   return r;
 }
@@ -114,7 +123,10 @@ Chain coarsen_component(Mesh m, SplitKind split, int limit, std::span<const doub
     parallel_for(4, 1, [&](std::uint32_t b, std::uint32_t e) {
       for (std::uint32_t cand = b; cand < e; ++cand) {
         try {
-          tries[cand] = split == SplitKind::Quads ? detect::coarsen_quads(m, star, int(cand)) : detect::coarsen_tris(m, star, int(cand));
+          if (split == SplitKind::Sqrt2 && cand >= 2) continue;  // two labellings only
+          tries[cand] = split == SplitKind::Quads       ? detect::coarsen_quads(m, star, int(cand))
+                        : split == SplitKind::Triangles ? detect::coarsen_tris(m, star, int(cand))
+                                                        : detect::coarsen_sqrt2(m, star, int(cand));
           if (tries[cand].ok && !positions.empty()) residual[cand] = midpoint_residual(m, tries[cand].c, positions);
         } catch (const std::exception& ex) {  // out of memory: parallel_for bodies must not throw
           tries[cand] = Attempt{};
@@ -131,7 +143,7 @@ Chain coarsen_component(Mesh m, SplitKind split, int limit, std::span<const doub
           best_residual = residual[cand];
           best = std::move(a);
         }
-      } else if (failed.why.empty() || a.progress > failed.progress) {
+      } else if (!a.why.empty() && (failed.why.empty() || a.progress > failed.progress)) {
         failed = std::move(a);
       }
     }
@@ -315,7 +327,7 @@ std::vector<std::uint32_t> engine_order(const DetectedLevels& d, std::span<const
       switch (st.kind[v]) {
         case Coarsening::Old: next_sigma[v] = sigma[st.a[v]]; break;
         case Coarsening::EdgePoint: next_sigma[v] = nv + edge_between(coarse, sigma[st.a[v]], sigma[st.b[v]]); break;
-        default: next_sigma[v] = nv + ne + tau[st.a[v]]; break;
+        default: next_sigma[v] = nv + (d.split == SplitKind::Sqrt2 ? 0 : ne) + tau[st.a[v]]; break;  // sqrt(2): [v | f]
       }
     }
     sigma.swap(next_sigma);

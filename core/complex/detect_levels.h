@@ -1,8 +1,8 @@
 #pragma once
 // Finding the levels of a mesh that another tool subdivided (docs/rebuild.md): in any vertex and
 // face order, in linear time, for the 1-to-4 quad split of polygon meshes (refine.h on
-// surfaces: linear and cubic schemes) and the 1-to-4 triangle split (refine_tri.h: linear-tri,
-// butterfly, Loop). Each coarsening labels every vertex an old vertex, an edge point or a face
+// surfaces: linear and cubic schemes), the 1-to-4 triangle split (refine_tri.h: linear-tri,
+// butterfly, Loop) and sqrt(2) steps of closed meshes (refine_sqrt2.h). Each coarsening labels every vertex an old vertex, an edge point or a face
 // point (Taubin 2002, "Detecting and reconstructing subdivision connectivity"), one connected
 // component at a time, then checks the labels locally; engine_order() then maps the input's
 // vertices onto Sublift's own refinement of the base found.
@@ -16,7 +16,11 @@
 
 namespace sublift {
 
-enum class SplitKind : std::uint8_t { Quads, Triangles };
+enum class SplitKind : std::uint8_t {
+  Quads,      // 1-to-4 quad split (refine.h): old vertices, edge points, face points
+  Triangles,  // 1-to-4 triangle split (refine_tri.h): old vertices, edge points
+  Sqrt2,      // one sqrt(2) step of a closed mesh (refine_sqrt2.h): old vertices, face points
+};
 
 /// One coarsening M_l -> M_{l-1} of the whole mesh: what each vertex of M_l is in M_{l-1}.
 struct Coarsening {

@@ -19,8 +19,9 @@ SplitKind rebuild_split(Scheme s) {
   switch (scheme_info(s).refinement) {
     case Refinement::Split: return SplitKind::Quads;
     case Refinement::Tri: return SplitKind::Triangles;
-    default: throw Error("rebuilding levels of the " + scheme_name(s) + " scheme's refinement is not supported yet (docs/rebuild.md)");
+    case Refinement::Sqrt2: return SplitKind::Sqrt2;
   }
+  throw Error("rebuilding levels of the " + scheme_name(s) + " scheme's refinement is not supported (docs/rebuild.md)");
 }
 
 FeatureTags feature_tags_of(const Complex& c) {
@@ -99,8 +100,9 @@ Rebuilt rebuild_hierarchy(std::uint32_t num_vertices, const Csr& faces, std::spa
   r.detected = detect_levels(num_vertices, faces, split, levels < 0 ? max_levels(scheme) : levels, positions);
   const DetectedLevels& d = r.detected;
   if (levels >= 0 && d.levels < levels)
-    throw Error("the mesh holds " + std::to_string(d.levels) + " level" + (d.levels == 1 ? "" : "s") + " of a " +
-                (split == SplitKind::Quads ? "quad" : "triangle") + " split, not " + std::to_string(levels) + ": " + d.stop);
+    throw Error("the mesh holds " + std::to_string(d.levels) + " level" + (d.levels == 1 ? "" : "s") + " of " +
+                (split == SplitKind::Quads ? "a quad split" : split == SplitKind::Triangles ? "a triangle split" : "sqrt(2) steps") + ", not " +
+                std::to_string(levels) + ": " + d.stop);
   r.detect_ms = ms_since(t);
   t = Clock::now();
   r.features = carry_features_down(d, fine_tags);

@@ -141,5 +141,6 @@ TEST(CliRebuild, BrokenMeshIsReportedNotRefused) {
   EXPECT_NE(n.err.find("triangles among"), std::string::npos) << n.err;
   // Usage errors.
   EXPECT_EQ(run_cli({"rebuild", fine, "-o", dir.file("p.obj")}).exit_code, 2);
-  EXPECT_EQ(run_cli({"rebuild", fine, "--scheme", "sqrt2", "-o", project}).exit_code, 2);
+  EXPECT_EQ(run_cli({"rebuild", fine, "--levels", "two", "-o", project}).exit_code, 2);
+  EXPECT_EQ(run_cli({"rebuild", fine, "--scheme", "quintic", "-o", project}).exit_code, 2);
 }

@@ -16,6 +16,7 @@
 #include "core/base/errors.h"
 #include "core/complex/complex_build.h"
 #include "core/complex/refine.h"
+#include "core/complex/refine_sqrt2.h"
 #include "core/complex/refine_tri.h"
 #include "core/io/mesh/mesh_import.h"
 #include "tests/mesh_fixtures.h"
@@ -31,6 +32,7 @@ Polygons from_complex(const Complex& c) { return {c.num_vertices, c.faces, {}}; 
 // Sublift's refinement of `m`, `levels` times (quad split or triangle split).
 Polygons refined(const Polygons& m, int levels, SplitKind split) {
   Complex c = complex_from_polygons(m.num_vertices, m.faces);
+  if (split == SplitKind::Sqrt2) return from_complex(build_sqrt2_levels(c, levels).back());
   for (int l = 0; l < levels; ++l) c = split == SplitKind::Quads ? refine(c) : refine_tri(c);
   return from_complex(c);
 }
@@ -107,7 +109,8 @@ void check_own_refinement(const Polygons& base, int levels, SplitKind split, uns
   }
   // engine_order maps the input onto the engine's level complexes built on the base found.
   std::vector<Complex> cs{complex_from_polygons(d.base_vertices, d.base_faces)};
-  for (int l = 0; l < levels; ++l) cs.push_back(split == SplitKind::Quads ? refine(cs.back()) : refine_tri(cs.back()));
+  if (split == SplitKind::Sqrt2) cs = build_sqrt2_levels(cs.front(), levels);
+  for (int l = 0; split != SplitKind::Sqrt2 && l < levels; ++l) cs.push_back(split == SplitKind::Quads ? refine(cs.back()) : refine_tri(cs.back()));
   const std::vector<std::uint32_t> engine = engine_order(d, cs);
   std::set<std::vector<std::uint32_t>> want, got;
   for (std::size_t f = 0; f < cs.back().faces.rows(); ++f) {
@@ -167,6 +170,24 @@ TEST(DetectLevels, OwnTriangleSplitsInAnyOrder) {
   fan.num_vertices = 6;
   for (std::uint32_t k = 0; k < 5; ++k) fixtures::push_row(fan.faces, {0, 1 + k, 1 + (k + 1) % 5});
   check_own_refinement(fan, 2, SplitKind::Triangles, 41);
+}
+
+TEST(DetectLevels, OwnSqrt2StepsOfClosedMeshesInAnyOrder) {
+  for (int levels : {1, 2, 3, 5}) check_own_refinement(fixtures::cube(), levels, SplitKind::Sqrt2, 51u + static_cast<unsigned>(levels));
+  check_own_refinement(fixtures::torus(3, 5), 3, SplitKind::Sqrt2, 61, true);
+  // Two sqrt(2) steps make the quad split's connectivity (refine_sqrt2.h): the cube split twice
+  // is 4 sqrt(2) steps of the cube, and the cube itself one step of the tetrahedron (its
+  // vertices 2-coloured: 4 corners stay, the other 4 are the tetrahedron's face points).
+  const Polygons cc = shuffled(refined(fixtures::cube(), 2, SplitKind::Quads), 3);
+  const DetectedLevels s = detect_levels(cc.num_vertices, cc.faces, SplitKind::Sqrt2, 24);
+  EXPECT_EQ(s.levels, 5);
+  EXPECT_EQ(s.base_vertices, 4u);
+  EXPECT_EQ(s.base_faces.rows(), 4u);
+  // Boundaries refine every other step: not detected, and said so.
+  const Polygons open = refined(mixed_patch(), 1, SplitKind::Sqrt2);
+  const DetectedLevels d = detect_levels(open.num_vertices, open.faces, SplitKind::Sqrt2, 24);
+  EXPECT_EQ(d.levels, 0);
+  EXPECT_FALSE(d.stop.empty());
 }
 
 TEST(DetectLevels, MaxFindsEveryLevelAndPrefersTheCube) {

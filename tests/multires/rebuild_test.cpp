@@ -123,6 +123,8 @@ TEST(Rebuild, AnalysisReproducesTheInputForEveryScheme) {
     double tolerance;
   };
   const Case cases[] = {{fixtures::cube(), Scheme::Cubic, 1e-12},
+                        {fixtures::cube(), Scheme::Sqrt2, 1e-12},
+                        {fixtures::torus(3, 5), Scheme::Sqrt2, 1e-12},
                         {mixed_patch(), Scheme::Cubic, 1e-12},
                         {octahedron(), Scheme::LinearTri, 1e-12},
                         {octahedron(), Scheme::Butterfly, 1e-12},
@@ -177,7 +179,9 @@ TEST(Rebuild, AskingForMoreLevelsThanTheMeshHoldsSaysWhere) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("holds 2 levels"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(rebuild_hierarchy(in.mesh.num_vertices, in.mesh.faces, in.xyz, Scheme::Sqrt2, -1), Error);
+  // Two sqrt(2) steps make the quad split's connectivity: the same mesh holds 4 sqrt(2) levels
+  // of the cube, and one more of the tetrahedron the cube is a sqrt(2) step of.
+  EXPECT_EQ(rebuild_hierarchy(in.mesh.num_vertices, in.mesh.faces, in.xyz, Scheme::Sqrt2, -1).hierarchy.finest_level(), 5);
   EXPECT_EQ(rebuild_auto_scheme(in.mesh.faces), Scheme::Cubic);
   EXPECT_EQ(rebuild_auto_scheme(octahedron().faces), Scheme::Loop);
 }

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <numeric>
+#include <random>
 #include <vector>
 
 #include "core/base/csr.h"
@@ -49,6 +51,32 @@ inline Polygons torus(std::uint32_t nu, std::uint32_t nv) {
       push_row(m.faces, {j * nu + i, j * nu + i1, j1 * nu + i1, j1 * nu + i});
     }
   return m;
+}
+
+/// `m` as another tool may write it: vertices renumbered by a random permutation (perm[old] =
+/// new; positions follow when present), faces reordered and each face's corners rotated.
+inline Polygons shuffled(const Polygons& m, unsigned seed, std::vector<std::uint32_t>* perm_out = nullptr) {
+  std::mt19937 rng(seed);
+  std::vector<std::uint32_t> perm(m.num_vertices);
+  std::iota(perm.begin(), perm.end(), 0u);
+  std::shuffle(perm.begin(), perm.end(), rng);
+  std::vector<std::size_t> order(m.faces.rows());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::shuffle(order.begin(), order.end(), rng);
+  Polygons out{m.num_vertices, {}, {}};
+  for (std::size_t f : order) {
+    const auto row = m.faces.row(f);
+    const std::size_t r = rng() % row.size();
+    for (std::size_t k = 0; k < row.size(); ++k) out.faces.items.push_back(perm[row[(k + r) % row.size()]]);
+    out.faces.offsets.push_back(static_cast<std::uint32_t>(out.faces.items.size()));
+  }
+  if (!m.positions.empty()) {
+    out.positions.resize(m.positions.size());
+    for (std::uint32_t v = 0; v < m.num_vertices; ++v)
+      for (int k = 0; k < 3; ++k) out.positions[3 * std::size_t(perm[v]) + k] = m.positions[3 * std::size_t(v) + k];
+  }
+  if (perm_out) *perm_out = std::move(perm);
+  return out;
 }
 
 /// Unit cube [0,1]^3, outward-oriented quads.

@@ -449,25 +449,22 @@ void ModelerState::refresh_colour() {
   }
 }
 
-void ModelerState::save_project(const std::string& path) {
+ProjectExtras ModelerState::project_extras() const {
   ProjectExtras extras;
   extras.current_level = level_;
   extras.gains.assign(session_->gains().begin(), session_->gains().end());
   extras.local_frames = session_->detail_frames() == DetailFrames::Local;
   if (!input_order_.empty() && input_order_.level <= session_->finest_level()) extras.input_order = input_order_;
-  write_project(path, session_->hierarchy(), extras);
+  return extras;
+}
+
+void ModelerState::save_project(const std::string& path) {
+  write_project(path, session_->hierarchy(), project_extras());
   session_->mark_saved();
   project_path_ = path;
 }
 
-void ModelerState::write_recovery(const std::string& path) const {
-  ProjectExtras extras;
-  extras.current_level = level_;
-  extras.gains.assign(session_->gains().begin(), session_->gains().end());
-  extras.local_frames = session_->detail_frames() == DetailFrames::Local;
-  if (!input_order_.empty() && input_order_.level <= session_->finest_level()) extras.input_order = input_order_;
-  write_project(path, session_->hierarchy(), extras);
-}
+void ModelerState::write_recovery(const std::string& path) const { write_project(path, session_->hierarchy(), project_extras()); }
 
 std::vector<std::string> ModelerState::export_shape(const std::string& path, bool finest) {
   const Hierarchy& h = session_->hierarchy();

@@ -223,6 +223,7 @@ class ModelerState {
 
  private:
   void install(std::unique_ptr<Session> session);  // fresh topology
+  ProjectExtras project_extras() const;             // what a save keeps beside the hierarchy
   void after_operation();                           // pull changed() into limit and update
   void rebuild_limit();
   void refresh_state();   // soft weights, then the per-vertex state

@@ -41,6 +41,19 @@ Attempt coarsen_tris(const Mesh& m, const Star& s, int candidate);
 /// sqrt(2): candidates 0 and 1 only (the seed vertex is an old vertex or a face point).
 Attempt coarsen_sqrt2(const Mesh& m, const Star& s, int candidate);
 
+/// The corners `offset` after v of the faces around v, walked as one closed fan: the face after
+/// one is the face whose corner after v is this face's corner before v (corner k+3 of a quad).
+/// For a face point of a quad split (offset 2) or a sqrt(2) step (offset 1) these are its face's
+/// corners in order. False when the faces do not close into one fan.
+bool fan_corners(const Mesh& m, const Star& s, std::uint32_t v, unsigned offset, std::vector<std::uint32_t>& out);
+
+/// True when two of `ends` (the far ends of v's coarse edges) coincide: a doubled coarse edge.
+bool has_repeat(std::vector<std::uint32_t>& ends);
+
+/// Fills c.coarse_vertices and c.input_vertex from the old vertices (label Old) of m.
+void name_coarse_vertices(const Mesh& m, const std::vector<std::uint8_t>& labels, const std::vector<std::uint32_t>& coarse_id,
+                          std::uint32_t num_coarse, Coarsening& c);
+
 /// Position of v in face row `q` (q must contain v).
 inline unsigned corner_of(std::span<const std::uint32_t> q, std::uint32_t v) {
   unsigned k = 0;

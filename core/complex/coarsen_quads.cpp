@@ -107,8 +107,7 @@ Attempt coarsen_quads(const Mesh& m, const Star& s, int candidate) {
       const std::uint32_t e = q[(k + 1) & 3u];
       others.push_back(c.a[e] == coarse_id[v] ? c.b[e] : c.a[e]);
     }
-    std::sort(others.begin(), others.end());
-    if (std::adjacent_find(others.begin(), others.end()) != others.end())
+    if (has_repeat(others))
       return fail(v, "two edges of the coarser mesh would join vertex " + std::to_string(m.input[v]) + " to the same vertex");
   }
   // Face points: inside, with a closed fan of n >= 3 quads whose old corners make the face.
@@ -120,32 +119,18 @@ Attempt coarsen_quads(const Mesh& m, const Star& s, int candidate) {
     const auto fs = s.vertex_faces.row(v);
     if (s.boundary[v]) return fail(v, "vertex " + std::to_string(m.input[v]) + " would be a face point but lies on the boundary");
     if (fs.size() < 3) return fail(v, "face point " + std::to_string(m.input[v]) + " has " + std::to_string(fs.size()) + " quads; a face needs 3 or more");
-    // Walk: the quad after (v, e_before, old, e_after) is the one whose e_before is e_after.
-    std::uint32_t f = fs[0];
-    for (std::size_t step = 0; step < fs.size(); ++step) {
-      const auto q = m.faces.row(f);
-      const unsigned k = corner_of(q, v);
-      c.coarse_faces.items.push_back(coarse_id[q[(k + 2) & 3u]]);
-      const std::uint32_t after = q[(k + 3) & 3u];
-      std::uint32_t next = UINT32_MAX;
-      for (std::uint32_t g : fs) {
-        const auto r = m.faces.row(g);
-        if (r[(corner_of(r, v) + 1) & 3u] == after) next = g;
-      }
-      if (next == UINT32_MAX || (next == fs[0]) != (step + 1 == fs.size()))
-        return fail(v, "the quads around face point " + std::to_string(m.input[v]) + " do not close into one fan");
-      f = next;
-    }
+    // The quads (face point, e, old, e') around it: their old corners, two after it.
+    others.clear();
+    if (!fan_corners(m, s, v, 2, others))
+      return fail(v, "the quads around face point " + std::to_string(m.input[v]) + " do not close into one fan");
+    for (std::uint32_t x : others) c.coarse_faces.items.push_back(coarse_id[x]);
     c.coarse_faces.offsets.push_back(static_cast<std::uint32_t>(c.coarse_faces.items.size()));
   }
   // Score: old vertices that are extraordinary (the counter above counted regular ones).
   std::uint32_t old_count = 0;
   for (std::uint32_t v = 0; v < n; ++v) old_count += lab[v] == V;
   at.score = static_cast<int>(old_count) - at.score;
-  c.coarse_vertices = nv;
-  c.input_vertex.resize(nv);
-  for (std::uint32_t v = 0; v < n; ++v)
-    if (lab[v] == V) c.input_vertex[coarse_id[v]] = m.input[v];
+  name_coarse_vertices(m, lab, coarse_id, nv, c);
   at.ok = true;
   return at;
 }

@@ -79,8 +79,7 @@ Attempt coarsen_sqrt2(const Mesh& m, const Star& s, int candidate) {
       const auto q = m.faces.row(f);
       others.push_back(q[(corner_of(q, v) + 2) & 3u]);
     }
-    std::sort(others.begin(), others.end());
-    if (std::adjacent_find(others.begin(), others.end()) != others.end())
+    if (has_repeat(others))
       return fail(v, "two edges of the coarser mesh would join vertex " + std::to_string(m.input[v]) + " to the same vertex");
   }
   // Face points: a closed fan of n >= 3 quads; the corner after the face point starts each edge.
@@ -91,32 +90,16 @@ Attempt coarsen_sqrt2(const Mesh& m, const Star& s, int candidate) {
     c.a[v] = coarse_id[v];
     const auto fs = s.vertex_faces.row(v);
     if (fs.size() < 3) return fail(v, "face point " + std::to_string(m.input[v]) + " has " + std::to_string(fs.size()) + " quads; a face needs 3 or more");
-    std::uint32_t f = fs[0];
-    const std::size_t start = c.coarse_faces.items.size();
-    for (std::size_t step = 0; step < fs.size(); ++step) {
-      const auto q = m.faces.row(f);
-      const unsigned k = corner_of(q, v);
-      c.coarse_faces.items.push_back(coarse_id[q[(k + 1) & 3u]]);
-      const std::uint32_t before = q[(k + 3) & 3u];
-      std::uint32_t next = UINT32_MAX;
-      for (std::uint32_t g : fs) {
-        const auto r = m.faces.row(g);
-        if (r[(corner_of(r, v) + 1) & 3u] == before) next = g;
-      }
-      if (next == UINT32_MAX || (next == fs[0]) != (step + 1 == fs.size()))
-        return fail(v, "the quads around face point " + std::to_string(m.input[v]) + " do not close into one fan");
-      f = next;
-    }
-    others.assign(c.coarse_faces.items.begin() + std::ptrdiff_t(start), c.coarse_faces.items.end());
-    std::sort(others.begin(), others.end());
-    if (std::adjacent_find(others.begin(), others.end()) != others.end())
+    // The quads (face point, a, ., b) around it: corner a, one after it, starts edge a-b.
+    others.clear();
+    if (!fan_corners(m, s, v, 1, others))
+      return fail(v, "the quads around face point " + std::to_string(m.input[v]) + " do not close into one fan");
+    for (std::uint32_t x : others) c.coarse_faces.items.push_back(coarse_id[x]);
+    if (has_repeat(others))
       return fail(v, "the face around face point " + std::to_string(m.input[v]) + " would visit a vertex twice");
     c.coarse_faces.offsets.push_back(static_cast<std::uint32_t>(c.coarse_faces.items.size()));
   }
-  c.coarse_vertices = nv;
-  c.input_vertex.resize(nv);
-  for (std::uint32_t v = 0; v < n; ++v)
-    if (lab[v] == V) c.input_vertex[coarse_id[v]] = m.input[v];
+  name_coarse_vertices(m, lab, coarse_id, nv, c);
   at.ok = true;
   return at;
 }

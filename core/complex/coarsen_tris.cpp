@@ -143,8 +143,7 @@ Attempt coarsen_tris(const Mesh& m, const Star& s, int candidate) {
       const std::uint32_t e = q[(corner_of(q, v) + 1) % 3];
       others.push_back(c.a[e] == coarse_id[v] ? c.b[e] : c.a[e]);
     }
-    std::sort(others.begin(), others.end());
-    if (std::adjacent_find(others.begin(), others.end()) != others.end())
+    if (has_repeat(others))
       return fail(v, "two edges of the coarser mesh would join vertex " + std::to_string(m.input[v]) + " to the same vertex");
   }
   // One coarse triangle per middle triangle (e1, e2, e3): corners e3^e1, e1^e2, e2^e3, where
@@ -165,10 +164,7 @@ Attempt coarsen_tris(const Mesh& m, const Star& s, int candidate) {
     for (std::uint32_t x : {A, B, C}) c.coarse_faces.items.push_back(x);
     c.coarse_faces.offsets.push_back(static_cast<std::uint32_t>(c.coarse_faces.items.size()));
   }
-  c.coarse_vertices = nv;
-  c.input_vertex.resize(nv);
-  for (std::uint32_t v = 0; v < n; ++v)
-    if (lab[v] == V) c.input_vertex[coarse_id[v]] = m.input[v];
+  name_coarse_vertices(m, lab, coarse_id, nv, c);
   at.ok = true;
   return at;
 }

@@ -42,6 +42,38 @@ Star build_star(const Mesh& m) {
   return s;
 }
 
+bool fan_corners(const Mesh& m, const Star& s, std::uint32_t v, unsigned offset, std::vector<std::uint32_t>& out) {
+  const auto fs = s.vertex_faces.row(v);
+  std::uint32_t f = fs[0];
+  for (std::size_t step = 0; step < fs.size(); ++step) {
+    const auto q = m.faces.row(f);
+    const unsigned k = corner_of(q, v);
+    out.push_back(q[(k + offset) & 3u]);
+    const std::uint32_t before = q[(k + 3) & 3u];
+    std::uint32_t next = UINT32_MAX;
+    for (std::uint32_t g : fs) {
+      const auto r = m.faces.row(g);
+      if (r[(corner_of(r, v) + 1) & 3u] == before) next = g;
+    }
+    if (next == UINT32_MAX || (next == fs[0]) != (step + 1 == fs.size())) return false;
+    f = next;
+  }
+  return true;
+}
+
+bool has_repeat(std::vector<std::uint32_t>& ends) {
+  std::sort(ends.begin(), ends.end());
+  return std::adjacent_find(ends.begin(), ends.end()) != ends.end();
+}
+
+void name_coarse_vertices(const Mesh& m, const std::vector<std::uint8_t>& labels, const std::vector<std::uint32_t>& coarse_id,
+                          std::uint32_t num_coarse, Coarsening& c) {
+  c.coarse_vertices = num_coarse;
+  c.input_vertex.resize(num_coarse);
+  for (std::uint32_t v = 0; v < m.n; ++v)
+    if (labels[v] == Coarsening::Old) c.input_vertex[coarse_id[v]] = m.input[v];
+}
+
 }  // namespace detect
 
 namespace {

@@ -31,31 +31,24 @@ std::string shuffled_obj(const fixtures::Polygons& base, int levels, Scheme sche
   set_base(h, random_coefficients(3 * std::size_t(base.num_vertices), seed, false));
   const std::vector<double> x = synthesize(h, levels);
   const Complex& fine = h.levels.back();
-  std::mt19937 rng(seed);
-  std::vector<std::uint32_t> perm(fine.num_vertices);
-  std::iota(perm.begin(), perm.end(), 0u);
-  std::shuffle(perm.begin(), perm.end(), rng);
-  std::vector<std::uint32_t> inv(perm.size());
-  for (std::uint32_t v = 0; v < perm.size(); ++v) inv[perm[v]] = v;
-  std::vector<std::size_t> order(fine.num_faces());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::shuffle(order.begin(), order.end(), rng);
+  std::vector<std::uint32_t> perm;
+  const fixtures::Polygons file = fixtures::shuffled({fine.num_vertices, fine.faces, x}, seed, &perm);
   std::ostringstream out;
   char buf[128];
   for (std::uint32_t i = 0; i < perm.size(); ++i) {
-    const double* p = &x[3 * std::size_t(inv[i])];
+    const double* p = &file.positions[3 * std::size_t(i)];
     std::snprintf(buf, sizeof buf, "v %.17g %.17g %.17g\n", p[0], p[1], p[2]);
     out << buf;
   }
-  for (std::size_t f : order) {
-    const auto row = fine.faces.row(f);
-    if (break_one_quad && f == order.front() && row.size() == 4) {
-      out << "f " << perm[row[0]] + 1 << " " << perm[row[1]] + 1 << " " << perm[row[2]] + 1 << "\n";
-      out << "f " << perm[row[0]] + 1 << " " << perm[row[2]] + 1 << " " << perm[row[3]] + 1 << "\n";
+  for (std::size_t f = 0; f < file.faces.rows(); ++f) {
+    const auto row = file.faces.row(f);
+    if (break_one_quad && f == 0 && row.size() == 4) {
+      out << "f " << row[0] + 1 << " " << row[1] + 1 << " " << row[2] + 1 << "\n";
+      out << "f " << row[0] + 1 << " " << row[2] + 1 << " " << row[3] + 1 << "\n";
       continue;
     }
     out << "f";
-    for (std::uint32_t v : row) out << " " << perm[v] + 1;
+    for (std::uint32_t v : row) out << " " << v + 1;
     out << "\n";
   }
   return out.str();

@@ -26,6 +26,7 @@ namespace sublift {
 namespace {
 
 using fixtures::Polygons;
+using fixtures::shuffled;
 
 Polygons from_complex(const Complex& c) { return {c.num_vertices, c.faces, {}}; }
 
@@ -35,27 +36,6 @@ Polygons refined(const Polygons& m, int levels, SplitKind split) {
   if (split == SplitKind::Sqrt2) return from_complex(build_sqrt2_levels(c, levels).back());
   for (int l = 0; l < levels; ++l) c = split == SplitKind::Quads ? refine(c) : refine_tri(c);
   return from_complex(c);
-}
-
-// The same mesh with vertices renumbered by a random permutation, faces reordered and each
-// face's corners rotated. perm[old] = new.
-Polygons shuffled(const Polygons& m, unsigned seed, std::vector<std::uint32_t>* perm_out = nullptr) {
-  std::mt19937 rng(seed);
-  std::vector<std::uint32_t> perm(m.num_vertices);
-  std::iota(perm.begin(), perm.end(), 0u);
-  std::shuffle(perm.begin(), perm.end(), rng);
-  std::vector<std::size_t> order(m.faces.rows());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::shuffle(order.begin(), order.end(), rng);
-  Polygons out{m.num_vertices, {}, {}};
-  for (std::size_t f : order) {
-    const auto row = m.faces.row(f);
-    const std::size_t r = rng() % row.size();
-    for (std::size_t k = 0; k < row.size(); ++k) out.faces.items.push_back(perm[row[(k + r) % row.size()]]);
-    out.faces.offsets.push_back(static_cast<std::uint32_t>(out.faces.items.size()));
-  }
-  if (perm_out) *perm_out = perm;
-  return out;
 }
 
 // The base found equals `base` up to the vertex map `to_base` (input vertex -> base vertex, or

@@ -43,23 +43,8 @@ Input make_input(const Polygons& base, int levels, Scheme scheme, double detail,
     for (std::size_t i = b.size(); i < h.coeffs.size(); ++i) h.coeffs[i] = detail * random_coefficients(1, seed + unsigned(i), integer)[0];
   const std::vector<double> x = synthesize(h, levels);
   const Complex& fine = h.levels.back();
-  std::mt19937 rng(seed);
-  in.perm.resize(fine.num_vertices);
-  std::iota(in.perm.begin(), in.perm.end(), 0u);
-  std::shuffle(in.perm.begin(), in.perm.end(), rng);
-  std::vector<std::size_t> order(fine.num_faces());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::shuffle(order.begin(), order.end(), rng);
-  in.mesh.num_vertices = fine.num_vertices;
-  for (std::size_t f : order) {
-    const auto row = fine.faces.row(f);
-    const std::size_t r = rng() % row.size();
-    for (std::size_t k = 0; k < row.size(); ++k) in.mesh.faces.items.push_back(in.perm[row[(k + r) % row.size()]]);
-    in.mesh.faces.offsets.push_back(static_cast<std::uint32_t>(in.mesh.faces.items.size()));
-  }
-  in.xyz.resize(x.size());
-  for (std::uint32_t v = 0; v < fine.num_vertices; ++v)
-    for (int k = 0; k < 3; ++k) in.xyz[3 * std::size_t(in.perm[v]) + k] = x[3 * std::size_t(v) + k];
+  in.mesh = fixtures::shuffled({fine.num_vertices, fine.faces, x}, seed, &in.perm);
+  in.xyz = std::move(in.mesh.positions);
   return in;
 }
 

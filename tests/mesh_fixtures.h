@@ -53,6 +53,26 @@ inline Polygons torus(std::uint32_t nu, std::uint32_t nv) {
   return m;
 }
 
+/// A quad, a pentagon and a triangle around one inner vertex (2), the rest boundary: 7
+/// vertices, no positions (topology tests).
+inline Polygons mixed_patch() {
+  Polygons m;
+  m.num_vertices = 7;
+  push_row(m.faces, {0, 1, 2, 3});
+  push_row(m.faces, {1, 4, 5, 6, 2});
+  push_row(m.faces, {3, 2, 6});
+  return m;
+}
+
+/// The octahedron's 8 outward triangles on 6 vertices, no positions.
+inline Polygons octahedron() {
+  Polygons m;
+  m.num_vertices = 6;
+  const std::uint32_t t[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (const auto& f : t) push_row(m.faces, {f[0], f[1], f[2]});
+  return m;
+}
+
 /// `m` as another tool may write it: vertices renumbered by a random permutation (perm[old] =
 /// new; positions follow when present), faces reordered and each face's corners rotated.
 inline Polygons shuffled(const Polygons& m, unsigned seed, std::vector<std::uint32_t>* perm_out = nullptr) {

@@ -62,14 +62,6 @@ std::vector<std::string> face_lines(const std::string& path) {
   return lines;
 }
 
-fixtures::Polygons octahedron() {
-  fixtures::Polygons m;
-  m.num_vertices = 6;
-  const std::uint32_t t[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-  for (const auto& f : t) fixtures::push_row(m.faces, {f[0], f[1], f[2]});
-  return m;
-}
-
 }  // namespace
 
 TEST(CliRebuild, RebuildThenSynthesizeGivesTheFileBack) {
@@ -108,7 +100,7 @@ TEST(CliRebuild, RebuildThenSynthesizeGivesTheFileBack) {
 TEST(CliRebuild, TrianglesPickLoop) {
   TempDir dir("sublift_cli_rebuild_tri");
   const std::string fine = dir.file("fine.obj"), project = dir.file("p.sublift");
-  std::ofstream(fine) << shuffled_obj(octahedron(), 2, Scheme::Loop, 3);
+  std::ofstream(fine) << shuffled_obj(fixtures::octahedron(), 2, Scheme::Loop, 3);
   const ProcessResult r = run_cli({"rebuild", fine, "-o", project, "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);

@@ -107,25 +107,6 @@ void check_own_refinement(const Polygons& base, int levels, SplitKind split, uns
   EXPECT_EQ(got, want);
 }
 
-// A polygon mesh with a quad, a pentagon and a triangle around one inner vertex (2), the rest
-// boundary: 7 vertices.
-Polygons mixed_patch() {
-  Polygons m;
-  m.num_vertices = 7;
-  fixtures::push_row(m.faces, {0, 1, 2, 3});
-  fixtures::push_row(m.faces, {1, 4, 5, 6, 2});
-  fixtures::push_row(m.faces, {3, 2, 6});
-  return m;
-}
-
-Polygons octahedron() {
-  Polygons m;
-  m.num_vertices = 6;
-  const std::uint32_t t[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-  for (const auto& f : t) fixtures::push_row(m.faces, {f[0], f[1], f[2]});
-  return m;
-}
-
 Polygons joined(const Polygons& a, const Polygons& b) {
   Polygons m = a;
   for (std::uint32_t x : b.faces.items) m.faces.items.push_back(x + a.num_vertices);
@@ -137,14 +118,14 @@ Polygons joined(const Polygons& a, const Polygons& b) {
 TEST(DetectLevels, OwnQuadSplitsInAnyOrder) {
   for (int levels : {1, 2, 3}) {
     check_own_refinement(fixtures::cube(), levels, SplitKind::Quads, 11u + static_cast<unsigned>(levels));
-    check_own_refinement(mixed_patch(), levels, SplitKind::Quads, 21u + static_cast<unsigned>(levels));
+    check_own_refinement(fixtures::mixed_patch(), levels, SplitKind::Quads, 21u + static_cast<unsigned>(levels));
   }
   // A 3 x 5 torus cannot be coarsened (odd sides): all levels found are the applied ones.
   check_own_refinement(fixtures::torus(3, 5), 2, SplitKind::Quads, 5, true);
 }
 
 TEST(DetectLevels, OwnTriangleSplitsInAnyOrder) {
-  for (int levels : {1, 2, 3}) check_own_refinement(octahedron(), levels, SplitKind::Triangles, 31u + static_cast<unsigned>(levels));
+  for (int levels : {1, 2, 3}) check_own_refinement(fixtures::octahedron(), levels, SplitKind::Triangles, 31u + static_cast<unsigned>(levels));
   // A triangle fan with a boundary.
   Polygons fan;
   fan.num_vertices = 6;
@@ -164,7 +145,7 @@ TEST(DetectLevels, OwnSqrt2StepsOfClosedMeshesInAnyOrder) {
   EXPECT_EQ(s.base_vertices, 4u);
   EXPECT_EQ(s.base_faces.rows(), 4u);
   // Boundaries refine every other step: not detected, and said so.
-  const Polygons open = refined(mixed_patch(), 1, SplitKind::Sqrt2);
+  const Polygons open = refined(fixtures::mixed_patch(), 1, SplitKind::Sqrt2);
   const DetectedLevels d = detect_levels(open.num_vertices, open.faces, SplitKind::Sqrt2, 24);
   EXPECT_EQ(d.levels, 0);
   EXPECT_FALSE(d.stop.empty());
@@ -180,7 +161,7 @@ TEST(DetectLevels, MaxFindsEveryLevelAndPrefersTheCube) {
 }
 
 TEST(DetectLevels, ComponentsGetTheLevelsAllOfThemHold) {
-  const Polygons a = refined(fixtures::cube(), 2, SplitKind::Quads), b = refined(mixed_patch(), 1, SplitKind::Quads);
+  const Polygons a = refined(fixtures::cube(), 2, SplitKind::Quads), b = refined(fixtures::mixed_patch(), 1, SplitKind::Quads);
   const Polygons m = shuffled(joined(a, b), 3);
   const DetectedLevels d = detect_levels(m.num_vertices, m.faces, SplitKind::Quads, 12);
   EXPECT_EQ(d.levels, 1);
@@ -188,7 +169,7 @@ TEST(DetectLevels, ComponentsGetTheLevelsAllOfThemHold) {
   std::multiset<int> each{d.components[0].levels, d.components[1].levels};
   EXPECT_EQ(each, (std::multiset<int>{1, 2}));
   // Each piece coarsened once: the cube refined once and the patch itself.
-  EXPECT_EQ(d.base_vertices, refined(fixtures::cube(), 1, SplitKind::Quads).num_vertices + mixed_patch().num_vertices);
+  EXPECT_EQ(d.base_vertices, refined(fixtures::cube(), 1, SplitKind::Quads).num_vertices + fixtures::mixed_patch().num_vertices);
   EXPECT_NE(d.stop.find("the piece with vertex"), std::string::npos) << d.stop;
 }
 
@@ -212,7 +193,7 @@ TEST(DetectLevels, TriangleAmongQuadsIsNamed) {
 }
 
 TEST(DetectLevels, FlippedDiagonalStopsTheTriangleSplit) {
-  const Polygons fine = refined(octahedron(), 2, SplitKind::Triangles);
+  const Polygons fine = refined(fixtures::octahedron(), 2, SplitKind::Triangles);
   // Flip the edge shared by faces 0 and its neighbour across corners 1-2.
   Polygons m = fine;
   const auto q = fine.faces.row(0);
@@ -245,7 +226,7 @@ TEST(DetectLevels, NoSubdivisionConnectivity) {
   EXPECT_EQ(d.base_vertices, 8u);
   EXPECT_NE(d.stop.find("the mesh: "), std::string::npos) << d.stop;
   EXPECT_NE(d.stop.find("vertex "), std::string::npos) << d.stop;
-  const Polygons o = octahedron();
+  const Polygons o = fixtures::octahedron();
   const DetectedLevels t = detect_levels(o.num_vertices, o.faces, SplitKind::Triangles, 12);
   EXPECT_EQ(t.levels, 0);
   EXPECT_FALSE(t.stop.empty());
@@ -302,9 +283,9 @@ TEST(DetectLevels, OpenSubdivRefinementsInOpenSubdivOrder) {
     const char* name;
   };
   std::vector<Case> cases{{fixtures::cube(), Sdc::SCHEME_CATMARK, "cube"},
-                          {mixed_patch(), Sdc::SCHEME_BILINEAR, "mixed patch"},
+                          {fixtures::mixed_patch(), Sdc::SCHEME_BILINEAR, "mixed patch"},
                           {fixtures::torus(3, 5), Sdc::SCHEME_CATMARK, "torus 3x5"},
-                          {octahedron(), Sdc::SCHEME_LOOP, "octahedron"}};
+                          {fixtures::octahedron(), Sdc::SCHEME_LOOP, "octahedron"}};
   const std::filesystem::path dir = std::filesystem::path(SUBLIFT_SHARED_DATA) / "control_meshes/opensubdiv_shapes";
   if (std::filesystem::exists(dir)) {
     // Non-quad faces and boundaries; several components; extraordinary vertices; triangles.

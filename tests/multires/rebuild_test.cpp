@@ -61,27 +61,10 @@ std::vector<double> finest_in_input_order(const Rebuilt& r) {
   return in_input_order(o, synthesize(r.hierarchy, o.level), 3);
 }
 
-Polygons mixed_patch() {
-  Polygons m;
-  m.num_vertices = 7;
-  fixtures::push_row(m.faces, {0, 1, 2, 3});
-  fixtures::push_row(m.faces, {1, 4, 5, 6, 2});
-  fixtures::push_row(m.faces, {3, 2, 6});
-  return m;
-}
-
-Polygons octahedron() {
-  Polygons m;
-  m.num_vertices = 6;
-  const std::uint32_t t[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-  for (const auto& f : t) fixtures::push_row(m.faces, {f[0], f[1], f[2]});
-  return m;
-}
-
 TEST(Rebuild, BilinearDataHasZeroLinearWaveletsAndItsBase) {
   // The regular torus: its connectivity has four equally good coarsenings; the positions pick
   // the one whose edge points are midpoints.
-  for (const Polygons& base : {fixtures::cube(), mixed_patch(), fixtures::torus(3, 5)}) {
+  for (const Polygons& base : {fixtures::cube(), fixtures::mixed_patch(), fixtures::torus(3, 5)}) {
     const Input in = make_input(base, 3, Scheme::Linear, 0.0, 5);
     const Rebuilt r = rebuild_hierarchy(in.mesh.num_vertices, in.mesh.faces, in.xyz, Scheme::Linear, -1);
     ASSERT_EQ(r.hierarchy.finest_level(), 3) << r.detected.stop;
@@ -110,10 +93,10 @@ TEST(Rebuild, AnalysisReproducesTheInputForEveryScheme) {
   const Case cases[] = {{fixtures::cube(), Scheme::Cubic, 1e-12},
                         {fixtures::cube(), Scheme::Sqrt2, 1e-12},
                         {fixtures::torus(3, 5), Scheme::Sqrt2, 1e-12},
-                        {mixed_patch(), Scheme::Cubic, 1e-12},
-                        {octahedron(), Scheme::LinearTri, 1e-12},
-                        {octahedron(), Scheme::Butterfly, 1e-12},
-                        {octahedron(), Scheme::Loop, 1e-12}};
+                        {fixtures::mixed_patch(), Scheme::Cubic, 1e-12},
+                        {fixtures::octahedron(), Scheme::LinearTri, 1e-12},
+                        {fixtures::octahedron(), Scheme::Butterfly, 1e-12},
+                        {fixtures::octahedron(), Scheme::Loop, 1e-12}};
   for (const Case& c : cases) {
     SCOPED_TRACE(scheme_name(c.scheme));
     const Input in = make_input(c.base, 3, c.scheme, 0.05, 9);
@@ -133,7 +116,7 @@ TEST(Rebuild, IntegerModeIsBitExact) {
 }
 
 TEST(Rebuild, CoarseEditCarriesTheDetailAsInEngineOrder) {
-  const Input in = make_input(mixed_patch(), 3, Scheme::Cubic, 0.05, 17);
+  const Input in = make_input(fixtures::mixed_patch(), 3, Scheme::Cubic, 0.05, 17);
   Rebuilt r = rebuild_hierarchy(in.mesh.num_vertices, in.mesh.faces, in.xyz, Scheme::Cubic, 3);
   Hierarchy original = in.original;
   // The same coarse edit: move base vertex b (the original's numbering) by d in both.
@@ -168,11 +151,11 @@ TEST(Rebuild, AskingForMoreLevelsThanTheMeshHoldsSaysWhere) {
   // of the cube, and one more of the tetrahedron the cube is a sqrt(2) step of.
   EXPECT_EQ(rebuild_hierarchy(in.mesh.num_vertices, in.mesh.faces, in.xyz, Scheme::Sqrt2, -1).hierarchy.finest_level(), 5);
   EXPECT_EQ(rebuild_auto_scheme(in.mesh.faces), Scheme::Cubic);
-  EXPECT_EQ(rebuild_auto_scheme(octahedron().faces), Scheme::Loop);
+  EXPECT_EQ(rebuild_auto_scheme(fixtures::octahedron().faces), Scheme::Loop);
 }
 
 TEST(Rebuild, ProjectKeepsTheInputOrder) {
-  const Input in = make_input(mixed_patch(), 2, Scheme::Cubic, 0.05, 23);
+  const Input in = make_input(fixtures::mixed_patch(), 2, Scheme::Cubic, 0.05, 23);
   Rebuilt r = rebuild_hierarchy(in.mesh.num_vertices, in.mesh.faces, in.xyz, Scheme::Cubic, -1);
   ProjectExtras extras;
   extras.input_order.level = r.hierarchy.finest_level();

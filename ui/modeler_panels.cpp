@@ -602,6 +602,22 @@ PromptChoice draw_confirm_prompt(bool open, const std::string& text) {
   return prompt(open, "Confirm", text, false, true);
 }
 
+bool draw_progress_prompt(bool open, const std::string& title, const std::string& stage, float fraction) {
+  const std::string id = title + "##progress";
+  if (open && !ImGui::IsPopupOpen(id.c_str())) ImGui::OpenPopup(id.c_str());
+  bool cancel = false;
+  const ImVec2 center(ImGui::GetIO().DisplaySize.x * 0.5f, ImGui::GetIO().DisplaySize.y * 0.5f);
+  ImGui::SetNextWindowPos(center, ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  if (ImGui::BeginPopupModal(id.c_str(), nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::TextUnformatted(stage.c_str());
+    ImGui::ProgressBar(std::clamp(fraction, 0.0f, 1.0f), ImVec2(280.0f, 0.0f));
+    if (ImGui::Button("Cancel", ImVec2(100, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) cancel = true;
+    if (!open) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+  return cancel;
+}
+
 PromptChoice draw_recovery_prompt(bool open, const std::string& path) {
   return prompt(open, "Recover", "Sublift did not close cleanly last time.\nRecover the autosaved model?\n" + path,
                 true);

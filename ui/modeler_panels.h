@@ -162,6 +162,10 @@ PromptChoice draw_recovery_prompt(bool open, const std::string& path);
 /// A yes/no confirmation (Continue / Cancel) while `open` is true; Continue answers Discard.
 PromptChoice draw_confirm_prompt(bool open, const std::string& text);
 
+/// A modal progress window for long work while `open` is true: `stage` and a bar at `fraction`
+/// (0..1). True when Cancel (or Esc) was pressed.
+bool draw_progress_prompt(bool open, const std::string& title, const std::string& stage, float fraction);
+
 /// The status line for the modeler.
 void draw_modeler_status(const std::string& left, const std::string& right, float display_width,
                          float display_height, float height);

@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -27,7 +28,35 @@ std::string trimmed(std::string s) {
 
 }  // namespace
 
-ModelerController::ModelerController(bool interactive) : interactive_(interactive) {}
+ModelerController::ModelerController(bool interactive) : interactive_(interactive), background_jobs_(interactive) {}
+
+ModelerController::~ModelerController() {
+  cancel_job();
+  if (job_ && job_->result.valid()) job_->result.wait();
+}
+
+void ModelerController::cancel_job() {
+  if (job_) job_->cancel = true;
+}
+
+bool ModelerController::poll_job(bool wait) {
+  if (!job_) return false;
+  if (!wait && job_->result.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
+  std::unique_ptr<Job> job = std::move(job_);
+  try {
+    model.install_rebuild(job->result.get());
+    const int n = model.session().finest_level();
+    message = "Rebuilt " + std::to_string(n) + " level" + (n == 1 ? "" : "s") + " with the " +
+              scheme_name(model.session().hierarchy().scheme) + " scheme: the detail is kept as wavelets (history cleared)";
+    error.clear();
+    pick_dirty_ = stats_dirty_ = true;
+  } catch (const Cancelled&) {
+    message = "Rebuild cancelled; nothing changed";
+  } catch (const std::exception& e) {
+    fail(e, "Rebuild: ");
+  }
+  return true;
+}
 
 std::string ModelerController::recovery_path() {
   namespace fs = std::filesystem;
@@ -292,7 +321,7 @@ void ModelerController::handle(const WindowEvent& ev) {
     mouse_y_ = ev.y;
   }
   mods_ = ev.mods;
-  if (!model.has_session() || unsaved_prompt_ || recovery_prompt_ || scheme_prompt_) return;
+  if (!model.has_session() || unsaved_prompt_ || recovery_prompt_ || scheme_prompt_ || job_) return;
   const double s = scale_;
   const double vx = (ev.x - view_x_) * s, vy = (ev.y - view_y_) * s;  // viewport pixels
   switch (ev.type) {
@@ -437,11 +466,19 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
     }
     if (r.level) model.set_level(*r.level);
     if (r.subdivide) model.subdivide();
-    if (r.rebuild) {
-      const int n = model.rebuild_offer().levels;
-      model.rebuild_levels();
-      message = "Rebuilt " + std::to_string(n) + " level" + (n == 1 ? "" : "s") + " with the " +
-                scheme_name(model.session().hierarchy().scheme) + " scheme: the detail is kept as wavelets (history cleared)";
+    if (r.rebuild && !job_) {
+      model.check_rebuild();
+      job_ = std::make_unique<Job>();
+      Job* job = job_.get();
+      auto work = [job, file = model.file_path(), offer = model.rebuild_offer()] {
+        return ModelerState::prepare_rebuild(file, offer, -1, [job](const char* stage, double fraction) {
+          job->stage = stage;
+          job->permille = static_cast<int>(1000 * fraction);
+          return !job->cancel.load();
+        });
+      };
+      job_->result = std::async(background_jobs_ ? std::launch::async : std::launch::deferred, work);
+      if (!background_jobs_) poll_job(true);
     }
     if (r.rebuild_show_stop && model.show_rebuild_stop()) message = "Selected the vertex near where the mesh stops being a split";
     if (r.undo) model.undo();
@@ -738,6 +775,13 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
       }
     }
     scheme_prompt_.reset();
+  }
+  if (job_) {
+    if (draw_progress_prompt(true, "Rebuilding levels", job_->stage.load(), static_cast<float>(job_->permille.load()) / 1000.0f))
+      cancel_job();
+    poll_job();
+  } else {
+    draw_progress_prompt(false, "Rebuilding levels", "", 0.0f);
   }
   const PromptChoice recover = draw_recovery_prompt(recovery_prompt_, recovery_path());
   if (recover != PromptChoice::None) {

@@ -3,7 +3,10 @@
 // drags, grab, soft radius, camera), panel requests, unsaved-changes and recovery prompts,
 // autosave — and the one frame both the window and the headless path draw. GL-free except
 // draw_frame(), which draws through a ModelerView.
+#include <atomic>
 #include <cstdint>
+#include <future>
+#include <memory>
 #include <optional>
 #include <functional>
 #include <string>
@@ -38,7 +41,18 @@ class ModelerController {
  public:
   /// `interactive`: prompts, recovery and autosave are on (off for scripts and screenshots).
   explicit ModelerController(bool interactive);
+  ~ModelerController();  // cancels and waits for a running job
   void set_interactive(bool interactive) { interactive_ = interactive; }
+
+  /// Long work (rebuilding levels) runs on a worker thread with a progress window and Cancel
+  /// when on (the default for interactive controllers); off, it runs at once.
+  void set_background_jobs(bool on) { background_jobs_ = on; }
+  bool job_running() const { return job_ != nullptr; }
+  /// Asks the running job to stop; it ends at its next check and changes nothing.
+  void cancel_job();
+  /// Installs a finished job's result (or reports its failure); true when a job ended. Called
+  /// every frame; tests call it to wait.
+  bool poll_job(bool wait = false);
 
   ModelerState model;
   OrbitCamera camera;
@@ -137,6 +151,15 @@ class ModelerController {
   DepthSource depth_source_;
   Pending pending_;
   bool unsaved_prompt_ = false, recovery_prompt_ = false;
+  // A rebuild on a worker thread: its progress, its cancel flag and its result.
+  struct Job {
+    std::atomic<bool> cancel{false};
+    std::atomic<int> permille{0};
+    std::atomic<const char*> stage{"starting"};
+    std::future<ModelerState::PreparedRebuild> result;
+  };
+  std::unique_ptr<Job> job_;
+  bool background_jobs_;
   std::optional<int> scheme_prompt_;  // a scheme change waiting for confirmation
   bool quit_confirmed_ = false;
   double last_autosave_ = -1.0;

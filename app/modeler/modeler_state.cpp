@@ -95,20 +95,35 @@ bool ModelerState::show_rebuild_stop() {
   return true;
 }
 
-void ModelerState::rebuild_levels(int levels) {
+void ModelerState::check_rebuild() {
   if (!project_path_.empty() || file_path_.empty()) throw Error("rebuild takes a mesh file, not a project");
   ffd_check_free("rebuilding levels");
   check_unlocked("rebuilding levels");
-  Shape shape = read_shape(file_path_);
+}
+
+ModelerState::PreparedRebuild ModelerState::prepare_rebuild(const std::string& file, const RebuildOffer& offer, int levels,
+                                                            const RebuildProgress& progress) {
+  Shape shape = read_shape(file);
   if (shape.base.dim != 2) throw Error("rebuild takes surface meshes");
-  const Scheme scheme = rebuild_offer_.levels > 0 ? rebuild_offer_.scheme : rebuild_auto_scheme(shape.base.faces);
-  Rebuilt r = rebuild_hierarchy(shape.base.num_vertices, shape.base.faces, shape.positions, scheme, levels, false, 2,
-                                feature_tags_of(shape.base));
+  const Scheme scheme = offer.levels > 0 ? offer.scheme : rebuild_auto_scheme(shape.base.faces);
+  PreparedRebuild p{rebuild_hierarchy(shape.base.num_vertices, shape.base.faces, shape.positions, scheme, levels, false, 2,
+                                      feature_tags_of(shape.base), progress),
+                    std::move(shape.base.faces)};
+  return p;
+}
+
+void ModelerState::rebuild_levels(int levels) {
+  check_rebuild();
+  install_rebuild(prepare_rebuild(file_path_, rebuild_offer_, levels, {}));
+}
+
+void ModelerState::install_rebuild(PreparedRebuild p) {
+  Rebuilt& r = p.rebuilt;
   for (const std::string& why : r.features.dropped) warnings_.push_back("feature tag dropped: " + why);
   InputOrder order;
   order.level = r.hierarchy.finest_level();
   order.engine_vertex = std::move(r.engine_vertex);
-  order.faces = std::move(shape.base.faces);
+  order.faces = std::move(p.faces);
   install(std::make_unique<Session>(std::move(r.hierarchy)));
   rebuild_offer_ = {};
   input_order_ = std::move(order);

@@ -28,6 +28,7 @@
 #include "core/multires/limit.h"
 #include "core/edit/session.h"
 #include "core/io/project/project_io.h"
+#include "core/multires/rebuild.h"
 
 namespace sublift {
 
@@ -85,6 +86,17 @@ class ModelerState {
   /// Rebuilds the opened mesh's levels (`levels` -1: all it holds) from its file, analysing its
   /// positions: opens at level 0 with the detail as wavelets; history cleared. Throws Error.
   void rebuild_levels(int levels = -1);
+  /// The same in three parts, so that the work can run on another thread with progress and
+  /// cancel (the modeler's progress window): check_rebuild throws where rebuild_levels would
+  /// refuse; prepare_rebuild touches no state (throws Cancelled when `progress` answers false);
+  /// install_rebuild installs its result.
+  struct PreparedRebuild {
+    Rebuilt rebuilt;
+    Csr faces;  // the file's faces, in file order
+  };
+  void check_rebuild();
+  static PreparedRebuild prepare_rebuild(const std::string& file, const RebuildOffer& offer, int levels, const RebuildProgress& progress);
+  void install_rebuild(PreparedRebuild prepared);
   /// The file order of a rebuilt mesh (empty otherwise); saved with the project.
   const InputOrder& input_order() const { return input_order_; }
   void set_level(int level);

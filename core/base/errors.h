@@ -31,6 +31,13 @@ class IoError : public Error {
   using Error::Error;
 };
 
+/// Long work stopped because its caller asked (a progress callback answered false); nothing
+/// it would have changed has changed.
+class Cancelled : public Error {
+ public:
+  using Error::Error;
+};
+
 /// A mesh or complex violates a topological precondition of an algorithm.
 class TopologyError : public Error {
  public:

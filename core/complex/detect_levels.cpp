@@ -137,9 +137,11 @@ double midpoint_residual(const Mesh& m, const Coarsening& c, std::span<const dou
   return r;
 }
 
-Chain coarsen_component(Mesh m, SplitKind split, int limit, std::span<const double> positions) {
+Chain coarsen_component(Mesh m, SplitKind split, int limit, std::span<const double> positions,
+                        const std::function<bool(std::uint32_t)>& keep_going) {
   Chain ch;
   while (static_cast<int>(ch.steps.size()) < limit) {
+    if (keep_going && !keep_going(m.n)) throw Cancelled("rebuild cancelled");
     const std::string below = ch.steps.empty() ? std::string("the mesh")
                                                 : "the mesh " + std::to_string(ch.steps.size()) + " level" + (ch.steps.size() == 1 ? "" : "s") + " down";
     std::uint32_t where = UINT32_MAX;
@@ -197,7 +199,7 @@ Chain coarsen_component(Mesh m, SplitKind split, int limit, std::span<const doub
 }  // namespace
 
 DetectedLevels detect_levels(std::uint32_t num_vertices, const Csr& faces, SplitKind split, int max_levels,
-                             std::span<const double> positions) {
+                             std::span<const double> positions, const std::function<bool(double)>& keep_going) {
   if (!positions.empty() && positions.size() != 3 * std::size_t(num_vertices))
     throw Error("detect_levels: " + std::to_string(positions.size()) + " coordinates for " + std::to_string(num_vertices) + " vertices");
   for (std::size_t f = 0; f < faces.rows(); ++f) {
@@ -253,12 +255,20 @@ DetectedLevels detect_levels(std::uint32_t num_vertices, const Csr& faces, Split
     }
   }
   int levels = max_levels;
+  // Work is about 4/3 of the vertices per component (each level a quarter of the one above).
+  double done = 0;
+  const double total = std::max(1.0, 4.0 / 3.0 * num_vertices);
+  const std::function<bool(std::uint32_t)> step = [&](std::uint32_t n) {
+    const bool go = !keep_going || keep_going(std::min(1.0, done / total));
+    done += n;
+    return go;
+  };
   for (std::size_t k = 0; k < members.size(); ++k) {
     ComponentLevels cl;
     cl.vertices = finest[k].n;
     cl.faces = static_cast<std::uint32_t>(finest[k].faces.rows());
     cl.first_vertex = *std::min_element(members[k].begin(), members[k].end());
-    chains.push_back(coarsen_component(std::move(finest[k]), split, max_levels, positions));
+    chains.push_back(coarsen_component(std::move(finest[k]), split, max_levels, positions, step));
     cl.levels = static_cast<int>(chains.back().steps.size());
     cl.stop = chains.back().stop;
     if (cl.levels < levels) {

@@ -7,6 +7,7 @@
 // component at a time, then checks the labels locally; engine_order() then maps the input's
 // vertices onto Sublift's own refinement of the base found.
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -59,8 +60,11 @@ struct DetectedLevels {
 /// labellings that topology cannot tell apart (a regular torus): the one whose edge points lie
 /// nearest the midpoints of their edges wins, which is the exact one for bilinear data. Throws
 /// TopologyError for faces of fewer than 3 corners, indices out of range, or a vertex in no face.
+/// `keep_going` (may be empty) is asked before each coarsening with the fraction of the work
+/// done so far; false throws Cancelled.
 DetectedLevels detect_levels(std::uint32_t num_vertices, const Csr& faces, SplitKind split, int max_levels,
-                             std::span<const double> positions = {});
+                             std::span<const double> positions = {},
+                             const std::function<bool(double)>& keep_going = {});
 
 /// engine[i]: the vertex of Sublift's level-L complex (refine.h / refine_tri.h order, L =
 /// d.levels) that input vertex i is. `levels[0..L]` are the hierarchy's complexes built from

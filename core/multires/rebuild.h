@@ -4,6 +4,7 @@
 // user's positions are analysed, so every level is an exact coarse approximation and the
 // detail is wavelets. The input's vertex order is kept beside the hierarchy.
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -47,8 +48,14 @@ struct Rebuilt {
 /// Detects up to `levels` levels (-1: as many as the mesh holds, up to max_levels(scheme)),
 /// builds the hierarchy on the base found and analyses `positions` (3 per input vertex). With
 /// `levels` >= 0 and a mesh that holds fewer, throws Error naming where it stops.
+/// Told the stage and the fraction of all the work done (0..1); answering false cancels.
+using RebuildProgress = std::function<bool(const char* stage, double fraction)>;
+
 /// `fine_tags`: the input's creases and corners (input vertex numbers), carried to the base.
+/// `progress` (may be empty) is called between stages and levels; when it answers false the
+/// rebuild throws Cancelled.
 Rebuilt rebuild_hierarchy(std::uint32_t num_vertices, const Csr& faces, std::span<const double> positions, Scheme scheme,
-                          int levels, bool integer = false, int disc = 2, const FeatureTags& fine_tags = {});
+                          int levels, bool integer = false, int disc = 2, const FeatureTags& fine_tags = {},
+                          const RebuildProgress& progress = {});
 
 }  // namespace sublift

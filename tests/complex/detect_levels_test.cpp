@@ -293,6 +293,9 @@ TEST(DetectLevels, OpenSubdivRefinementsInOpenSubdivOrder) {
     cases.push_back({load_polygons(dir / "catmark_edgecorner.obj"), Sdc::SCHEME_CATMARK, "catmark_edgecorner"});
     cases.push_back({load_polygons(dir / "catmark_gregory_test1.obj"), Sdc::SCHEME_CATMARK, "catmark_gregory_test1"});
     cases.push_back({load_polygons(dir / "loop_cube.obj"), Sdc::SCHEME_LOOP, "loop_cube"});
+    // Creased shapes (the creases move positions, not connectivity).
+    cases.push_back({load_polygons(dir / "catmark_cube_creases1.obj"), Sdc::SCHEME_CATMARK, "catmark_cube_creases1"});
+    cases.push_back({load_polygons(dir / "loop_cube_creases0.obj"), Sdc::SCHEME_LOOP, "loop_cube_creases0"});
   } else {
     std::printf("no third-party data at %s (SUBLIFT_SHARED_DATA): built-in meshes only\n", dir.string().c_str());
   }

@@ -887,6 +887,28 @@ TEST(ModelerRebuildTest, OpeningASubdividedMeshOffersToRebuildItsLevels) {
   ScriptRunner bad("bad", "open " + project + "\nrebuild\n");
   const ScriptStep step = bad.next(p);
   EXPECT_EQ(step.kind, ScriptStep::Kind::Error);
+
+  // In the window the rebuild runs on a worker thread with progress; its result is installed
+  // when it ends. A cancelled rebuild changes nothing.
+  ModelerController bg{false};
+  bg.set_background_jobs(true);
+  bg.model.open(fine);
+  ModelerPanelRequests go;
+  go.rebuild = true;
+  bg.apply_panel_requests(go);
+  EXPECT_TRUE(bg.job_running());
+  EXPECT_TRUE(bg.poll_job(true));
+  EXPECT_FALSE(bg.job_running());
+  EXPECT_EQ(bg.model.session().finest_level(), 2);
+  EXPECT_NE(bg.message.find("Rebuilt 2 levels"), std::string::npos) << bg.message << bg.error;
+  std::vector<std::string> stages;
+  EXPECT_THROW(ModelerState::prepare_rebuild(fine, {}, -1,
+                                             [&](const char* stage, double) {
+                                               stages.push_back(stage);
+                                               return stages.size() < 2;
+                                             }),
+               Cancelled);
+  EXPECT_EQ(stages.size(), 2u);
   std::filesystem::remove_all(dir);
 }
 

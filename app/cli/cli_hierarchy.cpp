@@ -81,9 +81,9 @@ bool is_project_path(const std::string& path) {
 std::vector<std::string> write_level(const std::string& out, const Hierarchy& h, int L, std::span<const double> x,
                                      int channels, const InputOrder& order) {
   if (order.level != L) return write_shape(out, h.levels[static_cast<std::size_t>(L)], xyz_of(x, channels));
-  const Complex c = complex_from_polygons(static_cast<std::uint32_t>(order.engine_vertex.size()), order.faces);
-  return write_shape(out, c, xyz_of(in_input_order(order, x, channels), channels));
+  return write_shape(out, in_input_order(order, h.levels[static_cast<std::size_t>(L)]), xyz_of(in_input_order(order, x, channels), channels));
 }
+
 
 nlohmann::json complex_counts_json(const Complex& c) {
   return {{"dim", c.dim},

@@ -48,9 +48,8 @@ int run_rebuild(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   Shape fine = read_shape(fine_path);
   std::cerr << fine.report.format(fine_path);
-  if (fine.base.dim != 2)
-    throw UsageError("rebuild takes surface meshes; " + fine_path + " is a " + (fine.base.dim == 1 ? "curve" : "volume lattice") +
-                     " (volume lattices are not detected yet: docs/rebuild.md)");
+  if (fine.base.dim == 1) throw UsageError("rebuild takes surface meshes and volume lattices; " + fine_path + " is a curve");
+  const bool lattice = fine.base.dim == 3;
   const bool automatic = !a.value("--scheme") || *a.value("--scheme") == "auto";
   const Scheme scheme = automatic ? rebuild_auto_scheme(fine.base.faces) : scheme_option(a);
   int levels = -1;
@@ -59,18 +58,22 @@ int run_rebuild(int argc, char** argv) {
   const bool integer = a.has("--integer");
   const double read_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
-  Rebuilt r = rebuild_hierarchy(fine.base.num_vertices, fine.base.faces, fine.positions, scheme, levels, integer, disc,
-                                feature_tags_of(fine.base));
+  Rebuilt r = lattice ? rebuild_volume_hierarchy(fine.base, fine.positions, scheme, levels, integer)
+                      : rebuild_hierarchy(fine.base.num_vertices, fine.base.faces, fine.positions, scheme, levels, integer, disc,
+                                          feature_tags_of(fine.base));
   for (const std::string& why : r.features.dropped) std::cerr << fine_path << ": warning: feature tag dropped: " << why << "\n";
   const DetectedLevels& d = r.detected;
   ProjectExtras extras;
   extras.input_order.level = d.levels;
   extras.input_order.engine_vertex = std::move(r.engine_vertex);
-  extras.input_order.faces = fine.base.faces;
+  if (!lattice) extras.input_order.faces = fine.base.faces;
   write_project(out, r.hierarchy, extras);
   const Hierarchy& h = r.hierarchy;
 
-  const char* split = d.split == SplitKind::Quads ? "quad split" : d.split == SplitKind::Triangles ? "triangle split" : "sqrt(2) step";
+  const char* split = d.split == SplitKind::Quads       ? "quad split"
+                      : d.split == SplitKind::Triangles ? "triangle split"
+                      : d.split == SplitKind::Sqrt2     ? "sqrt(2) step"
+                                                        : "1-to-8 lattice split";
   if (a.has("--json")) {
     nlohmann::json per_level = nlohmann::json::array(), components = nlohmann::json::array();
     const std::vector<LevelStats> stats = level_stats(h);
@@ -105,7 +108,7 @@ int run_rebuild(int argc, char** argv) {
     std::cout << j.dump(2) << "\n";
   } else {
     std::cout << fine_path << ": " << d.levels << " level" << (d.levels == 1 ? "" : "s") << " of a " << split << " rebuilt, "
-              << scheme_name(scheme) << " scheme" << (automatic ? " (picked for its " + std::string(d.split == SplitKind::Quads ? "quads" : "triangles") + ")" : "")
+              << scheme_name(scheme) << " scheme" << (automatic ? " (picked for its " + std::string(d.split == SplitKind::Triangles ? "triangles" : d.split == SplitKind::Hexes ? "hexahedra" : "quads") + ")" : "")
               << "; base " << h.num_vertices(0) << " vertices, " << h.levels[0].num_faces() << " faces\n";
     if (!d.stop.empty()) std::cout << "no more levels: " << d.stop << "\n";
     if (d.components.size() > 1)

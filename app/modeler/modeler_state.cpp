@@ -62,10 +62,12 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
       }
     }
     // Subdivided elsewhere? Then offer to rebuild its levels (docs/rebuild.md).
-    if (shape.base.dim == 2) {
-      offer.scheme = rebuild_auto_scheme(shape.base.faces);
-      const DetectedLevels d = detect_levels(shape.base.num_vertices, shape.base.faces, rebuild_split(offer.scheme),
-                                             max_levels(offer.scheme), shape.positions);
+    if (shape.base.dim >= 2) {
+      offer.scheme = shape.base.dim == 3 ? Scheme::Cubic : rebuild_auto_scheme(shape.base.faces);
+      const DetectedLevels d =
+          shape.base.dim == 3 ? detect_volume_levels(shape.base, max_levels(offer.scheme), shape.positions)
+                              : detect_levels(shape.base.num_vertices, shape.base.faces, rebuild_split(offer.scheme),
+                                              max_levels(offer.scheme), shape.positions);
       offer.checked = true;
       offer.levels = d.levels;
       offer.stop = d.stop;
@@ -104,12 +106,13 @@ void ModelerState::check_rebuild() {
 ModelerState::PreparedRebuild ModelerState::prepare_rebuild(const std::string& file, const RebuildOffer& offer, int levels,
                                                             const RebuildProgress& progress) {
   Shape shape = read_shape(file);
-  if (shape.base.dim != 2) throw Error("rebuild takes surface meshes");
+  if (shape.base.dim == 1) throw Error("rebuild takes surface meshes and volume lattices, not curves");
+  if (shape.base.dim == 3)  // lattices keep their vertex order only (no face rows)
+    return {rebuild_volume_hierarchy(shape.base, shape.positions, offer.levels > 0 ? offer.scheme : Scheme::Cubic, levels, false, progress), Csr{}};
   const Scheme scheme = offer.levels > 0 ? offer.scheme : rebuild_auto_scheme(shape.base.faces);
-  PreparedRebuild p{rebuild_hierarchy(shape.base.num_vertices, shape.base.faces, shape.positions, scheme, levels, false, 2,
-                                      feature_tags_of(shape.base), progress),
-                    std::move(shape.base.faces)};
-  return p;
+  return {rebuild_hierarchy(shape.base.num_vertices, shape.base.faces, shape.positions, scheme, levels, false, 2,
+                            feature_tags_of(shape.base), progress),
+          std::move(shape.base.faces)};
 }
 
 void ModelerState::rebuild_levels(int levels) {
@@ -492,7 +495,7 @@ std::vector<std::string> ModelerState::export_shape(const std::string& path, boo
     }
     // The control net of the current level, with area-weighted face normals; a rebuilt mesh's
     // level in the order of its file.
-    const bool file_order = level == input_order_.level;
+    const bool file_order = level == input_order_.level && input_order_.faces.rows() > 0;
     const std::vector<double> xyz = file_order ? in_input_order(input_order_, session_->positions(level), 3)
                                                : std::vector<double>(session_->positions(level).begin(), session_->positions(level).end());
     const Csr faces = file_order ? input_order_.faces : boundary_faces(c, xyz);
@@ -504,10 +507,8 @@ std::vector<std::string> ModelerState::export_shape(const std::string& path, boo
     throw Error(path + ": " + problem);
   }
   if (finest) return write_shape(path, c, limit_);
-  if (level == input_order_.level) {  // a rebuilt mesh's level: in the order of its file
-    const Complex file = complex_from_polygons(static_cast<std::uint32_t>(input_order_.engine_vertex.size()), input_order_.faces);
-    return write_shape(path, file, in_input_order(input_order_, session_->positions(level), 3));
-  }
+  if (level == input_order_.level)  // a rebuilt mesh's level: in the order of its file
+    return write_shape(path, in_input_order(input_order_, c), in_input_order(input_order_, session_->positions(level), 3));
   return write_shape(path, c, session_->positions(level));
 }
 

@@ -41,6 +41,10 @@ Attempt coarsen_tris(const Mesh& m, const Star& s, int candidate);
 /// sqrt(2): candidates 0 and 1 only (the seed vertex is an old vertex or a face point).
 Attempt coarsen_sqrt2(const Mesh& m, const Star& s, int candidate);
 
+/// One coarsening of a hexahedral lattice (`fine` with adjacency): candidate 0..7 picks which
+/// corner of cell 0 is the old vertex.
+Attempt coarsen_hexes(const Complex& fine, const std::vector<std::uint32_t>& input, int candidate);
+
 /// The corners `offset` after v of the faces around v, walked as one closed fan: the face after
 /// one is the face whose corner after v is this face's corner before v (corner k+3 of a quad).
 /// For a face point of a quad split (offset 2) or a sqrt(2) step (offset 1) these are its face's

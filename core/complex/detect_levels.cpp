@@ -12,6 +12,7 @@
 #include "core/base/errors.h"
 #include "core/base/parallel.h"
 #include "core/complex/coarsen.h"
+#include "core/complex/complex_build.h"
 
 namespace sublift {
 
@@ -122,7 +123,7 @@ double midpoint_residual(const Mesh& m, const Coarsening& c, std::span<const dou
   double r = 0;
   auto pos = [&](std::uint32_t coarse_vertex) { return &p[3 * std::size_t(c.input_vertex[coarse_vertex])]; };
   for (std::uint32_t v = 0; v < m.n; ++v) {
-    if (c.kind[v] == Coarsening::Old) continue;
+    if (c.kind[v] == Coarsening::Old || c.kind[v] == Coarsening::CellPoint) continue;
     double want[3] = {0, 0, 0};
     if (c.kind[v] == Coarsening::EdgePoint) {
       for (int k = 0; k < 3; ++k) want[k] = 0.5 * (pos(c.a[v])[k] + pos(c.b[v])[k]);
@@ -331,7 +332,106 @@ DetectedLevels detect_levels(std::uint32_t num_vertices, const Csr& faces, Split
   return d;
 }
 
+DetectedLevels detect_volume_levels(const Complex& fine, int max_levels, std::span<const double> positions,
+                                    const std::function<bool(double)>& keep_going) {
+  if (fine.dim != 3) throw TopologyError("detect_volume_levels takes a volume lattice");
+  DetectedLevels d;
+  d.split = SplitKind::Hexes;
+  ComponentLevels piece;
+  piece.vertices = fine.num_vertices;
+  piece.faces = fine.num_faces();
+  std::vector<Coarsening> chain;  // from the finest down
+  Complex m = fine;
+  std::vector<std::uint32_t> input(fine.num_vertices);
+  for (std::uint32_t v = 0; v < fine.num_vertices; ++v) input[v] = v;
+  double done = 0;
+  const double total = std::max(1.0, 8.0 / 7.0 * fine.num_vertices);
+  while (static_cast<int>(chain.size()) < max_levels) {
+    if (keep_going && !keep_going(std::min(1.0, done / total))) throw Cancelled("rebuild cancelled");
+    done += m.num_vertices;
+    const std::string below = chain.empty() ? std::string("the lattice")
+                                            : "the lattice " + std::to_string(chain.size()) + " level" + (chain.size() == 1 ? "" : "s") + " down";
+    std::uint32_t odd = UINT32_MAX;
+    for (std::uint32_t k = 0; k < m.num_cells() && odd == UINT32_MAX; ++k)
+      if (m.cell_verts.size(k) != 8 || m.cell_faces.size(k) != 6) odd = k;
+    if (odd != UINT32_MAX) {
+      d.stop = below + ": cell " + std::to_string(odd) + " is not a hexahedron, as a 1-to-8 split of simple cells makes them";
+      d.stop_vertex = input[m.cell_verts.row(odd)[0]];
+      break;
+    }
+    Attempt tries[8];
+    double residual[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    Mesh named;  // what midpoint_residual reads: the count and the input ids
+    named.n = m.num_vertices;
+    named.input = input;
+    parallel_for(8, 1, [&](std::uint32_t b, std::uint32_t e) {
+      for (std::uint32_t cand = b; cand < e; ++cand) {
+        try {
+          tries[cand] = detect::coarsen_hexes(m, input, int(cand));
+          if (tries[cand].ok && !positions.empty()) residual[cand] = midpoint_residual(named, tries[cand].c, positions);
+        } catch (const std::exception& ex) {
+          tries[cand] = Attempt{};
+          tries[cand].why = ex.what();
+        }
+      }
+    });
+    Attempt best, failed;
+    double best_residual = 0;
+    for (int cand = 0; cand < 8; ++cand) {
+      Attempt& a = tries[cand];
+      if (a.ok) {
+        if (!best.ok || a.score > best.score || (a.score == best.score && residual[cand] < best_residual)) {
+          best_residual = residual[cand];
+          best = std::move(a);
+        }
+      } else if (!a.why.empty() && (failed.why.empty() || a.progress > failed.progress)) {
+        failed = std::move(a);
+      }
+    }
+    if (!best.ok) {
+      d.stop = below + ": " + failed.why;
+      d.stop_vertex = failed.where;
+      break;
+    }
+    Complex next;
+    try {
+      next = complex_from_cells(best.c.coarse_vertices, best.c.coarse_faces, best.c.coarse_cells);
+    } catch (const TopologyError& e) {
+      d.stop = below + ": the coarser lattice would not be valid (" + e.what() + ")";
+      break;
+    }
+    input = best.c.input_vertex;
+    chain.push_back(std::move(best.c));
+    m = std::move(next);
+  }
+  if (static_cast<int>(chain.size()) == max_levels) d.stop.clear(), d.stop_vertex = UINT32_MAX;
+  d.levels = static_cast<int>(chain.size());
+  piece.levels = d.levels;
+  piece.stop = d.stop;
+  d.components.push_back(piece);
+  d.steps.assign(std::make_move_iterator(chain.rbegin()), std::make_move_iterator(chain.rend()));
+  if (d.levels > 0) {
+    d.base_vertices = d.steps.front().coarse_vertices;
+    d.base_faces = d.steps.front().coarse_faces;
+    d.base_cells = d.steps.front().coarse_cells;
+  } else {
+    d.base_vertices = fine.num_vertices;
+    d.base_faces = fine.faces;
+    d.base_cells = fine.cell_faces;
+  }
+  return d;
+}
+
 namespace {
+
+// The cell of c with exactly the vertices `verts` (sorted).
+std::uint32_t cell_with(const Complex& c, const std::vector<std::uint32_t>& verts) {
+  for (std::uint32_t k : c.vertex_cells.row(verts[0])) {
+    const auto row = c.cell_verts.row(k);
+    if (row.size() == verts.size() && std::is_permutation(row.begin(), row.end(), verts.begin())) return k;
+  }
+  throw TopologyError("rebuilt levels: a cell is missing from the engine's level");
+}
 
 std::uint32_t edge_between(const Complex& c, std::uint32_t a, std::uint32_t b) {
   for (std::uint32_t e : c.vertex_edges.row(a))
@@ -357,19 +457,39 @@ std::vector<std::uint32_t> engine_order(const DetectedLevels& d, std::span<const
   const auto L = static_cast<std::size_t>(d.levels);
   if (levels.size() != L + 1) throw Error("engine_order: need levels 0.." + std::to_string(L));
   // sigma: vertices of M_l -> vertices of the engine's level l; tau: faces likewise.
-  std::vector<std::uint32_t> sigma(d.base_vertices), tau(d.base_faces.rows()), next_sigma, corners;
+  std::vector<std::uint32_t> sigma(d.base_vertices), tau(d.base_faces.rows()), kappa, next_sigma, corners;
   for (std::uint32_t i = 0; i < sigma.size(); ++i) sigma[i] = i;
   for (std::uint32_t i = 0; i < tau.size(); ++i) tau[i] = i;
+  // Lattices: faces of levels[0] are complex_from_cells' merged faces, found by their corners.
+  if (d.split == SplitKind::Hexes)
+    for (std::size_t f = 0; f < d.base_faces.rows(); ++f) {
+      corners.assign(d.base_faces.row(f).begin(), d.base_faces.row(f).end());
+      tau[f] = face_with(levels[0], corners);
+    }
+  auto cells_of = [&](const Csr& cells, const Csr& face_loops, const Complex& c) {
+    std::vector<std::uint32_t> out(cells.rows()), verts;
+    for (std::size_t k = 0; k < cells.rows(); ++k) {
+      verts.clear();
+      for (std::uint32_t f : cells.row(k))
+        for (std::uint32_t v : face_loops.row(f)) verts.push_back(sigma[v]);
+      std::sort(verts.begin(), verts.end());
+      verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+      out[k] = cell_with(c, verts);
+    }
+    return out;
+  };
+  if (d.split == SplitKind::Hexes) kappa = cells_of(d.base_cells, d.base_faces, levels[0]);
   for (std::size_t l = 1; l <= L; ++l) {
     const Coarsening& st = d.steps[l - 1];
     const Complex& coarse = levels[l - 1];
-    const std::uint32_t nv = coarse.num_vertices, ne = coarse.num_edges();
+    const std::uint32_t nv = coarse.num_vertices, ne = coarse.num_edges(), nf = coarse.num_faces();
     next_sigma.resize(st.kind.size());
     for (std::size_t v = 0; v < st.kind.size(); ++v) {
       switch (st.kind[v]) {
         case Coarsening::Old: next_sigma[v] = sigma[st.a[v]]; break;
         case Coarsening::EdgePoint: next_sigma[v] = nv + edge_between(coarse, sigma[st.a[v]], sigma[st.b[v]]); break;
-        default: next_sigma[v] = nv + (d.split == SplitKind::Sqrt2 ? 0 : ne) + tau[st.a[v]]; break;  // sqrt(2): [v | f]
+        case Coarsening::FacePoint: next_sigma[v] = nv + (d.split == SplitKind::Sqrt2 ? 0 : ne) + tau[st.a[v]]; break;  // sqrt(2): [v | f]
+        default: next_sigma[v] = nv + ne + nf + kappa[st.a[v]]; break;
       }
     }
     sigma.swap(next_sigma);
@@ -381,6 +501,7 @@ std::vector<std::uint32_t> engine_order(const DetectedLevels& d, std::span<const
         for (std::uint32_t v : mf.row(f)) corners.push_back(sigma[v]);
         tau[f] = face_with(levels[l], corners);
       }
+      if (d.split == SplitKind::Hexes) kappa = cells_of(d.steps[l].coarse_cells, mf, levels[l]);
     }
   }
   // A bijection onto the engine's finest vertices.

@@ -21,17 +21,20 @@ enum class SplitKind : std::uint8_t {
   Quads,      // 1-to-4 quad split (refine.h): old vertices, edge points, face points
   Triangles,  // 1-to-4 triangle split (refine_tri.h): old vertices, edge points
   Sqrt2,      // one sqrt(2) step of a closed mesh (refine_sqrt2.h): old vertices, face points
+  Hexes,      // the 1-to-8 split of a volume lattice of simple cells (refine.h on lattices):
+              // old vertices, edge, face and cell points
 };
 
 /// One coarsening M_l -> M_{l-1} of the whole mesh: what each vertex of M_l is in M_{l-1}.
 struct Coarsening {
-  enum Kind : std::uint8_t { Old, EdgePoint, FacePoint };
+  enum Kind : std::uint8_t { Old, EdgePoint, FacePoint, CellPoint };
   std::vector<std::uint8_t> kind;  // per vertex of M_l
   // Old: a = its vertex of M_{l-1}; EdgePoint: a, b = the ends of its edge; FacePoint: a = its
-  // face of M_{l-1}.
+  // face of M_{l-1}; CellPoint: a = its cell of M_{l-1}.
   std::vector<std::uint32_t> a, b;
   std::uint32_t coarse_vertices = 0;  // M_{l-1}
-  Csr coarse_faces;                   // M_{l-1}, oriented as the input
+  Csr coarse_faces;                   // M_{l-1}, oriented as the input (lattices: face loops)
+  Csr coarse_cells;                   // lattices: each cell of M_{l-1} as indices of coarse_faces
   std::vector<std::uint32_t> input_vertex;  // an input vertex id for each vertex of M_{l-1}
 };
 
@@ -48,6 +51,7 @@ struct DetectedLevels {
   int levels = 0;
   std::uint32_t base_vertices = 0;
   Csr base_faces;                  // the level-0 mesh (= steps.front().coarse_faces)
+  Csr base_cells;                  // lattices: the base's cells as indices of base_faces
   std::vector<Coarsening> steps;   // steps[l]: M_{l+1} -> M_l, l = 0..levels-1
   std::vector<ComponentLevels> components;
   std::string stop;                // why the whole mesh has no more levels (the first
@@ -65,6 +69,13 @@ struct DetectedLevels {
 DetectedLevels detect_levels(std::uint32_t num_vertices, const Csr& faces, SplitKind split, int max_levels,
                              std::span<const double> positions = {},
                              const std::function<bool(double)>& keep_going = {});
+
+/// The same for a volume lattice (`fine` with adjacency): the 1-to-8 split, whose children of a
+/// cell are hexahedra where every cell vertex has three cell edges (tetrahedra, prisms, hexahedra
+/// and other simple polyhedra; docs/rebuild.md says why others are left out). The lattice is
+/// one piece. The base is complex_from_cells(base_vertices, base_faces, base_cells).
+DetectedLevels detect_volume_levels(const Complex& fine, int max_levels, std::span<const double> positions = {},
+                                    const std::function<bool(double)>& keep_going = {});
 
 /// engine[i]: the vertex of Sublift's level-L complex (refine.h / refine_tri.h order, L =
 /// d.levels) that input vertex i is. `levels[0..L]` are the hierarchy's complexes built from

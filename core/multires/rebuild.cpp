@@ -128,4 +128,40 @@ Rebuilt rebuild_hierarchy(std::uint32_t num_vertices, const Csr& faces, std::spa
   return r;
 }
 
+Rebuilt rebuild_volume_hierarchy(const Complex& fine, std::span<const double> positions, Scheme scheme, int levels,
+                                 bool integer, const RebuildProgress& progress) {
+  if (scheme_info(scheme).surfaces_only) throw Error("the " + scheme_name(scheme) + " scheme refines surfaces only; lattices take linear or cubic");
+  if (positions.size() != 3 * static_cast<std::size_t>(fine.num_vertices))
+    throw Error("rebuild: " + std::to_string(positions.size()) + " coordinates for " + std::to_string(fine.num_vertices) + " vertices");
+  auto at = [&](const char* stage, double fraction) {
+    if (progress && !progress(stage, fraction)) throw Cancelled("rebuild cancelled");
+  };
+  using Clock = std::chrono::steady_clock;
+  auto ms_since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
+  Rebuilt r;
+  at("finding levels", 0.0);
+  auto t = Clock::now();
+  r.detected = detect_volume_levels(fine, levels < 0 ? max_levels(scheme) : levels, positions,
+                                    [&](double f) { return !progress || progress("finding levels", 0.75 * f); });
+  const DetectedLevels& d = r.detected;
+  if (levels >= 0 && d.levels < levels)
+    throw Error("the lattice holds " + std::to_string(d.levels) + " level" + (d.levels == 1 ? "" : "s") + " of a 1-to-8 split, not " +
+                std::to_string(levels) + ": " + d.stop);
+  r.detect_ms = ms_since(t);
+  at("building levels", 0.75);
+  t = Clock::now();
+  r.hierarchy = make_hierarchy(complex_from_cells(d.base_vertices, d.base_faces, d.base_cells), d.levels, scheme, 3, integer);
+  r.engine_vertex = engine_order(d, r.hierarchy.levels);
+  r.build_ms = ms_since(t);
+  at("analysing", 0.9);
+  t = Clock::now();
+  std::vector<double> x(positions.size());
+  for (std::size_t i = 0; i < r.engine_vertex.size(); ++i)
+    for (std::size_t k = 0; k < 3; ++k) x[3 * std::size_t(r.engine_vertex[i]) + k] = positions[3 * i + k];
+  analyze(r.hierarchy, x);
+  r.analysis_ms = ms_since(t);
+  at("done", 1.0);
+  return r;
+}
+
 }  // namespace sublift

@@ -58,4 +58,9 @@ Rebuilt rebuild_hierarchy(std::uint32_t num_vertices, const Csr& faces, std::spa
                           int levels, bool integer = false, int disc = 2, const FeatureTags& fine_tags = {},
                           const RebuildProgress& progress = {});
 
+/// The same for a volume lattice (`fine` with adjacency; linear or cubic scheme): the 1-to-8
+/// split of simple cells (detect_volume_levels). Feature tags of lattices are not carried.
+Rebuilt rebuild_volume_hierarchy(const Complex& fine, std::span<const double> positions, Scheme scheme, int levels,
+                                 bool integer = false, const RebuildProgress& progress = {});
+
 }  // namespace sublift

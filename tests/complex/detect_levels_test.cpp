@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <numeric>
 #include <random>
+#include <initializer_list>
 #include <set>
 
 #include "core/base/errors.h"
@@ -235,6 +236,81 @@ TEST(DetectLevels, NoSubdivisionConnectivity) {
   Polygons loose = c;
   loose.num_vertices = 9;
   EXPECT_THROW(detect_levels(loose.num_vertices, loose.faces, SplitKind::Quads, 3), TopologyError);
+}
+
+// ---- Volume lattices: the 1-to-8 split of simple cells -----------------------------------------
+
+// `c` (a lattice) with its vertices renumbered by a random permutation (perm[old] = new).
+Complex shuffled_lattice(const Complex& c, unsigned seed, std::vector<std::uint32_t>* perm_out) {
+  std::mt19937 rng(seed);
+  std::vector<std::uint32_t> perm(c.num_vertices);
+  std::iota(perm.begin(), perm.end(), 0u);
+  std::shuffle(perm.begin(), perm.end(), rng);
+  Csr loops = c.faces;
+  for (std::uint32_t& v : loops.items) v = perm[v];
+  *perm_out = perm;
+  return complex_from_cells(c.num_vertices, loops, c.cell_faces);
+}
+
+Complex tetrahedron_cell() {
+  Csr loops, cells;
+  for (auto f : {std::initializer_list<std::uint32_t>{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}}) fixtures::push_row(loops, f);
+  fixtures::push_row(cells, {0, 1, 2, 3});
+  return complex_from_cells(4, loops, cells);
+}
+
+Complex block(std::uint32_t n) {
+  const fixtures::Cells b = fixtures::hex_block(n);
+  return complex_from_cells(b.num_vertices, b.face_loops, b.cell_faces);
+}
+
+TEST(DetectLevels, LatticeSplitsInAnyOrder) {
+  struct Case {
+    Complex base;
+    const char* name;
+  };
+  const Case cases[] = {{block(3), "3^3 hex block"}, {tetrahedron_cell(), "tetrahedron"}};
+  for (const Case& c : cases)
+    for (int levels : {1, 2}) {
+      SCOPED_TRACE(std::string(c.name) + " levels " + std::to_string(levels));
+      Complex fine = c.base;
+      for (int l = 0; l < levels; ++l) fine = refine(fine);
+      std::vector<std::uint32_t> perm;
+      const Complex input = shuffled_lattice(fine, 7u + unsigned(levels), &perm);
+      const DetectedLevels d = detect_volume_levels(input, levels);
+      ASSERT_EQ(d.levels, levels) << d.stop;
+      EXPECT_EQ(d.base_vertices, c.base.num_vertices);
+      EXPECT_EQ(d.base_cells.rows(), c.base.num_cells());
+      // Base vertex b is fine vertex b before the shuffle.
+      for (std::uint32_t v = 0; v < d.base_vertices; ++v) {
+        const std::uint32_t i = d.steps.front().input_vertex[v];
+        EXPECT_LT(std::find(perm.begin(), perm.end(), i) - perm.begin(), std::ptrdiff_t(c.base.num_vertices));
+      }
+      std::vector<Complex> cs{complex_from_cells(d.base_vertices, d.base_faces, d.base_cells)};
+      for (int l = 0; l < levels; ++l) cs.push_back(refine(cs.back()));
+      const std::vector<std::uint32_t> engine = engine_order(d, cs);
+      // The input's cells land on the engine's cells.
+      std::set<std::vector<std::uint32_t>> want, got;
+      for (std::size_t k = 0; k < cs.back().num_cells(); ++k) {
+        std::vector<std::uint32_t> s(cs.back().cell_verts.row(k).begin(), cs.back().cell_verts.row(k).end());
+        std::sort(s.begin(), s.end());
+        want.insert(s);
+      }
+      for (std::size_t k = 0; k < input.num_cells(); ++k) {
+        std::vector<std::uint32_t> s;
+        for (std::uint32_t v : input.cell_verts.row(k)) s.push_back(engine[v]);
+        std::sort(s.begin(), s.end());
+        got.insert(s);
+      }
+      EXPECT_EQ(got, want);
+    }
+  // A 2^3 block is one split of a single hexahedron: max finds it.
+  Complex two = refine(block(2));
+  EXPECT_EQ(detect_volume_levels(two, 12).levels, 2);
+  // A 3^3 block is no split (odd sides).
+  const DetectedLevels none = detect_volume_levels(block(3), 12);
+  EXPECT_EQ(none.levels, 0);
+  EXPECT_FALSE(none.stop.empty());
 }
 
 // ---- OpenSubdiv in its own vertex order -------------------------------------------------------

@@ -10,6 +10,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
+#include "core/complex/complex_build.h"
 #include "core/complex/connectivity_match.h"
 #include "core/complex/level_counts.h"
 
@@ -308,6 +309,21 @@ std::vector<double> in_input_order(const InputOrder& order, std::span<const doub
   return out;
 }
 
+Complex in_input_order(const InputOrder& order, const Complex& level) {
+  const auto n = static_cast<std::uint32_t>(order.engine_vertex.size());
+  if (order.faces.rows() > 0) return complex_from_polygons(n, order.faces);
+  std::vector<std::uint32_t> file_of(n);
+  for (std::uint32_t i = 0; i < n; ++i) file_of[order.engine_vertex[i]] = i;
+  Complex c = level;
+  for (std::uint32_t& v : c.edge_verts) v = file_of[v];
+  for (std::uint32_t& v : c.faces.items) v = file_of[v];
+  std::vector<std::uint8_t> dims(c.vertex_dim.size());
+  for (std::uint32_t v = 0; v < dims.size(); ++v) dims[file_of[v]] = c.vertex_dim[v];
+  c.vertex_dim = std::move(dims);
+  build_adjacency(c);
+  return c;
+}
+
 std::string input_order_problem(const InputOrder& order, const Complex& level) {
   if (order.engine_vertex.size() != level.num_vertices)
     return std::to_string(order.engine_vertex.size()) + " vertices, the level has " + std::to_string(level.num_vertices);
@@ -316,6 +332,7 @@ std::string input_order_problem(const InputOrder& order, const Complex& level) {
     if (v >= level.num_vertices || hit[v]) return "the vertex map is not a permutation";
     hit[v] = 1;
   }
+  if (order.faces.rows() == 0) return "";  // lattices keep the vertex order only
   for (std::size_t f = 0; f < order.faces.rows(); ++f)
     if (order.faces.size(f) < 3) return "face " + std::to_string(f) + " has fewer than 3 corners";
   Complex mapped;

@@ -29,7 +29,8 @@ namespace sublift {
 struct InputOrder {
   int level = -1;
   std::vector<std::uint32_t> engine_vertex;  // the engine vertex of each file vertex
-  Csr faces;                                 // the file's faces, in file vertex numbers
+  Csr faces;                                 // the file's faces, in file vertex numbers; no
+                                             // rows for lattices (their vertex order only)
   bool empty() const { return level < 0; }
 };
 
@@ -41,6 +42,10 @@ struct ProjectExtras {
   bool local_frames = false;  // detail kept in local frames (session.h DetailFrames::Local)
   InputOrder input_order;     // header key `input_order` and a payload tail when not empty
 };
+
+/// Level `order.level`'s complex numbered as the file: a surface with the file's faces (in the
+/// file's order), a lattice with the engine's cells and the file's vertex numbers.
+Complex in_input_order(const InputOrder& order, const Complex& level);
 
 /// The values of level `order.level` (channels per engine vertex) in the file's vertex order.
 std::vector<double> in_input_order(const InputOrder& order, std::span<const double> level_values, int channels);

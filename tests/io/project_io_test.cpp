@@ -212,7 +212,7 @@ std::string with_value(const std::string& s, const std::string& key, const std::
 TEST(ProjectIo, ExtrasRoundTrip) {
   TempDir dir("sublift_project_extras");
   const Hierarchy h = random_hierarchy(lattice_with_features(), 2, 3, false, 11);
-  const ProjectExtras extras{1, {1.0 / 3.0, -2.5}, true};
+  const ProjectExtras extras{1, {1.0 / 3.0, -2.5}, true, {}};
   const std::string path = dir.file("p.sublift");
   write_project(path, h, extras);
   ProjectExtras back;
@@ -227,13 +227,13 @@ TEST(ProjectIo, ExtrasRoundTrip) {
   expect_same(h, read_project_from_memory("p.sublift", read_file_bytes(path), &mem));
   EXPECT_EQ(mem.gains, extras.gains);
   // Empty gains mean all 1; the two-argument writer stores the defaults.
-  write_project(path, h, ProjectExtras{2, {}, false});
+  write_project(path, h, ProjectExtras{2, {}, false, {}});
   read_project(path, &back);
   EXPECT_EQ(back.current_level, 2);
   EXPECT_EQ(back.gains, std::vector<double>(2, 1.0));
   EXPECT_FALSE(back.local_frames);
   write_project(path, h);
-  back = ProjectExtras{1, {5.0}, true};
+  back = ProjectExtras{1, {5.0}, true, {}};
   read_project(path, &back);
   EXPECT_EQ(back.current_level, 0);
   EXPECT_EQ(back.gains, std::vector<double>(2, 1.0));
@@ -294,8 +294,8 @@ TEST(ProjectIo, RefusesBadExtras) {
   }
   // The writer refuses bad extras and leaves no file behind.
   const std::string path = dir.file("bad.sublift");
-  EXPECT_THROW(write_project(path, h, ProjectExtras{3, {}, false}), Error);
-  EXPECT_THROW(write_project(path, h, ProjectExtras{0, {1.0}, false}), Error);
-  EXPECT_THROW(write_project(path, h, ProjectExtras{0, {1.0, std::numeric_limits<double>::infinity()}, false}), Error);
+  EXPECT_THROW(write_project(path, h, ProjectExtras{3, {}, false, {}}), Error);
+  EXPECT_THROW(write_project(path, h, ProjectExtras{0, {1.0}, false, {}}), Error);
+  EXPECT_THROW(write_project(path, h, ProjectExtras{0, {1.0, std::numeric_limits<double>::infinity()}, false, {}}), Error);
   EXPECT_FALSE(std::filesystem::exists(path));
 }

@@ -16,6 +16,7 @@ struct Mesh {
   std::uint32_t n = 0;
   Csr faces;
   std::vector<std::uint32_t> input;  // input vertex id of each vertex
+  std::vector<double> xyz;           // its positions (3 per vertex, this numbering), or empty
 };
 
 /// Per vertex: number of faces around it and whether it lies on the boundary.

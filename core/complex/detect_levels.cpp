@@ -111,6 +111,36 @@ std::string shape_problem(const Mesh& m, SplitKind split, std::uint32_t& where) 
   return odd + " among " + std::to_string(good) + " " + kind + " near vertex " + std::to_string(where);
 }
 
+// Vertex ids sorted along a Morton curve of their positions (30-bit codes, two counting-sort
+// passes of 15 bits): neighbours in space, and so mostly in the mesh, get nearby ids.
+std::vector<std::uint32_t> morton_order(std::span<const double> p, std::uint32_t n) {
+  double lo[3] = {p[0], p[1], p[2]}, hi[3] = {p[0], p[1], p[2]};
+  for (std::uint32_t v = 0; v < n; ++v)
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[3 * std::size_t(v) + k]), hi[k] = std::max(hi[k], p[3 * std::size_t(v) + k]);
+  std::vector<std::uint32_t> code(n);
+  for (std::uint32_t v = 0; v < n; ++v) {
+    std::uint32_t c = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double span = hi[k] - lo[k];
+      const double t = span > 0 ? (p[3 * std::size_t(v) + k] - lo[k]) / span : 0.0;
+      auto q = static_cast<std::uint32_t>(std::clamp(t, 0.0, 1.0) * 1023.0);
+      for (int b = 0; b < 10; ++b) c |= ((q >> b) & 1u) << (3 * b + k);
+    }
+    code[v] = c;
+  }
+  std::vector<std::uint32_t> order(n), tmp(n);
+  for (std::uint32_t v = 0; v < n; ++v) tmp[v] = v;
+  for (int pass = 0; pass < 2; ++pass) {
+    const int shift = 15 * pass;
+    std::vector<std::uint32_t> count((1u << 15) + 1, 0);
+    for (std::uint32_t v : tmp) ++count[((code[v] >> shift) & 0x7fffu) + 1];
+    for (std::size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
+    for (std::uint32_t v : tmp) order[count[(code[v] >> shift) & 0x7fffu]++] = v;
+    tmp.swap(order);
+  }
+  return tmp;
+}
+
 struct Chain {
   std::vector<Attempt> steps;  // steps[t]: the t-th coarsening from the finest
   std::string stop;
@@ -119,9 +149,20 @@ struct Chain {
 
 // How far the new points lie from where linear refinement puts them (squared, summed): edge
 // points from the midpoints of their edges, face points from the centroids of their faces.
-double midpoint_residual(const Mesh& m, const Coarsening& c, std::span<const double> p) {
+// The old vertices' positions in the coarse numbering (the next mesh's xyz).
+std::vector<double> coarse_xyz(const Mesh& m, const Coarsening& c) {
+  std::vector<double> out(3 * std::size_t(c.coarse_vertices));
+  for (std::uint32_t v = 0; v < m.n; ++v)
+    if (c.kind[v] == Coarsening::Old)
+      for (int k = 0; k < 3; ++k) out[3 * std::size_t(c.a[v]) + k] = m.xyz[3 * std::size_t(v) + k];
+  return out;
+}
+
+double midpoint_residual(const Mesh& m, const Coarsening& c) {
+  if (m.xyz.empty()) return 0;
   double r = 0;
-  auto pos = [&](std::uint32_t coarse_vertex) { return &p[3 * std::size_t(c.input_vertex[coarse_vertex])]; };
+  const std::vector<double> cx = coarse_xyz(m, c);
+  auto pos = [&](std::uint32_t coarse_vertex) { return &cx[3 * std::size_t(coarse_vertex)]; };
   for (std::uint32_t v = 0; v < m.n; ++v) {
     if (c.kind[v] == Coarsening::Old || c.kind[v] == Coarsening::CellPoint) continue;
     double want[3] = {0, 0, 0};
@@ -132,14 +173,13 @@ double midpoint_residual(const Mesh& m, const Coarsening& c, std::span<const dou
       for (std::uint32_t w : corners)
         for (int k = 0; k < 3; ++k) want[k] += pos(w)[k] / double(corners.size());
     }
-    const double* x = &p[3 * std::size_t(m.input[v])];
+    const double* x = &m.xyz[3 * std::size_t(v)];
     for (int k = 0; k < 3; ++k) r += (x[k] - want[k]) * (x[k] - want[k]);
   }
   return r;
 }
 
-Chain coarsen_component(Mesh m, SplitKind split, int limit, std::span<const double> positions,
-                        const std::function<bool(std::uint32_t)>& keep_going) {
+Chain coarsen_component(Mesh m, SplitKind split, int limit, const std::function<bool(std::uint32_t)>& keep_going) {
   Chain ch;
   while (static_cast<int>(ch.steps.size()) < limit) {
     if (keep_going && !keep_going(m.n)) throw Cancelled("rebuild cancelled");
@@ -162,7 +202,7 @@ Chain coarsen_component(Mesh m, SplitKind split, int limit, std::span<const doub
           tries[cand] = split == SplitKind::Quads       ? detect::coarsen_quads(m, star, int(cand))
                         : split == SplitKind::Triangles ? detect::coarsen_tris(m, star, int(cand))
                                                         : detect::coarsen_sqrt2(m, star, int(cand));
-          if (tries[cand].ok && !positions.empty()) residual[cand] = midpoint_residual(m, tries[cand].c, positions);
+          if (tries[cand].ok) residual[cand] = midpoint_residual(m, tries[cand].c);
         } catch (const std::exception& ex) {  // out of memory: parallel_for bodies must not throw
           tries[cand] = Attempt{};
           tries[cand].why = ex.what();
@@ -191,6 +231,7 @@ Chain coarsen_component(Mesh m, SplitKind split, int limit, std::span<const doub
     next.n = best.c.coarse_vertices;
     next.faces = best.c.coarse_faces;
     next.input = best.c.input_vertex;
+    if (!m.xyz.empty()) next.xyz = coarse_xyz(m, best.c);
     ch.steps.push_back(std::move(best));
     m = std::move(next);
   }
@@ -208,9 +249,26 @@ DetectedLevels detect_levels(std::uint32_t num_vertices, const Csr& faces, Split
     for (std::uint32_t v : faces.row(f))
       if (v >= num_vertices) throw TopologyError("face " + std::to_string(f) + " names vertex " + std::to_string(v) + " of " + std::to_string(num_vertices));
   }
-  const Csr vf = transpose(faces, num_vertices);
+  // With positions, large meshes are first renumbered along a Morton curve (working ids):
+  // files come in any order, and every pass below touches neighbours, so even the first one
+  // then finds them in cache. in_id maps a working id back to the input's.
+  std::vector<std::uint32_t> to_input;
+  Csr renumbered;
+  const Csr* wf = &faces;
+  if (!positions.empty() && num_vertices >= (1u << 16)) {
+    to_input = morton_order(positions, num_vertices);
+    std::vector<std::uint32_t> rank(num_vertices);
+    for (std::uint32_t i = 0; i < num_vertices; ++i) rank[to_input[i]] = i;
+    renumbered.offsets = faces.offsets;
+    renumbered.items.resize(faces.items.size());
+    for (std::size_t j = 0; j < faces.items.size(); ++j) renumbered.items[j] = rank[faces.items[j]];
+    wf = &renumbered;
+  }
+  auto in_id = [&](std::uint32_t w) { return to_input.empty() ? w : to_input[w]; };
+  const Csr& work = *wf;
+  const Csr vf = transpose(work, num_vertices);
   for (std::uint32_t v = 0; v < num_vertices; ++v)
-    if (vf.size(v) == 0) throw TopologyError("vertex " + std::to_string(v) + " is in no face; remove loose vertices before rebuilding levels");
+    if (vf.size(v) == 0) throw TopologyError("vertex " + std::to_string(in_id(v)) + " is in no face; remove loose vertices before rebuilding levels");
 
   // Connected components (through shared vertices), each numbered in breadth-first order of
   // its vertices and faces: files from other tools come in any order, and the labelling passes
@@ -231,7 +289,7 @@ DetectedLevels detect_levels(std::uint32_t num_vertices, const Csr& faces, Split
         if (face_seen[f]) continue;
         face_seen[f] = 1;
         member_faces[id].push_back(f);
-        for (std::uint32_t w : faces.row(f))
+        for (std::uint32_t w : work.row(f))
           if (comp[w] == UINT32_MAX) comp[w] = id, mem.push_back(w);
       }
   }
@@ -246,12 +304,18 @@ DetectedLevels detect_levels(std::uint32_t num_vertices, const Csr& faces, Split
   for (std::size_t k = 0; k < members.size(); ++k) {
     Mesh& m = finest[k];
     m.n = static_cast<std::uint32_t>(members[k].size());
-    m.input = members[k];
+    m.input.resize(m.n);
+    for (std::uint32_t i = 0; i < m.n; ++i) m.input[i] = in_id(members[k][i]);
+    if (!positions.empty()) {
+      m.xyz.resize(3 * std::size_t(m.n));
+      for (std::uint32_t i = 0; i < m.n; ++i)
+        for (int c = 0; c < 3; ++c) m.xyz[3 * std::size_t(i) + c] = positions[3 * std::size_t(m.input[i]) + c];
+    }
   }
   for (std::size_t k = 0; k < members.size(); ++k) {
     Mesh& m = finest[k];
     for (std::uint32_t f : member_faces[k]) {
-      for (std::uint32_t v : faces.row(f)) m.faces.items.push_back(local[v]);
+      for (std::uint32_t v : work.row(f)) m.faces.items.push_back(local[v]);
       m.faces.offsets.push_back(static_cast<std::uint32_t>(m.faces.items.size()));
     }
   }
@@ -268,8 +332,8 @@ DetectedLevels detect_levels(std::uint32_t num_vertices, const Csr& faces, Split
     ComponentLevels cl;
     cl.vertices = finest[k].n;
     cl.faces = static_cast<std::uint32_t>(finest[k].faces.rows());
-    cl.first_vertex = *std::min_element(members[k].begin(), members[k].end());
-    chains.push_back(coarsen_component(std::move(finest[k]), split, max_levels, positions, step));
+    cl.first_vertex = *std::min_element(finest[k].input.begin(), finest[k].input.end());
+    chains.push_back(coarsen_component(std::move(finest[k]), split, max_levels, step));
     cl.levels = static_cast<int>(chains.back().steps.size());
     cl.stop = chains.back().stop;
     if (cl.levels < levels) {
@@ -309,7 +373,7 @@ DetectedLevels detect_levels(std::uint32_t num_vertices, const Csr& faces, Split
     for (std::size_t k = 0; k < members.size(); ++k) {
       const Coarsening& c = chains[k].steps[static_cast<std::size_t>(t)].c;
       for (std::uint32_t i = 0; i < c.kind.size(); ++i) {
-        const std::uint32_t g = t == 0 ? members[k][i] : fine_off[k] + i;
+        const std::uint32_t g = t == 0 ? in_id(members[k][i]) : fine_off[k] + i;
         out.kind[g] = c.kind[i];
         const std::uint32_t off = c.kind[i] == Coarsening::FacePoint ? face_off[k] : coarse_off[k];
         out.a[g] = off + c.a[i];
@@ -361,14 +425,18 @@ DetectedLevels detect_volume_levels(const Complex& fine, int max_levels, std::sp
     }
     Attempt tries[8];
     double residual[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-    Mesh named;  // what midpoint_residual reads: the count and the input ids
+    Mesh named;  // what midpoint_residual reads: the count and the positions
     named.n = m.num_vertices;
-    named.input = input;
+    if (!positions.empty()) {
+      named.xyz.resize(3 * std::size_t(m.num_vertices));
+      for (std::uint32_t v = 0; v < m.num_vertices; ++v)
+        for (int k = 0; k < 3; ++k) named.xyz[3 * std::size_t(v) + k] = positions[3 * std::size_t(input[v]) + k];
+    }
     parallel_for(8, 1, [&](std::uint32_t b, std::uint32_t e) {
       for (std::uint32_t cand = b; cand < e; ++cand) {
         try {
           tries[cand] = detect::coarsen_hexes(m, input, int(cand));
-          if (tries[cand].ok && !positions.empty()) residual[cand] = midpoint_residual(named, tries[cand].c, positions);
+          if (tries[cand].ok) residual[cand] = midpoint_residual(named, tries[cand].c);
         } catch (const std::exception& ex) {
           tries[cand] = Attempt{};
           tries[cand].why = ex.what();

@@ -25,7 +25,7 @@ constexpr const char* kHelp =
     "  Then analyses the mesh's own positions into wavelets, so the finest level is the file\n"
     "  exactly and every coarser level an exact coarse approximation, ready for coarse edits.\n"
     "  --scheme auto (default): cubic for quad meshes, loop for triangle meshes (sqrt2 only when\n"
-    "  asked: closed meshes, one level per sqrt(2) step). --levels max\n"
+    "  asked: one level per sqrt(2) step). Volume lattices: the 1-to-8 split of simple cells. --levels max\n"
     "  (default): as many as every piece of the mesh holds; N: exactly N or an error saying\n"
     "  where the mesh stops. The project remembers the file's vertex and face order: synthesize,\n"
     "  edit and compress write the finest level in that order. 'analyze FINE' without --base\n"

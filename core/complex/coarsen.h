@@ -33,6 +33,8 @@ struct Attempt {
   std::string why;              // the failure, in words, naming input vertices
   std::uint32_t where = UINT32_MAX;  // input vertex near the failure
   Coarsening c;                 // in the component's numbering; c.input_vertex filled
+  bool keep_step = false;       // sqrt(2): the fine mesh has a keep step's triangles (its level is odd)
+  bool curve_step = false;      // sqrt(2): it has a curve step's boundary points (its level is even)
 };
 
 /// candidate 0..3: which seed labelling (the four a component can have). Faces must be quads /

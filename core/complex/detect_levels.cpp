@@ -13,6 +13,7 @@
 #include "core/base/parallel.h"
 #include "core/complex/coarsen.h"
 #include "core/complex/complex_build.h"
+#include "core/complex/refine_sqrt2.h"
 
 namespace sublift {
 
@@ -93,7 +94,7 @@ std::string shape_problem(const Mesh& m, SplitKind split, std::uint32_t& where) 
   where = UINT32_MAX;
   for (std::size_t f = 0; f < m.faces.rows(); ++f) {
     const unsigned sz = m.faces.size(f);
-    if (sz == want) {
+    if (sz == want || (split == SplitKind::Sqrt2 && sz == 3)) {  // sqrt(2): a keep step's triangles
       ++good;
       continue;
     }
@@ -145,6 +146,8 @@ struct Chain {
   std::vector<Attempt> steps;  // steps[t]: the t-th coarsening from the finest
   std::string stop;
   std::uint32_t stop_vertex = UINT32_MAX;
+  // sqrt(2): whether the finest level's parity is known (from a keep or curve step) and odd.
+  bool parity_known = false, top_odd = false;
 };
 
 // How far the new points lie from where linear refinement puts them (squared, summed): edge
@@ -226,6 +229,17 @@ Chain coarsen_component(Mesh m, SplitKind split, int limit, const std::function<
       ch.stop = below + ": " + failed.why;
       ch.stop_vertex = failed.where;
       break;
+    }
+    if (split == SplitKind::Sqrt2 && (best.keep_step || best.curve_step)) {
+      // Keep steps leave odd levels, curve steps even ones, and levels alternate.
+      const bool fine_odd = best.keep_step;
+      const bool expected_odd = ch.parity_known ? (ch.top_odd != (ch.steps.size() % 2 == 1)) : fine_odd;
+      if (fine_odd != expected_odd) {
+        ch.stop = below + ": its " + (fine_odd ? "triangles" : "boundary points") + " do not fit the sqrt(2) level it would be";
+        ch.stop_vertex = m.input[0];
+        break;
+      }
+      if (!ch.parity_known) ch.parity_known = true, ch.top_odd = fine_odd != (ch.steps.size() % 2 == 1);
     }
     Mesh next;
     next.n = best.c.coarse_vertices;
@@ -348,6 +362,20 @@ DetectedLevels detect_levels(std::uint32_t num_vertices, const Csr& faces, Split
     d.stop_vertex = UINT32_MAX;
   }
   d.levels = levels;
+  // sqrt(2): the base's level parity from the pieces whose boundaries fix it; they must agree.
+  if (split == SplitKind::Sqrt2) {
+    int top = -1;
+    for (const Chain& ch : chains)
+      if (ch.parity_known) {
+        if (top >= 0 && top != int(ch.top_odd)) {
+          d.levels = levels = 0;
+          d.stop = "its pieces are at sqrt(2) levels of different parity";
+          break;
+        }
+        top = int(ch.top_odd);
+      }
+    if (top >= 0) d.first_level = (top == 1) != (levels % 2 == 1) ? 1 : 0;
+  }
 
   // Join the components level by level: the finest level keeps the input's numbering, coarser
   // ones put the components one after another.
@@ -551,12 +579,31 @@ std::vector<std::uint32_t> engine_order(const DetectedLevels& d, std::span<const
     const Coarsening& st = d.steps[l - 1];
     const Complex& coarse = levels[l - 1];
     const std::uint32_t nv = coarse.num_vertices, ne = coarse.num_edges(), nf = coarse.num_faces();
+    // sqrt(2): curve steps (odd coarse levels) number curve points by curve edge and face
+    // points by quad (refine_sqrt2.h); keep steps face points by face.
+    std::vector<std::uint32_t> curve_rank, face_rank;
+    std::uint32_t curves = 0;
+    if (d.split == SplitKind::Sqrt2) {
+      const bool curve_step = (d.first_level + int(l) - 1) % 2 == 1;
+      curve_rank.assign(ne, UINT32_MAX);
+      face_rank.resize(nf);
+      std::uint32_t quads = 0;
+      for (std::uint32_t e = 0; curve_step && e < ne; ++e)
+        if (sqrt2_is_curve_edge(coarse, e)) curve_rank[e] = curves++;
+      for (std::uint32_t f = 0; f < nf; ++f) face_rank[f] = !curve_step ? f : coarse.faces.size(f) == 4 ? quads++ : UINT32_MAX;
+    }
     next_sigma.resize(st.kind.size());
     for (std::size_t v = 0; v < st.kind.size(); ++v) {
       switch (st.kind[v]) {
         case Coarsening::Old: next_sigma[v] = sigma[st.a[v]]; break;
-        case Coarsening::EdgePoint: next_sigma[v] = nv + edge_between(coarse, sigma[st.a[v]], sigma[st.b[v]]); break;
-        case Coarsening::FacePoint: next_sigma[v] = nv + (d.split == SplitKind::Sqrt2 ? 0 : ne) + tau[st.a[v]]; break;  // sqrt(2): [v | f]
+        case Coarsening::EdgePoint: {
+          const std::uint32_t e = edge_between(coarse, sigma[st.a[v]], sigma[st.b[v]]);
+          next_sigma[v] = nv + (d.split == SplitKind::Sqrt2 ? curve_rank[e] : e);
+          break;
+        }
+        case Coarsening::FacePoint:
+          next_sigma[v] = d.split == SplitKind::Sqrt2 ? nv + curves + face_rank[tau[st.a[v]]] : nv + ne + tau[st.a[v]];
+          break;
         default: next_sigma[v] = nv + ne + nf + kappa[st.a[v]]; break;
       }
     }

@@ -20,7 +20,7 @@ namespace sublift {
 enum class SplitKind : std::uint8_t {
   Quads,      // 1-to-4 quad split (refine.h): old vertices, edge points, face points
   Triangles,  // 1-to-4 triangle split (refine_tri.h): old vertices, edge points
-  Sqrt2,      // one sqrt(2) step of a closed mesh (refine_sqrt2.h): old vertices, face points
+  Sqrt2,      // one sqrt(2) step (refine_sqrt2.h): old vertices, face points, curve points
   Hexes,      // the 1-to-8 split of a volume lattice of simple cells (refine.h on lattices):
               // old vertices, edge, face and cell points
 };
@@ -53,6 +53,8 @@ struct DetectedLevels {
   Csr base_faces;                  // the level-0 mesh (= steps.front().coarse_faces)
   Csr base_cells;                  // lattices: the base's cells as indices of base_faces
   std::vector<Coarsening> steps;   // steps[l]: M_{l+1} -> M_l, l = 0..levels-1
+  int first_level = 0;             // sqrt(2): the level index of the base (1 when it is an odd
+                                   // level, keeping its boundary edges; make_hierarchy's first_level)
   std::vector<ComponentLevels> components;
   std::string stop;                // why the whole mesh has no more levels (the first
                                    // component that stops there); empty when the limit was met

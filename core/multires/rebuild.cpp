@@ -114,7 +114,7 @@ Rebuilt rebuild_hierarchy(std::uint32_t num_vertices, const Csr& faces, std::spa
   t = Clock::now();
   r.features = carry_features_down(d, fine_tags);
   Complex base = complex_from_polygons(d.base_vertices, d.base_faces, r.features.base);
-  r.hierarchy = make_hierarchy(std::move(base), d.levels, scheme, 3, integer, 0, disc);
+  r.hierarchy = make_hierarchy(std::move(base), d.levels, scheme, 3, integer, d.first_level, disc);
   r.engine_vertex = engine_order(d, r.hierarchy.levels);
   r.build_ms = ms_since(t);
   at("analysing", 0.9);

@@ -78,6 +78,7 @@ void check_own_refinement(const Polygons& base, int levels, SplitKind split, uns
   const Polygons fine = shuffled(refined(base, levels, split), seed, &perm);
   const DetectedLevels d = detect_levels(fine.num_vertices, fine.faces, split, levels);
   ASSERT_EQ(d.levels, levels) << d.stop;
+  EXPECT_EQ(d.first_level, 0);
   EXPECT_TRUE(d.stop.empty());
   // Base vertex b is fine vertex b before the shuffle ([v | e | f] keeps them first).
   std::vector<std::uint32_t> to_base(fine.num_vertices, UINT32_MAX);
@@ -145,11 +146,15 @@ TEST(DetectLevels, OwnSqrt2StepsOfClosedMeshesInAnyOrder) {
   EXPECT_EQ(s.levels, 5);
   EXPECT_EQ(s.base_vertices, 4u);
   EXPECT_EQ(s.base_faces.rows(), 4u);
-  // Boundaries refine every other step: not detected, and said so.
-  const Polygons open = refined(fixtures::mixed_patch(), 1, SplitKind::Sqrt2);
+  // Boundaries refine every other step (triangles on odd levels, curve points on even ones).
+  for (int levels : {1, 2, 3, 4}) check_own_refinement(fixtures::mixed_patch(), levels, SplitKind::Sqrt2, 71u + static_cast<unsigned>(levels));
+  // A mesh with a boundary fixes the level parity: an odd number of steps of the patch, asked
+  // for as many as it holds, comes back with the patch as base, level 0.
+  const Polygons open = shuffled(refined(fixtures::mixed_patch(), 3, SplitKind::Sqrt2), 5);
   const DetectedLevels d = detect_levels(open.num_vertices, open.faces, SplitKind::Sqrt2, 24);
-  EXPECT_EQ(d.levels, 0);
-  EXPECT_FALSE(d.stop.empty());
+  EXPECT_EQ(d.levels, 3) << d.stop;
+  EXPECT_EQ(d.first_level, 0);
+  EXPECT_EQ(d.base_vertices, 7u);
 }
 
 TEST(DetectLevels, MaxFindsEveryLevelAndPrefersTheCube) {

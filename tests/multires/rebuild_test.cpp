@@ -93,6 +93,7 @@ TEST(Rebuild, AnalysisReproducesTheInputForEveryScheme) {
   const Case cases[] = {{fixtures::cube(), Scheme::Cubic, 1e-12},
                         {fixtures::cube(), Scheme::Sqrt2, 1e-12},
                         {fixtures::torus(3, 5), Scheme::Sqrt2, 1e-12},
+                        {fixtures::mixed_patch(), Scheme::Sqrt2, 1e-12},
                         {fixtures::mixed_patch(), Scheme::Cubic, 1e-12},
                         {fixtures::octahedron(), Scheme::LinearTri, 1e-12},
                         {fixtures::octahedron(), Scheme::Butterfly, 1e-12},

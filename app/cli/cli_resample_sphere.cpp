@@ -10,6 +10,7 @@
 #include "core/base/errors.h"
 #include "core/io/mesh/mesh_import.h"
 #include "core/io/lattice/shape_io.h"
+#include "core/analysis/mesh_stats.h"
 #include "core/analysis/sphere_resample.h"
 
 namespace sublift::cli {
@@ -26,7 +27,11 @@ constexpr const char* kHelp =
     "  .vtk) is the finest mesh, vertices in the engine's order, so that 'analyze OUT --base BASE\n"
     "  --levels J' accepts it; BASE is the octahedron with its 6 sampled vertices (the first 6 of\n"
     "  OUT). --json reports counts, the centroid, missed and multiple-hit rays and the seconds\n"
-    "  the resampling took (file reading and writing excluded). docs/resample_sphere.md.\n";
+    "  the resampling took (file reading and writing excluded). docs/resample_sphere.md.\n"
+    "  A MESH that is not one closed genus-0 surface, or on which a ray hits more than once (not\n"
+    "  star-shaped from its centroid), is refused: the sphere cannot represent it. The reasons are\n"
+    "  printed (and in --json's 'problems'), nothing is written, and the exit code is 1; --force\n"
+    "  writes the resampled mesh anyway (use 'rebuild' or a fit for such meshes).\n";
 
 int sphere_levels_option(const Args& a) {
   const auto v = a.value("--levels");
@@ -45,7 +50,7 @@ int sphere_levels_option(const Args& a) {
 }  // namespace
 
 int run_resample_sphere(int argc, char** argv) {
-  const Args a = parse_args(argc, argv, 2, {"-o", "--levels", "--base-out"}, {"--json", "--help"});
+  const Args a = parse_args(argc, argv, 2, {"-o", "--levels", "--base-out"}, {"--json", "--help", "--force"});
   if (a.has("--help")) {
     std::cout << kHelp;
     return 0;
@@ -70,10 +75,26 @@ int run_resample_sphere(int argc, char** argv) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  for (const std::string& n : write_shape(out, r.fine, r.positions)) std::cerr << out << ": warning: " << n << "\n";
-  if (base_out)
-    for (const std::string& n : write_shape(*base_out, r.base, r.base_positions))
-      std::cerr << *base_out << ": warning: " << n << "\n";
+  // What the sphere cannot represent: other topology, or a surface a ray crosses twice.
+  std::vector<std::string> problems;
+  const MeshStats stats = compute_mesh_stats(loaded.mesh);
+  if (stats.components != 1) problems.push_back(std::to_string(stats.components) + " pieces, not one");
+  if (stats.boundary_loops > 0) problems.push_back(std::to_string(stats.boundary_loops) + " boundary loop(s): not closed");
+  if (stats.components == 1 && stats.boundary_loops == 0 && stats.euler_characteristic != 2)
+    problems.push_back("genus " + std::to_string((2 - stats.euler_characteristic) / 2) + ", not 0 (Euler characteristic " +
+                       std::to_string(stats.euler_characteristic) + ")");
+  if (r.multiple_hits > 0)
+    problems.push_back(std::to_string(r.multiple_hits) + " of " + std::to_string(r.rays) +
+                       " rays hit the surface more than once (not star-shaped from the centroid)");
+  const bool refused = !problems.empty() && !a.has("--force");
+  for (const std::string& p : problems) std::cerr << in << ": " << (refused ? "error: " : "warning: ") << p << "\n";
+  if (refused) std::cerr << in << ": nothing written; --force resamples it anyway\n";
+  if (!refused) {
+    for (const std::string& n : write_shape(out, r.fine, r.positions)) std::cerr << out << ": warning: " << n << "\n";
+    if (base_out)
+      for (const std::string& n : write_shape(*base_out, r.base, r.base_positions))
+        std::cerr << *base_out << ": warning: " << n << "\n";
+  }
   if (a.has("--json")) {
     const glm::dvec3& c = r.centroid.point;
     nlohmann::json j = {{"input", in},
@@ -89,10 +110,12 @@ int run_resample_sphere(int argc, char** argv) {
                         {"multiple_hits", r.multiple_hits},
                         {"fill_rounds", r.fill_rounds},
                         {"seconds", seconds},
+                        {"problems", problems},
+                        {"written", !refused},
                         {"warnings", report_json(loaded.report)}};
     std::cout << j.dump(2) << "\n";
   }
-  return 0;
+  return refused ? 1 : 0;
 }
 
 }  // namespace sublift::cli

@@ -394,12 +394,31 @@ TEST(SphereResampleCli, JsonAndErrors) {
   EXPECT_NE(p.out.find("resample-sphere"), std::string::npos);
 }
 
+// Issue 17: a genus-1 part cannot be a sphere: refused, with the reason, nothing written.
+TEST(SphereResampleCli, RockerArmIsRefused) {
+  const std::string path = std::string(SUBLIFT_SHARED_DATA) + "/scans/rocker-arm.obj";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data absent: " << path;
+  TempDir dir("sublift_sphere_rocker");
+  const std::string out = dir.file("rocker_sphere.obj");
+  const ProcessResult p = run_cli({"resample-sphere", path, "--levels", "3", "-o", out}, 60);
+  EXPECT_EQ(p.exit_code, 1);
+  EXPECT_NE(p.err.find("genus 1, not 0"), std::string::npos) << p.err;
+  EXPECT_NE(p.err.find("nothing written"), std::string::npos) << p.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 TEST(SphereResampleCli, BunnyScanAtLevelFour) {
   const std::string path = std::string(SUBLIFT_SHARED_DATA) + "/scans/bunny_npm_lowres.obj";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data absent: " << path;
   TempDir dir("sublift_sphere_bunny");
   const std::string out = dir.file("bunny_sphere.ply"), base = dir.file("bunny_base.obj");
-  const ProcessResult p = run_cli({"resample-sphere", path, "--levels", "4", "-o", out, "--base-out", base, "--json"}, 60);
+  // A ray or two crosses the ears twice: refused without --force (nothing written), done with it.
+  const ProcessResult refused = run_cli({"resample-sphere", path, "--levels", "4", "-o", out, "--json"}, 60);
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.err.find("more than once"), std::string::npos) << refused.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  EXPECT_EQ(nlohmann::json::parse(refused.out)["written"], false);
+  const ProcessResult p = run_cli({"resample-sphere", path, "--levels", "4", "-o", out, "--base-out", base, "--json", "--force"}, 60);
   ASSERT_EQ(p.exit_code, 0) << p.err;
   const auto j = nlohmann::json::parse(p.out);
   EXPECT_EQ(j["vertices"], 1026);

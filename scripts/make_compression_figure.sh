@@ -18,7 +18,7 @@ tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 mkdir -p "$out"
 
-"$cli" resample-sphere "$head" --levels 6 -o "$tmp/head.obj" --base-out "$tmp/base.obj" >/dev/null
+"$cli" resample-sphere "$head" --levels 6 -o "$tmp/head.obj" --base-out "$tmp/base.obj" --force >/dev/null  # a few rays cross twice
 "$cli" analyze "$tmp/head.obj" --base "$tmp/base.obj" --scheme "$scheme" --levels 6 -o "$tmp/head.sublift" >/dev/null 2>&1
 "$cli" render "$tmp/head.obj" -o "$out/head_full.png" --size 400x400 >/dev/null
 echo "| kept | wavelets kept | L2 error | L-infinity error |"

@@ -74,6 +74,7 @@ Grid subdivide(const Grid& g, Scheme s) {
             val = 0.5 * (c(a) + c(b)) + 1.0 / 8 * (c(wc) + c(wd)) - 1.0 / 16 * outer;
             break;
           }
+          default: ADD_FAILURE() << "not a triangle scheme"; break;
         }
       }
       f.ref(p, q) = val;

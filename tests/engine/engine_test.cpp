@@ -101,8 +101,9 @@ TEST_P(Engine, SparseEqualsDense) {
         // Everything non-zero is on the list.
         std::vector<std::uint8_t> listed(n, 0);
         for (std::uint32_t v : d.list) listed[v] = 1;
-        for (std::uint32_t v = 0; v < n; ++v)
+        for (std::uint32_t v = 0; v < n; ++v) {
           if (!listed[v]) ASSERT_EQ(d.x[std::size_t(v) * 3], 0.0) << "vertex " << v << " changed but is not listed";
+        }
       }
     }
   }

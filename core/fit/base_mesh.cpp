@@ -1,0 +1,134 @@
+#include "core/fit/base_mesh.h"
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModAspectRatioT.hh>
+#include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
+#include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/base/errors.h"
+
+namespace sublift {
+
+namespace {
+
+struct Traits : OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+};
+using Mesh = OpenMesh::TriMesh_ArrayKernelT<Traits>;
+
+long long euler(const Mesh& m) {
+  return static_cast<long long>(m.n_vertices()) - static_cast<long long>(m.n_edges()) + static_cast<long long>(m.n_faces());
+}
+
+std::size_t boundary_loops(const Mesh& m) {
+  std::vector<char> seen(m.n_halfedges(), 0);
+  std::size_t loops = 0;
+  for (auto h : m.halfedges()) {
+    if (!m.is_boundary(h) || seen[static_cast<std::size_t>(h.idx())]) continue;
+    if (m.has_edge_status() && m.status(m.edge_handle(h)).deleted()) continue;
+    ++loops;
+    for (auto g = h; !seen[static_cast<std::size_t>(g.idx())]; g = m.next_halfedge_handle(g)) seen[static_cast<std::size_t>(g.idx())] = 1;
+  }
+  return loops;
+}
+
+}  // namespace
+
+BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::span<const double> positions,
+                          const BaseMeshOptions& options) {
+  if (faces.rows() == 0) throw TopologyError("the mesh has no faces to fit");
+  if (positions.size() != 3 * std::size_t(num_vertices)) throw Error("decimate_to_base: positions do not match the vertices");
+  Mesh m;
+  std::vector<Mesh::VertexHandle> vh(num_vertices);
+  for (std::uint32_t v = 0; v < num_vertices; ++v) vh[v] = m.add_vertex({positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]});
+  for (std::size_t f = 0; f < faces.rows(); ++f) {
+    const auto row = faces.row(f);
+    for (std::size_t k = 1; k + 1 < row.size(); ++k)
+      if (!m.add_face(vh[row[0]], vh[row[k]], vh[row[k + 1]]).is_valid())
+        throw TopologyError("face " + std::to_string(f) + " makes the mesh non-manifold (an edge with more than two faces, or a flipped neighbour)");
+  }
+  // Loose vertices are not part of the surface.
+  BaseMesh out;
+  out.euler_before = euler(m);
+  for (auto v : m.vertices())
+    if (m.is_isolated(v)) --out.euler_before;
+  out.boundary_loops_before = boundary_loops(m);
+  std::uint32_t used = 0;
+  for (auto v : m.vertices()) used += !m.is_isolated(v);
+  const std::uint32_t target = options.target_vertices ? options.target_vertices : std::max<std::uint32_t>(24, used / 64);
+  if (target > used) throw TopologyError("a base of " + std::to_string(target) + " vertices is more than the mesh's " + std::to_string(used));
+
+  m.request_vertex_status();
+  m.request_edge_status();
+  m.request_face_status();
+  m.request_face_normals();
+  m.update_face_normals();
+  // Feature edges: boundaries and sharp edges; their vertices may only move along them.
+  const double cos_limit = std::cos(options.feature_angle_deg * std::numbers::pi / 180.0);
+  for (auto e : m.edges()) {
+    const auto h = m.halfedge_handle(e, 0);
+    bool sharp = m.is_boundary(e);
+    if (!sharp) {
+      const auto n0 = m.normal(m.face_handle(h)), n1 = m.normal(m.face_handle(m.opposite_halfedge_handle(h)));
+      sharp = OpenMesh::dot(n0, n1) < cos_limit;
+    }
+    if (!sharp) continue;
+    m.status(e).set_feature(true);
+    m.status(m.to_vertex_handle(h)).set_feature(true);
+    m.status(m.from_vertex_handle(h)).set_feature(true);
+    ++out.feature_edges;
+  }
+  for (auto v : m.vertices())
+    if (m.is_isolated(v)) m.status(v).set_locked(true);
+
+  using Decimater = OpenMesh::Decimater::DecimaterT<Mesh>;
+  Decimater dec(m);
+  OpenMesh::Decimater::ModQuadricT<Mesh>::Handle quadric;
+  OpenMesh::Decimater::ModNormalFlippingT<Mesh>::Handle flips;
+  OpenMesh::Decimater::ModAspectRatioT<Mesh>::Handle aspect;
+  dec.add(quadric);
+  dec.add(flips);
+  dec.add(aspect);
+  dec.module(quadric).unset_max_err();
+  dec.module(flips).set_max_normal_deviation(options.max_normal_deviation_deg);
+  dec.module(aspect).set_aspect_ratio(10.0);
+  dec.module(aspect).set_binary(true);
+  dec.initialize();
+  dec.decimate_to(target + (num_vertices - used));  // loose vertices stay (locked) and are dropped below
+
+  // Surviving vertices keep their input index until garbage collection: read them first.
+  std::vector<std::uint32_t> base_of(num_vertices, UINT32_MAX);
+  for (auto v : m.vertices()) {
+    if (m.status(v).deleted() || m.is_isolated(v)) continue;
+    base_of[static_cast<std::size_t>(v.idx())] = static_cast<std::uint32_t>(out.input_vertex.size());
+    out.input_vertex.push_back(static_cast<std::uint32_t>(v.idx()));
+    const auto p = m.point(v);
+    out.positions.insert(out.positions.end(), {p[0], p[1], p[2]});
+  }
+  out.num_vertices = static_cast<std::uint32_t>(out.input_vertex.size());
+  long long edges = 0;
+  for (auto f : m.faces()) {
+    if (m.status(f).deleted()) continue;
+    for (auto v : m.fv_range(f)) out.faces.items.push_back(base_of[static_cast<std::size_t>(v.idx())]);
+    out.faces.offsets.push_back(static_cast<std::uint32_t>(out.faces.items.size()));
+  }
+  for (auto e : m.edges()) {
+    if (m.status(e).deleted()) continue;
+    ++edges;
+    const auto h = m.halfedge_handle(e, 0);
+    if (m.status(e).feature() && !m.is_boundary(e))
+      out.tags.crease_edges.emplace_back(base_of[static_cast<std::size_t>(m.from_vertex_handle(h).idx())],
+                                         base_of[static_cast<std::size_t>(m.to_vertex_handle(h).idx())]);
+  }
+  out.euler_after = static_cast<long long>(out.num_vertices) - edges + static_cast<long long>(out.faces.rows());
+  out.boundary_loops_after = boundary_loops(m);
+  return out;
+}
+
+}  // namespace sublift

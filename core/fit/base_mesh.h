@@ -1,0 +1,41 @@
+#pragma once
+// A coarse base mesh for fitting any triangle mesh (issue 17, docs/fit.md): OpenMesh's
+// decimation framework (quadric error, no normal flips, a bound on triangle shape) collapses
+// edges down to a target vertex count. Collapses are only taken where OpenMesh's link condition
+// holds, so genus, boundary loops and pieces stay; sharp edges (dihedral angle above a
+// threshold) and boundaries are feature edges that only collapse along themselves, and come out
+// as crease tags.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/base/csr.h"
+#include "core/complex/complex_build.h"
+
+namespace sublift {
+
+struct BaseMeshOptions {
+  std::uint32_t target_vertices = 0;  // 0: 1/64 of the input's, at least 24
+  double feature_angle_deg = 60.0;    // edges whose faces meet at a sharper angle are creases
+  double max_normal_deviation_deg = 60.0;  // no collapse turns a face normal further
+};
+
+struct BaseMesh {
+  std::uint32_t num_vertices = 0;
+  Csr faces;                          // triangles, oriented as the input
+  std::vector<double> positions;      // 3 per vertex
+  std::vector<std::uint32_t> input_vertex;  // the input vertex each base vertex is
+  FeatureTags tags;                   // creases (sharp input edges kept) in base vertex numbers
+  long long euler_before = 0, euler_after = 0;   // V - E + F of the input and of the base
+  std::size_t boundary_loops_before = 0, boundary_loops_after = 0;
+  std::size_t feature_edges = 0;      // sharp or boundary input edges marked
+};
+
+/// The base of `faces` (triangles; other polygons are fanned) with `positions` (3 per vertex).
+/// Throws TopologyError for non-manifold input (OpenMesh cannot hold it: the face is named),
+/// an empty mesh, or a target above the input's vertex count.
+BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::span<const double> positions,
+                          const BaseMeshOptions& options = {});
+
+}  // namespace sublift

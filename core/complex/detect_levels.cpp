@@ -182,6 +182,40 @@ double midpoint_residual(const Mesh& m, const Coarsening& c) {
   return r;
 }
 
+// Runs the labellings 0..n-1 (two threads take them in turn; `run` must not share state) and
+// keeps the best that passes: the highest score, then the lowest midpoint residual of `m`.
+// `failed` gets the failure that got furthest, for the message.
+template <class Run>
+Attempt best_labelling(std::uint32_t n, const Mesh& m, Run run, Attempt& failed) {
+  std::vector<Attempt> tries(n);
+  std::vector<double> residual(n, 0.0);
+  parallel_for(n, 1, [&](std::uint32_t b, std::uint32_t e) {
+    for (std::uint32_t cand = b; cand < e; ++cand) {
+      try {
+        tries[cand] = run(int(cand));
+        if (tries[cand].ok) residual[cand] = midpoint_residual(m, tries[cand].c);
+      } catch (const std::exception& ex) {  // out of memory: parallel_for bodies must not throw
+        tries[cand] = Attempt{};
+        tries[cand].why = ex.what();
+      }
+    }
+  });
+  Attempt best;
+  double best_residual = 0;
+  for (std::uint32_t cand = 0; cand < n; ++cand) {
+    Attempt& a = tries[cand];
+    if (a.ok) {
+      if (!best.ok || a.score > best.score || (a.score == best.score && residual[cand] < best_residual)) {
+        best_residual = residual[cand];
+        best = std::move(a);
+      }
+    } else if (!a.why.empty() && (failed.why.empty() || a.progress > failed.progress)) {
+      failed = std::move(a);
+    }
+  }
+  return best;
+}
+
 Chain coarsen_component(Mesh m, SplitKind split, int limit, const std::function<bool(std::uint32_t)>& keep_going) {
   Chain ch;
   while (static_cast<int>(ch.steps.size()) < limit) {
@@ -195,36 +229,13 @@ Chain coarsen_component(Mesh m, SplitKind split, int limit, const std::function<
       break;
     }
     const detect::Star star = detect::build_star(m);
-    // The four labellings are independent: two threads take two each.
-    Attempt tries[4];
-    double residual[4] = {0, 0, 0, 0};
-    parallel_for(4, 1, [&](std::uint32_t b, std::uint32_t e) {
-      for (std::uint32_t cand = b; cand < e; ++cand) {
-        try {
-          if (split == SplitKind::Sqrt2 && cand >= 2) continue;  // two labellings only
-          tries[cand] = split == SplitKind::Quads       ? detect::coarsen_quads(m, star, int(cand))
-                        : split == SplitKind::Triangles ? detect::coarsen_tris(m, star, int(cand))
-                                                        : detect::coarsen_sqrt2(m, star, int(cand));
-          if (tries[cand].ok) residual[cand] = midpoint_residual(m, tries[cand].c);
-        } catch (const std::exception& ex) {  // out of memory: parallel_for bodies must not throw
-          tries[cand] = Attempt{};
-          tries[cand].why = ex.what();
-        }
-      }
-    });
-    Attempt best, failed;
-    double best_residual = 0;
-    for (int cand = 0; cand < 4; ++cand) {
-      Attempt& a = tries[cand];
-      if (a.ok) {
-        if (!best.ok || a.score > best.score || (a.score == best.score && residual[cand] < best_residual)) {
-          best_residual = residual[cand];
-          best = std::move(a);
-        }
-      } else if (!a.why.empty() && (failed.why.empty() || a.progress > failed.progress)) {
-        failed = std::move(a);
-      }
-    }
+    // The four labellings are independent (sqrt(2) has two).
+    Attempt failed;
+    Attempt best = best_labelling(split == SplitKind::Sqrt2 ? 2 : 4, m, [&](int cand) {
+      return split == SplitKind::Quads       ? detect::coarsen_quads(m, star, cand)
+             : split == SplitKind::Triangles ? detect::coarsen_tris(m, star, cand)
+                                             : detect::coarsen_sqrt2(m, star, cand);
+    }, failed);
     if (!best.ok) {
       ch.stop = below + ": " + failed.why;
       ch.stop_vertex = failed.where;
@@ -451,8 +462,6 @@ DetectedLevels detect_volume_levels(const Complex& fine, int max_levels, std::sp
       d.stop_vertex = input[m.cell_verts.row(odd)[0]];
       break;
     }
-    Attempt tries[8];
-    double residual[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     Mesh named;  // what midpoint_residual reads: the count and the positions
     named.n = m.num_vertices;
     if (!positions.empty()) {
@@ -460,30 +469,8 @@ DetectedLevels detect_volume_levels(const Complex& fine, int max_levels, std::sp
       for (std::uint32_t v = 0; v < m.num_vertices; ++v)
         for (int k = 0; k < 3; ++k) named.xyz[3 * std::size_t(v) + k] = positions[3 * std::size_t(input[v]) + k];
     }
-    parallel_for(8, 1, [&](std::uint32_t b, std::uint32_t e) {
-      for (std::uint32_t cand = b; cand < e; ++cand) {
-        try {
-          tries[cand] = detect::coarsen_hexes(m, input, int(cand));
-          if (tries[cand].ok) residual[cand] = midpoint_residual(named, tries[cand].c);
-        } catch (const std::exception& ex) {
-          tries[cand] = Attempt{};
-          tries[cand].why = ex.what();
-        }
-      }
-    });
-    Attempt best, failed;
-    double best_residual = 0;
-    for (int cand = 0; cand < 8; ++cand) {
-      Attempt& a = tries[cand];
-      if (a.ok) {
-        if (!best.ok || a.score > best.score || (a.score == best.score && residual[cand] < best_residual)) {
-          best_residual = residual[cand];
-          best = std::move(a);
-        }
-      } else if (!a.why.empty() && (failed.why.empty() || a.progress > failed.progress)) {
-        failed = std::move(a);
-      }
-    }
+    Attempt failed;
+    Attempt best = best_labelling(8, named, [&](int cand) { return detect::coarsen_hexes(m, input, cand); }, failed);
     if (!best.ok) {
       d.stop = below + ": " + failed.why;
       d.stop_vertex = failed.where;

@@ -9,6 +9,20 @@
 
 namespace sublift {
 
+namespace {
+
+// The input's positions moved to the engine's order and analysed into r.hierarchy, timed.
+void analyse_in_engine_order(Rebuilt& r, std::span<const double> positions) {
+  const auto t = std::chrono::steady_clock::now();
+  std::vector<double> x(positions.size());
+  for (std::size_t i = 0; i < r.engine_vertex.size(); ++i)
+    for (std::size_t k = 0; k < 3; ++k) x[3 * std::size_t(r.engine_vertex[i]) + k] = positions[3 * i + k];
+  analyze(r.hierarchy, x);
+  r.analysis_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
 Scheme rebuild_auto_scheme(const Csr& faces) {
   for (std::size_t f = 0; f < faces.rows(); ++f)
     if (faces.size(f) != 3) return Scheme::Cubic;
@@ -118,12 +132,7 @@ Rebuilt rebuild_hierarchy(std::uint32_t num_vertices, const Csr& faces, std::spa
   r.engine_vertex = engine_order(d, r.hierarchy.levels);
   r.build_ms = ms_since(t);
   at("analysing", 0.9);
-  t = Clock::now();
-  std::vector<double> fine(positions.size());
-  for (std::size_t i = 0; i < r.engine_vertex.size(); ++i)
-    for (std::size_t k = 0; k < 3; ++k) fine[3 * std::size_t(r.engine_vertex[i]) + k] = positions[3 * i + k];
-  analyze(r.hierarchy, fine);
-  r.analysis_ms = ms_since(t);
+  analyse_in_engine_order(r, positions);
   at("done", 1.0);
   return r;
 }
@@ -154,12 +163,7 @@ Rebuilt rebuild_volume_hierarchy(const Complex& fine, std::span<const double> po
   r.engine_vertex = engine_order(d, r.hierarchy.levels);
   r.build_ms = ms_since(t);
   at("analysing", 0.9);
-  t = Clock::now();
-  std::vector<double> x(positions.size());
-  for (std::size_t i = 0; i < r.engine_vertex.size(); ++i)
-    for (std::size_t k = 0; k < 3; ++k) x[3 * std::size_t(r.engine_vertex[i]) + k] = positions[3 * i + k];
-  analyze(r.hierarchy, x);
-  r.analysis_ms = ms_since(t);
+  analyse_in_engine_order(r, positions);
   at("done", 1.0);
   return r;
 }

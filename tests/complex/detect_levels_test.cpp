@@ -393,3 +393,61 @@ TEST(DetectLevels, OpenSubdivRefinementsInOpenSubdivOrder) {
 
 }  // namespace
 }  // namespace sublift
+
+#include <opensubdiv/far/primvarRefiner.h>
+
+#include "core/multires/rebuild.h"
+
+namespace sublift {
+namespace {
+
+struct OsdPoint {
+  double p[3];
+  void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
+  void AddWithWeight(const OsdPoint& s, double w) {
+    for (int k = 0; k < 3; ++k) p[k] += w * s.p[k];
+  }
+};
+
+// OpenSubdiv's bilinear refinement, in OpenSubdiv's order, rebuilt and analysed with the linear
+// scheme: every wavelet is zero and the finest level is OpenSubdiv's to the last bits.
+TEST(DetectLevels, OpenSubdivBilinearHasZeroLinearWavelets) {
+  std::vector<Polygons> bases;
+  Polygons cube = fixtures::cube();
+  bases.push_back(cube);
+  const std::filesystem::path file = std::filesystem::path(SUBLIFT_SHARED_DATA) / "control_meshes/opensubdiv_shapes/bilinear_nonquads1.obj";
+  if (std::filesystem::exists(file)) {
+    const LoadedMesh lm = import_surface_mesh(file.string());
+    Polygons m = load_polygons(file);
+    for (const auto& p : lm.mesh.positions) m.positions.insert(m.positions.end(), {p.x, p.y, p.z});
+    bases.push_back(m);
+  } else {
+    std::printf("no third-party data at %s: the cube only\n", file.string().c_str());
+  }
+  for (const Polygons& base : bases) {
+    const int levels = 3;
+    const auto r = fixtures::osd_refiner(base, Sdc::SCHEME_BILINEAR, levels);
+    ASSERT_TRUE(r);
+    std::vector<std::vector<OsdPoint>> pts(levels + 1);
+    for (std::uint32_t v = 0; v < base.num_vertices; ++v)
+      pts[0].push_back({{base.positions[3 * v], base.positions[3 * v + 1], base.positions[3 * v + 2]}});
+    Far::PrimvarRefinerReal<double> pr(*r);
+    for (int l = 1; l <= levels; ++l) {
+      pts[l].resize(static_cast<std::size_t>(r->GetLevel(l).GetNumVertices()));
+      OsdPoint* dst = pts[l].data();
+      pr.Interpolate(l, pts[l - 1].data(), dst);
+    }
+    const OsdFine o = osd_fine(base, Sdc::SCHEME_BILINEAR, levels);
+    std::vector<double> xyz;
+    for (const OsdPoint& p : pts[levels]) xyz.insert(xyz.end(), {p.p[0], p.p[1], p.p[2]});
+    const Rebuilt rb = rebuild_hierarchy(o.fine.num_vertices, o.fine.faces, xyz, Scheme::Linear, levels);
+    double scale = 0, worst = 0;
+    for (double x : xyz) scale = std::max(scale, std::abs(x));
+    for (std::size_t i = 3 * std::size_t(rb.hierarchy.num_vertices(0)); i < rb.hierarchy.coeffs.size(); ++i)
+      worst = std::max(worst, std::abs(rb.hierarchy.coeffs[i]));
+    EXPECT_LE(worst, 1e-14 * scale) << base.num_vertices << "-vertex base";
+  }
+}
+
+}  // namespace
+}  // namespace sublift

@@ -72,9 +72,11 @@ Attempt coarsen_sqrt2(const Mesh& m, const Star& s, int candidate) {
     int k = -1;
     for (int i = 0; i < 3; ++i)
       if (boundary_edge(m, s, q[std::size_t(i)], q[std::size_t(i + 1) % 3])) k = k < 0 ? i : 3;
-    if (k < 0 || k == 3)
+    if (k < 0)
       return fail(q[0], "the triangle at vertex " + std::to_string(m.input[q[0]]) +
-                            " does not hang on one boundary edge (sqrt(2) steps of meshes with creases are not detected)");
+                            " lies inside: a sqrt(2) step makes only quads there (triangles hang on boundary edges; creases are not detected)");
+    if (k == 3)
+      return fail(q[0], "the triangle at vertex " + std::to_string(m.input[q[0]]) + " has two boundary edges; a sqrt(2) step's triangles have one");
     if (!set(q[std::size_t(k)], V) || !set(q[std::size_t(k + 1) % 3], V) || !set(q[std::size_t(k + 2) % 3], N)) return conflict(clash);
   }
   if (triangles && candidate != 0) return at;  // the triangles decided: one labelling only

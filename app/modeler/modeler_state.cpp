@@ -73,6 +73,9 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
       offer.stop = d.stop;
       offer.stop_vertex = d.stop_vertex;
     }
+    // A dense mesh is its own finest level already: refine it only while the finest level stays
+    // within kMaxOpenVertices (a million-vertex scan opens without the 16 M-vertex levels).
+    while (levels > 0 && predicted_level_counts(shape.base, levels, scheme).back() > kMaxOpenVertices) --levels;
     Hierarchy h = make_hierarchy(std::move(shape.base), levels, scheme, 3);
     set_base(h, shape.positions);
     session = std::make_unique<Session>(std::move(h));

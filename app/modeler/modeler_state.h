@@ -55,6 +55,9 @@ struct CompressionReadout {
 class ModelerState {
  public:
   static constexpr int kDefaultLevels = 2;
+  /// Opening a mesh adds up to kDefaultLevels levels, fewer where that would pass this many
+  /// finest vertices.
+  static constexpr double kMaxOpenVertices = 2.0e6;
 
   /// Opens a shape (OBJ/OFF/PLY, curve OBJ, .lattice, .vtk) as a hierarchy of `levels` levels
   /// of `scheme`, or a `.sublift` project with its gains, frames and current level. Throws

@@ -914,3 +914,25 @@ TEST(ModelerRebuildTest, OpeningASubdividedMeshOffersToRebuildItsLevels) {
 
 }  // namespace
 }  // namespace sublift
+
+namespace sublift {
+namespace {
+
+// A dense mesh opens with fewer added levels, so its finest level stays within
+// kMaxOpenVertices (a 180 k-vertex torus: one level, 720 k vertices, not two, 2.9 M).
+TEST(ModelerOpenTest, DenseMeshesOpenWithFewerLevels) {
+  const auto dir = std::filesystem::temp_directory_path() / "sublift_modeler_dense";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "dense.obj").string();
+  const fixtures::Polygons t = fixtures::torus(600, 300);
+  Complex c = complex_from_polygons(t.num_vertices, t.faces);
+  write_shape(path, c, t.positions);
+  ModelerState m;
+  m.open(path);
+  EXPECT_EQ(m.session().finest_level(), 1);
+  EXPECT_LE(double(m.session().num_vertices(1)), ModelerState::kMaxOpenVertices);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace sublift

@@ -28,4 +28,4 @@ set(SUBLIFT_LAYER_USES_ffd edit io_project io_lattice io_model io_mesh multires 
 set(SUBLIFT_LAYER_DIR_analysis analysis)
 set(SUBLIFT_LAYER_USES_analysis multires schemes engine complex base)
 set(SUBLIFT_LAYER_DIR_fit fit)
-set(SUBLIFT_LAYER_USES_fit complex base)
+set(SUBLIFT_LAYER_USES_fit multires schemes engine complex base)

@@ -44,6 +44,7 @@ int FaceGramCache::type_of(const Complex& c, const TriRings& r, std::uint32_t f,
     return it->second;
   }
   const int id = static_cast<int>(types_.size());
+  const std::string key = sig;  // to take the type back if its patch cannot be built
   index_.emplace(std::move(sig), id);
   types_.emplace_back();
   pending_.push_back(id);
@@ -59,9 +60,26 @@ int FaceGramCache::type_of(const Complex& c, const TriRings& r, std::uint32_t f,
     if (row[0] < 3 && row[1] < 3 && row[2] < 3) pf = g;
   }
   if (pf == UINT32_MAX) throw std::logic_error("tri_gram: the face is missing from its own patch");
-  const Complex fine = refine_tri(patch);
-  const TriStencils st = build_tri_stencils(patch, scheme_);
-  const TriRings fine_rings = build_tri_rings(fine);
+  Complex fine;
+  TriStencils st;
+  TriRings fine_rings;
+  try {
+    fine = refine_tri(patch);
+    st = build_tri_stencils(patch, scheme_);
+    fine_rings = build_tri_rings(fine);
+  } catch (const TopologyError&) {
+    // The mesh itself is a manifold (checked before); its neighbourhood here is not a disc.
+    // The builder is kept across calls: forget the half-made type.
+    index_.erase(key);
+    types_.pop_back();
+    pending_.pop_back();
+    const auto q = c.faces.row(f);
+    throw TopologyError("the " + scheme_name(scheme_) + " wavelets need the " + std::to_string(radii_.patch) +
+                        "-ring neighbourhood of every face to be a disc, and near face " + std::to_string(f) + " (vertices " +
+                        std::to_string(q[0]) + ", " + std::to_string(q[1]) + ", " + std::to_string(q[2]) +
+                        ") the surface meets itself within it (a thin part, or a mesh this coarse); use a finer mesh there, or the "
+                        "linear or cubic scheme");
+  }
   const std::uint32_t nvp = patch.num_vertices;
   for (int k = 0; k < 4; ++k) {
     LocalOrder co;

@@ -10,6 +10,7 @@ add_executable(sublift-cli
   ${CMAKE_CURRENT_LIST_DIR}/cli_subdivide.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cli_analyze.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cli_rebuild.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/cli_fit.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cli_synthesize.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cli_edit.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cli_info_hierarchy.cpp

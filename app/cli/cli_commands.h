@@ -12,6 +12,8 @@ int run_subdivide(int argc, char** argv);
 int run_analyze(int argc, char** argv);
 /// `rebuild`: the levels of a mesh another tool subdivided (docs/rebuild.md); also `analyze` without --base.
 int run_rebuild(int argc, char** argv);
+/// `fit`: a base and fitted levels for any triangle mesh (docs/fit.md; a first version).
+int run_fit(int argc, char** argv);
 int run_synthesize(int argc, char** argv);
 int run_edit(int argc, char** argv);
 int run_basis(int argc, char** argv);

@@ -29,6 +29,9 @@ constexpr const char* kUsage =
     "  rebuild FINE [--scheme auto|S] [--levels N|max] -o PROJECT.sublift\n"
     "                                        find the levels of a mesh another tool subdivided\n"
     "                                        (any vertex order) and analyse it into wavelets\n"
+    "  fit MESH [--scheme S] [--base-vertices N] [--levels J] -o OUT\n"
+    "                                        a coarse base and fitted levels for any triangle\n"
+    "                                        mesh (a first version: docs/fit.md)\n"
     "  synthesize PROJECT [--level L] [--keep F] -o OUT\n"
     "                                        control net of level L, optionally keeping only\n"
     "                                        the largest fraction F of the wavelets\n"
@@ -72,6 +75,7 @@ int main(int argc, char** argv) {
     if (cmd == "subdivide") return cli::run_subdivide(argc, argv);
     if (cmd == "analyze") return cli::run_analyze(argc, argv);
     if (cmd == "rebuild") return cli::run_rebuild(argc, argv);
+    if (cmd == "fit") return cli::run_fit(argc, argv);
     if (cmd == "synthesize") return cli::run_synthesize(argc, argv);
     if (cmd == "edit") return cli::run_edit(argc, argv);
     if (cmd == "basis") return cli::run_basis(argc, argv);

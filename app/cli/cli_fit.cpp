@@ -1,0 +1,123 @@
+// sublift-cli fit MESH [--scheme S] [--base-vertices N] [--levels J] [--feature-angle DEG] -o OUT [--json]
+// A coarse base and fitted levels for any triangle mesh (issue 17, docs/fit.md; a first version).
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+
+#include "app/cli/cli_args.h"
+#include "app/cli/cli_commands.h"
+#include "app/cli/cli_hierarchy.h"
+#include "app/cli/cli_json.h"
+#include "core/base/errors.h"
+#include "core/base/file_io.h"
+#include "core/base/text_lines.h"
+#include "core/fit/closest_point.h"
+#include "core/fit/fit_levels.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/io/mesh/mesh_import.h"
+#include "core/io/project/project_io.h"
+
+namespace sublift::cli {
+
+namespace {
+
+constexpr const char* kHelp =
+    "usage: sublift-cli fit MESH [--scheme linear-tri|butterfly|loop] [--base-vertices N] [--levels J]\n"
+    "                       [--feature-angle DEG] -o OUT.sublift|OUT.obj [--json]\n"
+    "  A first version of fitting any triangle mesh (docs/fit.md): a coarse base from OpenMesh's\n"
+    "  decimater (N vertices, default 1/64 of the mesh's; genus, boundaries and edges sharper than\n"
+    "  DEG, default 60, kept), then J levels (default 3) fitted to the mesh coarse to fine and\n"
+    "  analysed, so the mesh's detail becomes wavelets. OUT: a project, or the finest fitted net.\n"
+    "  --json reports the base, the topology before and after, per level the distance from the\n"
+    "  fitted net to the mesh, the largest distance from the mesh to the fitted net (fractions of\n"
+    "  the bounding-box diagonal) and the times.\n";
+
+long parse_long_option(const Args& a, const char* name, long fallback, long lo, long hi) {
+  const auto v = a.value(name);
+  if (!v) return fallback;
+  long x = 0;
+  const auto [p, ec] = std::from_chars(v->data(), v->data() + v->size(), x);
+  if (ec != std::errc() || p != v->data() + v->size() || x < lo || x > hi)
+    throw UsageError(std::string(name) + " must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got '" + *v + "'");
+  return x;
+}
+
+}  // namespace
+
+int run_fit(int argc, char** argv) {
+  const Args a = parse_args(argc, argv, 2, {"-o", "--scheme", "--base-vertices", "--levels", "--feature-angle"}, {"--json", "--help"});
+  if (a.has("--help")) {
+    std::cout << kHelp;
+    return 0;
+  }
+  if (a.positional.size() != 1) throw UsageError("expected exactly one MESH");
+  const auto o = a.value("-o");
+  const bool project = o && file_extension(*o) == "sublift";
+  const std::string out = output_option(a, project ? 0 : 2);
+  FitOptions fo;
+  fo.scheme = a.value("--scheme") ? scheme_option(a) : Scheme::Loop;
+  if (!scheme_is_tri(fo.scheme)) throw UsageError("fit takes linear-tri, butterfly or loop for now (docs/fit.md)");
+  fo.levels = static_cast<int>(parse_long_option(a, "--levels", 3, 0, 6));
+  BaseMeshOptions bo;
+  bo.target_vertices = static_cast<std::uint32_t>(parse_long_option(a, "--base-vertices", 0, 4, 10000000));
+  if (const auto v = a.value("--feature-angle")) {
+    const auto d = parse_double(*v);
+    if (!d || *d <= 0 || *d >= 180) throw UsageError("--feature-angle must be in (0, 180) degrees, got '" + *v + "'");
+    bo.feature_angle_deg = *d;
+  }
+  const std::string& in = a.positional[0];
+  const LoadedMesh lm = import_surface_mesh(in);
+  std::cerr << lm.report.format(in);
+  std::vector<double> xyz;
+  for (const auto& p : lm.mesh.positions) xyz.insert(xyz.end(), {p.x, p.y, p.z});
+  Csr faces;
+  faces.offsets = lm.mesh.face_offsets;
+  faces.items = lm.mesh.face_indices;
+  const auto n = static_cast<std::uint32_t>(lm.mesh.num_vertices());
+  const auto t0 = std::chrono::steady_clock::now();
+  BaseMesh base;
+  Fitted f;
+  try {
+    base = decimate_to_base(n, faces, xyz, bo);
+    f = fit_levels(base, faces, xyz, fo);
+  } catch (const TopologyError& e) {
+    throw InputError(in, 0, e.what());
+  }
+  const double fit_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  // The other way: how far the mesh's vertices are from the fitted net.
+  const TriangleIndex fitted(f.finest, f.hierarchy.levels.back().faces);
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, back = 0;
+  for (std::uint32_t v = 0; v < n; ++v)
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], xyz[3 * v + k]), hi[k] = std::max(hi[k], xyz[3 * v + k]);
+  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  for (std::uint32_t v = 0; v < n; ++v) back = std::max(back, fitted.closest(&xyz[3 * std::size_t(v)]).distance / diag);
+  if (project) {
+    write_project(out, f.hierarchy);
+  } else {
+    for (const std::string& note : write_shape(out, f.hierarchy.levels.back(), f.finest)) std::cerr << out << ": warning: " << note << "\n";
+  }
+  if (a.has("--json")) {
+    nlohmann::json levels = nlohmann::json::array();
+    for (const FitLevelReport& r : f.levels)
+      levels.push_back({{"level", r.level}, {"vertices", r.vertices}, {"net_to_input_rms", r.rms}, {"net_to_input_max", r.max}, {"ms", r.ms}});
+    const nlohmann::json j = {{"input", in},
+                              {"output", out},
+                              {"scheme", scheme_name(fo.scheme)},
+                              {"base", {{"vertices", base.num_vertices}, {"faces", base.faces.rows()}, {"creases", base.tags.crease_edges.size()}}},
+                              {"euler", {{"input", base.euler_before}, {"base", base.euler_after}}},
+                              {"boundary_loops", {{"input", base.boundary_loops_before}, {"base", base.boundary_loops_after}}},
+                              {"levels", levels},
+                              {"input_to_fit_max", back},
+                              {"ms", fit_ms},
+                              {"warnings", report_json(lm.report)}};
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::cout << in << ": base of " << base.num_vertices << " vertices (Euler characteristic " << base.euler_after << ", as the mesh's "
+              << base.euler_before << "), " << f.levels.size() << " levels fitted; the mesh lies within " << 100 * back
+              << " % of the diagonal of the fitted surface; wrote " << out << "\n";
+  }
+  return 0;
+}
+
+}  // namespace sublift::cli

@@ -17,6 +17,7 @@
 #include "core/io/model/surface_export.h"
 #include "core/complex/complex_build.h"
 #include "core/multires/rebuild.h"
+#include "core/fit/fit_levels.h"
 
 namespace sublift {
 namespace {
@@ -116,6 +117,24 @@ ModelerState::PreparedRebuild ModelerState::prepare_rebuild(const std::string& f
   return {rebuild_hierarchy(shape.base.num_vertices, shape.base.faces, shape.positions, scheme, levels, false, 2,
                             feature_tags_of(shape.base), progress),
           std::move(shape.base.faces)};
+}
+
+void ModelerState::fit_base(std::uint32_t base_vertices, int levels) {
+  check_rebuild();  // the same preconditions: a mesh file, no FFD binding, no drag
+  Shape shape = read_shape(file_path_);
+  if (shape.base.dim != 2) throw Error("fitting takes surface meshes");
+  BaseMeshOptions bo;
+  bo.target_vertices = base_vertices;
+  FitOptions fo;
+  fo.levels = levels;
+  Fitted f = fit_levels(decimate_to_base(shape.base.num_vertices, shape.base.faces, shape.positions, bo), shape.base.faces,
+                        shape.positions, fo);
+  install(std::make_unique<Session>(std::move(f.hierarchy)));
+  rebuild_offer_ = {};
+  level_ = 0;
+  selection_.clear();
+  update_.topology = true;
+  refresh_state();
 }
 
 void ModelerState::rebuild_levels(int levels) {

@@ -98,6 +98,10 @@ class ModelerState {
     Csr faces;  // the file's faces, in file order
   };
   void check_rebuild();
+  /// Fits a coarse base of `base_vertices` (0: the default size) and `levels` fitted levels to
+  /// the opened mesh (docs/fit.md; triangle meshes, Loop): opens at level 0 with the mesh's
+  /// detail as wavelets; history cleared. Throws Error (the mesh is kept when it fails).
+  void fit_base(std::uint32_t base_vertices, int levels);
   static PreparedRebuild prepare_rebuild(const std::string& file, const RebuildOffer& offer, int levels, const RebuildProgress& progress);
   void install_rebuild(PreparedRebuild prepared);
   /// The file order of a rebuilt mesh (empty otherwise); saved with the project.

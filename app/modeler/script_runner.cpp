@@ -200,6 +200,13 @@ constexpr Command kCommands[] = {
       }
       c.state.rebuild_levels(static_cast<int>(n));
     }},
+    {"fit", 0, 2, "fit [BASE_VERTICES [LEVELS]]", [](const Call& c) {
+      const long long n = c.w.size() >= 2 ? integer(c.w[1], "BASE_VERTICES") : 0;
+      const long long l = c.w.size() == 3 ? integer(c.w[2], "LEVELS") : 3;
+      if (n < 0 || n > 10000000) throw ScriptError("fit BASE_VERTICES needs 0 (the default size) to 10000000");
+      if (l < 0 || l > 6) throw ScriptError("fit LEVELS needs 0 to 6");
+      c.state.fit_base(static_cast<std::uint32_t>(n), static_cast<int>(l));
+    }},
     {"level", 1, 1, "level L", [](const Call& c) {
       const long long l = integer(c.w[1], "L");
       const int finest = c.state.session().finest_level();

@@ -936,3 +936,40 @@ TEST(ModelerOpenTest, DenseMeshesOpenWithFewerLevels) {
 
 }  // namespace
 }  // namespace sublift
+
+#include "core/analysis/sphere_resample.h"
+
+namespace sublift {
+namespace {
+
+// Issue 17 (a first version): the script command `fit` gives any triangle mesh a coarse base
+// and fitted levels, opened at level 0; a thin scan is refused and the mesh stays open.
+TEST(ModelerFitTest, FitScriptCommand) {
+  const auto dir = std::filesystem::temp_directory_path() / "sublift_modeler_fit";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "sphere.obj").string();
+  const GeodesicSphere g = geodesic_sphere(5);
+  std::vector<double> xyz;
+  for (const auto& d : g.directions) xyz.insert(xyz.end(), {d.x, d.y, d.z});
+  write_shape(path, g.fine, xyz);
+  ModelerState m;
+  ScriptRunner ok("ok", "open " + path + "\nfit 100 2\n");
+  EXPECT_EQ(ok.next(m).kind, ScriptStep::Kind::End);
+  EXPECT_EQ(m.session().num_vertices(0), 100u);
+  EXPECT_EQ(m.session().finest_level(), 2);
+  EXPECT_EQ(m.level(), 0);
+  const std::pair<std::string, std::string> cases[] = {{"fit 100 9\n", "script:1: fit LEVELS needs 0 to 6"}};
+  expect_script_errors(m, cases);
+  const std::filesystem::path scan = std::filesystem::path(SUBLIFT_SHARED_DATA) / "scans/bunny_npm_lowres.obj";
+  if (std::filesystem::exists(scan)) {
+    ModelerState b;
+    b.open(scan.string());
+    const std::uint32_t before = b.session().num_vertices(0);
+    EXPECT_THROW(b.fit_base(0, 3), Error);
+    EXPECT_EQ(b.session().num_vertices(0), before);  // nothing changed
+  }
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace sublift

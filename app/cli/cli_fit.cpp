@@ -12,7 +12,8 @@
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
 #include "core/base/text_lines.h"
-#include "core/fit/closest_point.h"
+#include "core/base/bounds.h"
+#include "core/base/triangle_bvh.h"
 #include "core/fit/fit_levels.h"
 #include "core/io/lattice/shape_io.h"
 #include "core/io/mesh/mesh_import.h"
@@ -86,12 +87,11 @@ int run_fit(int argc, char** argv) {
   }
   const double fit_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   // The other way: how far the mesh's vertices are from the fitted net.
-  const TriangleIndex fitted(f.finest, f.hierarchy.levels.back().faces);
-  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, back = 0;
+  const TriangleBvh fitted(f.finest, f.hierarchy.levels.back().faces);
+  const double diag = bbox_diagonal(xyz);
+  double back = 0;
   for (std::uint32_t v = 0; v < n; ++v)
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], xyz[3 * v + k]), hi[k] = std::max(hi[k], xyz[3 * v + k]);
-  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
-  for (std::uint32_t v = 0; v < n; ++v) back = std::max(back, fitted.closest(&xyz[3 * std::size_t(v)]).distance / diag);
+    back = std::max(back, fitted.closest({xyz[3 * std::size_t(v)], xyz[3 * std::size_t(v) + 1], xyz[3 * std::size_t(v) + 2]}).distance / diag);
   if (project) {
     write_project(out, f.hierarchy);
   } else {

@@ -17,12 +17,6 @@
 namespace sublift {
 namespace {
 
-// A ray counts as meeting a triangle when its barycentric coordinates are >= -kBaryTolerance:
-// rays through a shared edge or vertex then meet at least one of the triangles despite
-// rounding, and the duplicates are merged by kSameHitEpsilon.
-constexpr double kBaryTolerance = 1e-10;
-// |det| below this times |e1| |e2| |dir|: the ray is parallel to the triangle's plane.
-constexpr double kParallelTolerance = 1e-12;
 // Relative volume below which a closed mesh is treated as flat (area centroid instead).
 constexpr double kFlatVolume = 1e-10;
 
@@ -150,108 +144,6 @@ MeshCentroid mesh_centroid(const SurfaceMesh& mesh) {
     result.point = o + sum / double(mesh.face_indices.size());
   }
   return result;
-}
-
-TriangleBvh::TriangleBvh(const SurfaceMesh& mesh) {
-  std::vector<Tri> tris;
-  std::vector<glm::dvec3> centers;
-  tris.reserve(mesh.face_indices.size());
-  for_each_fan_triangle(mesh, [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-    tris.push_back({a, b - a, c - a});
-    centers.push_back((a + b + c) / 3.0);
-  });
-  if (tris.empty()) return;
-  if (tris.size() > std::numeric_limits<std::uint32_t>::max() / 2) throw Error("too many triangles for the ray hierarchy");
-  const auto [lo, hi] = face_bounds(mesh);
-  diagonal_ = glm::length(hi - lo);
-  // Boxes grow by this much on every side, so that a ray grazing a box face (a triangle in an
-  // axis plane) is not lost to rounding in the slab test.
-  pad_ = 1e-9 * std::max(diagonal_, 1e-300);
-  std::vector<std::uint32_t> order(tris.size());
-  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-  nodes_.reserve(tris.size());
-  build(order, centers, tris, 0, static_cast<std::uint32_t>(order.size()));
-  tris_.resize(tris.size());
-  for (std::size_t i = 0; i < order.size(); ++i) tris_[i] = tris[order[i]];
-}
-
-std::uint32_t TriangleBvh::build(std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers,
-                                 const std::vector<Tri>& tris, std::uint32_t begin, std::uint32_t end) {
-  const std::uint32_t index = static_cast<std::uint32_t>(nodes_.size());
-  nodes_.emplace_back();
-  Node node;
-  node.lo = glm::dvec3(std::numeric_limits<double>::infinity());
-  node.hi = -node.lo;
-  glm::dvec3 clo = node.lo, chi = node.hi;
-  for (std::uint32_t i = begin; i < end; ++i) {
-    const Tri& t = tris[order[i]];
-    for (const glm::dvec3& p : {t.p0, t.p0 + t.e1, t.p0 + t.e2}) {
-      node.lo = glm::min(node.lo, p);
-      node.hi = glm::max(node.hi, p);
-    }
-    clo = glm::min(clo, centers[order[i]]);
-    chi = glm::max(chi, centers[order[i]]);
-  }
-  node.lo -= glm::dvec3(pad_);
-  node.hi += glm::dvec3(pad_);
-  const glm::dvec3 extent = chi - clo;
-  const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
-  if (end - begin <= 4 || extent[axis] <= 0.0) {
-    node.first = begin;
-    node.count = end - begin;
-    nodes_[index] = node;
-    return index;
-  }
-  const std::uint32_t mid = begin + (end - begin) / 2;
-  std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
-                   [&](std::uint32_t a, std::uint32_t b) { return centers[a][axis] < centers[b][axis]; });
-  build(order, centers, tris, begin, mid);  // the left child is index + 1
-  node.right = build(order, centers, tris, mid, end);
-  nodes_[index] = node;
-  return index;
-}
-
-void TriangleBvh::all_hits(const glm::dvec3& origin, const glm::dvec3& dir, std::vector<double>& hits) const {
-  if (nodes_.empty()) return;
-  // A zero component gets a huge finite inverse: the slab test then needs no special case.
-  glm::dvec3 inv;
-  for (int k = 0; k < 3; ++k) inv[k] = dir[k] == 0.0 ? 1e300 : 1.0 / dir[k];
-  const double dir_len = glm::length(dir);
-  std::array<std::uint32_t, 128> stack;
-  std::size_t top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& n = nodes_[stack[--top]];
-    double tmin = 0.0, tmax = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < 3; ++k) {
-      const double t1 = (n.lo[k] - origin[k]) * inv[k], t2 = (n.hi[k] - origin[k]) * inv[k];
-      tmin = std::max(tmin, std::min(t1, t2));
-      tmax = std::min(tmax, std::max(t1, t2));
-    }
-    if (tmin > tmax) continue;
-    if (n.count == 0) {
-      stack[top++] = n.right;
-      stack[top++] = static_cast<std::uint32_t>(&n - nodes_.data()) + 1;
-      continue;
-    }
-    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-      // Moller-Trumbore.
-      const Tri& t = tris_[i];
-      const glm::dvec3 p = glm::cross(dir, t.e2);
-      const double det = glm::dot(t.e1, p);
-      if (std::abs(det) <= kParallelTolerance * glm::length(t.e1) * glm::length(t.e2) * dir_len) continue;
-      const double inv_det = 1.0 / det;
-      const glm::dvec3 s = origin - t.p0;
-      const double u = glm::dot(s, p) * inv_det;
-      if (u < -kBaryTolerance || u > 1.0 + kBaryTolerance) continue;
-      const glm::dvec3 q = glm::cross(s, t.e1);
-      const double v = glm::dot(dir, q) * inv_det;
-      if (v < -kBaryTolerance || u + v > 1.0 + kBaryTolerance) continue;
-      const double th = glm::dot(t.e2, q) * inv_det;
-      if (th < 0.0) continue;
-      hits.push_back(th);
-    }
-  }
 }
 
 SphereResample resample_sphere(const SurfaceMesh& mesh, int levels) {

@@ -20,11 +20,7 @@
 // so the base octahedron's six vertices are the first six fine ones, and `sublift-cli analyze
 // FINE --base BASE` refines BASE to exactly this numbering.
 //
-// TriangleBvh rationale: every ray needs all of its intersections (to keep the farthest and to
-// count multiple hits), so it cannot stop at the first; a bounding volume hierarchy over the
-// fan-triangulated polygons (median splits, leaves of at most 4 triangles, nodes in depth-first
-// order with the left child next) keeps each ray at about log(n) box tests. Built once, queried
-// concurrently (all_hits is const and allocation-free apart from the caller's buffer).
+// The rays are cast through core/base/triangle_bvh.h (all intersections of each ray).
 #include <cstdint>
 #include <vector>
 
@@ -32,6 +28,7 @@
 
 #include "core/complex/complex.h"
 #include "core/base/surface_mesh.h"
+#include "core/base/triangle_bvh.h"
 
 namespace sublift {
 
@@ -72,39 +69,6 @@ struct MeshCentroid {
 /// The volume centroid of a closed mesh with non-negligible volume, else the area-weighted
 /// centroid of its (fan-triangulated) polygons. Throws TopologyError for a mesh without faces.
 MeshCentroid mesh_centroid(const SurfaceMesh& mesh);
-
-/// Ray queries against a mesh's polygons, fan-triangulated (see the rationale above).
-class TriangleBvh {
- public:
-  /// Builds the hierarchy over every face of `mesh` (faces of k corners give k-2 triangles).
-  explicit TriangleBvh(const SurfaceMesh& mesh);
-
-  /// Appends to `hits` the parameter t >= 0 of every triangle the ray origin + t * dir meets
-  /// (dir need not be unit; unsorted; one entry per triangle, so shared edges give duplicates).
-  /// Rays parallel to a triangle's plane miss it.
-  void all_hits(const glm::dvec3& origin, const glm::dvec3& dir, std::vector<double>& hits) const;
-
-  std::size_t num_triangles() const { return tris_.size(); }
-  /// Diagonal of the triangles' bounding box.
-  double diagonal() const { return diagonal_; }
-
- private:
-  struct Tri {
-    glm::dvec3 p0, e1, e2;
-  };
-  struct Node {
-    glm::dvec3 lo, hi;
-    std::uint32_t first = 0, count = 0;  // leaf: tris_[first, first + count); inner: count == 0
-    std::uint32_t right = 0;             // inner: index of the right child (left is this + 1)
-  };
-  std::uint32_t build(std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers,
-                      const std::vector<Tri>& tris, std::uint32_t begin, std::uint32_t end);
-
-  std::vector<Tri> tris_;
-  std::vector<Node> nodes_;
-  double diagonal_ = 0.0;
-  double pad_ = 0.0;
-};
 
 /// What resample_sphere returns.
 struct SphereResample {

@@ -33,6 +33,7 @@ struct Attempt {
   std::string why;              // the failure, in words, naming input vertices
   std::uint32_t where = UINT32_MAX;  // input vertex near the failure
   Coarsening c;                 // in the component's numbering; c.input_vertex filled
+  std::vector<double> coarse_xyz;  // the coarser mesh's positions, when the mesh has them
   bool keep_step = false;       // sqrt(2): the fine mesh has a keep step's triangles (its level is odd)
   bool curve_step = false;      // sqrt(2): it has a curve step's boundary points (its level is even)
 };
@@ -57,9 +58,10 @@ bool fan_corners(const Mesh& m, const Star& s, std::uint32_t v, unsigned offset,
 /// True when two of `ends` (the far ends of v's coarse edges) coincide: a doubled coarse edge.
 bool has_repeat(std::vector<std::uint32_t>& ends);
 
-/// Fills c.coarse_vertices and c.input_vertex from the old vertices (label Old) of m.
-void name_coarse_vertices(const Mesh& m, const std::vector<std::uint8_t>& labels, const std::vector<std::uint32_t>& coarse_id,
-                          std::uint32_t num_coarse, Coarsening& c);
+/// Fills c.coarse_vertices and c.input_vertex from the old vertices (label Old); `input`: the
+/// input vertex id of each fine vertex.
+void name_coarse_vertices(std::span<const std::uint32_t> input, const std::vector<std::uint8_t>& labels,
+                          const std::vector<std::uint32_t>& coarse_id, std::uint32_t num_coarse, Coarsening& c);
 
 /// Position of v in face row `q` (q must contain v).
 inline unsigned corner_of(std::span<const std::uint32_t> q, std::uint32_t v) {

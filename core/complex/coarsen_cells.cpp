@@ -165,10 +165,7 @@ Attempt coarsen_hexes(const Complex& c, const std::vector<std::uint32_t>& input,
   }
   for (std::uint32_t v = 0; v < n; ++v)
     if (lab[v] == V && c.vertex_cells.size(v) != 8 && c.vertex_dim[v] == 3) ++at.score;  // extraordinary inside
-  out.coarse_vertices = nv;
-  out.input_vertex.resize(nv);
-  for (std::uint32_t v = 0; v < n; ++v)
-    if (lab[v] == V) out.input_vertex[coarse_id[v]] = input[v];
+  name_coarse_vertices(input, lab, coarse_id, nv, out);
   at.ok = true;
   return at;
 }

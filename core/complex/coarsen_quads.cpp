@@ -130,7 +130,7 @@ Attempt coarsen_quads(const Mesh& m, const Star& s, int candidate) {
   std::uint32_t old_count = 0;
   for (std::uint32_t v = 0; v < n; ++v) old_count += lab[v] == V;
   at.score = static_cast<int>(old_count) - at.score;
-  name_coarse_vertices(m, lab, coarse_id, nv, c);
+  name_coarse_vertices(m.input, lab, coarse_id, nv, c);
   at.ok = true;
   return at;
 }

@@ -174,7 +174,7 @@ Attempt coarsen_sqrt2(const Mesh& m, const Star& s, int candidate) {
       return fail(v, "the face around new point " + std::to_string(m.input[v]) + " would visit a vertex twice");
   }
   at.keep_step = triangles;
-  name_coarse_vertices(m, lab, coarse_id, nv, c);
+  name_coarse_vertices(m.input, lab, coarse_id, nv, c);
   at.ok = true;
   return at;
 }

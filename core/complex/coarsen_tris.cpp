@@ -164,7 +164,7 @@ Attempt coarsen_tris(const Mesh& m, const Star& s, int candidate) {
     for (std::uint32_t x : {A, B, C}) c.coarse_faces.items.push_back(x);
     c.coarse_faces.offsets.push_back(static_cast<std::uint32_t>(c.coarse_faces.items.size()));
   }
-  name_coarse_vertices(m, lab, coarse_id, nv, c);
+  name_coarse_vertices(m.input, lab, coarse_id, nv, c);
   at.ok = true;
   return at;
 }

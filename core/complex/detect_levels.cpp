@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <string>
 
+#include "core/base/bounds.h"
 #include "core/base/errors.h"
 #include "core/base/parallel.h"
 #include "core/complex/coarsen.h"
@@ -68,12 +69,12 @@ bool has_repeat(std::vector<std::uint32_t>& ends) {
   return std::adjacent_find(ends.begin(), ends.end()) != ends.end();
 }
 
-void name_coarse_vertices(const Mesh& m, const std::vector<std::uint8_t>& labels, const std::vector<std::uint32_t>& coarse_id,
-                          std::uint32_t num_coarse, Coarsening& c) {
+void name_coarse_vertices(std::span<const std::uint32_t> input, const std::vector<std::uint8_t>& labels,
+                          const std::vector<std::uint32_t>& coarse_id, std::uint32_t num_coarse, Coarsening& c) {
   c.coarse_vertices = num_coarse;
   c.input_vertex.resize(num_coarse);
-  for (std::uint32_t v = 0; v < m.n; ++v)
-    if (labels[v] == Coarsening::Old) c.input_vertex[coarse_id[v]] = m.input[v];
+  for (std::size_t v = 0; v < input.size(); ++v)
+    if (labels[v] == Coarsening::Old) c.input_vertex[coarse_id[v]] = input[v];
 }
 
 }  // namespace detect
@@ -115,9 +116,7 @@ std::string shape_problem(const Mesh& m, SplitKind split, std::uint32_t& where) 
 // Vertex ids sorted along a Morton curve of their positions (30-bit codes, two counting-sort
 // passes of 15 bits): neighbours in space, and so mostly in the mesh, get nearby ids.
 std::vector<std::uint32_t> morton_order(std::span<const double> p, std::uint32_t n) {
-  double lo[3] = {p[0], p[1], p[2]}, hi[3] = {p[0], p[1], p[2]};
-  for (std::uint32_t v = 0; v < n; ++v)
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[3 * std::size_t(v) + k]), hi[k] = std::max(hi[k], p[3 * std::size_t(v) + k]);
+  const auto [lo, hi] = bounding_box(p.data(), n);
   std::vector<std::uint32_t> code(n);
   for (std::uint32_t v = 0; v < n; ++v) {
     std::uint32_t c = 0;
@@ -161,10 +160,9 @@ std::vector<double> coarse_xyz(const Mesh& m, const Coarsening& c) {
   return out;
 }
 
-double midpoint_residual(const Mesh& m, const Coarsening& c) {
+double midpoint_residual(const Mesh& m, const Coarsening& c, const std::vector<double>& cx) {
   if (m.xyz.empty()) return 0;
   double r = 0;
-  const std::vector<double> cx = coarse_xyz(m, c);
   auto pos = [&](std::uint32_t coarse_vertex) { return &cx[3 * std::size_t(coarse_vertex)]; };
   for (std::uint32_t v = 0; v < m.n; ++v) {
     if (c.kind[v] == Coarsening::Old || c.kind[v] == Coarsening::CellPoint) continue;
@@ -193,7 +191,10 @@ Attempt best_labelling(std::uint32_t n, const Mesh& m, Run run, Attempt& failed)
     for (std::uint32_t cand = b; cand < e; ++cand) {
       try {
         tries[cand] = run(int(cand));
-        if (tries[cand].ok) residual[cand] = midpoint_residual(m, tries[cand].c);
+        if (tries[cand].ok && !m.xyz.empty()) {
+          tries[cand].coarse_xyz = coarse_xyz(m, tries[cand].c);
+          residual[cand] = midpoint_residual(m, tries[cand].c, tries[cand].coarse_xyz);
+        }
       } catch (const std::exception& ex) {  // out of memory: parallel_for bodies must not throw
         tries[cand] = Attempt{};
         tries[cand].why = ex.what();
@@ -256,7 +257,7 @@ Chain coarsen_component(Mesh m, SplitKind split, int limit, const std::function<
     next.n = best.c.coarse_vertices;
     next.faces = best.c.coarse_faces;
     next.input = best.c.input_vertex;
-    if (!m.xyz.empty()) next.xyz = coarse_xyz(m, best.c);
+    next.xyz = std::move(best.coarse_xyz);
     ch.steps.push_back(std::move(best));
     m = std::move(next);
   }

@@ -6,20 +6,12 @@
 
 #include "core/base/errors.h"
 #include "core/complex/complex_build.h"
-#include "core/fit/closest_point.h"
+#include "core/base/bounds.h"
+#include "core/base/triangle_bvh.h"
 
 namespace sublift {
 
 namespace {
-
-double diagonal(std::span<const double> p) {
-  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  for (std::size_t i = 0; i + 2 < p.size(); i += 3)
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[i + k]), hi[k] = std::max(hi[k], p[i + k]);
-  double d = 0;
-  for (int k = 0; k < 3; ++k) d += (hi[k] - lo[k]) * (hi[k] - lo[k]);
-  return std::sqrt(d);
-}
 
 // The coefficients that synthesise `x` (level L's net) at level L, finer wavelets zero.
 void set_level(Hierarchy& h, int L, std::vector<double> x) {
@@ -33,8 +25,8 @@ void set_level(Hierarchy& h, int L, std::vector<double> x) {
 Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double> positions, const FitOptions& o) {
   if (!scheme_is_tri(o.scheme)) throw Error("fitting takes the triangle schemes for now (linear-tri, butterfly, loop)");
   Fitted out;
-  const TriangleIndex input(positions, faces);
-  const double diag = diagonal(positions);
+  const TriangleBvh input(positions, faces);
+  const double diag = bbox_diagonal(positions);
   out.hierarchy = make_hierarchy(complex_from_polygons(base.num_vertices, base.faces, base.tags), o.levels, o.scheme, 3);
   Hierarchy& h = out.hierarchy;
   set_base(h, base.positions);
@@ -62,8 +54,8 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
         double p[3];
         const double t = v >= first_new ? o.relax : 0.0;
         for (int k = 0; k < 3; ++k) p[k] = (1 - t) * x[3 * std::size_t(v) + k] + t * mean[3 * std::size_t(v) + k];
-        const TriangleIndex::Hit hit = input.closest(p);
-        for (int k = 0; k < 3; ++k) x[3 * std::size_t(v) + k] = hit.point[k];
+        const glm::dvec3 q = input.closest({p[0], p[1], p[2]}).point;
+        for (int k = 0; k < 3; ++k) x[3 * std::size_t(v) + k] = q[k];
       }
     }
     FitLevelReport rep;
@@ -71,7 +63,7 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
     rep.vertices = n;
     double sum = 0;
     for (std::uint32_t v = 0; v < n; ++v) {
-      const double d = input.closest(&x[3 * std::size_t(v)]).distance / diag;
+      const double d = input.closest({x[3 * std::size_t(v)], x[3 * std::size_t(v) + 1], x[3 * std::size_t(v) + 2]}).distance / diag;
       sum += d * d;
       rep.max = std::max(rep.max, d);
     }

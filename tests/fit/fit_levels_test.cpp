@@ -7,7 +7,8 @@
 #include <cmath>
 
 #include "core/analysis/sphere_resample.h"
-#include "core/fit/closest_point.h"
+#include "core/base/bounds.h"
+#include "core/base/triangle_bvh.h"
 #include "tests/mesh_fixtures.h"
 #include "tests/test_shapes.h"
 
@@ -38,20 +39,14 @@ Input torus() {
   return in;
 }
 
-double diagonal(const std::vector<double>& p) {
-  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  for (std::size_t i = 0; i < p.size(); i += 3)
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[i + k]), hi[k] = std::max(hi[k], p[i + k]);
-  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
-}
-
 // Largest distance from the input's vertices to the fitted finest net, over the diagonal.
 double input_to_fit(const Input& in, const Fitted& f) {
   const Complex& fine = f.hierarchy.levels.back();
-  const TriangleIndex index(f.finest, fine.faces);
+  const TriangleBvh index(f.finest, fine.faces);
   double worst = 0;
-  for (std::uint32_t v = 0; v < in.n; ++v) worst = std::max(worst, index.closest(&in.xyz[3 * std::size_t(v)]).distance);
-  return worst / diagonal(in.xyz);
+  for (std::uint32_t v = 0; v < in.n; ++v)
+    worst = std::max(worst, index.closest({in.xyz[3 * std::size_t(v)], in.xyz[3 * std::size_t(v) + 1], in.xyz[3 * std::size_t(v) + 2]}).distance);
+  return worst / bbox_diagonal(in.xyz);
 }
 
 TEST(FitLevels, SphereAndTorusFitBothWays) {

@@ -1,0 +1,209 @@
+#include "core/base/triangle_bvh.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "core/base/errors.h"
+
+namespace sublift {
+
+namespace {
+
+// A ray counts as meeting a triangle when its barycentric coordinates are >= -kBaryTolerance:
+// rays through a shared edge or vertex then meet at least one of the triangles despite
+// rounding (sphere resampling merges the duplicates).
+constexpr double kBaryTolerance = 1e-10;
+// |det| below this times |e1| |e2| |dir|: the ray is parallel to the triangle's plane.
+constexpr double kParallelTolerance = 1e-12;
+
+}  // namespace
+
+TriangleBvh::TriangleBvh(const SurfaceMesh& mesh) {
+  std::vector<Tri> tris;
+  tris.reserve(mesh.face_indices.size());
+  for (std::size_t face = 0; face < mesh.num_faces(); ++face) {
+    const auto c = mesh.face(face);
+    for (std::size_t i = 1; i + 1 < c.size(); ++i) {
+      const glm::dvec3& a = mesh.positions[c[0]];
+      tris.push_back({a, mesh.positions[c[i]] - a, mesh.positions[c[i + 1]] - a});
+    }
+  }
+  init(std::move(tris));
+}
+
+TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
+  std::vector<Tri> tris;
+  tris.reserve(faces.items.size());
+  auto at = [&](std::uint32_t v) { return glm::dvec3(p[3 * std::size_t(v)], p[3 * std::size_t(v) + 1], p[3 * std::size_t(v) + 2]); };
+  for (std::size_t f = 0; f < faces.rows(); ++f) {
+    const auto c = faces.row(f);
+    for (std::size_t i = 1; i + 1 < c.size(); ++i) tris.push_back({at(c[0]), at(c[i]) - at(c[0]), at(c[i + 1]) - at(c[0])});
+  }
+  init(std::move(tris));
+}
+
+void TriangleBvh::init(std::vector<Tri> tris) {
+  if (tris.empty()) return;
+  if (tris.size() > std::numeric_limits<std::uint32_t>::max() / 2) throw Error("too many triangles for the triangle hierarchy");
+  std::vector<glm::dvec3> centers;
+  centers.reserve(tris.size());
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Tri& t : tris) {
+    centers.push_back(t.p0 + (t.e1 + t.e2) / 3.0);
+    for (const glm::dvec3& q : {t.p0, t.p0 + t.e1, t.p0 + t.e2}) lo = glm::min(lo, q), hi = glm::max(hi, q);
+  }
+  diagonal_ = glm::length(hi - lo);
+  // Boxes grow by this much on every side, so that a ray grazing a box face (a triangle in an
+  // axis plane) is not lost to rounding in the slab test.
+  pad_ = 1e-9 * std::max(diagonal_, 1e-300);
+  std::vector<std::uint32_t> order(tris.size());
+  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  nodes_.reserve(tris.size());
+  build(order, centers, tris, 0, static_cast<std::uint32_t>(order.size()));
+  tris_.resize(tris.size());
+  for (std::size_t i = 0; i < order.size(); ++i) tris_[i] = tris[order[i]];
+}
+
+std::uint32_t TriangleBvh::build(std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers,
+                                 const std::vector<Tri>& tris, std::uint32_t begin, std::uint32_t end) {
+  const std::uint32_t index = static_cast<std::uint32_t>(nodes_.size());
+  nodes_.emplace_back();
+  Node node;
+  node.lo = glm::dvec3(std::numeric_limits<double>::infinity());
+  node.hi = -node.lo;
+  glm::dvec3 clo = node.lo, chi = node.hi;
+  for (std::uint32_t i = begin; i < end; ++i) {
+    const Tri& t = tris[order[i]];
+    for (const glm::dvec3& p : {t.p0, t.p0 + t.e1, t.p0 + t.e2}) {
+      node.lo = glm::min(node.lo, p);
+      node.hi = glm::max(node.hi, p);
+    }
+    clo = glm::min(clo, centers[order[i]]);
+    chi = glm::max(chi, centers[order[i]]);
+  }
+  node.lo -= glm::dvec3(pad_);
+  node.hi += glm::dvec3(pad_);
+  const glm::dvec3 extent = chi - clo;
+  const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+  if (end - begin <= 4 || extent[axis] <= 0.0) {
+    node.first = begin;
+    node.count = end - begin;
+    nodes_[index] = node;
+    return index;
+  }
+  const std::uint32_t mid = begin + (end - begin) / 2;
+  std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
+                   [&](std::uint32_t a, std::uint32_t b) { return centers[a][axis] < centers[b][axis]; });
+  build(order, centers, tris, begin, mid);  // the left child is index + 1
+  node.right = build(order, centers, tris, mid, end);
+  nodes_[index] = node;
+  return index;
+}
+
+void TriangleBvh::all_hits(const glm::dvec3& origin, const glm::dvec3& dir, std::vector<double>& hits) const {
+  if (nodes_.empty()) return;
+  // A zero component gets a huge finite inverse: the slab test then needs no special case.
+  glm::dvec3 inv;
+  for (int k = 0; k < 3; ++k) inv[k] = dir[k] == 0.0 ? 1e300 : 1.0 / dir[k];
+  const double dir_len = glm::length(dir);
+  std::array<std::uint32_t, 128> stack;
+  std::size_t top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    double tmin = 0.0, tmax = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      const double t1 = (n.lo[k] - origin[k]) * inv[k], t2 = (n.hi[k] - origin[k]) * inv[k];
+      tmin = std::max(tmin, std::min(t1, t2));
+      tmax = std::min(tmax, std::max(t1, t2));
+    }
+    if (tmin > tmax) continue;
+    if (n.count == 0) {
+      stack[top++] = n.right;
+      stack[top++] = static_cast<std::uint32_t>(&n - nodes_.data()) + 1;
+      continue;
+    }
+    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+      // Moller-Trumbore.
+      const Tri& t = tris_[i];
+      const glm::dvec3 p = glm::cross(dir, t.e2);
+      const double det = glm::dot(t.e1, p);
+      if (std::abs(det) <= kParallelTolerance * glm::length(t.e1) * glm::length(t.e2) * dir_len) continue;
+      const double inv_det = 1.0 / det;
+      const glm::dvec3 s = origin - t.p0;
+      const double u = glm::dot(s, p) * inv_det;
+      if (u < -kBaryTolerance || u > 1.0 + kBaryTolerance) continue;
+      const glm::dvec3 q = glm::cross(s, t.e1);
+      const double v = glm::dot(dir, q) * inv_det;
+      if (v < -kBaryTolerance || u + v > 1.0 + kBaryTolerance) continue;
+      const double th = glm::dot(t.e2, q) * inv_det;
+      if (th < 0.0) continue;
+      hits.push_back(th);
+    }
+  }
+}
+
+
+namespace {
+
+// The closest point of triangle (a, a + e1, a + e2) to p (Ericson, Real-Time Collision
+// Detection, 5.1.5: by the Voronoi region of p).
+glm::dvec3 closest_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& ab, const glm::dvec3& ac) {
+  const glm::dvec3 ap = p - a;
+  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const glm::dvec3 bp = ap - ab;
+  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return a + ab;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  const glm::dvec3 cp = ap - ac;
+  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return a + ac;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return a + ab + (ac - ab) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double denom = 1 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+double box_distance2(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& p) {
+  const glm::dvec3 d = glm::max(glm::max(lo - p, p - hi), glm::dvec3(0.0));
+  return glm::dot(d, d);
+}
+
+}  // namespace
+
+TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p) const {
+  Closest best;
+  double best2 = std::numeric_limits<double>::infinity();
+  std::array<std::uint32_t, 128> stack;
+  std::size_t top = 0;
+  if (!nodes_.empty()) stack[top++] = 0;
+  while (top > 0) {
+    const std::uint32_t index = stack[--top];
+    const Node& n = nodes_[index];
+    if (box_distance2(n.lo, n.hi, p) >= best2) continue;
+    if (n.count == 0) {  // the nearer child last, so it is searched first
+      const bool left_first = box_distance2(nodes_[index + 1].lo, nodes_[index + 1].hi, p) <= box_distance2(nodes_[n.right].lo, nodes_[n.right].hi, p);
+      stack[top++] = left_first ? n.right : index + 1;
+      stack[top++] = left_first ? index + 1 : n.right;
+      continue;
+    }
+    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+      const glm::dvec3 q = closest_on_triangle(p, tris_[i].p0, tris_[i].e1, tris_[i].e2);
+      const double d2 = glm::dot(q - p, q - p);
+      if (d2 < best2) best2 = d2, best.point = q;
+    }
+  }
+  best.distance = std::sqrt(best2);
+  return best;
+}
+
+}  // namespace sublift

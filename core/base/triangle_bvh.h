@@ -1,0 +1,61 @@
+#pragma once
+// Queries against a mesh's polygons, fan-triangulated: every intersection of a ray (sphere
+// resampling keeps the farthest and counts multiple hits, so it cannot stop at the first) and the
+// closest point (fitting attracts each level to the input and measures distances both ways). A
+// bounding volume hierarchy: median splits, leaves of at most 4 triangles, nodes in depth-first
+// order with the left child next; about log(n) box tests per query. Built once, queried
+// concurrently (the queries are const and allocation-free apart from the caller's buffer).
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/base/csr.h"
+#include "core/base/surface_mesh.h"
+
+namespace sublift {
+
+class TriangleBvh {
+ public:
+  /// Over every face of `mesh` (faces of k corners give k-2 triangles).
+  explicit TriangleBvh(const SurfaceMesh& mesh);
+  /// The same from faces over positions (3 per vertex).
+  TriangleBvh(std::span<const double> positions, const Csr& faces);
+
+  /// Appends to `hits` the parameter t >= 0 of every triangle the ray origin + t * dir meets
+  /// (dir need not be unit; unsorted; one entry per triangle, so shared edges give duplicates).
+  /// Rays parallel to a triangle's plane miss it.
+  void all_hits(const glm::dvec3& origin, const glm::dvec3& dir, std::vector<double>& hits) const;
+
+  /// The closest point of the triangles to p and its distance (infinite with no triangles).
+  struct Closest {
+    glm::dvec3 point{0.0};
+    double distance = 0.0;
+  };
+  Closest closest(const glm::dvec3& p) const;
+
+  std::size_t num_triangles() const { return tris_.size(); }
+  /// Diagonal of the triangles' bounding box.
+  double diagonal() const { return diagonal_; }
+
+ private:
+  struct Tri {
+    glm::dvec3 p0, e1, e2;
+  };
+  struct Node {
+    glm::dvec3 lo, hi;
+    std::uint32_t first = 0, count = 0;  // leaf: tris_[first, first + count); inner: count == 0
+    std::uint32_t right = 0;             // inner: index of the right child (left is this + 1)
+  };
+  void init(std::vector<Tri> tris);
+  std::uint32_t build(std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers,
+                      const std::vector<Tri>& tris, std::uint32_t begin, std::uint32_t end);
+
+  std::vector<Tri> tris_;
+  std::vector<Node> nodes_;
+  double diagonal_ = 0.0;
+  double pad_ = 0.0;
+};
+
+}  // namespace sublift

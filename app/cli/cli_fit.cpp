@@ -70,6 +70,10 @@ int run_fit(int argc, char** argv) {
   const std::string& in = a.positional[0];
   const LoadedMesh lm = import_surface_mesh(in);
   std::cerr << lm.report.format(in);
+  if (const std::string s = lm.report.not_kept_summary(); !s.empty())
+    std::cerr << in << ": warning: not kept by the fit: " << s << "\n";
+  if (!lm.mesh.tags.empty())
+    std::cerr << in << ": warning: not kept by the fit: " << lm.mesh.tags.size() << " tags (its features come from --feature-angle)\n";
   std::vector<double> xyz;
   for (const auto& p : lm.mesh.positions) xyz.insert(xyz.end(), {p.x, p.y, p.z});
   Csr faces;

@@ -9,6 +9,7 @@
 #include "app/cli/cli_json.h"
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
+#include "core/complex/complex_build.h"
 #include "core/io/lattice/shape_io.h"
 #include "core/io/project/project_io.h"
 #include "core/multires/rebuild.h"
@@ -30,6 +31,20 @@ constexpr const char* kHelp =
     "  where the mesh stops. The project remembers the file's vertex and face order: synthesize,\n"
     "  edit and compress write the finest level in that order. 'analyze FINE' without --base\n"
     "  does the same.\n";
+
+}  // namespace
+
+namespace {
+
+// Faces, edges and vertices of a lattice whose feature dim is below what its topology gives
+// (tags), which rebuild does not carry.
+std::size_t lattice_feature_count(const Complex& c) {
+  std::size_t n = 0;
+  for (std::uint32_t f = 0; f < c.num_faces(); ++f) n += c.face_dim[f] < untagged_face_dim(c, f);
+  for (std::uint32_t e = 0; e < c.num_edges(); ++e) n += c.edge_dim[e] < untagged_edge_dim(c, e);
+  for (std::uint32_t v = 0; v < c.num_vertices; ++v) n += c.vertex_dim[v] < untagged_vertex_dim(c, v);
+  return n;
+}
 
 }  // namespace
 
@@ -62,6 +77,13 @@ int run_rebuild(int argc, char** argv) {
                       : rebuild_hierarchy(fine.base.num_vertices, fine.base.faces, fine.positions, scheme, levels, integer, disc,
                                           feature_tags_of(fine.base));
   for (const std::string& why : r.features.dropped) std::cerr << fine_path << ": warning: feature tag dropped: " << why << "\n";
+  // What the project does not keep, so synthesize cannot write back.
+  std::vector<std::string> not_kept;
+  if (const std::string s = fine.report.not_kept_summary(); !s.empty()) not_kept.push_back(s);
+  if (lattice)
+    if (const std::size_t n = lattice_feature_count(fine.base); n > 0)
+      not_kept.push_back(std::to_string(n) + " lattice feature tags (faces, edges or vertices marked as features)");
+  for (const std::string& s : not_kept) std::cerr << fine_path << ": warning: not kept in the project (nor written back): " << s << "\n";
   const DetectedLevels& d = r.detected;
   ProjectExtras extras;
   extras.input_order.level = d.levels;
@@ -97,6 +119,7 @@ int run_rebuild(int argc, char** argv) {
                         {"per_level", per_level},
                         {"components", components},
                         {"stop", d.stop},
+                        {"not_kept", not_kept},
                         {"features", {{"creases", r.features.creases},
                                       {"corners", r.features.corners},
                                       {"base_creases", r.features.base.crease_edges.size()},

@@ -62,6 +62,8 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
         if (!line.empty()) warnings.push_back(line);
       }
     }
+    // Data of the file the modeler does not keep, so saving or exporting loses it.
+    if (const std::string s = shape.report.not_kept_summary(); !s.empty()) warnings.push_back("not kept (saving or exporting drops it): " + s);
     // Subdivided elsewhere? Then offer to rebuild its levels (docs/rebuild.md).
     if (shape.base.dim >= 2) {
       offer.scheme = shape.base.dim == 3 ? Scheme::Cubic : rebuild_auto_scheme(shape.base.faces);

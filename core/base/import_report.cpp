@@ -31,4 +31,20 @@ std::string ImportReport::format(const std::string& file) const {
   return out;
 }
 
+void ImportReport::note_not_kept(const std::string& what, std::size_t line) {
+  for (ImportWarning& w : not_kept)
+    if (w.what == what) {
+      ++w.count;
+      if (w.first_lines.size() < kMaxLines) w.first_lines.push_back(line);
+      return;
+    }
+  not_kept.push_back({what, 1, {line}});
+}
+
+std::string ImportReport::not_kept_summary() const {
+  std::string s;
+  for (const ImportWarning& w : not_kept) s += (s.empty() ? "" : ", ") + std::to_string(w.count) + " " + w.what;
+  return s;
+}
+
 }  // namespace sublift

@@ -20,6 +20,13 @@ struct ImportWarning {
 struct ImportReport {
   static constexpr std::size_t kMaxLines = 5;
   std::vector<ImportWarning> warnings;
+  /// Per-corner or per-vertex data the file carries and the surface mesh does not keep (OBJ
+  /// texture coordinates `vt`, normals `vn`, materials `usemtl`), by name and count. Not
+  /// warnings for reading; commands that promise to give the file back (rebuild) name them.
+  std::vector<ImportWarning> not_kept;
+  void note_not_kept(const std::string& what, std::size_t line);
+  /// "4 texture coordinates (vt), 1 normals (vn)"; empty when nothing.
+  std::string not_kept_summary() const;
   /// Records one occurrence of `what` at `line` (merged with earlier ones of the same kind).
   void add(const std::string& what, std::size_t line);
   bool empty() const { return warnings.empty(); }

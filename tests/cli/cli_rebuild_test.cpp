@@ -146,3 +146,25 @@ TEST(CliRebuild, LatticeComesBackInItsVertexOrder) {
   const Shape a = read_shape(fine), b = read_shape(back);
   EXPECT_LE(relative_error(a.positions, b.positions), 1e-12);
 }
+
+TEST(CliRebuild, DataTheProjectDoesNotKeepIsNamed) {
+  TempDir dir("sublift_cli_rebuild_uv");
+  const std::string fine = dir.file("uv.obj"), project = dir.file("p.sublift");
+  std::ofstream(fine) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\nusemtl skin\nf 1/1/1 2/2/1 3/3/1 4/4/1\n";
+  const ProcessResult r = run_cli({"rebuild", fine, "-o", project, "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("not kept in the project (nor written back): 4 texture coordinates (vt), 1 normals (vn), 1 materials (usemtl)"),
+            std::string::npos) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["not_kept"].size(), 1u);
+}
+
+TEST(CliRebuild, LatticeFeatureTagsAreNamedNotDroppedSilently) {
+  TempDir dir("sublift_cli_rebuild_features");
+  const std::string fine = dir.file("fs1.lattice");
+  ASSERT_EQ(run_cli({"subdivide", std::string(SUBLIFT_ASSETS_DIR) + "/feature_surface.lattice", "--scheme", "cubic", "--levels", "1", "-o", fine})
+                .exit_code,
+            0);
+  const ProcessResult r = run_cli({"rebuild", fine, "-o", dir.file("p.sublift")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("lattice feature tags"), std::string::npos) << r.err;
+}

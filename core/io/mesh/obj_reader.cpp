@@ -138,6 +138,8 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
                    ln);
       else
         polylines.add(corners, ln);
+    } else if (key == "vt" || key == "vn" || key == "usemtl") {
+      report.note_not_kept(key == "vt" ? "texture coordinates (vt)" : key == "vn" ? "normals (vn)" : "materials (usemtl)", ln);
     } else if (key == "p") {
       report.add("point element ignored (not a face or polyline)", ln);
     } else if (!ignorable_statement(key)) {

@@ -70,4 +70,30 @@ inline unsigned corner_of(std::span<const std::uint32_t> q, std::uint32_t v) {
   return k;
 }
 
+/// The pass over the old vertices (label Old) the surface coarseners share: names each in c
+/// (c.a[v] = its coarse id), adds to at.score each whose face count is not the regular one
+/// (`regular_inside`, `regular_boundary`: extraordinary vertices are likelier old), and checks
+/// that its coarse edges lead to distinct vertices: far_end(q, k) is the far end of the coarse
+/// edge that face q (v at corner k) holds, UINT32_MAX for none. Returns the first vertex with a
+/// doubled coarse edge, or UINT32_MAX.
+template <class FarEnd>
+std::uint32_t check_old_vertices(const Mesh& m, const Star& s, const std::vector<std::uint8_t>& labels,
+                                 const std::vector<std::uint32_t>& coarse_id, unsigned regular_inside,
+                                 unsigned regular_boundary, FarEnd far_end, Attempt& at) {
+  std::vector<std::uint32_t> ends;
+  for (std::uint32_t v = 0; v < m.n; ++v) {
+    if (labels[v] != Coarsening::Old) continue;
+    at.c.a[v] = coarse_id[v];
+    if (s.vertex_faces.size(v) != (s.boundary[v] ? regular_boundary : regular_inside)) ++at.score;
+    ends.clear();
+    for (std::uint32_t f : s.vertex_faces.row(v)) {
+      const auto q = m.faces.row(f);
+      const std::uint32_t x = far_end(q, corner_of(q, v));
+      if (x != UINT32_MAX) ends.push_back(x);
+    }
+    if (has_repeat(ends)) return v;
+  }
+  return UINT32_MAX;
+}
+
 }  // namespace sublift::detect

@@ -95,21 +95,13 @@ Attempt coarsen_quads(const Mesh& m, const Star& s, int candidate) {
     c.b[v] = coarse_id[ends[1]];
   }
   // An old vertex's edge points lead to distinct vertices (no doubled coarse edge).
+  const std::uint32_t doubled = check_old_vertices(m, s, lab, coarse_id, 4, 2, [&](std::span<const std::uint32_t> q, unsigned k) {
+    const std::uint32_t e = q[(k + 1) & 3u];
+    return c.a[e] == coarse_id[q[k]] ? c.b[e] : c.a[e];
+  }, at);
+  if (doubled != UINT32_MAX)
+    return fail(doubled, "two edges of the coarser mesh would join vertex " + std::to_string(m.input[doubled]) + " to the same vertex");
   std::vector<std::uint32_t> others;
-  for (std::uint32_t v = 0; v < n; ++v) {
-    if (lab[v] != V) continue;
-    c.a[v] = coarse_id[v];
-    if (s.vertex_faces.size(v) == (s.boundary[v] ? 2u : 4u)) ++at.score;  // regular: subtracted below
-    others.clear();
-    for (std::uint32_t f : s.vertex_faces.row(v)) {
-      const auto q = m.faces.row(f);
-      const unsigned k = corner_of(q, v);
-      const std::uint32_t e = q[(k + 1) & 3u];
-      others.push_back(c.a[e] == coarse_id[v] ? c.b[e] : c.a[e]);
-    }
-    if (has_repeat(others))
-      return fail(v, "two edges of the coarser mesh would join vertex " + std::to_string(m.input[v]) + " to the same vertex");
-  }
   // Face points: inside, with a closed fan of n >= 3 quads whose old corners make the face.
   c.coarse_faces.offsets.assign(1, 0);
   c.coarse_faces.items.reserve(n);
@@ -126,10 +118,6 @@ Attempt coarsen_quads(const Mesh& m, const Star& s, int candidate) {
     for (std::uint32_t x : others) c.coarse_faces.items.push_back(coarse_id[x]);
     c.coarse_faces.offsets.push_back(static_cast<std::uint32_t>(c.coarse_faces.items.size()));
   }
-  // Score: old vertices that are extraordinary (the counter above counted regular ones).
-  std::uint32_t old_count = 0;
-  for (std::uint32_t v = 0; v < n; ++v) old_count += lab[v] == V;
-  at.score = static_cast<int>(old_count) - at.score;
   name_coarse_vertices(m.input, lab, coarse_id, nv, c);
   at.ok = true;
   return at;

@@ -104,20 +104,14 @@ Attempt coarsen_sqrt2(const Mesh& m, const Star& s, int candidate) {
     if (lab[v] == V) coarse_id[v] = nv++;
   if (nv == 0 || nv == n) return fail(0, "no vertex of a coarser mesh is left");
   // Old vertices: each quad's diagonal and each triangle's boundary edge is a coarse edge, once.
+  const std::uint32_t doubled = check_old_vertices(m, s, lab, coarse_id, 4, 2, [&](std::span<const std::uint32_t> q, unsigned k) {
+    if (q.size() == 4) return q[(k + 2) & 3u];
+    const std::uint32_t next = q[(k + 1) % 3];  // a triangle's boundary edge, from its first end
+    return lab[next] == V ? next : UINT32_MAX;
+  }, at);
+  if (doubled != UINT32_MAX)
+    return fail(doubled, "two edges of the coarser mesh would join vertex " + std::to_string(m.input[doubled]) + " to the same vertex");
   std::vector<std::uint32_t> others;
-  for (std::uint32_t v = 0; v < n; ++v) {
-    if (lab[v] != V) continue;
-    c.a[v] = coarse_id[v];
-    if (s.vertex_faces.size(v) != (s.boundary[v] ? 2u : 4u)) ++at.score;
-    others.clear();
-    for (std::uint32_t f : s.vertex_faces.row(v)) {
-      const auto q = m.faces.row(f);
-      if (q.size() == 4) others.push_back(q[(corner_of(q, v) + 2) & 3u]);
-      else if (lab[after(q, v)] == V) others.push_back(after(q, v));  // the boundary edge, from its first end
-    }
-    if (has_repeat(others))
-      return fail(v, "two edges of the coarser mesh would join vertex " + std::to_string(m.input[v]) + " to the same vertex");
-  }
   // New points: inside, a closed fan gives a coarse face; on the boundary (curve steps only) an
   // open fan of two quads gives a coarse triangle and the point is its boundary edge's curve point.
   c.coarse_faces.offsets.assign(1, 0);

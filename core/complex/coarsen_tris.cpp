@@ -132,20 +132,12 @@ Attempt coarsen_tris(const Mesh& m, const Star& s, int candidate) {
     c.a[v] = coarse_id[ends[0]];
     c.b[v] = coarse_id[ends[1]];
   }
-  std::vector<std::uint32_t> others;
-  for (std::uint32_t v = 0; v < n; ++v) {
-    if (lab[v] != V) continue;
-    c.a[v] = coarse_id[v];
-    if (s.vertex_faces.size(v) != (s.boundary[v] ? 3u : 6u)) ++at.score;
-    others.clear();
-    for (std::uint32_t f : s.vertex_faces.row(v)) {
-      const auto q = m.faces.row(f);
-      const std::uint32_t e = q[(corner_of(q, v) + 1) % 3];
-      others.push_back(c.a[e] == coarse_id[v] ? c.b[e] : c.a[e]);
-    }
-    if (has_repeat(others))
-      return fail(v, "two edges of the coarser mesh would join vertex " + std::to_string(m.input[v]) + " to the same vertex");
-  }
+  const std::uint32_t doubled = check_old_vertices(m, s, lab, coarse_id, 6, 3, [&](std::span<const std::uint32_t> q, unsigned k) {
+    const std::uint32_t e = q[(k + 1) % 3];
+    return c.a[e] == coarse_id[q[k]] ? c.b[e] : c.a[e];
+  }, at);
+  if (doubled != UINT32_MAX)
+    return fail(doubled, "two edges of the coarser mesh would join vertex " + std::to_string(m.input[doubled]) + " to the same vertex");
   // One coarse triangle per middle triangle (e1, e2, e3): corners e3^e1, e1^e2, e2^e3, where
   // e^e' is the old vertex the two edges share; a middle triangle keeps its parent's orientation.
   auto shared = [&](std::uint32_t e, std::uint32_t g) {

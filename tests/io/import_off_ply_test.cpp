@@ -161,3 +161,22 @@ TEST(ImportPly, RefusesBrokenHeaders) {
   EXPECT_NE(load_error("x.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                 "end_header\n0 0\n0 0\n0 0\n").find("lacks scalar x, y and z"), std::string::npos);
 }
+
+namespace {
+
+// Data the surface mesh does not keep is counted by name (commands that give files back say so).
+TEST(ImportNotKept, PlyPropertiesAndOffColoursAreNamed) {
+  const LoadedMesh ply = sublift::testing::load(
+      "c.ply",
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 255\n1 0 0 255\n0 1 0 255\n3 0 1 2\n");
+  EXPECT_TRUE(ply.report.empty());
+  EXPECT_EQ(ply.report.not_kept_summary(), "3 vertex property 'red' (PLY)");
+  const LoadedMesh off = sublift::testing::load("c.off", "OFF\n3 1 0\n0 0 0 1 0 0\n1 0 0 1 0 0\n0 1 0 1 0 0\n3 0 1 2 255 0 0\n");
+  EXPECT_EQ(off.report.not_kept_summary(), "3 vertex colours or normals (OFF), 1 face colours (OFF)");
+  const LoadedMesh obj = sublift::testing::load("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvn 0 0 1\nf 1/1/1 2/2/1 3/1/1\n");
+  EXPECT_TRUE(obj.report.empty());
+  EXPECT_EQ(obj.report.not_kept_summary(), "2 texture coordinates (vt), 1 normals (vn)");
+}
+
+}  // namespace

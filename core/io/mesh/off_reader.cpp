@@ -70,6 +70,7 @@ LoadedMesh read_off_binary(std::string_view bytes, std::size_t offset, const std
     const std::int32_t ncol = in.read<std::int32_t>("a face's colour count");
     if (ncol < 0 || ncol > 4) throw InputError(file, 0, "face " + std::to_string(f) + " has a bad colour count");
     for (std::int32_t k = 0; k < ncol; ++k) in.read<float>("face colour");
+    if (ncol > 0) out.report.note_not_kept("face colours (OFF)", 0);
     faces.add(corners, 0);
   }
   faces.finish(out.mesh, out.report);
@@ -134,6 +135,7 @@ LoadedMesh read_off(std::string_view bytes, const std::string& file, const Impor
       for (int k = 0; k < 3; ++k) x[k] /= x[3];
     }
     for (int k = 0; k < 3; ++k) check_coordinate(file, lines.line_number(), x[k]);
+    if (tok.size() > static_cast<std::size_t>(dims)) out.report.note_not_kept("vertex colours or normals (OFF)", lines.line_number());
     out.mesh.positions.emplace_back(x[0], x[1], x[2]);
     vertex_lines.push_back(lines.line_number());
   }
@@ -161,6 +163,7 @@ LoadedMesh read_off(std::string_view bytes, const std::string& file, const Impor
       faces.add_unreadable(ln, out.report, "unreadable vertex index");
     else
       faces.add(corners, ln);
+    if (ok && tok.size() > static_cast<std::size_t>(*n) + 1) out.report.note_not_kept("face colours (OFF)", ln);
   }
   if (next_line())
     out.report.add("trailing data after the last face ignored", lines.line_number());

@@ -186,6 +186,20 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
 
   LoadedMesh out;
   SurfaceMesh& mesh = out.mesh;
+  // Per-vertex and per-face data beyond positions and corners (colours, normals, texture
+  // coordinates...), and other elements: skipped, and named for commands that give files back.
+  for (const PlyElement& e : elements) {
+    const bool is_vertex = e.name == "vertex", is_face = e.name == "face" || e.name == "tristrips";
+    if (!is_vertex && !is_face) {
+      out.report.not_kept.push_back({"'" + e.name + "' elements (PLY)", std::size_t(e.count), {e.line}});
+      continue;
+    }
+    for (const PlyProperty& p : e.props) {
+      const bool used = is_vertex ? (p.name == "x" || p.name == "y" || p.name == "z")
+                                  : (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index"));
+      if (!used) out.report.not_kept.push_back({e.name + " property '" + p.name + "' (PLY)", std::size_t(e.count), {e.line}});
+    }
+  }
   FaceBuilder faces;
   std::vector<std::size_t> vertex_lines;
   PlyValues in(bytes, body, file, fmt, limits.max_line_length);

@@ -102,33 +102,34 @@ CarriedFeatures carry_features_down(const DetectedLevels& d, const FeatureTags& 
   return out;
 }
 
-Rebuilt rebuild_hierarchy(std::uint32_t num_vertices, const Csr& faces, std::span<const double> positions, Scheme scheme,
-                          int levels, bool integer, int disc, const FeatureTags& fine_tags, const RebuildProgress& progress) {
+namespace {
+
+// The stages every rebuild shares: detection, the base and its levels, the analysis; timed and
+// reporting progress, and refusing a levels request the mesh does not hold. detect(limit,
+// keep_going) finds the levels; base(r) builds the base complex from r.detected.
+template <class Detect, class Base>
+Rebuilt rebuild_stages(std::uint32_t num_vertices, std::span<const double> positions, Scheme scheme, int levels, bool integer,
+                       int disc, const RebuildProgress& progress, const std::string& what, Detect detect, Base base) {
+  if (positions.size() != 3 * static_cast<std::size_t>(num_vertices))
+    throw Error("rebuild: " + std::to_string(positions.size()) + " coordinates for " + std::to_string(num_vertices) + " vertices");
   // Shares of the time (bench_rebuild): detection about 3/4, the hierarchy and the analysis the rest.
   auto at = [&](const char* stage, double fraction) {
     if (progress && !progress(stage, fraction)) throw Cancelled("rebuild cancelled");
   };
-  if (positions.size() != 3 * static_cast<std::size_t>(num_vertices))
-    throw Error("rebuild: " + std::to_string(positions.size()) + " coordinates for " + std::to_string(num_vertices) + " vertices");
-  const SplitKind split = rebuild_split(scheme);
-  Rebuilt r;
   using Clock = std::chrono::steady_clock;
   auto ms_since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
-  auto t = Clock::now();
+  Rebuilt r;
   at("finding levels", 0.0);
-  r.detected = detect_levels(num_vertices, faces, split, levels < 0 ? max_levels(scheme) : levels, positions,
-                             [&](double f) { return !progress || progress("finding levels", 0.75 * f); });
+  auto t = Clock::now();
+  r.detected = detect(levels < 0 ? max_levels(scheme) : levels, [&](double f) { return !progress || progress("finding levels", 0.75 * f); });
   const DetectedLevels& d = r.detected;
   if (levels >= 0 && d.levels < levels)
-    throw Error("the mesh holds " + std::to_string(d.levels) + " level" + (d.levels == 1 ? "" : "s") + " of " +
-                (split == SplitKind::Quads ? "a quad split" : split == SplitKind::Triangles ? "a triangle split" : "sqrt(2) steps") + ", not " +
-                std::to_string(levels) + ": " + d.stop);
+    throw Error(what + " holds " + std::to_string(d.levels) + " level" + (d.levels == 1 ? "" : "s") + ", not " + std::to_string(levels) +
+                ": " + d.stop);
   r.detect_ms = ms_since(t);
   at("building levels", 0.75);
   t = Clock::now();
-  r.features = carry_features_down(d, fine_tags);
-  Complex base = complex_from_polygons(d.base_vertices, d.base_faces, r.features.base);
-  r.hierarchy = make_hierarchy(std::move(base), d.levels, scheme, 3, integer, d.first_level, disc);
+  r.hierarchy = make_hierarchy(base(r), d.levels, scheme, 3, integer, d.first_level, disc);
   r.engine_vertex = engine_order(d, r.hierarchy.levels);
   r.build_ms = ms_since(t);
   at("analysing", 0.9);
@@ -137,35 +138,30 @@ Rebuilt rebuild_hierarchy(std::uint32_t num_vertices, const Csr& faces, std::spa
   return r;
 }
 
+}  // namespace
+
+Rebuilt rebuild_hierarchy(std::uint32_t num_vertices, const Csr& faces, std::span<const double> positions, Scheme scheme,
+                          int levels, bool integer, int disc, const FeatureTags& fine_tags, const RebuildProgress& progress) {
+  const SplitKind split = rebuild_split(scheme);
+  const char* what = split == SplitKind::Quads ? "the mesh, as a quad split,"
+                     : split == SplitKind::Triangles ? "the mesh, as a triangle split,"
+                                                     : "the mesh, in sqrt(2) steps,";
+  return rebuild_stages(
+      num_vertices, positions, scheme, levels, integer, disc, progress, what,
+      [&](int limit, const std::function<bool(double)>& go) { return detect_levels(num_vertices, faces, split, limit, positions, go); },
+      [&](Rebuilt& r) {
+        r.features = carry_features_down(r.detected, fine_tags);
+        return complex_from_polygons(r.detected.base_vertices, r.detected.base_faces, r.features.base);
+      });
+}
+
 Rebuilt rebuild_volume_hierarchy(const Complex& fine, std::span<const double> positions, Scheme scheme, int levels,
                                  bool integer, const RebuildProgress& progress) {
   if (scheme_info(scheme).surfaces_only) throw Error("the " + scheme_name(scheme) + " scheme refines surfaces only; lattices take linear or cubic");
-  if (positions.size() != 3 * static_cast<std::size_t>(fine.num_vertices))
-    throw Error("rebuild: " + std::to_string(positions.size()) + " coordinates for " + std::to_string(fine.num_vertices) + " vertices");
-  auto at = [&](const char* stage, double fraction) {
-    if (progress && !progress(stage, fraction)) throw Cancelled("rebuild cancelled");
-  };
-  using Clock = std::chrono::steady_clock;
-  auto ms_since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
-  Rebuilt r;
-  at("finding levels", 0.0);
-  auto t = Clock::now();
-  r.detected = detect_volume_levels(fine, levels < 0 ? max_levels(scheme) : levels, positions,
-                                    [&](double f) { return !progress || progress("finding levels", 0.75 * f); });
-  const DetectedLevels& d = r.detected;
-  if (levels >= 0 && d.levels < levels)
-    throw Error("the lattice holds " + std::to_string(d.levels) + " level" + (d.levels == 1 ? "" : "s") + " of a 1-to-8 split, not " +
-                std::to_string(levels) + ": " + d.stop);
-  r.detect_ms = ms_since(t);
-  at("building levels", 0.75);
-  t = Clock::now();
-  r.hierarchy = make_hierarchy(complex_from_cells(d.base_vertices, d.base_faces, d.base_cells), d.levels, scheme, 3, integer);
-  r.engine_vertex = engine_order(d, r.hierarchy.levels);
-  r.build_ms = ms_since(t);
-  at("analysing", 0.9);
-  analyse_in_engine_order(r, positions);
-  at("done", 1.0);
-  return r;
+  return rebuild_stages(
+      fine.num_vertices, positions, scheme, levels, integer, 2, progress, "the lattice, as a 1-to-8 split,",
+      [&](int limit, const std::function<bool(double)>& go) { return detect_volume_levels(fine, limit, positions, go); },
+      [](Rebuilt& r) { return complex_from_cells(r.detected.base_vertices, r.detected.base_faces, r.detected.base_cells); });
 }
 
 }  // namespace sublift

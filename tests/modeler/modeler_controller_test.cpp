@@ -943,7 +943,7 @@ namespace sublift {
 namespace {
 
 // Issue 17 (a first version): the script command `fit` gives any triangle mesh a coarse base
-// and fitted levels, opened at level 0; a thin scan is refused and the mesh stays open.
+// and fitted levels, opened at level 0; a thin scan fits; a failed fit changes nothing.
 TEST(ModelerFitTest, FitScriptCommand) {
   const auto dir = std::filesystem::temp_directory_path() / "sublift_modeler_fit";
   std::filesystem::create_directories(dir);
@@ -965,8 +965,12 @@ TEST(ModelerFitTest, FitScriptCommand) {
     ModelerState b;
     b.open(scan.string());
     const std::uint32_t before = b.session().num_vertices(0);
-    EXPECT_THROW(b.fit_base(0, 3), Error);
+    EXPECT_THROW(b.fit_base(5000, 3), Error);  // a base larger than the scan
     EXPECT_EQ(b.session().num_vertices(0), before);  // nothing changed
+    // The default base is so coarse at the ears that faces' patches meet themselves: it fits.
+    b.fit_base(0, 3);
+    EXPECT_EQ(b.session().num_vertices(0), 30u);
+    EXPECT_EQ(b.session().finest_level(), 3);
   }
   std::filesystem::remove_all(dir);
 }

@@ -76,6 +76,102 @@ TEST(TriGram, RegularTorusEqualsLatticeSolution) {
   }
 }
 
+// A torus only a few cells round: every face's patch wraps around it and closes up, so the
+// patch is an annulus or the whole torus, not a disc. Every vertex is
+// regular, so <phi_a, phi_b> on the torus is the lattice solution I(d) of core/inner_products
+// (a different solver) summed over every lattice offset d that lands on b from a.
+TEST(TriGram, ThinTorusEqualsWrappedLatticeSolution) {
+  for (Scheme s : {Scheme::LinearTri, Scheme::Loop, Scheme::Butterfly}) {
+    const ip::LatticeInnerProducts& lat = ip::cached_inner_products({s, 6});
+    std::vector<std::pair<int, int>> sizes = {{3, 3}, {4, 5}, {16, 5}};
+    for (int w = 3; w <= 14; ++w) sizes.emplace_back(w, 16);
+    for (const auto& [w, h] : sizes) {
+      SCOPED_TRACE(std::to_string(static_cast<int>(s)) + " torus " + std::to_string(w) + " x " + std::to_string(h));
+      const Complex torus = regular_torus(w, h);
+      FaceGramCache cache(s);
+      const auto g = assemble(cache, torus);
+      EXPECT_LE(cache.last_change(), 1e-16);
+      const auto id = [&](int i, int j) { return static_cast<std::uint32_t>(((i % w) + w) % w + w * (((j % h) + h) % h)); };
+      for (const auto& [ai, aj] : {std::pair{0, 0}, std::pair{2, 1}}) {
+        std::map<std::uint32_t, double> expected;
+        for (std::size_t k = 0; k < lat.offsets.size(); ++k)
+          expected[id(ai + lat.offsets[k].i, aj + lat.offsets[k].j)] += lat.values[k];
+        double worst = 0;
+        for (std::uint32_t b = 0; b < torus.num_vertices; ++b) {
+          const auto it = g.find({id(ai, aj), b});
+          const double ours = it == g.end() ? 0.0 : it->second;
+          worst = std::max(worst, std::abs(ours - expected[b]));
+        }
+        EXPECT_LT(worst, 1e-14);
+      }
+    }
+  }
+}
+
+// A torus decimated to 20 vertices (Sublift's own base mesh of a generated 60 x 20 torus): the
+// patches its faces' Grams subdivide meet themselves at their rims, so the patch splits rim
+// vertices (core/schemes/tri/tri_local.h); before it did, these Grams threw. Oracle: the
+// two-scale relation on the whole mesh. Three levels finer every face's patch is a disc
+// (checked), so G3 comes from unsplit patches, and the base's inner products must be
+// G0 = S^T G3 S / 64 with S the three subdivision steps (each quarters the area).
+TEST(TriGram, CoarseTorusMatchesTwoScaleRelation) {
+  const std::vector<std::uint32_t> tris = {
+      15, 0, 3,  13, 1, 0,   17, 6, 5,   18, 16, 2,  2, 19, 4,   19, 3, 4,   18, 2, 6,   3, 0, 4,
+      0, 7, 4,   0, 1, 5,    0, 5, 7,    5, 6, 8,    6, 11, 8,   6, 9, 11,   6, 2, 9,    2, 4, 9,
+      4, 10, 9,  4, 7, 10,   7, 5, 12,   5, 8, 12,   9, 14, 11,  12, 8, 16,  8, 11, 16,  10, 15, 9,
+      10, 7, 15, 7, 13, 15,  7, 12, 13,  16, 11, 14, 9, 15, 14,  13, 12, 1,  12, 16, 17, 16, 18, 17,
+      16, 14, 2, 14, 19, 2,  12, 17, 1,  14, 3, 19,  14, 15, 3,  15, 13, 0,  1, 17, 5,   17, 18, 6};
+  Csr faces;
+  for (std::size_t k = 0; k < tris.size(); k += 3) {
+    faces.items.insert(faces.items.end(), tris.begin() + static_cast<long>(k), tris.begin() + static_cast<long>(k) + 3);
+    faces.offsets.push_back(static_cast<std::uint32_t>(faces.items.size()));
+  }
+  std::vector<Complex> levels = {complex_from_polygons(20, faces)};
+  for (int j = 0; j < 3; ++j) levels.push_back(refine_tri(levels.back()));
+  const auto dense = [](const std::map<std::pair<std::uint32_t, std::uint32_t>, double>& g, std::uint32_t n) {
+    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n);
+    for (const auto& [ab, v] : g) m(ab.first, ab.second) = v;
+    return m;
+  };
+  // How many faces' patches had to split a rim vertex.
+  const auto split_faces = [](const Complex& c, int radius) {
+    const TriRings r = build_tri_rings(c);
+    int n = 0;
+    for (std::uint32_t f = 0; f < c.num_faces(); ++f) {
+      std::uint32_t seeds[3], starts[3];
+      face_seeds(c, f, seeds, starts);
+      const LocalOrder o = local_order(r, seeds, starts, radius);
+      n += local_patch(c, o).num_vertices != o.vertex.size();
+    }
+    return n;
+  };
+  for (Scheme s : {Scheme::LinearTri, Scheme::Loop, Scheme::Butterfly}) {
+    SCOPED_TRACE(static_cast<int>(s));
+    const int radius = tri_gram_radii(s).patch;
+    // Patches of the base's refined faces (which its Gram's recursion builds) meet themselves at
+    // level 1 (radius 4) or 2 (radius 6); at level 3 none do.
+    EXPECT_GT(split_faces(levels[1], radius) + split_faces(levels[2], radius), 0);
+    EXPECT_EQ(split_faces(levels[3], radius), 0);
+    FaceGramCache cache(s);
+    const Eigen::MatrixXd g0 = dense(assemble(cache, levels[0]), levels[0].num_vertices);
+    const Eigen::MatrixXd g3 = dense(assemble(cache, levels[3]), levels[3].num_vertices);
+    Eigen::MatrixXd sub = Eigen::MatrixXd::Identity(levels[0].num_vertices, levels[0].num_vertices);
+    for (int j = 0; j < 3; ++j) {
+      const Complex& c = levels[static_cast<std::size_t>(j)];
+      const TriStencils st = build_tri_stencils(c, s);
+      const std::uint32_t nf = levels[static_cast<std::size_t>(j) + 1].num_vertices;
+      Eigen::MatrixXd step = Eigen::MatrixXd::Zero(nf, c.num_vertices);
+      for (std::uint32_t v = 0; v < nf; ++v)
+        for_each_stencil_weight(st, c.num_vertices, v, [&](std::uint32_t i, double w) { step(v, i) += w; });
+      sub = step * sub;
+    }
+    const Eigen::MatrixXd expected = sub.transpose() * g3 * sub / 64.0;
+    EXPECT_NEAR(g0.sum(), 40.0, 1e-12);  // partition of unity: the area, one per face
+    EXPECT_LT((g0 - g0.transpose()).cwiseAbs().maxCoeff(), 1e-15);
+    EXPECT_LT((g0 - expected).cwiseAbs().maxCoeff(), 1e-14);
+  }
+}
+
 // Around an extraordinary vertex: the inner products sum to the area (partition of unity),
 // are symmetric, and the n wedges give the same numbers (rotational symmetry).
 TEST(TriGram, ExtraordinaryVertexSymmetricAndSumsToArea) {

@@ -67,18 +67,13 @@ int FaceGramCache::type_of(const Complex& c, const TriRings& r, std::uint32_t f,
     fine = refine_tri(patch);
     st = build_tri_stencils(patch, scheme_);
     fine_rings = build_tri_rings(fine);
-  } catch (const TopologyError&) {
-    // The mesh itself is a manifold (checked before); its neighbourhood here is not a disc.
-    // The builder is kept across calls: forget the half-made type.
+  } catch (const TopologyError& e) {
+    // local_patch always yields a manifold (it splits rim vertices where the surface meets
+    // itself), so this is a defect; the builder is kept across calls: forget the half-made type.
     index_.erase(key);
     types_.pop_back();
     pending_.pop_back();
-    const auto q = c.faces.row(f);
-    throw TopologyError("the " + scheme_name(scheme_) + " wavelets need the " + std::to_string(radii_.patch) +
-                        "-ring neighbourhood of every face to be a disc, and near face " + std::to_string(f) + " (vertices " +
-                        std::to_string(q[0]) + ", " + std::to_string(q[1]) + ", " + std::to_string(q[2]) +
-                        ") the surface meets itself within it (a thin part, or a mesh this coarse); use a finer mesh there, or the "
-                        "linear or cubic scheme");
+    throw std::logic_error("tri_gram: the patch around face " + std::to_string(f) + " cannot be subdivided: " + e.what());
   }
   const std::uint32_t nvp = patch.num_vertices;
   for (int k = 0; k < 4; ++k) {

@@ -190,6 +190,62 @@ std::string local_signature(const Complex& c, const TriRings& r, const LocalOrde
   return std::string(reinterpret_cast<const char*>(s.data()), s.size() * sizeof(std::int32_t));
 }
 
+namespace {
+
+// Gives each extra arc of faces around a patch vertex its own copy of the vertex (appended after
+// the labels; `source` maps every patch vertex to its label). Only rim vertices (at the order's
+// radius) can have several arcs: closer ones carry their whole fan. Where the surface meets
+// itself within the radius (a thin part, a coarse mesh), its rim touches itself there; split,
+// the patch is a manifold cover of the neighbourhood, the same as the surface everywhere a
+// subdivided step reads it.
+void split_rim_arcs(Csr& faces, const LocalOrder& o, std::vector<std::uint32_t>& source) {
+  const std::uint32_t num_labels = static_cast<std::uint32_t>(o.vertex.size());
+  source.resize(num_labels);
+  for (std::uint32_t l = 0; l < num_labels; ++l) source[l] = l;
+  if (num_labels == 0) return;
+  const std::uint8_t rim = *std::max_element(o.dist.begin(), o.dist.end());
+  std::vector<std::vector<std::uint32_t>> corners(num_labels);  // rim label -> its corner slots
+  for (std::uint32_t s = 0; s < faces.items.size(); ++s)
+    if (o.dist[faces.items[s]] == rim) corners[faces.items[s]].push_back(s);
+  std::vector<std::uint32_t> parent, copy;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> by_neighbour;  // (neighbour, corner index)
+  const auto find = [&](std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (std::uint32_t l = 0; l < num_labels; ++l) {
+    const auto& cs = corners[l];
+    if (cs.size() < 2) continue;
+    // Two faces around l are in one arc when they share an edge (l, x): the same neighbour.
+    parent.resize(cs.size());
+    for (std::uint32_t i = 0; i < cs.size(); ++i) parent[i] = i;
+    by_neighbour.clear();
+    for (std::uint32_t i = 0; i < cs.size(); ++i) {
+      const std::uint32_t f = cs[i] / 3, k = cs[i] % 3;
+      for (std::uint32_t d : {1u, 2u}) {
+        const std::uint32_t x = faces.items[3 * f + (k + d) % 3];
+        const auto it = std::find_if(by_neighbour.begin(), by_neighbour.end(), [&](const auto& p) { return p.first == x; });
+        if (it == by_neighbour.end()) by_neighbour.emplace_back(x, i);
+        else parent[find(i)] = find(it->second);
+      }
+    }
+    // The arc of the first corner keeps the label; every other arc gets a copy.
+    copy.assign(cs.size(), UINT32_MAX);
+    const std::uint32_t first_arc = find(0);
+    for (std::uint32_t i = 0; i < cs.size(); ++i) {
+      const std::uint32_t arc = find(i);
+      if (arc == first_arc) continue;
+      if (copy[arc] == UINT32_MAX) {
+        copy[arc] = static_cast<std::uint32_t>(source.size());
+        source.push_back(l);
+      }
+      faces.items[cs[i]] = copy[arc];
+    }
+  }
+}
+
+}  // namespace
+
 Complex local_patch(const Complex& c, const LocalOrder& o) {
   std::unordered_map<std::uint32_t, std::uint32_t> label;
   label.reserve(o.vertex.size() * 2);
@@ -210,11 +266,13 @@ Complex local_patch(const Complex& c, const LocalOrder& o) {
       faces.items.insert(faces.items.end(), tri, tri + 3);
       faces.offsets.push_back(static_cast<std::uint32_t>(faces.items.size()));
     }
-  Complex p = complex_from_polygons(static_cast<std::uint32_t>(o.vertex.size()), faces);
+  std::vector<std::uint32_t> source;
+  split_rim_arcs(faces, o, source);
+  Complex p = complex_from_polygons(static_cast<std::uint32_t>(source.size()), faces);
   // Original dims: the patch's own rim is not a feature of the surface.
-  for (std::uint32_t l = 0; l < o.vertex.size(); ++l) p.vertex_dim[l] = c.vertex_dim[o.vertex[l]];
+  for (std::uint32_t v = 0; v < source.size(); ++v) p.vertex_dim[v] = c.vertex_dim[o.vertex[source[v]]];
   for (std::uint32_t e = 0; e < p.num_edges(); ++e) {
-    const std::uint32_t a = o.vertex[p.edge_verts[2 * e]], b = o.vertex[p.edge_verts[2 * e + 1]];
+    const std::uint32_t a = o.vertex[source[p.edge_verts[2 * e]]], b = o.vertex[source[p.edge_verts[2 * e + 1]]];
     for (std::uint32_t oe : c.vertex_edges.row(a))
       if (c.edge_verts[2 * oe] == b || c.edge_verts[2 * oe + 1] == b) p.edge_dim[e] = c.edge_dim[oe];
   }

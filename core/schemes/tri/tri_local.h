@@ -53,7 +53,9 @@ std::string local_signature(const Complex& c, const TriRings& r, const LocalOrde
 
 /// The sub-mesh of the faces whose corners all carry labels, vertices numbered by label, with
 /// the original vertex and edge dims (so the fans of labels closer than the order's radius are
-/// complete copies). Derived rows built.
+/// complete copies). A rim vertex whose faces there form several arcs (the surface meets itself
+/// within the radius) gets a copy per extra arc, numbered after the labels: the patch is always
+/// a manifold. Derived rows built.
 Complex local_patch(const Complex& c, const LocalOrder& o);
 
 }  // namespace sublift

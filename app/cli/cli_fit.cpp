@@ -12,8 +12,6 @@
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
 #include "core/base/text_lines.h"
-#include "core/base/bounds.h"
-#include "core/base/triangle_bvh.h"
 #include "core/fit/fit_levels.h"
 #include "core/io/lattice/shape_io.h"
 #include "core/io/mesh/mesh_import.h"
@@ -83,28 +81,34 @@ int run_fit(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   BaseMesh base;
   Fitted f;
+  double base_ms = 0;
   try {
     base = decimate_to_base(n, faces, xyz, bo);
+    base_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     f = fit_levels(base, faces, xyz, fo);
   } catch (const TopologyError& e) {
     throw InputError(in, 0, e.what());
   }
   const double fit_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  // The other way: how far the mesh's vertices are from the fitted net.
-  const TriangleBvh fitted(f.finest, f.hierarchy.levels.back().faces);
-  const double diag = bbox_diagonal(xyz);
-  double back = 0;
-  for (std::uint32_t v = 0; v < n; ++v)
-    back = std::max(back, fitted.closest({xyz[3 * std::size_t(v)], xyz[3 * std::size_t(v) + 1], xyz[3 * std::size_t(v) + 2]}).distance / diag);
+  const double back = f.levels.empty() ? f.limit_back_max : f.levels.back().back_max;
   if (project) {
     write_project(out, f.hierarchy);
   } else {
     for (const std::string& note : write_shape(out, f.hierarchy.levels.back(), f.finest)) std::cerr << out << ": warning: " << note << "\n";
   }
+  nlohmann::json stages = {{"base", base_ms}};
+  for (const auto& [name, ms] : f.stage_ms) stages[name] = ms;
   if (a.has("--json")) {
     nlohmann::json levels = nlohmann::json::array();
     for (const FitLevelReport& r : f.levels)
-      levels.push_back({{"level", r.level}, {"vertices", r.vertices}, {"net_to_input_rms", r.rms}, {"net_to_input_max", r.max}, {"ms", r.ms}});
+      levels.push_back({{"level", r.level},
+                        {"vertices", r.vertices},
+                        {"net_to_input_rms", r.rms},
+                        {"net_to_input_max", r.max},
+                        {"input_to_net_rms", r.back_rms},
+                        {"input_to_net_max", r.back_max},
+                        {"folded_faces", r.folded},
+                        {"ms", r.ms}});
     const nlohmann::json j = {{"input", in},
                               {"output", out},
                               {"scheme", scheme_name(fo.scheme)},
@@ -113,13 +117,26 @@ int run_fit(int argc, char** argv) {
                               {"boundary_loops", {{"input", base.boundary_loops_before}, {"base", base.boundary_loops_after}}},
                               {"levels", levels},
                               {"input_to_fit_max", back},
+                              {"limit", {{"to_input_rms", f.limit_rms},
+                                         {"to_input_max", f.limit_max},
+                                         {"input_to_limit_rms", f.limit_back_rms},
+                                         {"input_to_limit_max", f.limit_back_max},
+                                         {"folded_faces", f.limit_folded}}},
                               {"ms", fit_ms},
+                              {"stage_ms", stages},
                               {"warnings", report_json(lm.report)}};
     std::cout << j.dump(2) << "\n";
   } else {
     std::cout << in << ": base of " << base.num_vertices << " vertices (Euler characteristic " << base.euler_after << ", as the mesh's "
-              << base.euler_before << "), " << f.levels.size() << " levels fitted; the mesh lies within " << 100 * back
-              << " % of the diagonal of the fitted surface; wrote " << out << "\n";
+              << base.euler_before << "), " << f.levels.size() << " levels fitted\n";
+    for (const FitLevelReport& r : f.levels)
+      std::cout << "  level " << r.level << ": " << r.vertices << " vertices; net to mesh " << 100 * r.rms << " % rms, " << 100 * r.max
+                << " % max; mesh to net " << 100 * r.back_rms << " % rms, " << 100 * r.back_max << " % max; " << r.folded
+                << " folded faces; " << std::lround(r.ms) << " ms\n";
+    std::cout << "  limit surface: to mesh " << 100 * f.limit_rms << " % rms, " << 100 * f.limit_max << " % max; mesh to it "
+              << 100 * f.limit_back_rms << " % rms, " << 100 * f.limit_back_max << " % max (of the bounding-box diagonal); "
+              << f.limit_folded << " folded faces\n"
+              << "wrote " << out << "\n";
   }
   return 0;
 }

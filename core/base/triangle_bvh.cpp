@@ -30,7 +30,7 @@ TriangleBvh::TriangleBvh(const SurfaceMesh& mesh) {
     const auto c = mesh.face(face);
     for (std::size_t i = 1; i + 1 < c.size(); ++i) {
       const glm::dvec3& a = mesh.positions[c[0]];
-      tris.push_back({a, mesh.positions[c[i]] - a, mesh.positions[c[i + 1]] - a});
+      tris.push_back({a, mesh.positions[c[i]] - a, mesh.positions[c[i + 1]] - a, static_cast<std::uint32_t>(face)});
     }
   }
   init(std::move(tris));
@@ -42,7 +42,7 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
   auto at = [&](std::uint32_t v) { return glm::dvec3(p[3 * std::size_t(v)], p[3 * std::size_t(v) + 1], p[3 * std::size_t(v) + 2]); };
   for (std::size_t f = 0; f < faces.rows(); ++f) {
     const auto c = faces.row(f);
-    for (std::size_t i = 1; i + 1 < c.size(); ++i) tris.push_back({at(c[0]), at(c[i]) - at(c[0]), at(c[i + 1]) - at(c[0])});
+    for (std::size_t i = 1; i + 1 < c.size(); ++i) tris.push_back({at(c[0]), at(c[i]) - at(c[0]), at(c[i + 1]) - at(c[0]), static_cast<std::uint32_t>(f)});
   }
   init(std::move(tris));
 }
@@ -105,7 +105,8 @@ std::uint32_t TriangleBvh::build(std::vector<std::uint32_t>& order, const std::v
   return index;
 }
 
-void TriangleBvh::all_hits(const glm::dvec3& origin, const glm::dvec3& dir, std::vector<double>& hits) const {
+void TriangleBvh::all_hits(const glm::dvec3& origin, const glm::dvec3& dir, std::vector<double>& hits,
+                           std::vector<std::uint32_t>* faces) const {
   if (nodes_.empty()) return;
   // A zero component gets a huge finite inverse: the slab test then needs no special case.
   glm::dvec3 inv;
@@ -144,6 +145,7 @@ void TriangleBvh::all_hits(const glm::dvec3& origin, const glm::dvec3& dir, std:
       const double th = glm::dot(t.e2, q) * inv_det;
       if (th < 0.0) continue;
       hits.push_back(th);
+      if (faces) faces->push_back(t.face);
     }
   }
 }
@@ -180,7 +182,11 @@ double box_distance2(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec
 
 }  // namespace
 
-TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p) const {
+TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p) const { return closest_impl(p, nullptr); }
+
+TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p, const glm::dvec3& facing) const { return closest_impl(p, &facing); }
+
+TriangleBvh::Closest TriangleBvh::closest_impl(const glm::dvec3& p, const glm::dvec3* facing) const {
   Closest best;
   double best2 = std::numeric_limits<double>::infinity();
   std::array<std::uint32_t, 128> stack;
@@ -197,9 +203,10 @@ TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p) const {
       continue;
     }
     for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+      if (facing && glm::dot(glm::cross(tris_[i].e1, tris_[i].e2), *facing) <= 0.0) continue;
       const glm::dvec3 q = closest_on_triangle(p, tris_[i].p0, tris_[i].e1, tris_[i].e2);
       const double d2 = glm::dot(q - p, q - p);
-      if (d2 < best2) best2 = d2, best.point = q;
+      if (d2 < best2) best2 = d2, best.point = q, best.face = tris_[i].face;
     }
   }
   best.distance = std::sqrt(best2);

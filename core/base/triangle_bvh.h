@@ -26,14 +26,20 @@ class TriangleBvh {
   /// Appends to `hits` the parameter t >= 0 of every triangle the ray origin + t * dir meets
   /// (dir need not be unit; unsorted; one entry per triangle, so shared edges give duplicates).
   /// Rays parallel to a triangle's plane miss it.
-  void all_hits(const glm::dvec3& origin, const glm::dvec3& dir, std::vector<double>& hits) const;
+  /// `faces`, when given, gets the polygon of each hit (aligned with `hits`).
+  void all_hits(const glm::dvec3& origin, const glm::dvec3& dir, std::vector<double>& hits,
+                std::vector<std::uint32_t>* faces = nullptr) const;
 
   /// The closest point of the triangles to p and its distance (infinite with no triangles).
   struct Closest {
     glm::dvec3 point{0.0};
     double distance = 0.0;
+    std::uint32_t face = UINT32_MAX;  // the polygon the point lies on
   };
   Closest closest(const glm::dvec3& p) const;
+  /// The same over the triangles facing `facing` (normal . facing > 0): the nearest point of the
+  /// surface's side that faces that way (fitting keeps a thin part's two sides apart).
+  Closest closest(const glm::dvec3& p, const glm::dvec3& facing) const;
 
   std::size_t num_triangles() const { return tris_.size(); }
   /// Diagonal of the triangles' bounding box.
@@ -42,6 +48,7 @@ class TriangleBvh {
  private:
   struct Tri {
     glm::dvec3 p0, e1, e2;
+    std::uint32_t face = 0;
   };
   struct Node {
     glm::dvec3 lo, hi;
@@ -49,6 +56,7 @@ class TriangleBvh {
     std::uint32_t right = 0;             // inner: index of the right child (left is this + 1)
   };
   void init(std::vector<Tri> tris);
+  Closest closest_impl(const glm::dvec3& p, const glm::dvec3* facing) const;
   std::uint32_t build(std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers,
                       const std::vector<Tri>& tris, std::uint32_t begin, std::uint32_t end);
 

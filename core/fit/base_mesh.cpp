@@ -82,7 +82,47 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
     m.status(e).set_feature(true);
     m.status(m.to_vertex_handle(h)).set_feature(true);
     m.status(m.from_vertex_handle(h)).set_feature(true);
+    out.input_feature_edges.push_back(static_cast<std::uint32_t>(m.from_vertex_handle(h).idx()));
+    out.input_feature_edges.push_back(static_cast<std::uint32_t>(m.to_vertex_handle(h).idx()));
     ++out.feature_edges;
+  }
+  // Corners: where feature lines meet, or where one turns by more than the feature angle (a
+  // sheet's corners, a box's). They stay through the decimation and are tagged, so the schemes
+  // keep them sharp instead of rounding them off.
+  // Only on lines of at least kLineEdges edges: a scan's noise makes short sharp runs.
+  constexpr std::size_t kLineEdges = 8;
+  std::vector<std::uint32_t> line(num_vertices, UINT32_MAX);
+  std::vector<std::size_t> line_edges;
+  for (auto v0 : m.vertices()) {
+    if (!m.status(v0).feature() || line[static_cast<std::size_t>(v0.idx())] != UINT32_MAX) continue;
+    const auto id = static_cast<std::uint32_t>(line_edges.size());
+    std::size_t ends = 0;  // each edge counted from both ends
+    std::vector<Mesh::VertexHandle> stack = {v0};
+    line[static_cast<std::size_t>(v0.idx())] = id;
+    while (!stack.empty()) {
+      const auto v = stack.back();
+      stack.pop_back();
+      for (auto h : m.voh_range(v)) {
+        if (!m.status(m.edge_handle(h)).feature()) continue;
+        ++ends;
+        const auto w = m.to_vertex_handle(h);
+        if (line[static_cast<std::size_t>(w.idx())] == UINT32_MAX) line[static_cast<std::size_t>(w.idx())] = id, stack.push_back(w);
+      }
+    }
+    line_edges.push_back(ends / 2);
+  }
+  std::vector<std::uint8_t> corner(num_vertices, 0);
+  for (auto v : m.vertices()) {
+    if (!m.status(v).feature() || line_edges[line[static_cast<std::size_t>(v.idx())]] < kLineEdges) continue;
+    std::vector<OpenMesh::Vec3d> out_dirs;
+    for (auto h : m.voh_range(v))
+      if (m.status(m.edge_handle(h)).feature()) out_dirs.push_back((m.point(m.to_vertex_handle(h)) - m.point(v)).normalized());
+    // Two edges straight on make cosine -1; a turn by more than the feature angle, above -cos.
+    const bool turns = out_dirs.size() == 2 && OpenMesh::dot(out_dirs[0], out_dirs[1]) > -cos_limit;
+    if (out_dirs.size() >= 3 || turns) {
+      corner[static_cast<std::size_t>(v.idx())] = 1;
+      m.status(v).set_locked(true);
+    }
   }
   for (auto v : m.vertices())
     if (m.is_isolated(v)) m.status(v).set_locked(true);
@@ -110,6 +150,7 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
     out.input_vertex.push_back(static_cast<std::uint32_t>(v.idx()));
     const auto p = m.point(v);
     out.positions.insert(out.positions.end(), {p[0], p[1], p[2]});
+    if (corner[static_cast<std::size_t>(v.idx())]) out.tags.corner_vertices.push_back(static_cast<std::uint32_t>(out.input_vertex.size() - 1));
   }
   out.num_vertices = static_cast<std::uint32_t>(out.input_vertex.size());
   long long edges = 0;

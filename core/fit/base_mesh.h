@@ -26,10 +26,11 @@ struct BaseMesh {
   Csr faces;                          // triangles, oriented as the input
   std::vector<double> positions;      // 3 per vertex
   std::vector<std::uint32_t> input_vertex;  // the input vertex each base vertex is
-  FeatureTags tags;                   // creases (sharp input edges kept) in base vertex numbers
+  FeatureTags tags;                   // creases (sharp input edges kept) and corners, in base vertex numbers
   long long euler_before = 0, euler_after = 0;   // V - E + F of the input and of the base
   std::size_t boundary_loops_before = 0, boundary_loops_after = 0;
   std::size_t feature_edges = 0;      // sharp or boundary input edges marked
+  std::vector<std::uint32_t> input_feature_edges;  // those edges, 2 input vertices each
 };
 
 /// The base of `faces` (triangles; other polygons are fanned) with `positions` (3 per vertex).

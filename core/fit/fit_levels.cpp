@@ -4,14 +4,26 @@
 #include <chrono>
 #include <cmath>
 
-#include "core/base/errors.h"
-#include "core/complex/complex_build.h"
+#include <glm/geometric.hpp>
+
 #include "core/base/bounds.h"
+#include "core/base/errors.h"
+#include "core/base/parallel.h"
 #include "core/base/triangle_bvh.h"
+#include "core/complex/complex_build.h"
+#include "core/complex/polygon_normal.h"
+#include "core/fit/feature_lines.h"
+#include "core/fit/net_solve.h"
+#include "core/multires/limit.h"
 
 namespace sublift {
 
 namespace {
+
+glm::dvec3 at(std::span<const double> x, std::uint32_t v) { return {x[3 * std::size_t(v)], x[3 * std::size_t(v) + 1], x[3 * std::size_t(v) + 2]}; }
+void put(std::vector<double>& x, std::uint32_t v, const glm::dvec3& p) {
+  for (int k = 0; k < 3; ++k) x[3 * std::size_t(v) + k] = p[k];
+}
 
 // The coefficients that synthesise `x` (level L's net) at level L, finer wavelets zero.
 void set_level(Hierarchy& h, int L, std::vector<double> x) {
@@ -20,60 +32,253 @@ void set_level(Hierarchy& h, int L, std::vector<double> x) {
   std::copy(x.begin(), x.end(), h.coeffs.begin());
 }
 
+// Where p lands on the input: the nearer of the first hits along +n and -n on the side of the
+// input that faces like n (the parametrisation of the subdivided surface carries over, so
+// points spread as the coarse faces do, and a thin part's two sides stay apart), unless the
+// closest point of that side is much nearer (the ray grazes the surface, or leaves a region
+// the coarse surface cuts across) or no ray hits; then that closest point.
+struct Projector {
+  const TriangleBvh& input;
+  std::vector<glm::dvec3> face_normal;  // the input's area vectors
+
+  // `reach`: no point moves farther (a longer move lands on another part of the surface and
+  // leaves a spike in the net); with nothing that near, p stays for the solve to pull.
+  glm::dvec3 operator()(const glm::dvec3& p, const glm::dvec3& n, double reach, std::vector<double>& hits,
+                        std::vector<std::uint32_t>& faces) const {
+    TriangleBvh::Closest c = glm::dot(n, n) > 0.0 ? input.closest(p, n) : input.closest(p);
+    if (!std::isfinite(c.distance)) c = input.closest(p);
+    if (c.distance > reach) return p;
+    if (glm::dot(n, n) == 0.0) return c.point;
+    double best = INFINITY;
+    for (const double s : {1.0, -1.0}) {
+      hits.clear();
+      faces.clear();
+      input.all_hits(p, s * n, hits, &faces);
+      for (std::size_t k = 0; k < hits.size(); ++k)
+        if (glm::dot(face_normal[faces[k]], n) > 0.0 && hits[k] < std::abs(best)) best = s * hits[k];
+    }
+    // 3x: a ray may meet the surface at a slant; farther than that it is another part's surface.
+    if (std::abs(best) <= std::min(reach, 3.0 * c.distance + 1e-12 * input.diagonal())) return p + best * n;
+    return c.point;
+  }
+};
+
+std::vector<glm::dvec3> area_vectors(const Csr& faces, std::span<const double> x) {
+  std::vector<glm::dvec3> out(faces.rows());
+  for (std::size_t f = 0; f < faces.rows(); ++f) {
+    double a[3] = {0, 0, 0};
+    polygon_area_vector(faces.row(f), x.data(), a);
+    out[f] = {a[0], a[1], a[2]};
+  }
+  return out;
+}
+
+// RMS and largest distance from the points x to `to`, over `diag`.
+std::pair<double, double> distances(const TriangleBvh& to, std::span<const double> x, double diag) {
+  const std::uint32_t n = static_cast<std::uint32_t>(x.size() / 3);
+  std::vector<double> d(n);
+  parallel_for(n, 2048, [&](std::uint32_t b, std::uint32_t e) {
+    for (std::uint32_t v = b; v < e; ++v) d[v] = to.closest(at(x, v)).distance / diag;
+  });
+  double sum = 0, worst = 0;
+  for (double v : d) sum += v * v, worst = std::max(worst, v);
+  return {n ? std::sqrt(sum / n) : 0.0, worst};
+}
+
+// Faces of the net (`faces` over x) that are folded over: their normal turns away (dot <= 0)
+// from the input's at the closest input point to their centroid (the mean of that input face's
+// vertex normals: a scan's noise flips single small triangles).
+std::vector<std::uint32_t> folded_list(const TriangleBvh& input, std::span<const double> input_normals, const Csr& input_faces,
+                                       const Csr& faces, std::span<const double> x) {
+  std::vector<std::uint32_t> out;
+  for (std::size_t f = 0; f < faces.rows(); ++f) {
+    double a[3] = {0, 0, 0};
+    polygon_area_vector(faces.row(f), x.data(), a);
+    glm::dvec3 m(0.0);
+    for (std::uint32_t v : faces.row(f)) m += at(x, v);
+    const TriangleBvh::Closest cl = input.closest(m / double(faces.size(f)));
+    glm::dvec3 b(0.0);
+    for (std::uint32_t v : input_faces.row(cl.face)) b += at(input_normals, v);
+    if (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] <= 0.0) out.push_back(static_cast<std::uint32_t>(f));
+  }
+  return out;
+}
+
+// Takes back the moves (from `before` to `after`) of the corners of every face that the moves
+// turn over, until none does: the net never folds where the level it came from did not.
+void keep_unfolded(const Csr& faces, std::span<const double> before, std::vector<double>& after) {
+  std::vector<glm::dvec3> was(faces.rows());
+  for (std::size_t f = 0; f < faces.rows(); ++f) {
+    double a[3] = {0, 0, 0};
+    polygon_area_vector(faces.row(f), before.data(), a);
+    was[f] = {a[0], a[1], a[2]};
+  }
+  // Halve the moves of a turned face's corners a few times, then take them back.
+  for (int round = 0; ; ++round) {
+    bool again = false;
+    for (std::size_t f = 0; f < faces.rows(); ++f) {
+      double a[3] = {0, 0, 0};
+      polygon_area_vector(faces.row(f), after.data(), a);
+      if (a[0] * was[f].x + a[1] * was[f].y + a[2] * was[f].z > 0.0) continue;
+      for (std::uint32_t v : faces.row(f))
+        for (int k = 0; k < 3; ++k) {
+          double& y = after[3 * std::size_t(v) + k];
+          const double b = before[3 * std::size_t(v) + k];
+          again |= y != b;
+          y = round < 4 ? 0.5 * (y + b) : b;
+        }
+    }
+    if (!again) break;
+  }
+}
+
+// How strongly the solve holds each net point on its projection: corners stay, crease and
+// boundary points stay on the input's lines (the input's pull would round a crease off).
+std::vector<double> held(const Complex& c) {
+  std::vector<double> w(c.num_vertices, 1.0);
+  for (std::uint32_t v = 0; v < c.num_vertices && !c.vertex_dim.empty(); ++v)
+    if (c.vertex_dim[v] < 2) w[v] = c.vertex_dim[v] == 0 ? 1e6 : 1e2;
+  return w;
+}
+
+// One point's move onto the input (docs/fit.md): a corner stays where the base has it; a point
+// of a crease or boundary relaxes along it and lands on the input's nearest feature line (unless
+// that line is farther than an edge or twice the surface: another feature than this one); any
+// other point relaxes tangentially towards its neighbours' mean (the parametrisation evens out,
+// the shape stays) and is projected along its normal.
+struct Mover {
+  const Complex& c;
+  const Projector& project;
+  const FeatureLines& lines;
+  std::uint32_t first_new;
+  double relax;
+
+  glm::dvec3 operator()(std::span<const double> x, std::span<const double> normal, std::uint32_t v, std::vector<double>& hits,
+                        std::vector<std::uint32_t>& hit_faces) const {
+    glm::dvec3 p = at(x, v);
+    const glm::dvec3 nv = at(normal, v);
+    const std::uint8_t dim = c.vertex_dim.empty() ? 2 : c.vertex_dim[v];
+    if (dim == 0) return p;
+    double edge = 0;  // the longest edge at v: no move is longer than two of them
+    glm::dvec3 mean(0.0), line_mean(0.0);
+    int on_line = 0;
+    for (std::uint32_t e : c.vertex_edges.row(v)) {
+      const glm::dvec3 w = at(x, c.edge_verts[2 * e] == v ? c.edge_verts[2 * e + 1] : c.edge_verts[2 * e]);
+      edge = std::max(edge, glm::distance(p, w));
+      mean += w;
+      if (c.edge_dim[e] == 1) line_mean += w, ++on_line;
+    }
+    if (dim == 1) {
+      if (v >= first_new && on_line) p += relax * (line_mean / double(on_line) - p);
+      const glm::dvec3 on_surface = project(p, nv, 2 * edge, hits, hit_faces);
+      const glm::dvec3 q = lines.closest(p);
+      return !lines.empty() && glm::distance(q, p) <= std::max(0.5 * edge, 2.0 * glm::distance(on_surface, p)) ? q : on_surface;
+    }
+    {  // old points too: a coarse level's points are no better placed than the new ones
+      glm::dvec3 d = mean / double(c.vertex_edges.size(v)) - p;
+      d -= glm::dot(d, nv) * nv;
+      p += relax * d;
+    }
+    return project(p, nv, 2 * edge, hits, hit_faces);
+  }
+};
+
 }  // namespace
 
 Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double> positions, const FitOptions& o) {
   if (!scheme_is_tri(o.scheme)) throw Error("fitting takes the triangle schemes for now (linear-tri, butterfly, loop)");
+  const auto report = [&](const char* stage, double fraction) {
+    if (o.progress && !o.progress(stage, fraction)) throw Cancelled("fitting cancelled");
+  };
   Fitted out;
+  auto t_stage = std::chrono::steady_clock::now();
+  const auto stage_done = [&](const char* name) {
+    const auto now = std::chrono::steady_clock::now();
+    out.stage_ms.emplace_back(name, std::chrono::duration<double, std::milli>(now - t_stage).count());
+    t_stage = now;
+  };
+  report("indexing the mesh", 0.0);
   const TriangleBvh input(positions, faces);
+  const FeatureLines lines(positions, base.input_feature_edges);
+  const Projector project{input, area_vectors(faces, positions)};
+  const std::vector<double> input_normals = area_weighted_normals(faces, positions);
   const double diag = bbox_diagonal(positions);
+  stage_done("indexing");
   out.hierarchy = make_hierarchy(complex_from_polygons(base.num_vertices, base.faces, base.tags), o.levels, o.scheme, 3);
   Hierarchy& h = out.hierarchy;
   set_base(h, base.positions);
+  stage_done("hierarchy");
   std::vector<double> x;
   for (int l = 1; l <= o.levels; ++l) {
+    report("fitting levels", double(l - 1) / o.levels);
     const auto t0 = std::chrono::steady_clock::now();
     x = synthesize(h, l);  // the fitted level l-1, subdivided
     Complex c = h.levels[static_cast<std::size_t>(l)];
     if (c.vertex_edges.rows() != c.num_vertices) build_adjacency(c);
-    const std::uint32_t first_new = h.num_vertices(l - 1), n = c.num_vertices;
-    std::vector<double> mean(3 * std::size_t(n));
+    const std::uint32_t n = c.num_vertices;
+    const Mover move{c, project, lines, h.num_vertices(l - 1), o.relax};
+    const std::vector<double> hold = held(c);
+    std::vector<double> next(x.size());
     for (int round = 0; round < o.relax_rounds; ++round) {
-      // Relax the new points towards their neighbours' mean, then attract them to the input.
-      for (std::uint32_t v = first_new; v < n; ++v) {
-        double m[3] = {0, 0, 0};
-        const auto es = c.vertex_edges.row(v);
-        for (std::uint32_t e : es) {
-          const std::uint32_t w = c.edge_verts[2 * e] == v ? c.edge_verts[2 * e + 1] : c.edge_verts[2 * e];
-          for (int k = 0; k < 3; ++k) m[k] += x[3 * std::size_t(w) + k] / double(es.size());
-        }
-        for (int k = 0; k < 3; ++k) mean[3 * std::size_t(v) + k] = m[k];
+      // Every point onto the input, then the two-way solve (core/fit/net_solve.h); neither step
+      // may fold a face over.
+      const std::vector<double> normal = area_weighted_normals(c.faces, x);
+      parallel_for(n, 1024, [&](std::uint32_t b, std::uint32_t e) {
+        std::vector<double> hits;
+        std::vector<std::uint32_t> hit_faces;
+        for (std::uint32_t v = b; v < e; ++v) put(next, v, move(x, normal, v, hits, hit_faces));
+      });
+      keep_unfolded(c.faces, x, next);
+      x.swap(next);
+      if (o.two_way) {
+        std::vector<double> solved = solve_net(c, {x, x, x}, positions, input_normals, hold, o.weights);
+        keep_unfolded(c.faces, x, solved);
+        x.swap(solved);
       }
-      // Old points moved too where the scheme approximates (Loop): every point is attracted.
-      for (std::uint32_t v = 0; v < n; ++v) {
-        double p[3];
-        const double t = v >= first_new ? o.relax : 0.0;
-        for (int k = 0; k < 3; ++k) p[k] = (1 - t) * x[3 * std::size_t(v) + k] + t * mean[3 * std::size_t(v) + k];
-        const glm::dvec3 q = input.closest({p[0], p[1], p[2]}).point;
-        for (int k = 0; k < 3; ++k) x[3 * std::size_t(v) + k] = q[k];
+    }
+    if (l == o.levels) stage_done("levels");
+    if (l == o.levels && o.two_way && !scheme_interpolates(o.scheme)) {
+      // The finest level's limit surface is what is seen of an approximating scheme: fit it,
+      // its points projected as the net's were (no relaxing), the net solved under it.
+      const LimitStencils ls = build_limit_stencils(h);
+      const Mover project_only{c, project, lines, n, 0.0};
+      std::vector<double> y(x.size()), targets(x.size());
+      for (int round = 0; round < o.limit_rounds; ++round) {
+        eval_limit(ls, x.data(), y.data());
+        const std::vector<double> normal = area_weighted_normals(c.faces, y);
+        parallel_for(n, 1024, [&](std::uint32_t b, std::uint32_t e) {
+          std::vector<double> hits;
+          std::vector<std::uint32_t> hit_faces;
+          for (std::uint32_t v = b; v < e; ++v) put(targets, v, project_only(y, normal, v, hits, hit_faces));
+        });
+        std::vector<double> solved = solve_net(c, {x, y, targets, &ls}, positions, input_normals, hold, o.weights);
+        keep_unfolded(c.faces, x, solved);
+        x.swap(solved);
       }
+      stage_done("limit fit");
     }
     FitLevelReport rep;
     rep.level = l;
     rep.vertices = n;
-    double sum = 0;
-    for (std::uint32_t v = 0; v < n; ++v) {
-      const double d = input.closest({x[3 * std::size_t(v)], x[3 * std::size_t(v) + 1], x[3 * std::size_t(v) + 2]}).distance / diag;
-      sum += d * d;
-      rep.max = std::max(rep.max, d);
-    }
-    rep.rms = std::sqrt(sum / n);
+    std::tie(rep.rms, rep.max) = distances(input, x, diag);
+    std::tie(rep.back_rms, rep.back_max) = distances(TriangleBvh(x, c.faces), positions, diag);
+    rep.folded = static_cast<std::uint32_t>(folded_list(input, input_normals, faces, c.faces, x).size());
     if (l < o.levels) set_level(h, l, x);
     rep.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     out.levels.push_back(rep);
   }
   if (o.levels == 0) x = synthesize(h, 0);
+  report("analysing", 1.0);
   analyze(h, x);
+  stage_done("analysis");
+  // The limit surface of the finest level (its limit points, as a triangle mesh), both ways.
+  const LimitStencils ls = build_limit_stencils(h);
+  std::vector<double> limit(x.size());
+  eval_limit(ls, x.data(), limit.data());
+  std::tie(out.limit_rms, out.limit_max) = distances(input, limit, diag);
+  std::tie(out.limit_back_rms, out.limit_back_max) = distances(TriangleBvh(limit, h.levels.back().faces), positions, diag);
+  out.limit_folded = static_cast<std::uint32_t>(folded_list(input, input_normals, faces, h.levels.back().faces, limit).size());
+  stage_done("report");
   out.finest = std::move(x);
   return out;
 }

@@ -1,29 +1,47 @@
 #pragma once
 // Fitting the levels of a base mesh to any input surface (issue 17, docs/fit.md), coarse to
-// fine: subdivide the fitted level, relax its new points (so the parametrisation stays even),
-// attract every point to the closest point of the input, analyse the level back into coefficients;
-// then analyse the finest fitted level, so the input's detail becomes wavelets.
+// fine: subdivide the fitted level, relax its new points tangentially (so the parametrisation
+// stays even), project every point onto the input along its normal (crease and boundary points
+// onto the input's feature lines), solve for the net that lies on the input and covers all of it
+// (core/fit/net_solve.h), never folding a face; analyse the level back into coefficients; then
+// analyse the finest fitted level, so the input's detail becomes wavelets. Reported per level:
+// distances both ways, folded faces, time; for the finest level's limit surface, distances both
+// ways.
 #include <cstdint>
+#include <functional>
 #include <span>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "core/base/csr.h"
 #include "core/fit/base_mesh.h"
+#include "core/fit/net_solve.h"
 #include "core/multires/hierarchy.h"
 
 namespace sublift {
 
+/// Called between stages and levels; answering false cancels the fit (it throws Cancelled).
+using FitProgress = std::function<bool(const char* stage, double fraction)>;
+
 struct FitOptions {
   Scheme scheme = Scheme::Loop;  // the triangle schemes (the base is triangles)
   int levels = 3;
-  int relax_rounds = 3;          // per level: relax then attract, this many times
+  int relax_rounds = 3;          // per level: relax and project, then solve, this many times
   double relax = 0.5;            // how far a new point moves towards its neighbours' mean
+  bool two_way = true;           // the solve that pulls the net over all of the input
+  int limit_rounds = 2;          // approximating schemes: rounds fitting the finest limit surface
+  NetSolveWeights weights;
+  FitProgress progress;
 };
 
+// Distances are fractions of the input's bounding-box diagonal.
 struct FitLevelReport {
   int level = 0;
   std::uint32_t vertices = 0;
-  double rms = 0, max = 0;       // control net -> input, as fractions of the input's bbox diagonal
+  double rms = 0, max = 0;            // control net -> input
+  double back_rms = 0, back_max = 0;  // input's vertices -> control net
+  std::uint32_t folded = 0;           // faces turned over against the subdivided level above
   double ms = 0;
 };
 
@@ -31,6 +49,10 @@ struct Fitted {
   Hierarchy hierarchy;           // analysed: synthesising its finest level gives the fitted net
   std::vector<double> finest;    // the fitted finest control net (3 per vertex)
   std::vector<FitLevelReport> levels;
+  // The limit surface of the finest level (its limit points as a mesh) -> input, and back.
+  double limit_rms = 0, limit_max = 0, limit_back_rms = 0, limit_back_max = 0;
+  std::uint32_t limit_folded = 0;
+  std::vector<std::pair<std::string, double>> stage_ms;  // indexing, hierarchy, levels, analysis, limit fit, report
 };
 
 /// Fits `base` (from decimate_to_base of this input) to the input (`faces`, `positions`).

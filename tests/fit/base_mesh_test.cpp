@@ -125,7 +125,10 @@ TEST(BaseMesh, SharedScansKeepTopologyAndFeatures) {
     double min_cos, min_area;
     shape_of(b, min_cos, min_area);
     EXPECT_GT(min_area, 0.0);
-    if (c.features) EXPECT_GT(b.tags.crease_edges.size(), 10u);
+    if (c.features) {
+      EXPECT_GT(b.tags.crease_edges.size(), 10u);
+      EXPECT_GT(b.tags.corner_vertices.size(), 0u);  // where fandisk's lines meet or turn
+    }
     std::printf("%s: %u -> %u vertices, %zu creases, min adjacent-normal cosine %.3f\n", c.file,
                 static_cast<unsigned>(lm.mesh.num_vertices()), b.num_vertices, b.tags.crease_edges.size(), min_cos);
   }

@@ -1,0 +1,125 @@
+#include "core/fit/net_solve.h"
+
+#include <algorithm>
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCore>
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "core/base/parallel.h"
+#include "core/base/triangle_bvh.h"
+
+namespace sublift {
+
+namespace {
+
+glm::dvec3 at(std::span<const double> x, std::uint32_t v) { return {x[3 * std::size_t(v)], x[3 * std::size_t(v) + 1], x[3 * std::size_t(v) + 2]}; }
+
+// Barycentric weights of q (on or near triangle a, b, c) clamped into the triangle.
+glm::dvec3 barycentric(const glm::dvec3& q, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const glm::dvec3 e1 = b - a, e2 = c - a, d = q - a;
+  const double d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
+  const double d1 = glm::dot(d, e1), d2 = glm::dot(d, e2);
+  const double det = d11 * d22 - d12 * d12;
+  if (!(det > 0)) return {1.0, 0.0, 0.0};  // a degenerate face: its first corner
+  double v = (d22 * d1 - d12 * d2) / det, w = (d11 * d2 - d12 * d1) / det;
+  v = std::clamp(v, 0.0, 1.0);
+  w = std::clamp(w, 0.0, 1.0 - v);
+  return {1.0 - v - w, v, w};
+}
+
+}  // namespace
+
+std::vector<double> solve_net(const Complex& c, const NetSolveState& st, std::span<const double> input,
+                              std::span<const double> input_normals, std::span<const double> hold, const NetSolveWeights& wt) {
+  const std::uint32_t n = c.num_vertices, ne = c.num_edges();
+  const std::uint32_t ni = static_cast<std::uint32_t>(input.size() / 3);
+  if (n == 0 || ni == 0) return {st.control.begin(), st.control.end()};
+  // Each input vertex's closest point on the surface.
+  const TriangleBvh surface(st.surface, c.faces);
+  struct Foot {
+    std::uint32_t face;
+    glm::dvec3 b;
+  };
+  std::vector<Foot> foot(ni);
+  parallel_for(ni, 2048, [&](std::uint32_t lo, std::uint32_t hi) {
+    for (std::uint32_t i = lo; i < hi; ++i) {
+      const glm::dvec3 q = at(input, i), nq = at(input_normals, i);
+      TriangleBvh::Closest cl = glm::dot(nq, nq) > 0 ? surface.closest(q, nq) : surface.closest(q);
+      if (cl.face == UINT32_MAX) cl = surface.closest(q);
+      const auto r = c.faces.row(cl.face);
+      foot[i] = {cl.face, barycentric(cl.point, at(st.surface, r[0]), at(st.surface, r[1]), at(st.surface, r[2]))};
+    }
+  });
+  // The data terms on the surface points: M = D + s B^T B lives on the net's vertices and edges
+  // (B^T B couples the corners of a face only), with right-hand side D c + s B^T q.
+  const double scale = double(n) / double(ni);
+  std::vector<double> diag(n), off(ne, 0.0);
+  Eigen::MatrixX3d rhs(n, 3);
+  for (std::uint32_t v = 0; v < n; ++v) {
+    diag[v] = wt.alpha * (hold.empty() ? 1.0 : hold[v]);
+    rhs.row(v) = diag[v] * Eigen::RowVector3d(st.targets[3 * v], st.targets[3 * v + 1], st.targets[3 * v + 2]);
+  }
+  for (std::uint32_t i = 0; i < ni; ++i) {
+    const auto r = c.faces.row(foot[i].face);
+    const auto es = c.face_edges.row(foot[i].face);
+    const glm::dvec3 q = at(input, i);
+    for (int k = 0; k < 3; ++k) {
+      const double bk = foot[i].b[k];
+      diag[r[k]] += scale * bk * bk;
+      rhs.row(r[k]) += scale * bk * Eigen::RowVector3d(q.x, q.y, q.z);
+      off[es[k]] += scale * bk * foot[i].b[(k + 1) % 3];  // edge k joins corners k and k + 1
+    }
+  }
+  using Sparse = Eigen::SparseMatrix<double>;
+  const auto on_edges = [&](const std::vector<double>& d, const std::vector<double>& o) {
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(n + 2 * std::size_t(ne));
+    for (std::uint32_t v = 0; v < n; ++v) t.emplace_back(v, v, d[v]);
+    for (std::uint32_t e = 0; e < ne; ++e) {
+      t.emplace_back(c.edge_verts[2 * e], c.edge_verts[2 * e + 1], o[e]);
+      t.emplace_back(c.edge_verts[2 * e + 1], c.edge_verts[2 * e], o[e]);
+    }
+    Sparse m(n, n);
+    m.setFromTriplets(t.begin(), t.end());
+    return m;
+  };
+  const Sparse M = on_edges(diag, off);
+  // The springs: kappa times the graph Laplacian, towards x0's edge vectors.
+  std::vector<double> degree(n, 0.0);
+  for (std::uint32_t e = 0; e < ne; ++e) degree[c.edge_verts[2 * e]] += wt.kappa, degree[c.edge_verts[2 * e + 1]] += wt.kappa;
+  const Sparse spring = on_edges(degree, std::vector<double>(ne, -wt.kappa));
+  Eigen::MatrixX3d x0(n, 3);
+  for (std::uint32_t v = 0; v < n; ++v) x0.row(v) = Eigen::RowVector3d(st.control[3 * v], st.control[3 * v + 1], st.control[3 * v + 2]);
+  Sparse A;
+  Eigen::MatrixX3d b;
+  if (st.limit) {
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(st.limit->weights.size());
+    for (std::uint32_t v = 0; v < n; ++v) {
+      const std::uint32_t o = st.limit->rows.offsets[v];
+      for (std::uint32_t k = o; k < st.limit->rows.offsets[v + 1]; ++k) t.emplace_back(v, st.limit->rows.items[k], st.limit->weights[k]);
+    }
+    Sparse L(n, n);
+    L.setFromTriplets(t.begin(), t.end());
+    const Sparse Lt = L.transpose();
+    A = Lt * M * L + spring;
+    b = Lt * rhs + spring * x0;
+  } else {
+    A = M + spring;
+    b = rhs + spring * x0;
+  }
+  Eigen::ConjugateGradient<Sparse, Eigen::Lower | Eigen::Upper> cg;
+  cg.setTolerance(1e-10);
+  cg.setMaxIterations(500);
+  cg.compute(A);
+  std::vector<double> out(3 * std::size_t(n));
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::VectorXd col = cg.solveWithGuess(b.col(k), x0.col(k));
+    for (std::uint32_t v = 0; v < n; ++v) out[3 * std::size_t(v) + k] = col[v];
+  }
+  return out;
+}
+
+}  // namespace sublift

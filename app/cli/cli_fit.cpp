@@ -1,5 +1,7 @@
-// sublift-cli fit MESH [--scheme S] [--base-vertices N] [--levels J] [--feature-angle DEG] -o OUT [--json]
-// A coarse base and fitted levels for any triangle mesh (issue 17, docs/fit.md; a first version).
+// sublift-cli fit MESH [--scheme S] [--base-faces N | --base-vertices N] [--levels J | --tolerance E]
+//                 [--feature-angle DEG] -o OUT [--json]
+// A coarse base and fitted levels for any triangle mesh (issue 17, docs/fit.md).
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -22,15 +24,17 @@ namespace sublift::cli {
 namespace {
 
 constexpr const char* kHelp =
-    "usage: sublift-cli fit MESH [--scheme linear-tri|butterfly|loop] [--base-vertices N] [--levels J]\n"
-    "                       [--feature-angle DEG] -o OUT.sublift|OUT.obj [--json]\n"
-    "  A first version of fitting any triangle mesh (docs/fit.md): a coarse base from OpenMesh's\n"
-    "  decimater (N vertices, default 1/64 of the mesh's; genus, boundaries and edges sharper than\n"
-    "  DEG, default 60, kept), then J levels (default 3) fitted to the mesh coarse to fine and\n"
-    "  analysed, so the mesh's detail becomes wavelets. OUT: a project, or the finest fitted net.\n"
-    "  --json reports the base, the topology before and after, per level the distance from the\n"
-    "  fitted net to the mesh, the largest distance from the mesh to the fitted net (fractions of\n"
-    "  the bounding-box diagonal) and the times.\n";
+    "usage: sublift-cli fit MESH [--scheme linear-tri|butterfly|loop] [--base-faces N | --base-vertices N]\n"
+    "                       [--levels J | --tolerance E] [--feature-angle DEG] -o OUT.sublift|OUT.obj [--json]\n"
+    "  Fits any triangle mesh (docs/fit.md): a coarse base from OpenMesh's decimater (N faces or\n"
+    "  vertices, default 1/64 of the mesh's vertices; genus, boundaries, and edges sharper than DEG,\n"
+    "  default 60, kept as creases and corners), then levels fitted to the mesh coarse to fine both\n"
+    "  ways and analysed, so the mesh's detail becomes wavelets. Levels: J, or the first whose net\n"
+    "  lies within E of the mesh both ways (E a fraction of the bounding-box diagonal, or a\n"
+    "  percentage like 0.5%), or by default those that bring the finest level to about the mesh's\n"
+    "  vertex count. OUT: a project, or the finest fitted net. --json reports the base, the\n"
+    "  topology before and after, per level the distances both ways (fractions of the diagonal),\n"
+    "  folded faces and time, the same for the finest level's limit surface, and the stage times.\n";
 
 long parse_long_option(const Args& a, const char* name, long fallback, long lo, long hi) {
   const auto v = a.value(name);
@@ -45,7 +49,8 @@ long parse_long_option(const Args& a, const char* name, long fallback, long lo, 
 }  // namespace
 
 int run_fit(int argc, char** argv) {
-  const Args a = parse_args(argc, argv, 2, {"-o", "--scheme", "--base-vertices", "--levels", "--feature-angle"}, {"--json", "--help"});
+  const Args a = parse_args(argc, argv, 2, {"-o", "--scheme", "--base-vertices", "--base-faces", "--levels", "--tolerance", "--feature-angle"},
+                            {"--json", "--help"});
   if (a.has("--help")) {
     std::cout << kHelp;
     return 0;
@@ -57,9 +62,20 @@ int run_fit(int argc, char** argv) {
   FitOptions fo;
   fo.scheme = a.value("--scheme") ? scheme_option(a) : Scheme::Loop;
   if (!scheme_is_tri(fo.scheme)) throw UsageError("fit takes linear-tri, butterfly or loop for now (docs/fit.md)");
+  if (a.value("--levels") && a.value("--tolerance")) throw UsageError("give --levels or --tolerance, not both");
+  if (a.value("--base-vertices") && a.value("--base-faces")) throw UsageError("give --base-faces or --base-vertices, not both");
   fo.levels = static_cast<int>(parse_long_option(a, "--levels", 3, 0, 6));
+  if (const auto t = a.value("--tolerance")) {
+    const bool percent = !t->empty() && t->back() == '%';
+    const auto d = parse_double(percent ? t->substr(0, t->size() - 1) : *t);
+    if (!d || *d <= 0 || (percent ? *d / 100 : *d) >= 1)
+      throw UsageError("--tolerance must be a fraction of the diagonal in (0, 1) or a percentage, got '" + *t + "'");
+    fo.tolerance = percent ? *d / 100 : *d;
+    fo.levels = 6;  // the most; fit_levels also stops at four times the mesh's vertices
+  }
   BaseMeshOptions bo;
   bo.target_vertices = static_cast<std::uint32_t>(parse_long_option(a, "--base-vertices", 0, 4, 10000000));
+  bo.target_faces = static_cast<std::uint32_t>(parse_long_option(a, "--base-faces", 0, 4, 20000000));
   if (const auto v = a.value("--feature-angle")) {
     const auto d = parse_double(*v);
     if (!d || *d <= 0 || *d >= 180) throw UsageError("--feature-angle must be in (0, 180) degrees, got '" + *v + "'");
@@ -85,6 +101,9 @@ int run_fit(int argc, char** argv) {
   try {
     base = decimate_to_base(n, faces, xyz, bo);
     base_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    // By default, the levels that bring the finest level to about the mesh's vertex count.
+    if (!a.value("--levels") && !a.value("--tolerance"))
+      fo.levels = std::clamp(static_cast<int>(std::lround(std::log(double(n) / base.num_vertices) / std::log(4.0))), 1, 6);
     f = fit_levels(base, faces, xyz, fo);
   } catch (const TopologyError& e) {
     throw InputError(in, 0, e.what());
@@ -117,6 +136,8 @@ int run_fit(int argc, char** argv) {
                               {"boundary_loops", {{"input", base.boundary_loops_before}, {"base", base.boundary_loops_after}}},
                               {"levels", levels},
                               {"input_to_fit_max", back},
+                              {"tolerance", fo.tolerance > 0 ? nlohmann::json(fo.tolerance) : nlohmann::json()},
+                              {"reached_tolerance", f.reached_tolerance},
                               {"limit", {{"to_input_rms", f.limit_rms},
                                          {"to_input_max", f.limit_max},
                                          {"input_to_limit_rms", f.limit_back_rms},
@@ -129,6 +150,8 @@ int run_fit(int argc, char** argv) {
   } else {
     std::cout << in << ": base of " << base.num_vertices << " vertices (Euler characteristic " << base.euler_after << ", as the mesh's "
               << base.euler_before << "), " << f.levels.size() << " levels fitted\n";
+    if (fo.tolerance > 0 && !f.reached_tolerance)
+      std::cout << "  the tolerance " << 100 * fo.tolerance << " % was not reached (the finest level tried is reported below)\n";
     for (const FitLevelReport& r : f.levels)
       std::cout << "  level " << r.level << ": " << r.vertices << " vertices; net to mesh " << 100 * r.rms << " % rms, " << 100 * r.max
                 << " % max; mesh to net " << 100 * r.back_rms << " % rms, " << 100 * r.back_max << " % max; " << r.folded

@@ -62,7 +62,10 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
   std::uint32_t used = 0;
   for (auto v : m.vertices()) used += !m.is_isolated(v);
   const std::uint32_t target = options.target_vertices ? options.target_vertices : std::max<std::uint32_t>(24, used / 64);
-  if (target > used) throw TopologyError("a base of " + std::to_string(target) + " vertices is more than the mesh's " + std::to_string(used));
+  if (options.target_faces == 0 && target > used)
+    throw TopologyError("a base of " + std::to_string(target) + " vertices is more than the mesh's " + std::to_string(used));
+  if (options.target_faces > m.n_faces())
+    throw TopologyError("a base of " + std::to_string(options.target_faces) + " faces is more than the mesh's " + std::to_string(m.n_faces()));
 
   m.request_vertex_status();
   m.request_edge_status();
@@ -140,7 +143,8 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
   dec.module(aspect).set_aspect_ratio(10.0);
   dec.module(aspect).set_binary(true);
   dec.initialize();
-  dec.decimate_to(target + (num_vertices - used));  // loose vertices stay (locked) and are dropped below
+  if (options.target_faces) dec.decimate_to_faces(0, options.target_faces);
+  else dec.decimate_to(target + (num_vertices - used));  // loose vertices stay (locked) and are dropped below
 
   // Surviving vertices keep their input index until garbage collection: read them first.
   std::vector<std::uint32_t> base_of(num_vertices, UINT32_MAX);

@@ -17,6 +17,7 @@ namespace sublift {
 
 struct BaseMeshOptions {
   std::uint32_t target_vertices = 0;  // 0: 1/64 of the input's, at least 24
+  std::uint32_t target_faces = 0;     // > 0: instead of a vertex count, at most this many faces
   double feature_angle_deg = 60.0;    // edges whose faces meet at a sharper angle are creases
   double max_normal_deviation_deg = 60.0;  // no collapse turns a face normal further
 };
@@ -35,7 +36,7 @@ struct BaseMesh {
 
 /// The base of `faces` (triangles; other polygons are fanned) with `positions` (3 per vertex).
 /// Throws TopologyError for non-manifold input (OpenMesh cannot hold it: the face is named),
-/// an empty mesh, or a target above the input's vertex count.
+/// an empty mesh, or a target above the input's vertex (or face) count.
 BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::span<const double> positions,
                           const BaseMeshOptions& options = {});
 

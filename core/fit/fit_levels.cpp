@@ -85,41 +85,51 @@ std::pair<double, double> distances(const TriangleBvh& to, std::span<const doubl
   return {n ? std::sqrt(sum / n) : 0.0, worst};
 }
 
-// Faces of the net (`faces` over x) that are folded over: their normal turns away (dot <= 0)
-// from the input's at the closest input point to their centroid (the mean of that input face's
-// vertex normals: a scan's noise flips single small triangles).
-std::vector<std::uint32_t> folded_list(const TriangleBvh& input, std::span<const double> input_normals, const Csr& input_faces,
-                                       const Csr& faces, std::span<const double> x) {
-  std::vector<std::uint32_t> out;
-  for (std::size_t f = 0; f < faces.rows(); ++f) {
-    double a[3] = {0, 0, 0};
-    polygon_area_vector(faces.row(f), x.data(), a);
-    glm::dvec3 m(0.0);
-    for (std::uint32_t v : faces.row(f)) m += at(x, v);
-    const TriangleBvh::Closest cl = input.closest(m / double(faces.size(f)));
-    glm::dvec3 b(0.0);
-    for (std::uint32_t v : input_faces.row(cl.face)) b += at(input_normals, v);
-    if (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] <= 0.0) out.push_back(static_cast<std::uint32_t>(f));
-  }
+// Per face of the net (`faces` over x), the way the input faces there: the mean of the vertex
+// normals of the input face closest to the face's centroid (a scan's noise flips single small
+// triangles; their vertex normals hold).
+std::vector<glm::dvec3> input_facing(const TriangleBvh& input, std::span<const double> input_normals, const Csr& input_faces,
+                                     const Csr& faces, std::span<const double> x) {
+  std::vector<glm::dvec3> out(faces.rows());
+  parallel_for(static_cast<std::uint32_t>(faces.rows()), 2048, [&](std::uint32_t b, std::uint32_t e) {
+    for (std::uint32_t f = b; f < e; ++f) {
+      glm::dvec3 m(0.0);
+      for (std::uint32_t v : faces.row(f)) m += at(x, v);
+      const TriangleBvh::Closest cl = input.closest(m / double(faces.size(f)));
+      glm::dvec3 n(0.0);
+      for (std::uint32_t v : input_faces.row(cl.face)) n += at(input_normals, v);
+      out[f] = n;
+    }
+  });
   return out;
 }
 
-// Takes back the moves (from `before` to `after`) of the corners of every face that the moves
-// turn over, until none does: the net never folds where the level it came from did not.
-void keep_unfolded(const Csr& faces, std::span<const double> before, std::vector<double>& after) {
-  std::vector<glm::dvec3> was(faces.rows());
-  for (std::size_t f = 0; f < faces.rows(); ++f) {
-    double a[3] = {0, 0, 0};
-    polygon_area_vector(faces.row(f), before.data(), a);
-    was[f] = {a[0], a[1], a[2]};
-  }
-  // Halve the moves of a turned face's corners a few times, then take them back.
-  for (int round = 0; ; ++round) {
+bool turned(const Csr& faces, std::size_t f, std::span<const double> x, const glm::dvec3& facing) {
+  double a[3] = {0, 0, 0};
+  polygon_area_vector(faces.row(f), x.data(), a);
+  return a[0] * facing.x + a[1] * facing.y + a[2] * facing.z <= 0.0;
+}
+
+// The faces of the net that are folded over: turned away from the way the input faces there.
+std::vector<std::uint32_t> folded_list(const TriangleBvh& input, std::span<const double> input_normals, const Csr& input_faces,
+                                       const Csr& faces, std::span<const double> x) {
+  const std::vector<glm::dvec3> facing = input_facing(input, input_normals, input_faces, faces, x);
+  std::vector<std::uint32_t> out;
+  for (std::size_t f = 0; f < faces.rows(); ++f)
+    if (turned(faces, f, x, facing[f])) out.push_back(static_cast<std::uint32_t>(f));
+  return out;
+}
+
+// Takes back the moves (from `before` to `after`) that fold a face over (`facing`: the input's
+// way at each face, from input_facing): each such face's corners move half as far, up to four
+// times, then not at all. A face folded before may move: it can only come right.
+void keep_unfolded(const Csr& faces, const std::vector<glm::dvec3>& facing, std::span<const double> before, std::vector<double>& after) {
+  std::vector<std::uint8_t> was_folded(faces.rows());
+  for (std::size_t f = 0; f < faces.rows(); ++f) was_folded[f] = turned(faces, f, before, facing[f]);
+  for (int round = 0;; ++round) {
     bool again = false;
     for (std::size_t f = 0; f < faces.rows(); ++f) {
-      double a[3] = {0, 0, 0};
-      polygon_area_vector(faces.row(f), after.data(), a);
-      if (a[0] * was[f].x + a[1] * was[f].y + a[2] * was[f].z > 0.0) continue;
+      if (was_folded[f] || !turned(faces, f, after, facing[f])) continue;
       for (std::uint32_t v : faces.row(f))
         for (int k = 0; k < 3; ++k) {
           double& y = after[3 * std::size_t(v) + k];
@@ -204,14 +214,28 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
   const std::vector<double> input_normals = area_weighted_normals(faces, positions);
   const double diag = bbox_diagonal(positions);
   stage_done("indexing");
-  out.hierarchy = make_hierarchy(complex_from_polygons(base.num_vertices, base.faces, base.tags), o.levels, o.scheme, 3);
+  // Levels are appended one by one (their setup is the costly part), so a tolerance stops early.
+  out.hierarchy = make_hierarchy(complex_from_polygons(base.num_vertices, base.faces, base.tags), 0, o.scheme, 3);
   Hierarchy& h = out.hierarchy;
   set_base(h, base.positions);
-  stage_done("hierarchy");
+  double hierarchy_ms = 0, levels_ms = 0;
   std::vector<double> x;
+  const auto measure = [&](int l, const Complex& c, const std::vector<double>& net) {
+    FitLevelReport rep;
+    rep.level = l;
+    rep.vertices = c.num_vertices;
+    std::tie(rep.rms, rep.max) = distances(input, net, diag);
+    std::tie(rep.back_rms, rep.back_max) = distances(TriangleBvh(net, c.faces), positions, diag);
+    rep.folded = static_cast<std::uint32_t>(folded_list(input, input_normals, faces, c.faces, net).size());
+    return rep;
+  };
   for (int l = 1; l <= o.levels; ++l) {
     report("fitting levels", double(l - 1) / o.levels);
     const auto t0 = std::chrono::steady_clock::now();
+    append_level(h);
+    h.coeffs.resize(std::size_t(h.num_vertices(l)) * 3, 0.0);  // the new wavelets, zero
+    const auto t1 = std::chrono::steady_clock::now();
+    hierarchy_ms += std::chrono::duration<double, std::milli>(t1 - t0).count();
     x = synthesize(h, l);  // the fitted level l-1, subdivided
     Complex c = h.levels[static_cast<std::size_t>(l)];
     if (c.vertex_edges.rows() != c.num_vertices) build_adjacency(c);
@@ -228,18 +252,20 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
         std::vector<std::uint32_t> hit_faces;
         for (std::uint32_t v = b; v < e; ++v) put(next, v, move(x, normal, v, hits, hit_faces));
       });
-      keep_unfolded(c.faces, x, next);
+      keep_unfolded(c.faces, input_facing(input, input_normals, faces, c.faces, x), x, next);
       x.swap(next);
       if (o.two_way) {
         std::vector<double> solved = solve_net(c, {x, x, x}, positions, input_normals, hold, o.weights);
-        keep_unfolded(c.faces, x, solved);
+        keep_unfolded(c.faces, input_facing(input, input_normals, faces, c.faces, x), x, solved);
         x.swap(solved);
       }
     }
-    if (l == o.levels) stage_done("levels");
-    if (l == o.levels && o.two_way && !scheme_interpolates(o.scheme)) {
-      // The finest level's limit surface is what is seen of an approximating scheme: fit it,
-      // its points projected as the net's were (no relaxing), the net solved under it.
+    // An approximating scheme's finest level gets its limit surface fitted; with a tolerance,
+    // every level does, since the limit surface is what the tolerance is about there.
+    const bool approximating = o.two_way && !scheme_interpolates(o.scheme);
+    double reach_max = 0;  // the fitted surface's larger distance, both ways
+    if (approximating && (o.tolerance > 0 || l == o.levels)) {
+      // Its points projected as the net's were (no relaxing), the net solved under it.
       const LimitStencils ls = build_limit_stencils(h);
       const Mover project_only{c, project, lines, n, 0.0};
       std::vector<double> y(x.size()), targets(x.size());
@@ -252,21 +278,29 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
           for (std::uint32_t v = b; v < e; ++v) put(targets, v, project_only(y, normal, v, hits, hit_faces));
         });
         std::vector<double> solved = solve_net(c, {x, y, targets, &ls}, positions, input_normals, hold, o.weights);
-        keep_unfolded(c.faces, x, solved);
+        keep_unfolded(c.faces, input_facing(input, input_normals, faces, c.faces, x), x, solved);
         x.swap(solved);
       }
-      stage_done("limit fit");
+      if (o.tolerance > 0) {
+        eval_limit(ls, x.data(), y.data());
+        reach_max = std::max(distances(input, y, diag).second, distances(TriangleBvh(y, c.faces), positions, diag).second);
+      }
     }
-    FitLevelReport rep;
-    rep.level = l;
-    rep.vertices = n;
-    std::tie(rep.rms, rep.max) = distances(input, x, diag);
-    std::tie(rep.back_rms, rep.back_max) = distances(TriangleBvh(x, c.faces), positions, diag);
-    rep.folded = static_cast<std::uint32_t>(folded_list(input, input_normals, faces, c.faces, x).size());
-    if (l < o.levels) set_level(h, l, x);
-    rep.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    FitLevelReport rep = measure(l, c, x);
+    if (!approximating) reach_max = std::max(rep.max, rep.back_max);
+    const bool reached = o.tolerance > 0 && reach_max <= o.tolerance;
+    // With a tolerance, a level four times as dense as the input is the last one tried.
+    const bool last = l == o.levels || reached || (o.tolerance > 0 && n >= 4 * (positions.size() / 3));
+    rep.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count();
+    levels_ms += rep.ms;
     out.levels.push_back(rep);
+    out.reached_tolerance = reached;
+    if (last) break;
+    set_level(h, l, x);
   }
+  out.stage_ms.emplace_back("hierarchy", hierarchy_ms);
+  out.stage_ms.emplace_back("levels", levels_ms);
+  t_stage = std::chrono::steady_clock::now();
   if (o.levels == 0) x = synthesize(h, 0);
   report("analysing", 1.0);
   analyze(h, x);

@@ -26,7 +26,10 @@ using FitProgress = std::function<bool(const char* stage, double fraction)>;
 
 struct FitOptions {
   Scheme scheme = Scheme::Loop;  // the triangle schemes (the base is triangles)
-  int levels = 3;
+  int levels = 3;                // with a tolerance: the most levels
+  double tolerance = 0;          // > 0: stop at the first level whose fitted surface (Loop: its
+                                 // limit surface; else the net) lies within this fraction of the
+                                 // diagonal both ways
   int relax_rounds = 3;          // per level: relax and project, then solve, this many times
   double relax = 0.5;            // how far a new point moves towards its neighbours' mean
   bool two_way = true;           // the solve that pulls the net over all of the input
@@ -52,7 +55,8 @@ struct Fitted {
   // The limit surface of the finest level (its limit points as a mesh) -> input, and back.
   double limit_rms = 0, limit_max = 0, limit_back_rms = 0, limit_back_max = 0;
   std::uint32_t limit_folded = 0;
-  std::vector<std::pair<std::string, double>> stage_ms;  // indexing, hierarchy, levels, analysis, limit fit, report
+  bool reached_tolerance = false;
+  std::vector<std::pair<std::string, double>> stage_ms;  // indexing, hierarchy (level setup), levels, analysis, report
 };
 
 /// Fits `base` (from decimate_to_base of this input) to the input (`faces`, `positions`).

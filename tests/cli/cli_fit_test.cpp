@@ -2,6 +2,7 @@
 // within 0.5 % of its diagonal; a thin scan fits; bad usage exits 2.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -27,13 +28,44 @@ TEST(CliFit, SphereFitsWithinHalfAPercent) {
   EXPECT_EQ(j["euler"]["base"], 2);
   EXPECT_EQ(j["levels"].size(), 2u);
   EXPECT_LT(j["input_to_fit_max"].get<double>(), 0.005);
+  EXPECT_EQ(j["input_to_fit_max"], j["levels"][1]["input_to_net_max"]);
+  for (const char* k : {"to_input_max", "input_to_limit_max"}) EXPECT_LT(j["limit"][k].get<double>(), 0.005) << k;
+  EXPECT_EQ(j["limit"]["folded_faces"], 0);
+  for (const char* k : {"base", "indexing", "hierarchy", "levels", "analysis", "report"}) EXPECT_TRUE(j["stage_ms"].contains(k)) << k;
   EXPECT_TRUE(std::filesystem::exists(out));
+  // A tolerance picks the levels: the first whose limit surface lies within it both ways.
+  const ProcessResult t = run_cli({"fit", mesh, "--base-vertices", "100", "--tolerance", "0.2%", "-o", out, "--json"}, 120);
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  const nlohmann::json jt = nlohmann::json::parse(t.out);
+  EXPECT_TRUE(jt["reached_tolerance"].get<bool>());
+  EXPECT_DOUBLE_EQ(jt["tolerance"].get<double>(), 0.002);
+  EXPECT_LE(std::max(jt["limit"]["to_input_max"].get<double>(), jt["limit"]["input_to_limit_max"].get<double>()), 0.002);
+  const std::size_t used = jt["levels"].size();
+  EXPECT_GE(used, 1u);
+  if (used > 1) {  // the level above did not reach it: a coarser fit would have done
+    const ProcessResult fewer = run_cli({"fit", mesh, "--base-vertices", "100", "--levels", std::to_string(used - 1), "-o", out, "--json"}, 120);
+    const nlohmann::json jf = nlohmann::json::parse(fewer.out);
+    EXPECT_GT(std::max(jf["limit"]["to_input_max"].get<double>(), jf["limit"]["input_to_limit_max"].get<double>()), 0.002);
+  }
+  // A base of at most N faces.
+  const ProcessResult bf = run_cli({"fit", mesh, "--base-faces", "150", "--levels", "1", "-o", out, "--json"}, 120);
+  ASSERT_EQ(bf.exit_code, 0) << bf.err;
+  EXPECT_LE(nlohmann::json::parse(bf.out)["base"]["faces"].get<int>(), 150);
   ASSERT_EQ(run_cli({"fit", mesh, "--base-vertices", "100", "--levels", "1", "-o", obj}, 120).exit_code, 0);
   EXPECT_EQ(read_shape(obj).base.num_vertices, 100u * 4 - 6);  // V0 + E0 of a genus-0 triangle mesh (E0 = 3 V0 - 6)
   // Usage errors.
   EXPECT_EQ(run_cli({"fit", mesh, "--scheme", "cubic", "-o", out}).exit_code, 2);
   EXPECT_EQ(run_cli({"fit", mesh, "--levels", "9", "-o", out}).exit_code, 2);
   EXPECT_EQ(run_cli({"fit", mesh, "--feature-angle", "200", "-o", out}).exit_code, 2);
+  EXPECT_EQ(run_cli({"fit", mesh, "--levels", "2", "--tolerance", "0.01", "-o", out}).exit_code, 2);
+  EXPECT_EQ(run_cli({"fit", mesh, "--base-faces", "100", "--base-vertices", "50", "-o", out}).exit_code, 2);
+  for (const char* bad : {"1", "0", "-0.1", "abc", "120%"}) EXPECT_EQ(run_cli({"fit", mesh, "--tolerance", bad, "-o", out}).exit_code, 2) << bad;
+  // A base larger than the mesh: a clear error, nothing written.
+  const std::string none = dir.file("none.sublift");
+  const ProcessResult big = run_cli({"fit", mesh, "--base-faces", "100000", "-o", none});
+  EXPECT_EQ(big.exit_code, 1);
+  EXPECT_NE(big.err.find("more than the mesh's"), std::string::npos) << big.err;
+  EXPECT_FALSE(std::filesystem::exists(none));
 }
 
 // The npm bunny with the default base (about 30 vertices): so coarse at the ears that faces'

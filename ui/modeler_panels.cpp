@@ -73,6 +73,39 @@ void draw_file_section(const ModelerPanelData& d, FileFields& f, ModelerPanelReq
   ImGui::Checkbox("Export the finest limit (off: current level's net)", &f.export_finest);
 }
 
+// Fit base mesh... (docs/fit.md): a coarse base and fitted levels for an opened dense mesh.
+void draw_fit_section(const ModelerPanelData& d, FileFields& f, ModelerPanelRequests& r) {
+  if (!d.can_fit || !section("Fit base mesh...", d.file_vertices >= 1000)) return;
+  FitRequest& q = f.fit;
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextColored(kMuted, "A coarse cage for any mesh: its detail comes along as wavelets, so a level-0 edit bends the "
+                             "whole mesh with its detail.");
+  ImGui::PopTextWrapPos();
+  ImGui::SetNextItemWidth(120.0f);
+  ImGui::InputInt("Base vertices", &q.base_vertices, 10, 100);
+  q.base_vertices = std::max(0, q.base_vertices);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: 1/64 of the mesh's %u vertices (at least 24)", d.file_vertices);
+  ImGui::SetNextItemWidth(120.0f);
+  ImGui::SliderFloat("Feature angle", &q.feature_angle_deg, 5.0f, 175.0f, "%.0f deg");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Edges whose faces meet more sharply stay creases; where they meet or turn, corners");
+  ImGui::SetNextItemWidth(120.0f);
+  ImGui::SliderInt("Levels", &q.levels, 0, 6, q.levels == 0 ? "auto" : "%d");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("auto: the levels that bring the finest to about the mesh's vertex count");
+  const char* schemes[] = {"linear-tri", "butterfly", "loop"};
+  int pick = std::clamp(q.scheme - 3, 0, 2);
+  ImGui::SetNextItemWidth(120.0f);
+  if (ImGui::Combo("Fit scheme", &pick, schemes, 3)) q.scheme = pick + 3;
+  if (ImGui::Button("Preview base")) r.fit_preview = q;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Draw the base the fit would start from over the mesh");
+  if (d.fit_preview) {
+    ImGui::SameLine();
+    if (ImGui::Button("Hide")) r.fit_clear_preview = true;
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Fit")) r.fit = q;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Fit the base and levels (progress, Cancel); then edit at level 0. Clears the history.");
+}
+
 void draw_levels_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   if (!section("Hierarchy")) return;
   const char* schemes[] = {"linear", "cubic", "sqrt2", "linear-tri", "butterfly", "loop"};  // Scheme's order
@@ -547,6 +580,7 @@ ModelerPanelRequests draw_modeler_panel(const ModelerPanelData& d, ModelerDispla
       for (const std::string& w : d.warnings) ImGui::TextColored(kWarning, "%s", w.c_str());
     }
     draw_levels_section(d, r);
+    draw_fit_section(d, fields, r);
     draw_detail_section(d, r);
     draw_ffd_section(d, fields, r);
     draw_basis_section(d, r);

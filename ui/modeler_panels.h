@@ -79,6 +79,14 @@ struct CompressionPanelData {
   double ms = 0.0;
 };
 
+/// A fit's settings from the Fit section (docs/fit.md).
+struct FitRequest {
+  int base_vertices = 0;  // 0: the default (1/64 of the mesh's)
+  float feature_angle_deg = 60.0f;
+  int levels = 0;         // 0: to about the mesh's vertex count
+  int scheme = 5;         // Scheme's value: loop
+};
+
 /// What the panel shows (filled by the app each frame).
 struct ModelerPanelData {
   std::string file_name, file_path;
@@ -92,6 +100,9 @@ struct ModelerPanelData {
   std::string rebuild_scheme;         // the scheme a rebuild would use
   std::string rebuild_stop;           // why it holds no more levels (empty: not checked)
   bool rebuild_stop_located = false;  // a vertex near that can be shown
+  bool can_fit = false;               // an opened surface mesh file: Fit base mesh... is offered
+  std::uint32_t file_vertices = 0;    // the opened mesh's vertices (the default base is 1/64)
+  bool fit_preview = false;           // a base preview is drawn
   std::vector<LevelStats> levels;     // levels 0..finest (the finest has no wavelets of its own)
   std::vector<double> gains;          // per level 0..finest-1
   bool local_frames = false;
@@ -112,6 +123,7 @@ struct ModelerPanelData {
 /// Text fields the panel edits in place (paths typed by the user).
 struct FileFields {
   std::string open_path, save_path, export_path;
+  FitRequest fit;  // the Fit section's settings
   bool export_finest = true;
   std::string model_path, model_export_path;  // FFD
   int box[3] = {4, 4, 4};
@@ -129,6 +141,8 @@ struct ModelerPanelRequests {
   bool subdivide = false, undo = false, redo = false;
   bool rebuild = false;               // rebuild the opened mesh's levels (docs/rebuild.md)
   bool rebuild_show_stop = false;     // select the vertex where detection stopped
+  std::optional<FitRequest> fit_preview, fit;  // preview the base / fit (docs/fit.md)
+  bool fit_clear_preview = false;
   std::optional<std::string> open;    // path to open
   std::optional<std::string> save;    // path to save the project to
   std::optional<std::string> export_path;

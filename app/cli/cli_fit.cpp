@@ -103,7 +103,7 @@ int run_fit(int argc, char** argv) {
     base_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     // By default, the levels that bring the finest level to about the mesh's vertex count.
     if (!a.value("--levels") && !a.value("--tolerance"))
-      fo.levels = std::clamp(static_cast<int>(std::lround(std::log(double(n) / base.num_vertices) / std::log(4.0))), 1, 6);
+      fo.levels = default_fit_levels(n, base.num_vertices);
     f = fit_levels(base, faces, xyz, fo);
   } catch (const TopologyError& e) {
     throw InputError(in, 0, e.what());

@@ -16,6 +16,15 @@
 namespace sublift {
 namespace {
 
+ModelerState::FitSettings fit_settings(const FitRequest& r) {
+  ModelerState::FitSettings s;
+  s.base_vertices = static_cast<std::uint32_t>(std::max(0, r.base_vertices));
+  s.feature_angle_deg = r.feature_angle_deg;
+  s.levels = r.levels;
+  s.scheme = static_cast<Scheme>(r.scheme);
+  return s;
+}
+
 constexpr double kPickRadiusPx = 10.0;
 constexpr double kAutosaveSeconds = 120.0;
 constexpr float kStatusHeight = 28.0f;
@@ -44,18 +53,29 @@ bool ModelerController::poll_job(bool wait) {
   if (!wait && job_->result.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
   std::unique_ptr<Job> job = std::move(job_);
   try {
-    model.install_rebuild(job->result.get());
-    const int n = model.session().finest_level();
-    message = "Rebuilt " + std::to_string(n) + " level" + (n == 1 ? "" : "s") + " with the " +
-              scheme_name(model.session().hierarchy().scheme) + " scheme: the detail is kept as wavelets (history cleared)";
+    message = job->result.get()(model);
     error.clear();
     pick_dirty_ = stats_dirty_ = true;
   } catch (const Cancelled&) {
-    message = "Rebuild cancelled; nothing changed";
+    message = job->title + " cancelled; nothing changed";
   } catch (const std::exception& e) {
-    fail(e, "Rebuild: ");
+    fail(e, job->title + ": ");
   }
   return true;
+}
+
+template <class Work>
+void ModelerController::start_job(std::string title, Work work) {
+  job_ = std::make_unique<Job>();
+  job_->title = std::move(title);
+  Job* job = job_.get();
+  const auto progress = [job](const char* stage, double fraction) {
+    job->stage = stage;
+    job->permille = static_cast<int>(1000 * fraction);
+    return !job->cancel.load();
+  };
+  job_->result = std::async(background_jobs_ ? std::launch::async : std::launch::deferred, [work, progress] { return work(progress); });
+  if (!background_jobs_) poll_job(true);
 }
 
 std::string ModelerController::recovery_path() {
@@ -468,17 +488,29 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
     if (r.subdivide) model.subdivide();
     if (r.rebuild && !job_) {
       model.check_rebuild();
-      job_ = std::make_unique<Job>();
-      Job* job = job_.get();
-      auto work = [job, file = model.file_path(), offer = model.rebuild_offer()] {
-        return ModelerState::prepare_rebuild(file, offer, -1, [job](const char* stage, double fraction) {
-          job->stage = stage;
-          job->permille = static_cast<int>(1000 * fraction);
-          return !job->cancel.load();
+      start_job("Rebuilding levels", [file = model.file_path(), offer = model.rebuild_offer()](const RebuildProgress& progress) {
+        auto prepared = std::make_shared<ModelerState::PreparedRebuild>(ModelerState::prepare_rebuild(file, offer, -1, progress));
+        return std::function<std::string(ModelerState&)>([prepared](ModelerState& m) {
+          m.install_rebuild(std::move(*prepared));
+          const int n = m.session().finest_level();
+          return "Rebuilt " + std::to_string(n) + " level" + (n == 1 ? "" : "s") + " with the " +
+                 scheme_name(m.session().hierarchy().scheme) + " scheme: the detail is kept as wavelets (history cleared)";
         });
-      };
-      job_->result = std::async(background_jobs_ ? std::launch::async : std::launch::deferred, work);
-      if (!background_jobs_) poll_job(true);
+      });
+    }
+    if (r.fit_preview) {
+      model.preview_fit(fit_settings(*r.fit_preview));
+      const ModelerState::FitPreview& p = *model.fit_preview();
+      message = "The base a fit would start from: " + std::to_string(p.vertices) + " vertices, " + std::to_string(p.faces) + " faces, " +
+                std::to_string(p.creases) + " crease edges, " + std::to_string(p.corners) + " corners (drawn over the mesh)";
+    }
+    if (r.fit_clear_preview) model.clear_fit_preview();
+    if (r.fit && !job_) {
+      model.check_fit();
+      start_job("Fitting", [file = model.file_path(), settings = fit_settings(*r.fit)](const FitProgress& progress) {
+        auto prepared = std::make_shared<ModelerState::PreparedFit>(ModelerState::prepare_fit(file, settings, progress));
+        return std::function<std::string(ModelerState&)>([prepared](ModelerState& m) { return m.install_fit(std::move(*prepared)); });
+      });
     }
     if (r.rebuild_show_stop && model.show_rebuild_stop()) message = "Selected the vertex near where the mesh stops being a split";
     if (r.undo) model.undo();
@@ -553,7 +585,7 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
   if (r.save) save(*r.save);
   if (r.export_path) export_to(*r.export_path, r.export_finest);
   apply_camera(r.camera);
-  if (r.scheme || r.level || r.subdivide || r.rebuild || r.rebuild_show_stop || r.undo || r.redo || r.history_jump || r.gain_level >= 0 || r.gain_end) {
+  if (r.scheme || r.level || r.subdivide || r.rebuild || r.rebuild_show_stop || r.fit || r.fit_preview || r.fit_clear_preview || r.undo || r.redo || r.history_jump || r.gain_level >= 0 || r.gain_end) {
     pick_dirty_ = stats_dirty_ = true;
   }
 }
@@ -682,6 +714,9 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     if (model.rebuild_offer().checked && (model.rebuild_offer().levels > 0 || s.num_vertices(0) >= 1000))
       d.rebuild_stop = model.rebuild_offer().stop;
     d.rebuild_stop_located = model.rebuild_offer().stop_vertex != UINT32_MAX;
+    d.can_fit = model.can_fit();
+    d.file_vertices = s.num_vertices(0);
+    d.fit_preview = model.fit_preview() != nullptr;
     const std::size_t key[4] = {s.undo_position(), s.history().size(), static_cast<std::size_t>(s.topology_version()),
                                 static_cast<std::size_t>(model.serial())};
     if (!std::equal(key, key + 4, stats_key_)) stats_dirty_ = true;
@@ -777,11 +812,11 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     scheme_prompt_.reset();
   }
   if (job_) {
-    if (draw_progress_prompt(true, "Rebuilding levels", job_->stage.load(), static_cast<float>(job_->permille.load()) / 1000.0f))
+    if (draw_progress_prompt(true, job_->title.c_str(), job_->stage.load(), static_cast<float>(job_->permille.load()) / 1000.0f))
       cancel_job();
     poll_job();
   } else {
-    draw_progress_prompt(false, "Rebuilding levels", "", 0.0f);
+    draw_progress_prompt(false, "", "", 0.0f);
   }
   const PromptChoice recover = draw_recovery_prompt(recovery_prompt_, recovery_path());
   if (recover != PromptChoice::None) {

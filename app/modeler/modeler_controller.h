@@ -151,13 +151,18 @@ class ModelerController {
   DepthSource depth_source_;
   Pending pending_;
   bool unsaved_prompt_ = false, recovery_prompt_ = false;
-  // A rebuild on a worker thread: its progress, its cancel flag and its result.
+  // Long work (a rebuild, a fit) on a worker thread: its progress, its cancel flag and its
+  // result, which installs itself into the model and says what to tell the user.
   struct Job {
+    std::string title;  // "Rebuilding levels", "Fitting"
     std::atomic<bool> cancel{false};
     std::atomic<int> permille{0};
     std::atomic<const char*> stage{"starting"};
-    std::future<ModelerState::PreparedRebuild> result;
+    std::future<std::function<std::string(ModelerState&)>> result;
   };
+  /// Starts `work` (it reports through the progress callback it is given) as the job.
+  template <class Work>
+  void start_job(std::string title, Work work);
   std::unique_ptr<Job> job_;
   bool background_jobs_;
   std::optional<int> scheme_prompt_;  // a scheme change waiting for confirmation

@@ -121,22 +121,92 @@ ModelerState::PreparedRebuild ModelerState::prepare_rebuild(const std::string& f
           std::move(shape.base.faces)};
 }
 
-void ModelerState::fit_base(std::uint32_t base_vertices, int levels) {
-  check_rebuild();  // the same preconditions: a mesh file, no FFD binding, no drag
-  Shape shape = read_shape(file_path_);
-  if (shape.base.dim != 2) throw Error("fitting takes surface meshes");
+void ModelerState::check_fit() {
+  if (!can_fit()) throw Error("fitting takes a surface mesh file (OBJ, OFF, PLY), not a project, curve or lattice");
+  ffd_check_free("fitting a base mesh");
+  check_unlocked("fitting a base mesh");
+}
+
+namespace {
+
+BaseMeshOptions base_options(const ModelerState::FitSettings& s) {
   BaseMeshOptions bo;
-  bo.target_vertices = base_vertices;
+  bo.target_vertices = s.base_vertices;
+  bo.feature_angle_deg = s.feature_angle_deg;
+  return bo;
+}
+
+}  // namespace
+
+void ModelerState::preview_fit(const FitSettings& settings) {
+  check_fit();
+  const Shape shape = read_shape(file_path_);
+  const BaseMesh b = decimate_to_base(shape.base.num_vertices, shape.base.faces, shape.positions, base_options(settings));
+  FitPreview p;
+  p.positions = b.positions;
+  p.vertices = b.num_vertices;
+  p.faces = static_cast<std::uint32_t>(b.faces.rows());
+  p.creases = b.tags.crease_edges.size();
+  p.corners = b.tags.corner_vertices.size();
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;  // each edge once
+  for (std::size_t f = 0; f < b.faces.rows(); ++f) {
+    const auto r = b.faces.row(f);
+    for (std::size_t k = 0; k < r.size(); ++k) edges.emplace_back(std::minmax(r[k], r[(k + 1) % r.size()]));
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  for (const auto& [a, c] : edges) p.edges.insert(p.edges.end(), {a, c});
+  fit_preview_ = std::move(p);
+  update_.fit_preview = true;
+}
+
+void ModelerState::clear_fit_preview() {
+  if (!fit_preview_) return;
+  fit_preview_.reset();
+  update_.fit_preview = true;
+}
+
+ModelerState::PreparedFit ModelerState::prepare_fit(const std::string& file, const FitSettings& settings, const FitProgress& progress) {
+  if (progress && !progress("reading the mesh", 0.0)) throw Cancelled("fitting cancelled");
+  const Shape shape = read_shape(file);
+  if (shape.base.dim != 2) throw Error("fitting takes surface meshes");
+  if (progress && !progress("the base mesh", 0.0)) throw Cancelled("fitting cancelled");
+  const BaseMesh base = decimate_to_base(shape.base.num_vertices, shape.base.faces, shape.positions, base_options(settings));
   FitOptions fo;
-  fo.levels = levels;
-  Fitted f = fit_levels(decimate_to_base(shape.base.num_vertices, shape.base.faces, shape.positions, bo), shape.base.faces,
-                        shape.positions, fo);
-  install(std::make_unique<Session>(std::move(f.hierarchy)));
+  fo.scheme = settings.scheme;
+  fo.levels = settings.levels > 0 ? settings.levels : default_fit_levels(shape.base.num_vertices, base.num_vertices);
+  fo.progress = progress;
+  return {fit_levels(base, shape.base.faces, shape.positions, fo), base.num_vertices};
+}
+
+std::string ModelerState::install_fit(PreparedFit p) {
+  const Fitted& f = p.fitted;
+  std::ostringstream m;
+  m.precision(3);
+  const bool limit = !scheme_interpolates(f.hierarchy.scheme);
+  const double to = limit ? f.limit_max : f.levels.empty() ? 0.0 : f.levels.back().max;
+  const double back = limit ? f.limit_back_max : f.levels.empty() ? 0.0 : f.levels.back().back_max;
+  m << "Fitted a base of " << p.base_vertices << " vertices and " << f.levels.size() << " level" << (f.levels.size() == 1 ? "" : "s")
+    << " (" << scheme_name(f.hierarchy.scheme) << "): the " << (limit ? "limit surface" : "net") << " lies within " << 100 * to
+    << " % of the mesh and the mesh within " << 100 * back << " % of it (of the diagonal); the detail is kept as wavelets (history cleared)";
+  if (const std::uint32_t folded = limit ? f.limit_folded : f.levels.empty() ? 0 : f.levels.back().folded; folded > 0)
+    warnings_.push_back(std::to_string(folded) + " folded faces in the fitted surface (docs/fit.md)");
+  install(std::make_unique<Session>(std::move(p.fitted.hierarchy)));
   rebuild_offer_ = {};
+  clear_fit_preview();
   level_ = 0;
   selection_.clear();
   update_.topology = true;
   refresh_state();
+  return m.str();
+}
+
+void ModelerState::fit_base(std::uint32_t base_vertices, int levels) {
+  check_fit();
+  FitSettings s;
+  s.base_vertices = base_vertices;
+  s.levels = levels;
+  install_fit(prepare_fit(file_path_, s, {}));
 }
 
 void ModelerState::rebuild_levels(int levels) {

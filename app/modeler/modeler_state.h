@@ -16,6 +16,7 @@
 // |w| of the level, so 0..1 maps onto viridis.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -28,6 +29,7 @@
 #include "core/multires/limit.h"
 #include "core/edit/session.h"
 #include "core/io/project/project_io.h"
+#include "core/fit/fit_levels.h"
 #include "core/multires/rebuild.h"
 
 namespace sublift {
@@ -42,6 +44,7 @@ struct ViewUpdate {
   bool basis = false;                  // the basis-function display changed (on, off, new values)
   bool model_topology = false;         // FFD: a model was loaded or removed
   bool model = false;                  // FFD: the model's positions and normals changed
+  bool fit_preview = false;            // the base a fit would start from, shown or cleared
 };
 
 /// The compression view's numbers (docs/compression.md).
@@ -98,9 +101,36 @@ class ModelerState {
     Csr faces;  // the file's faces, in file order
   };
   void check_rebuild();
-  /// Fits a coarse base of `base_vertices` (0: the default size) and `levels` fitted levels to
-  /// the opened mesh (docs/fit.md; triangle meshes, Loop): opens at level 0 with the mesh's
-  /// detail as wavelets; history cleared. Throws Error (the mesh is kept when it fails).
+  /// Fitting a coarse base and levels to the opened mesh (docs/fit.md), in the same three parts
+  /// (check_fit, prepare_fit on any thread, install_fit), with a preview of the base first.
+  struct FitSettings {
+    std::uint32_t base_vertices = 0;  // 0: the default size (1/64 of the mesh's)
+    double feature_angle_deg = 60.0;
+    int levels = 0;                   // 0: to about the mesh's vertex count
+    Scheme scheme = Scheme::Loop;
+  };
+  struct FitPreview {
+    std::vector<std::uint32_t> edges;  // 2 base vertices each
+    std::vector<double> positions;     // the base's vertices
+    std::uint32_t vertices = 0, faces = 0;
+    std::size_t creases = 0, corners = 0;
+  };
+  struct PreparedFit {
+    Fitted fitted;
+    std::uint32_t base_vertices = 0;
+  };
+  /// True for an opened surface mesh file (not a project): what fitting takes.
+  bool can_fit() const { return project_path_.empty() && !file_path_.empty() && session_ && dim() == 2; }
+  /// Computes the base the fit would start from (OpenMesh's decimater; about a second per 35 k
+  /// vertices) and keeps it for the view to draw over the mesh. Throws Error, keeping the last.
+  void preview_fit(const FitSettings& settings);
+  void clear_fit_preview();
+  const FitPreview* fit_preview() const { return fit_preview_ ? &*fit_preview_ : nullptr; }
+  void check_fit();
+  static PreparedFit prepare_fit(const std::string& file, const FitSettings& settings, const FitProgress& progress);
+  /// Installs the fit (level 0, history cleared); returns what to tell the user.
+  std::string install_fit(PreparedFit prepared);
+  /// check_fit, prepare_fit and install_fit in one (the script command `fit`).
   void fit_base(std::uint32_t base_vertices, int levels);
   static PreparedRebuild prepare_rebuild(const std::string& file, const RebuildOffer& offer, int levels, const RebuildProgress& progress);
   void install_rebuild(PreparedRebuild prepared);
@@ -252,6 +282,7 @@ class ModelerState {
 
   std::unique_ptr<Session> session_;
   RebuildOffer rebuild_offer_;
+  std::optional<FitPreview> fit_preview_;
   InputOrder input_order_;
   std::string file_path_, project_path_;
   std::vector<std::string> warnings_;

@@ -107,6 +107,14 @@ void ModelerView::sync(ModelerState& state) {
   }
   // A lattice with a model inside shows its net only: its boundary would hide the model.
   hide_lattice_surface_ = model_on_ && state.dim() == 3;
+  if (u.fit_preview || u.topology) {
+    const ModelerState::FitPreview* p = state.fit_preview();
+    fit_preview_on_ = p != nullptr;
+    if (p) {
+      fit_preview_.set_topology(p->edges, {}, {}, p->positions.size() / 3);
+      fit_preview_.set_positions(p->positions);
+    }
+  }
   if (u.scalar && has_surface_) {
     colour_map_ = !state.colour_values().empty();
     surface_.set_scalar(state.colour_values());
@@ -210,6 +218,15 @@ void ModelerView::draw(const OrbitCamera& camera, const ViewportRect& rect, cons
     style.clip_plane = plane;
     style.colors.edge = glm::vec4(0.95f, 0.15f, 0.45f, 1.0f);
     basis_support_.draw(camera, style);
+  }
+  if (fit_preview_on_) {  // the base a fit would start from, over the mesh and through it
+    NetStyle style;
+    style.xray = true;
+    style.clip = d.clip;
+    style.clip_plane = plane;
+    style.point_size = 5;
+    style.colors.edge = glm::vec4(1.0f, 0.55f, 0.05f, 1.0f);
+    fit_preview_.draw(camera, style);
   }
   glDisable(GL_SCISSOR_TEST);
 }

@@ -60,6 +60,9 @@ class ModelerView {
   // Free-form deformation: the model, shaded; a lattice around it shows only its net.
   LimitSurfaceRenderer model_surface_;
   bool model_on_ = false, hide_lattice_surface_ = false;
+  // The base a fit would start from (docs/fit.md), drawn over the mesh.
+  NetRenderer fit_preview_;
+  bool fit_preview_on_ = false;
 };
 
 }  // namespace sublift

@@ -202,10 +202,23 @@ constexpr Command kCommands[] = {
     }},
     {"fit", 0, 2, "fit [BASE_VERTICES [LEVELS]]", [](const Call& c) {
       const long long n = c.w.size() >= 2 ? integer(c.w[1], "BASE_VERTICES") : 0;
-      const long long l = c.w.size() == 3 ? integer(c.w[2], "LEVELS") : 3;
+      const long long l = c.w.size() == 3 ? integer(c.w[2], "LEVELS") : 0;
       if (n < 0 || n > 10000000) throw ScriptError("fit BASE_VERTICES needs 0 (the default size) to 10000000");
-      if (l < 0 || l > 6) throw ScriptError("fit LEVELS needs 0 to 6");
+      if (l < 0 || l > 6) throw ScriptError("fit LEVELS needs 0 (to about the mesh's vertex count) to 6");
       c.state.fit_base(static_cast<std::uint32_t>(n), static_cast<int>(l));
+    }},
+    {"fit-preview", 0, 2, "fit-preview [BASE_VERTICES [FEATURE_ANGLE]] | fit-preview off", [](const Call& c) {
+      if (c.w.size() == 2 && c.w[1] == "off") return c.state.clear_fit_preview();
+      ModelerState::FitSettings s;
+      const long long n = c.w.size() >= 2 ? integer(c.w[1], "BASE_VERTICES") : 0;
+      if (n < 0 || n > 10000000) throw ScriptError("fit-preview BASE_VERTICES needs 0 (the default size) to 10000000");
+      s.base_vertices = static_cast<std::uint32_t>(n);
+      if (c.w.size() == 3) {
+        const double a = number(c.w[2], "FEATURE_ANGLE");
+        if (!(a > 0 && a < 180)) throw ScriptError("fit-preview FEATURE_ANGLE needs degrees in (0, 180)");
+        s.feature_angle_deg = a;
+      }
+      c.state.preview_fit(s);
     }},
     {"level", 1, 1, "level L", [](const Call& c) {
       const long long l = integer(c.w[1], "L");

@@ -195,6 +195,11 @@ struct Mover {
 
 }  // namespace
 
+int default_fit_levels(std::uint32_t input_vertices, std::uint32_t base_vertices) {
+  if (base_vertices == 0 || input_vertices <= base_vertices) return 1;
+  return std::clamp(static_cast<int>(std::lround(std::log(double(input_vertices) / base_vertices) / std::log(4.0))), 1, 6);
+}
+
 Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double> positions, const FitOptions& o) {
   if (!scheme_is_tri(o.scheme)) throw Error("fitting takes the triangle schemes for now (linear-tri, butterfly, loop)");
   const auto report = [&](const char* stage, double fraction) {

@@ -59,6 +59,10 @@ struct Fitted {
   std::vector<std::pair<std::string, double>> stage_ms;  // indexing, hierarchy (level setup), levels, analysis, report
 };
 
+/// The levels that bring a base of `base_vertices` to about `input_vertices` (each level has
+/// about four times the vertices of the one above): 1 to 6; 3 for the default base (1/64).
+int default_fit_levels(std::uint32_t input_vertices, std::uint32_t base_vertices);
+
 /// Fits `base` (from decimate_to_base of this input) to the input (`faces`, `positions`).
 /// Throws Error for schemes other than the triangle schemes.
 Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double> positions, const FitOptions& options = {});

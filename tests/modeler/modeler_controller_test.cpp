@@ -953,12 +953,12 @@ TEST(ModelerFitTest, FitScriptCommand) {
   for (const auto& d : g.directions) xyz.insert(xyz.end(), {d.x, d.y, d.z});
   write_shape(path, g.fine, xyz);
   ModelerState m;
-  ScriptRunner ok("ok", "open " + path + "\nfit 100 2\n");
+  ScriptRunner ok("ok", "open " + path + "\nfit 100 2\n");  // 2 levels; 0 or none: to about the mesh's count
   EXPECT_EQ(ok.next(m).kind, ScriptStep::Kind::End);
   EXPECT_EQ(m.session().num_vertices(0), 100u);
   EXPECT_EQ(m.session().finest_level(), 2);
   EXPECT_EQ(m.level(), 0);
-  const std::pair<std::string, std::string> cases[] = {{"fit 100 9\n", "script:1: fit LEVELS needs 0 to 6"}};
+  const std::pair<std::string, std::string> cases[] = {{"fit 100 9\n", "script:1: fit LEVELS needs 0 (to about the mesh's vertex count) to 6"}};
   expect_script_errors(m, cases);
   const std::filesystem::path scan = std::filesystem::path(SUBLIFT_SHARED_DATA) / "scans/bunny_npm_lowres.obj";
   if (std::filesystem::exists(scan)) {
@@ -972,6 +972,60 @@ TEST(ModelerFitTest, FitScriptCommand) {
     EXPECT_EQ(b.session().num_vertices(0), 30u);
     EXPECT_EQ(b.session().finest_level(), 3);
   }
+  // The Fit section: a preview of the base (drawn over the mesh), then the fit on a worker
+  // thread with progress; a cancelled fit changes nothing.
+  ModelerController app{false};
+  app.set_background_jobs(true);
+  app.model.open(path);
+  ASSERT_TRUE(app.model.can_fit());
+  FitRequest q;
+  q.base_vertices = 80;
+  ModelerPanelRequests preview;
+  preview.fit_preview = q;
+  app.apply_panel_requests(preview);
+  ASSERT_NE(app.model.fit_preview(), nullptr) << app.error;
+  EXPECT_EQ(app.model.fit_preview()->vertices, 80u);
+  EXPECT_EQ(app.model.fit_preview()->edges.size(), 2u * (3 * 80 - 6));  // E = 3 V - 6 for a sphere
+  EXPECT_TRUE(app.model.take_view_update().fit_preview);
+  EXPECT_NE(app.message.find("80 vertices"), std::string::npos) << app.message;
+  ModelerPanelRequests go;
+  go.fit = q;
+  app.apply_panel_requests(go);
+  EXPECT_TRUE(app.job_running());
+  EXPECT_TRUE(app.poll_job(true));
+  EXPECT_EQ(app.model.session().num_vertices(0), 80u);
+  EXPECT_EQ(app.model.session().finest_level(), default_fit_levels(g.fine.num_vertices, 80));
+  EXPECT_EQ(app.model.level(), 0);
+  EXPECT_EQ(app.model.fit_preview(), nullptr);  // the preview goes with the fit
+  EXPECT_NE(app.message.find("Fitted a base of 80 vertices"), std::string::npos) << app.message << app.error;
+  std::vector<std::string> stages;
+  ModelerState::FitSettings settings;
+  settings.base_vertices = 80;
+  EXPECT_THROW(ModelerState::prepare_fit(path, settings,
+                                         [&](const char* stage, double) {
+                                           stages.push_back(stage);
+                                           return stages.size() < 4;
+                                         }),
+               Cancelled);
+  EXPECT_EQ(stages.size(), 4u);
+  // Cancel from the window: the session stays as it was.
+  ModelerController c2{false};
+  c2.set_background_jobs(true);
+  c2.model.open(path);
+  const std::uint32_t opened = c2.model.session().num_vertices(0);
+  c2.apply_panel_requests(go);
+  c2.cancel_job();
+  EXPECT_TRUE(c2.poll_job(true));
+  EXPECT_EQ(c2.model.session().num_vertices(0), opened);
+  EXPECT_NE(c2.message.find("Fitting cancelled; nothing changed"), std::string::npos) << c2.message << c2.error;
+  // Script: fit-preview and its errors.
+  ModelerState sp;
+  ScriptRunner pv("pv", "open " + path + "\nfit-preview 60 45\n");
+  EXPECT_EQ(pv.next(sp).kind, ScriptStep::Kind::End);
+  ASSERT_NE(sp.fit_preview(), nullptr);
+  EXPECT_EQ(sp.fit_preview()->vertices, 60u);
+  const std::pair<std::string, std::string> bad_preview[] = {{"fit-preview 60 200\n", "script:1: fit-preview FEATURE_ANGLE needs degrees in (0, 180)"}};
+  expect_script_errors(sp, bad_preview);
   std::filesystem::remove_all(dir);
 }
 

@@ -11,7 +11,9 @@
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <cmath>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -326,6 +328,53 @@ TEST(ModelerGuiTest, HeadlessFfdModelFollowsTheLatticeUntilUnbound) {
   EXPECT_GT(changed_pixels(a, b, 40).count, 500) << "the bound model did not follow the lattice";
   EXPECT_LT(changed_pixels(a, c, 24).count, 20) << "undo did not restore the model";
   EXPECT_LT(changed_pixels(c, d, 24).count, 20) << "an unbound model followed the lattice";
+}
+
+}  // namespace
+
+namespace {
+
+// A UV sphere of radius 1 written as an OBJ (the GUI test links no Sublift code).
+void write_uv_sphere(const fs::path& path, int nu, int nv) {
+  std::ofstream f(path);
+  f.precision(17);
+  f << "v 0 0 1\n";
+  for (int j = 1; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      const double t = std::numbers::pi * j / nv, p = 2 * std::numbers::pi * i / nu;
+      f << "v " << std::sin(t) * std::cos(p) << " " << std::sin(t) * std::sin(p) << " " << std::cos(t) << "\n";
+    }
+  f << "v 0 0 -1\n";
+  const auto id = [&](int j, int i) { return 2 + (j - 1) * nu + (i % nu); };  // OBJ numbers from 1
+  for (int i = 0; i < nu; ++i) f << "f 1 " << id(1, i) << " " << id(1, i + 1) << "\n";
+  for (int j = 1; j + 1 < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      f << "f " << id(j, i) << " " << id(j + 1, i) << " " << id(j + 1, i + 1) << "\n";
+      f << "f " << id(j, i) << " " << id(j + 1, i + 1) << " " << id(j, i + 1) << "\n";
+    }
+  const int south = 2 + (nv - 1) * nu;
+  for (int i = 0; i < nu; ++i) f << "f " << id(nv - 1, i + 1) << " " << id(nv - 1, i) << " " << south << "\n";
+}
+
+// Fit base mesh (issue 17), headless: the preview draws the base over the mesh in orange, and
+// the fit opens at level 0 with a surface that looks like the mesh it was fitted to.
+TEST(ModelerGuiTest, HeadlessFitPreviewDrawsTheBaseAndTheFitKeepsTheShape) {
+  const fs::path dir = out_dir("headless");
+  for (const char* f : {"fit_a.png", "fit_b.png", "fit_c.png"}) fs::remove(dir / f);
+  write_uv_sphere(dir / "sphere.obj", 64, 32);
+  const std::string script = "open sphere.obj\ndisplay net off\nscreenshot fit_a.png\nfit-preview 60\nscreenshot fit_b.png\n"
+                             "fit 60 2\nscreenshot fit_c.png\n";
+  const ProcessResult r = run_script("headless", "fit", script);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Png a = load_png(dir / "fit_a.png"), b = load_png(dir / "fit_b.png"), c = load_png(dir / "fit_c.png");
+  ASSERT_EQ(a.width, kWidth);
+  // The preview's edges are drawn in orange, which the plain sphere has none of.
+  EXPECT_LT(selection_pixels(a).count, 20);
+  EXPECT_GT(selection_pixels(b).count, 150) << "the base preview is not drawn";  // thin lines: about 300
+  // The fit drops the preview and draws a surface within a fraction of a percent of the sphere.
+  EXPECT_LT(selection_pixels(c).count, 20);
+  const long view_area = static_cast<long>(kWidth - kPanelWidth) * (kHeight - kStatusHeight);
+  EXPECT_LT(changed_pixels(a, c, 40).count, view_area / 200) << "the fitted surface does not look like the mesh";
 }
 
 }  // namespace

@@ -73,4 +73,33 @@ SCRIPT
 else
   echo "skipped the FFD screenshots: $fox not found (../shared/data is absent)"
 fi
-echo "wrote $out/modeler_*.png and $out/ffd_*.png"
+# Fitting scans (docs/fit.md): the scan, the base over it, the fitted levels with the level-0
+# cage, and a coarse edit that carries the scan's detail. NAME FILE SOFT_RADIUS DY.
+fit_pictures() {
+  scan="$here/../shared/data/scans/$2"
+  if [ ! -f "$scan" ]; then
+    echo "skipped the fit pictures of $1: $scan not found (../shared/data is absent)"
+    return
+  fi
+  cat > "fit_$1.txt" <<SCRIPT
+open $scan
+display net off
+screenshot $out/fit_$1_input.png
+fit-preview
+screenshot $out/fit_$1_base.png
+fit
+display net on
+screenshot $out/fit_$1_fitted.png
+soft $3
+select 0
+move 0 $4 0
+select
+display net off
+screenshot $out/fit_$1_edit.png
+SCRIPT
+  "$exe" --script "fit_$1.txt" --headless --size 1100x700
+}
+fit_pictures rocker rocker-arm.obj 0.35 0.12
+fit_pictures fandisk fandisk.off 0.8 0.3
+fit_pictures bunny stanford-bunny.obj 0.06 0.02
+echo "wrote $out/modeler_*.png, $out/ffd_*.png and $out/fit_*.png"

@@ -67,14 +67,18 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
     // Subdivided elsewhere? Then offer to rebuild its levels (docs/rebuild.md).
     if (shape.base.dim >= 2) {
       offer.scheme = shape.base.dim == 3 ? Scheme::Cubic : rebuild_auto_scheme(shape.base.faces);
-      const DetectedLevels d =
-          shape.base.dim == 3 ? detect_volume_levels(shape.base, max_levels(offer.scheme), shape.positions)
-                              : detect_levels(shape.base.num_vertices, shape.base.faces, rebuild_split(offer.scheme),
-                                              max_levels(offer.scheme), shape.positions);
       offer.checked = true;
-      offer.levels = d.levels;
-      offer.stop = d.stop;
-      offer.stop_vertex = d.stop_vertex;
+      try {
+        const DetectedLevels d =
+            shape.base.dim == 3 ? detect_volume_levels(shape.base, max_levels(offer.scheme), shape.positions)
+                                : detect_levels(shape.base.num_vertices, shape.base.faces, rebuild_split(offer.scheme),
+                                                max_levels(offer.scheme), shape.positions);
+        offer.levels = d.levels;
+        offer.stop = d.stop;
+        offer.stop_vertex = d.stop_vertex;
+      } catch (const Error& e) {  // detection refuses what it cannot take (loose vertices): the mesh still opens
+        offer.stop = e.what();
+      }
     }
     // A dense mesh is its own finest level already: refine it only while the finest level stays
     // within kMaxOpenVertices (a million-vertex scan opens without the 16 M-vertex levels).

@@ -21,6 +21,23 @@ constexpr double kBaryTolerance = 1e-10;
 // |det| below this times |e1| |e2| |dir|: the ray is parallel to the triangle's plane.
 constexpr double kParallelTolerance = 1e-12;
 
+// Moller-Trumbore: the ray parameter t >= 0 where origin + t * dir meets triangle `t`, or -1.
+template <class Tri>
+double ray_triangle(const Tri& t, const glm::dvec3& origin, const glm::dvec3& dir, double dir_len) {
+  const glm::dvec3 p = glm::cross(dir, t.e2);
+  const double det = glm::dot(t.e1, p);
+  if (std::abs(det) <= kParallelTolerance * glm::length(t.e1) * glm::length(t.e2) * dir_len) return -1.0;
+  const double inv_det = 1.0 / det;
+  const glm::dvec3 s = origin - t.p0;
+  const double u = glm::dot(s, p) * inv_det;
+  if (u < -kBaryTolerance || u > 1.0 + kBaryTolerance) return -1.0;
+  const glm::dvec3 q = glm::cross(s, t.e1);
+  const double v = glm::dot(dir, q) * inv_det;
+  if (v < -kBaryTolerance || u + v > 1.0 + kBaryTolerance) return -1.0;
+  const double th = glm::dot(t.e2, q) * inv_det;
+  return th < 0.0 ? -1.0 : th;
+}
+
 }  // namespace
 
 TriangleBvh::TriangleBvh(const SurfaceMesh& mesh) {
@@ -130,24 +147,45 @@ void TriangleBvh::all_hits(const glm::dvec3& origin, const glm::dvec3& dir, std:
       continue;
     }
     for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-      // Moller-Trumbore.
-      const Tri& t = tris_[i];
-      const glm::dvec3 p = glm::cross(dir, t.e2);
-      const double det = glm::dot(t.e1, p);
-      if (std::abs(det) <= kParallelTolerance * glm::length(t.e1) * glm::length(t.e2) * dir_len) continue;
-      const double inv_det = 1.0 / det;
-      const glm::dvec3 s = origin - t.p0;
-      const double u = glm::dot(s, p) * inv_det;
-      if (u < -kBaryTolerance || u > 1.0 + kBaryTolerance) continue;
-      const glm::dvec3 q = glm::cross(s, t.e1);
-      const double v = glm::dot(dir, q) * inv_det;
-      if (v < -kBaryTolerance || u + v > 1.0 + kBaryTolerance) continue;
-      const double th = glm::dot(t.e2, q) * inv_det;
+      const double th = ray_triangle(tris_[i], origin, dir, dir_len);
       if (th < 0.0) continue;
       hits.push_back(th);
-      if (faces) faces->push_back(t.face);
+      if (faces) faces->push_back(tris_[i].face);
     }
   }
+}
+
+double TriangleBvh::nearest_hit(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& facing, double t_max) const {
+  double best = std::numeric_limits<double>::infinity();
+  if (nodes_.empty()) return best;
+  glm::dvec3 inv;
+  for (int k = 0; k < 3; ++k) inv[k] = dir[k] == 0.0 ? 1e300 : 1.0 / dir[k];
+  const double dir_len = glm::length(dir);
+  std::array<std::uint32_t, 128> stack;
+  std::size_t top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    double tmin = 0.0, tmax = std::min(t_max, best);
+    for (int k = 0; k < 3; ++k) {
+      const double t1 = (n.lo[k] - origin[k]) * inv[k], t2 = (n.hi[k] - origin[k]) * inv[k];
+      tmin = std::max(tmin, std::min(t1, t2));
+      tmax = std::min(tmax, std::max(t1, t2));
+    }
+    if (tmin > tmax) continue;
+    if (n.count == 0) {
+      stack[top++] = n.right;
+      stack[top++] = static_cast<std::uint32_t>(&n - nodes_.data()) + 1;
+      continue;
+    }
+    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+      const Tri& t = tris_[i];
+      if (glm::dot(glm::cross(t.e1, t.e2), facing) <= 0.0) continue;
+      const double th = ray_triangle(t, origin, dir, dir_len);
+      if (th >= 0.0 && th <= t_max && th < best) best = th;
+    }
+  }
+  return best;
 }
 
 

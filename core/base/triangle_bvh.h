@@ -30,6 +30,10 @@ class TriangleBvh {
   void all_hits(const glm::dvec3& origin, const glm::dvec3& dir, std::vector<double>& hits,
                 std::vector<std::uint32_t>* faces = nullptr) const;
 
+  /// The smallest t in [0, t_max] at which origin + t * dir meets a triangle facing `facing`
+  /// (normal . facing > 0), or infinity: boxes beyond the best hit so far are not entered.
+  double nearest_hit(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& facing, double t_max) const;
+
   /// The closest point of the triangles to p and its distance (infinite with no triangles).
   struct Closest {
     glm::dvec3 point{0.0};

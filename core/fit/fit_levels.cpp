@@ -39,39 +39,23 @@ void set_level(Hierarchy& h, int L, std::vector<double> x) {
 // the coarse surface cuts across) or no ray hits; then that closest point.
 struct Projector {
   const TriangleBvh& input;
-  std::vector<glm::dvec3> face_normal;  // the input's area vectors
 
   // `reach`: no point moves farther (a longer move lands on another part of the surface and
   // leaves a spike in the net); with nothing that near, p stays for the solve to pull.
-  glm::dvec3 operator()(const glm::dvec3& p, const glm::dvec3& n, double reach, std::vector<double>& hits,
-                        std::vector<std::uint32_t>& faces) const {
+  glm::dvec3 operator()(const glm::dvec3& p, const glm::dvec3& n, double reach) const {
     TriangleBvh::Closest c = glm::dot(n, n) > 0.0 ? input.closest(p, n) : input.closest(p);
     if (!std::isfinite(c.distance)) c = input.closest(p);
     if (c.distance > reach) return p;
     if (glm::dot(n, n) == 0.0) return c.point;
-    double best = INFINITY;
-    for (const double s : {1.0, -1.0}) {
-      hits.clear();
-      faces.clear();
-      input.all_hits(p, s * n, hits, &faces);
-      for (std::size_t k = 0; k < hits.size(); ++k)
-        if (glm::dot(face_normal[faces[k]], n) > 0.0 && hits[k] < std::abs(best)) best = s * hits[k];
-    }
     // 3x: a ray may meet the surface at a slant; farther than that it is another part's surface.
-    if (std::abs(best) <= std::min(reach, 3.0 * c.distance + 1e-12 * input.diagonal())) return p + best * n;
+    const double limit = std::min(reach, 3.0 * c.distance + 1e-12 * input.diagonal());
+    const double up = input.nearest_hit(p, n, n, limit);
+    const double down = input.nearest_hit(p, -n, n, std::min(limit, up));
+    if (down <= limit && down < up) return p - down * n;
+    if (up <= limit) return p + up * n;
     return c.point;
   }
 };
-
-std::vector<glm::dvec3> area_vectors(const Csr& faces, std::span<const double> x) {
-  std::vector<glm::dvec3> out(faces.rows());
-  for (std::size_t f = 0; f < faces.rows(); ++f) {
-    double a[3] = {0, 0, 0};
-    polygon_area_vector(faces.row(f), x.data(), a);
-    out[f] = {a[0], a[1], a[2]};
-  }
-  return out;
-}
 
 // RMS and largest distance from the points x to `to`, over `diag`.
 std::pair<double, double> distances(const TriangleBvh& to, std::span<const double> x, double diag) {
@@ -163,8 +147,7 @@ struct Mover {
   std::uint32_t first_new;
   double relax;
 
-  glm::dvec3 operator()(std::span<const double> x, std::span<const double> normal, std::uint32_t v, std::vector<double>& hits,
-                        std::vector<std::uint32_t>& hit_faces) const {
+  glm::dvec3 operator()(std::span<const double> x, std::span<const double> normal, std::uint32_t v) const {
     glm::dvec3 p = at(x, v);
     const glm::dvec3 nv = at(normal, v);
     const std::uint8_t dim = c.vertex_dim.empty() ? 2 : c.vertex_dim[v];
@@ -180,7 +163,7 @@ struct Mover {
     }
     if (dim == 1) {
       if (v >= first_new && on_line) p += relax * (line_mean / double(on_line) - p);
-      const glm::dvec3 on_surface = project(p, nv, 2 * edge, hits, hit_faces);
+      const glm::dvec3 on_surface = project(p, nv, 2 * edge);
       const glm::dvec3 q = lines.closest(p);
       return !lines.empty() && glm::distance(q, p) <= std::max(0.5 * edge, 2.0 * glm::distance(on_surface, p)) ? q : on_surface;
     }
@@ -189,7 +172,7 @@ struct Mover {
       d -= glm::dot(d, nv) * nv;
       p += relax * d;
     }
-    return project(p, nv, 2 * edge, hits, hit_faces);
+    return project(p, nv, 2 * edge);
   }
 };
 
@@ -215,7 +198,7 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
   report("indexing the mesh", 0.0);
   const TriangleBvh input(positions, faces);
   const FeatureLines lines(positions, base.input_feature_edges);
-  const Projector project{input, area_vectors(faces, positions)};
+  const Projector project{input};
   const std::vector<double> input_normals = area_weighted_normals(faces, positions);
   const double diag = bbox_diagonal(positions);
   stage_done("indexing");
@@ -253,15 +236,15 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
       // may fold a face over.
       const std::vector<double> normal = area_weighted_normals(c.faces, x);
       parallel_for(n, 1024, [&](std::uint32_t b, std::uint32_t e) {
-        std::vector<double> hits;
-        std::vector<std::uint32_t> hit_faces;
-        for (std::uint32_t v = b; v < e; ++v) put(next, v, move(x, normal, v, hits, hit_faces));
+        for (std::uint32_t v = b; v < e; ++v) put(next, v, move(x, normal, v));
       });
-      keep_unfolded(c.faces, input_facing(input, input_normals, faces, c.faces, x), x, next);
+      // The input's way at each face, from before the moves (they are small): both guards use it.
+      const std::vector<glm::dvec3> facing = input_facing(input, input_normals, faces, c.faces, x);
+      keep_unfolded(c.faces, facing, x, next);
       x.swap(next);
       if (o.two_way) {
         std::vector<double> solved = solve_net(c, {x, x, x}, positions, input_normals, hold, o.weights);
-        keep_unfolded(c.faces, input_facing(input, input_normals, faces, c.faces, x), x, solved);
+        keep_unfolded(c.faces, facing, x, solved);
         x.swap(solved);
       }
     }
@@ -278,9 +261,7 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
         eval_limit(ls, x.data(), y.data());
         const std::vector<double> normal = area_weighted_normals(c.faces, y);
         parallel_for(n, 1024, [&](std::uint32_t b, std::uint32_t e) {
-          std::vector<double> hits;
-          std::vector<std::uint32_t> hit_faces;
-          for (std::uint32_t v = b; v < e; ++v) put(targets, v, project_only(y, normal, v, hits, hit_faces));
+          for (std::uint32_t v = b; v < e; ++v) put(targets, v, project_only(y, normal, v));
         });
         std::vector<double> solved = solve_net(c, {x, y, targets, &ls}, positions, input_normals, hold, o.weights);
         keep_unfolded(c.faces, input_facing(input, input_normals, faces, c.faces, x), x, solved);

@@ -918,6 +918,21 @@ TEST(ModelerRebuildTest, OpeningASubdividedMeshOffersToRebuildItsLevels) {
 namespace sublift {
 namespace {
 
+// A mesh with a loose vertex (the stanford bunny has 1,113) opens: level detection refuses
+// it, and says why instead of failing the open.
+TEST(ModelerOpenTest, LooseVerticesStillOpen) {
+  const auto dir = std::filesystem::temp_directory_path() / "sublift_modeler_loose";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "loose.obj").string();
+  std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\n";
+  ModelerState m;
+  m.open(path);
+  ASSERT_TRUE(m.has_session());
+  EXPECT_EQ(m.rebuild_offer().levels, 0);
+  EXPECT_NE(m.rebuild_offer().stop.find("in no face"), std::string::npos) << m.rebuild_offer().stop;
+  std::filesystem::remove_all(dir);
+}
+
 // A dense mesh opens with fewer added levels, so its finest level stays within
 // kMaxOpenVertices (a 180 k-vertex torus: one level, 720 k vertices, not two, 2.9 M).
 TEST(ModelerOpenTest, DenseMeshesOpenWithFewerLevels) {

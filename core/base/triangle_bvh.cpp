@@ -122,19 +122,18 @@ std::uint32_t TriangleBvh::build(std::vector<std::uint32_t>& order, const std::v
   return index;
 }
 
-void TriangleBvh::all_hits(const glm::dvec3& origin, const glm::dvec3& dir, std::vector<double>& hits,
-                           std::vector<std::uint32_t>* faces) const {
+template <class Limit, class Visit>
+void TriangleBvh::walk_ray(const glm::dvec3& origin, const glm::dvec3& dir, Limit limit, Visit visit) const {
   if (nodes_.empty()) return;
   // A zero component gets a huge finite inverse: the slab test then needs no special case.
   glm::dvec3 inv;
   for (int k = 0; k < 3; ++k) inv[k] = dir[k] == 0.0 ? 1e300 : 1.0 / dir[k];
-  const double dir_len = glm::length(dir);
   std::array<std::uint32_t, 128> stack;
   std::size_t top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
-    double tmin = 0.0, tmax = std::numeric_limits<double>::infinity();
+    double tmin = 0.0, tmax = limit();
     for (int k = 0; k < 3; ++k) {
       const double t1 = (n.lo[k] - origin[k]) * inv[k], t2 = (n.hi[k] - origin[k]) * inv[k];
       tmin = std::max(tmin, std::min(t1, t2));
@@ -146,45 +145,30 @@ void TriangleBvh::all_hits(const glm::dvec3& origin, const glm::dvec3& dir, std:
       stack[top++] = static_cast<std::uint32_t>(&n - nodes_.data()) + 1;
       continue;
     }
-    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-      const double th = ray_triangle(tris_[i], origin, dir, dir_len);
-      if (th < 0.0) continue;
-      hits.push_back(th);
-      if (faces) faces->push_back(tris_[i].face);
-    }
+    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) visit(i);
   }
+}
+
+void TriangleBvh::all_hits(const glm::dvec3& origin, const glm::dvec3& dir, std::vector<double>& hits,
+                           std::vector<std::uint32_t>* faces) const {
+  const double dir_len = glm::length(dir);
+  walk_ray(origin, dir, [] { return std::numeric_limits<double>::infinity(); }, [&](std::uint32_t i) {
+    const double th = ray_triangle(tris_[i], origin, dir, dir_len);
+    if (th < 0.0) return;
+    hits.push_back(th);
+    if (faces) faces->push_back(tris_[i].face);
+  });
 }
 
 double TriangleBvh::nearest_hit(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& facing, double t_max) const {
   double best = std::numeric_limits<double>::infinity();
-  if (nodes_.empty()) return best;
-  glm::dvec3 inv;
-  for (int k = 0; k < 3; ++k) inv[k] = dir[k] == 0.0 ? 1e300 : 1.0 / dir[k];
   const double dir_len = glm::length(dir);
-  std::array<std::uint32_t, 128> stack;
-  std::size_t top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& n = nodes_[stack[--top]];
-    double tmin = 0.0, tmax = std::min(t_max, best);
-    for (int k = 0; k < 3; ++k) {
-      const double t1 = (n.lo[k] - origin[k]) * inv[k], t2 = (n.hi[k] - origin[k]) * inv[k];
-      tmin = std::max(tmin, std::min(t1, t2));
-      tmax = std::min(tmax, std::max(t1, t2));
-    }
-    if (tmin > tmax) continue;
-    if (n.count == 0) {
-      stack[top++] = n.right;
-      stack[top++] = static_cast<std::uint32_t>(&n - nodes_.data()) + 1;
-      continue;
-    }
-    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-      const Tri& t = tris_[i];
-      if (glm::dot(glm::cross(t.e1, t.e2), facing) <= 0.0) continue;
-      const double th = ray_triangle(t, origin, dir, dir_len);
-      if (th >= 0.0 && th <= t_max && th < best) best = th;
-    }
-  }
+  walk_ray(origin, dir, [&] { return std::min(t_max, best); }, [&](std::uint32_t i) {
+    const Tri& t = tris_[i];
+    if (glm::dot(glm::cross(t.e1, t.e2), facing) <= 0.0) return;
+    const double th = ray_triangle(t, origin, dir, dir_len);
+    if (th >= 0.0 && th <= t_max && th < best) best = th;
+  });
   return best;
 }
 

@@ -61,6 +61,10 @@ class TriangleBvh {
   };
   void init(std::vector<Tri> tris);
   Closest closest_impl(const glm::dvec3& p, const glm::dvec3* facing) const;
+  // Calls visit(triangle index) for the triangles of every leaf whose box the ray meets within
+  // [0, limit()] (limit is asked again at each node, so a search can shrink it).
+  template <class Limit, class Visit>
+  void walk_ray(const glm::dvec3& origin, const glm::dvec3& dir, Limit limit, Visit visit) const;
   std::uint32_t build(std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers,
                       const std::vector<Tri>& tris, std::uint32_t begin, std::uint32_t end);
 

@@ -1,0 +1,142 @@
+// The triangle BVH's queries (core/base/triangle_bvh.h) against brute force over every triangle
+// with other algorithms: the closest point by projection onto the plane, else the nearest of
+// the three edges (the BVH uses Ericson's Voronoi regions); ray hits by the plane's parameter
+// and a barycentric inside test (the BVH uses Moller-Trumbore).
+#include "core/base/triangle_bvh.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include <glm/geometric.hpp>
+
+namespace sublift {
+namespace {
+
+struct Soup {
+  std::vector<double> xyz;
+  Csr faces;  // triangles, and every 5th face a quad (two fan triangles)
+};
+
+glm::dvec3 at(const Soup& s, std::uint32_t v) { return {s.xyz[3 * v], s.xyz[3 * v + 1], s.xyz[3 * v + 2]}; }
+
+Soup soup(int faces, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0), d(-0.15, 0.15);
+  Soup s;
+  std::uint32_t n = 0;
+  for (int f = 0; f < faces; ++f) {
+    const glm::dvec3 c(u(rng), u(rng), u(rng));
+    const int corners = f % 5 == 4 ? 4 : 3;
+    if (corners == 4) {  // a planar convex quad
+      const glm::dvec3 a(d(rng), d(rng), d(rng)), b(d(rng), d(rng), d(rng));
+      for (const glm::dvec3& p : {c - a - b, c + a - b, c + a + b, c - a + b}) s.xyz.insert(s.xyz.end(), {p.x, p.y, p.z});
+    } else {
+      for (int k = 0; k < 3; ++k) s.xyz.insert(s.xyz.end(), {c.x + d(rng), c.y + d(rng), c.z + d(rng)});
+    }
+    for (int k = 0; k < corners; ++k) s.faces.items.push_back(n++);
+    s.faces.offsets.push_back(static_cast<std::uint32_t>(s.faces.items.size()));
+  }
+  return s;
+}
+
+glm::dvec3 on_segment(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
+  const glm::dvec3 e = b - a;
+  return a + std::clamp(glm::dot(p - a, e) / glm::dot(e, e), 0.0, 1.0) * e;
+}
+
+// Barycentric coordinates (v, w) of q in the plane of (a, b, c): q = a + v (b - a) + w (c - a).
+bool inside(const glm::dvec3& q, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const glm::dvec3 e1 = b - a, e2 = c - a, r = q - a;
+  const double d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2), d1 = glm::dot(r, e1), d2 = glm::dot(r, e2);
+  const double det = d11 * d22 - d12 * d12, v = (d22 * d1 - d12 * d2) / det, w = (d11 * d2 - d12 * d1) / det;
+  return v >= 0 && w >= 0 && v + w <= 1;
+}
+
+glm::dvec3 closest_brute(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const glm::dvec3 n = glm::normalize(glm::cross(b - a, c - a));
+  const glm::dvec3 q = p - glm::dot(p - a, n) * n;
+  if (inside(q, a, b, c)) return q;
+  glm::dvec3 best = on_segment(p, a, b);
+  for (const glm::dvec3& x : {on_segment(p, b, c), on_segment(p, c, a)})
+    if (glm::distance(x, p) < glm::distance(best, p)) best = x;
+  return best;
+}
+
+// Every fan triangle of the soup as (a, b, c, face).
+template <class F>
+void for_each_triangle(const Soup& s, F&& f) {
+  for (std::uint32_t g = 0; g < s.faces.rows(); ++g) {
+    const auto r = s.faces.row(g);
+    for (std::size_t k = 1; k + 1 < r.size(); ++k) f(at(s, r[0]), at(s, r[k]), at(s, r[k + 1]), g);
+  }
+}
+
+TEST(TriangleBvh, ClosestPointsAgreeWithBruteForce) {
+  const Soup s = soup(300, 1);
+  const TriangleBvh bvh(s.xyz, s.faces);
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(-0.3, 1.3);
+  for (int q = 0; q < 300; ++q) {
+    const glm::dvec3 p(u(rng), u(rng), u(rng)), facing(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
+    double best = std::numeric_limits<double>::infinity(), best_facing = best;
+    std::uint32_t face = UINT32_MAX;
+    for_each_triangle(s, [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, std::uint32_t g) {
+      const double d = glm::distance(closest_brute(p, a, b, c), p);
+      if (d < best) best = d, face = g;
+      if (glm::dot(glm::cross(b - a, c - a), facing) > 0) best_facing = std::min(best_facing, d);
+    });
+    const TriangleBvh::Closest c = bvh.closest(p);
+    EXPECT_NEAR(c.distance, best, 1e-12);
+    EXPECT_NEAR(glm::distance(c.point, p), c.distance, 1e-12);
+    EXPECT_EQ(c.face, face);  // the polygon, also for a quad's second triangle
+    EXPECT_NEAR(bvh.closest(p, facing).distance, best_facing, 1e-12);
+  }
+}
+
+TEST(TriangleBvh, RayHitsAgreeWithBruteForce) {
+  const Soup s = soup(300, 3);
+  const TriangleBvh bvh(s.xyz, s.faces);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(0.0, 1.0), w(-1.0, 1.0);
+  int hit_rays = 0;
+  for (int q = 0; q < 300; ++q) {
+    const glm::dvec3 o(u(rng), u(rng), u(rng)), dir(w(rng), w(rng), w(rng)), facing(w(rng), w(rng), w(rng));
+    std::vector<double> expected;
+    double nearest_facing = std::numeric_limits<double>::infinity();
+    for_each_triangle(s, [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, std::uint32_t) {
+      const glm::dvec3 n = glm::cross(b - a, c - a);
+      const double den = glm::dot(n, dir);
+      if (std::abs(den) < 1e-9) return;
+      const double t = glm::dot(n, a - o) / den;
+      if (t < 0 || !inside(o + t * dir, a, b, c)) return;
+      expected.push_back(t);
+      if (glm::dot(n, facing) > 0) nearest_facing = std::min(nearest_facing, t);
+    });
+    std::vector<double> hits;
+    std::vector<std::uint32_t> faces;
+    bvh.all_hits(o, dir, hits, &faces);
+    ASSERT_EQ(hits.size(), faces.size());
+    std::sort(hits.begin(), hits.end());
+    std::sort(expected.begin(), expected.end());
+    ASSERT_EQ(hits.size(), expected.size()) << "ray " << q;
+    for (std::size_t k = 0; k < hits.size(); ++k) EXPECT_NEAR(hits[k], expected[k], 1e-9);
+    hit_rays += !hits.empty();
+    const double nh = bvh.nearest_hit(o, dir, facing, 1e30);
+    if (!std::isfinite(nearest_facing)) {
+      EXPECT_TRUE(std::isinf(nh)) << nh;
+    } else {
+      EXPECT_NEAR(nh, nearest_facing, 1e-9);
+      // A bound below the nearest hit finds nothing; one above it finds the same hit.
+      EXPECT_TRUE(std::isinf(bvh.nearest_hit(o, dir, facing, 0.5 * nearest_facing)));
+      EXPECT_NEAR(bvh.nearest_hit(o, dir, facing, 1.5 * nearest_facing), nearest_facing, 1e-9);
+    }
+  }
+  EXPECT_GT(hit_rays, 100);  // the soup is dense enough that most rays meet something
+}
+
+}  // namespace
+}  // namespace sublift

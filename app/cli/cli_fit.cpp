@@ -143,6 +143,7 @@ int run_fit(int argc, char** argv) {
                                          {"input_to_limit_rms", f.limit_back_rms},
                                          {"input_to_limit_max", f.limit_back_max},
                                          {"folded_faces", f.limit_folded}}},
+                              {"feature_lines", {{"input", f.feature_lines}, {"max_distance", f.feature_lines ? nlohmann::json(f.feature_max) : nlohmann::json()}}},
                               {"ms", fit_ms},
                               {"stage_ms", stages},
                               {"warnings", report_json(lm.report)}};
@@ -158,7 +159,10 @@ int run_fit(int argc, char** argv) {
                 << " folded faces; " << std::lround(r.ms) << " ms\n";
     std::cout << "  limit surface: to mesh " << 100 * f.limit_rms << " % rms, " << 100 * f.limit_max << " % max; mesh to it "
               << 100 * f.limit_back_rms << " % rms, " << 100 * f.limit_back_max << " % max (of the bounding-box diagonal); "
-              << f.limit_folded << " folded faces\n"
+              << f.limit_folded << " folded faces\n";
+    if (f.feature_lines)
+      std::cout << "  feature lines: " << f.feature_lines << " in the mesh, within " << 100 * f.feature_max
+                << " % of the fitted creases and boundaries\n"
               << "wrote " << out << "\n";
   }
   return 0;

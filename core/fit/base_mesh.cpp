@@ -44,6 +44,13 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
                           const BaseMeshOptions& options) {
   if (faces.rows() == 0) throw TopologyError("the mesh has no faces to fit");
   if (positions.size() != 3 * std::size_t(num_vertices)) throw Error("decimate_to_base: positions do not match the vertices");
+  {
+    std::vector<std::uint32_t> around(num_vertices, 0);
+    for (std::uint32_t v : faces.items)
+      if (v < num_vertices && ++around[v] > kMaxFitValence)
+        throw TopologyError("vertex " + std::to_string(v) + " has more than " + std::to_string(kMaxFitValence) +
+                            " faces around it; fitting takes vertices of at most that many (the decimation would take quadratic time)");
+  }
   Mesh m;
   std::vector<Mesh::VertexHandle> vh(num_vertices);
   for (std::uint32_t v = 0; v < num_vertices; ++v) vh[v] = m.add_vertex({positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]});
@@ -114,6 +121,10 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
     }
     line_edges.push_back(ends / 2);
   }
+  for (std::size_t l : line_edges) out.input_lines += l >= kLineEdges;
+  for (auto v : m.vertices())
+    if (m.status(v).feature() && line_edges[line[static_cast<std::size_t>(v.idx())]] >= kLineEdges)
+      out.input_line_vertices.push_back(static_cast<std::uint32_t>(v.idx()));
   std::vector<std::uint8_t> corner(num_vertices, 0);
   for (auto v : m.vertices()) {
     if (!m.status(v).feature() || line_edges[line[static_cast<std::size_t>(v.idx())]] < kLineEdges) continue;

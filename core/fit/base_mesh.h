@@ -15,6 +15,12 @@
 
 namespace sublift {
 
+/// The most faces around one input vertex a fit takes: every collapse next to such a vertex
+/// walks its whole fan, so a wider one (a 70,000-face fan in the bad-input corpus) makes the
+/// decimation quadratic (a fan of 1,000 takes half a minute). Real meshes stay below it (a
+/// 512-segment UV sphere's poles reach it).
+constexpr std::uint32_t kMaxFitValence = 512;
+
 struct BaseMeshOptions {
   std::uint32_t target_vertices = 0;  // 0: 1/64 of the input's, at least 24
   std::uint32_t target_faces = 0;     // > 0: instead of a vertex count, at most this many faces
@@ -32,10 +38,13 @@ struct BaseMesh {
   std::size_t boundary_loops_before = 0, boundary_loops_after = 0;
   std::size_t feature_edges = 0;      // sharp or boundary input edges marked
   std::vector<std::uint32_t> input_feature_edges;  // those edges, 2 input vertices each
+  std::size_t input_lines = 0;                     // feature lines of 8 or more of them
+  std::vector<std::uint32_t> input_line_vertices;  // their vertices (what a fit must keep sharp)
 };
 
 /// The base of `faces` (triangles; other polygons are fanned) with `positions` (3 per vertex).
-/// Throws TopologyError for non-manifold input (OpenMesh cannot hold it: the face is named),
+/// Throws TopologyError for non-manifold input (OpenMesh cannot hold it: the face is named), a
+/// vertex with more than kMaxFitValence faces around it,
 /// an empty mesh, or a target above the input's vertex (or face) count.
 BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::span<const double> positions,
                           const BaseMeshOptions& options = {});

@@ -298,6 +298,15 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
   std::tie(out.limit_rms, out.limit_max) = distances(input, limit, diag);
   std::tie(out.limit_back_rms, out.limit_back_max) = distances(TriangleBvh(limit, h.levels.back().faces), positions, diag);
   out.limit_folded = static_cast<std::uint32_t>(folded_list(input, input_normals, faces, h.levels.back().faces, limit).size());
+  // The input's feature lines against the fitted creases and boundaries (their limit curves).
+  const Complex& fine = h.levels.back();
+  std::vector<std::uint32_t> crease_edges;
+  for (std::uint32_t e = 0; e < fine.num_edges() && !fine.edge_dim.empty(); ++e)
+    if (fine.edge_dim[e] == 1) crease_edges.insert(crease_edges.end(), {fine.edge_verts[2 * e], fine.edge_verts[2 * e + 1]});
+  const FeatureLines fitted_lines(limit, crease_edges);
+  for (std::uint32_t v : base.input_line_vertices)
+    out.feature_max = std::max(out.feature_max, fitted_lines.empty() ? INFINITY : glm::distance(fitted_lines.closest(at(positions, v)), at(positions, v)) / diag);
+  out.feature_lines = base.input_lines;
   stage_done("report");
   out.finest = std::move(x);
   return out;

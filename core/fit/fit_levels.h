@@ -55,6 +55,10 @@ struct Fitted {
   // The limit surface of the finest level (its limit points as a mesh) -> input, and back.
   double limit_rms = 0, limit_max = 0, limit_back_rms = 0, limit_back_max = 0;
   std::uint32_t limit_folded = 0;
+  // The input's feature lines (BaseMesh::input_lines) and the largest distance from their
+  // vertices to the fitted creases' and boundaries' limit curves (infinite when the fit has none).
+  std::size_t feature_lines = 0;
+  double feature_max = 0;
   bool reached_tolerance = false;
   std::vector<std::pair<std::string, double>> stage_ms;  // indexing, hierarchy (level setup), levels, analysis, report
 };

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <filesystem>
 #include <map>
 
@@ -131,6 +132,34 @@ TEST(BaseMesh, SharedScansKeepTopologyAndFeatures) {
     }
     std::printf("%s: %u -> %u vertices, %zu creases, min adjacent-normal cosine %.3f\n", c.file,
                 static_cast<unsigned>(lm.mesh.num_vertices()), b.num_vertices, b.tags.crease_edges.size(), min_cos);
+  }
+}
+
+// A fan wider than kMaxFitValence (the corpus has one of 70,000 faces, which made the
+// decimation quadratic) is refused at once, naming the vertex; a UV sphere's pole of 64 is taken.
+TEST(BaseMesh, FansWiderThanTheValenceLimitAreRefused) {
+  for (const std::uint32_t n : {64u, kMaxFitValence + 1}) {
+    std::vector<double> xyz = {0, 0, 0};
+    Csr faces;
+    for (std::uint32_t k = 0; k <= n; ++k) {
+      const double a = 2.0 * std::numbers::pi * k / n;
+      xyz.insert(xyz.end(), {std::cos(a), std::sin(a), 0.0});
+    }
+    for (std::uint32_t k = 0; k < n; ++k) {
+      faces.items.insert(faces.items.end(), {0u, 1 + k, 1 + (k + 1) % n});
+      faces.offsets.push_back(static_cast<std::uint32_t>(faces.items.size()));
+    }
+    const std::uint32_t nv = n + 2;  // the last rim point repeats the first, unused
+    if (n > kMaxFitValence) {
+      try {
+        decimate_to_base(nv, faces, xyz, {24});
+        FAIL() << "a fan of " << n << " faces was taken";
+      } catch (const TopologyError& e) {
+        EXPECT_NE(std::string(e.what()).find("vertex 0 has more than"), std::string::npos) << e.what();
+      }
+    } else {
+      EXPECT_LE(decimate_to_base(nv, faces, xyz, {24}).num_vertices, 30u);
+    }
   }
 }
 

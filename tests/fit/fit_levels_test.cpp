@@ -187,6 +187,11 @@ TEST(FitLevels, GeneratedSurfacesFitBothWays) {
     }
     // An independent check of the report's input->net distance.
     EXPECT_NEAR(input_to_fit(k.in, f), r.back_max, 1e-12);
+    // Feature lines: only the sheet has one (its boundary), kept by the fitted boundary.
+    EXPECT_EQ(f.feature_lines, k.loops);
+    if (k.loops) {
+      EXPECT_LT(f.feature_max, 0.001) << "the boundary's limit curve strays from the sheet's";
+    }
   }
 }
 

@@ -715,7 +715,7 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
       d.rebuild_stop = model.rebuild_offer().stop;
     d.rebuild_stop_located = model.rebuild_offer().stop_vertex != UINT32_MAX;
     d.can_fit = model.can_fit();
-    d.file_vertices = s.num_vertices(0);
+    d.file_vertices = model.file_vertices();
     d.fit_preview = model.fit_preview() != nullptr;
     const std::size_t key[4] = {s.undo_position(), s.history().size(), static_cast<std::size_t>(s.topology_version()),
                                 static_cast<std::size_t>(model.serial())};

@@ -88,6 +88,7 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
     session = std::make_unique<Session>(std::move(h));
   }
   file_path_ = path;
+  file_vertices_ = session->num_vertices(0);
   project_path_ = project ? path : std::string();
   warnings_ = std::move(warnings);
   clear_pin();  // a new model: the comparison belonged to the old one

@@ -184,6 +184,8 @@ class ModelerState {
   int level() const { return level_; }
   int dim() const { return session_->dim(); }
   const std::string& file_path() const { return file_path_; }
+  /// Level-0 vertices of the file as opened (a fit or rebuild later replaces level 0).
+  std::uint32_t file_vertices() const { return file_vertices_; }
   /// Where Save writes: the project opened or last saved; empty after opening a mesh.
   const std::string& project_path() const { return project_path_; }
   void set_project_path(std::string path) { project_path_ = std::move(path); }
@@ -283,6 +285,7 @@ class ModelerState {
   std::unique_ptr<Session> session_;
   RebuildOffer rebuild_offer_;
   std::optional<FitPreview> fit_preview_;
+  std::uint32_t file_vertices_ = 0;
   InputOrder input_order_;
   std::string file_path_, project_path_;
   std::vector<std::string> warnings_;

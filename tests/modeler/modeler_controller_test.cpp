@@ -1012,6 +1012,7 @@ TEST(ModelerFitTest, FitScriptCommand) {
   EXPECT_EQ(app.model.session().finest_level(), default_fit_levels(g.fine.num_vertices, 80));
   EXPECT_EQ(app.model.level(), 0);
   EXPECT_EQ(app.model.fit_preview(), nullptr);  // the preview goes with the fit
+  EXPECT_EQ(app.model.file_vertices(), g.fine.num_vertices);  // the Fit section still counts the file's
   EXPECT_NE(app.message.find("Fitted a base of 80 vertices"), std::string::npos) << app.message << app.error;
   std::vector<std::string> stages;
   ModelerState::FitSettings settings;

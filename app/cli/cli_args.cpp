@@ -40,6 +40,16 @@ Args parse_args(int argc, char** argv, int first, const std::set<std::string>& w
   return a;
 }
 
+long integer_option(const Args& a, const char* name, long fallback, long lo, long hi) {
+  const auto v = a.value(name);
+  if (!v) return fallback;
+  long x = 0;
+  const auto [p, ec] = std::from_chars(v->data(), v->data() + v->size(), x);
+  if (ec != std::errc() || p != v->data() + v->size() || x < lo || x > hi)
+    throw UsageError(std::string(name) + " must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got '" + *v + "'");
+  return x;
+}
+
 void parse_size(const std::string& s, int& width, int& height) {
   const auto x = s.find('x');
   auto num = [&](std::string_view t, int& out) {

@@ -34,6 +34,10 @@ Args parse_args(int argc, char** argv, int first, const std::set<std::string>& w
 Args parse_args(int argc, char** argv, int first, const std::set<std::string>& with_value,
                 const std::set<std::string>& flags, const std::map<std::string, int>& multi);
 
+/// The integer value of option `name` in lo..hi, `fallback` when it is absent. Throws
+/// UsageError naming the option and the range.
+long integer_option(const Args& a, const char* name, long fallback, long lo, long hi);
+
 /// Parses "WxH" (each 16..8192). Throws UsageError.
 void parse_size(const std::string& s, int& width, int& height);
 

@@ -118,22 +118,12 @@ int run_sqrt2(const Args& a) {
   return 0;
 }
 
-int parse_int_option(const Args& a, const char* name, int fallback, int lo, int hi) {
-  const auto v = a.value(name);
-  if (!v) return fallback;
-  int x = 0;
-  const auto [p, ec] = std::from_chars(v->data(), v->data() + v->size(), x);
-  if (ec != std::errc() || p != v->data() + v->size() || x < lo || x > hi)
-    throw UsageError(std::string(name) + " must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi) +
-                     ", got '" + *v + "'");
-  return x;
-}
 
 int run_tri(const Args& a) {
   const std::string name = *a.value("--scheme");
   const Scheme s = name == "loop" ? Scheme::Loop : name == "butterfly" ? Scheme::Butterfly : Scheme::LinearTri;
-  const int n = parse_int_option(a, "--valence", 6, 3, 16);
-  const int k = parse_int_option(a, "--disc", 2, 1, 3);
+  const int n = static_cast<int>(integer_option(a, "--valence", 6, 3, 16));
+  const int k = static_cast<int>(integer_option(a, "--disc", 2, 1, 3));
   TriWaveletBuilder b(s, k);
   std::vector<double> xy;
   const Complex disc = extraordinary_disc(n, b.edge_radius() + 3, &xy);

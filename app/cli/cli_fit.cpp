@@ -36,15 +36,6 @@ constexpr const char* kHelp =
     "  topology before and after, per level the distances both ways (fractions of the diagonal),\n"
     "  folded faces and time, the same for the finest level's limit surface, and the stage times.\n";
 
-long parse_long_option(const Args& a, const char* name, long fallback, long lo, long hi) {
-  const auto v = a.value(name);
-  if (!v) return fallback;
-  long x = 0;
-  const auto [p, ec] = std::from_chars(v->data(), v->data() + v->size(), x);
-  if (ec != std::errc() || p != v->data() + v->size() || x < lo || x > hi)
-    throw UsageError(std::string(name) + " must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got '" + *v + "'");
-  return x;
-}
 
 }  // namespace
 
@@ -64,7 +55,7 @@ int run_fit(int argc, char** argv) {
   if (!scheme_is_tri(fo.scheme)) throw UsageError("fit takes linear-tri, butterfly or loop for now (docs/fit.md)");
   if (a.value("--levels") && a.value("--tolerance")) throw UsageError("give --levels or --tolerance, not both");
   if (a.value("--base-vertices") && a.value("--base-faces")) throw UsageError("give --base-faces or --base-vertices, not both");
-  fo.levels = static_cast<int>(parse_long_option(a, "--levels", 3, 0, 6));
+  fo.levels = static_cast<int>(integer_option(a, "--levels", 3, 0, 6));
   if (const auto t = a.value("--tolerance")) {
     const bool percent = !t->empty() && t->back() == '%';
     const auto d = parse_double(percent ? t->substr(0, t->size() - 1) : *t);
@@ -74,8 +65,8 @@ int run_fit(int argc, char** argv) {
     fo.levels = 6;  // the most; fit_levels also stops at four times the mesh's vertices
   }
   BaseMeshOptions bo;
-  bo.target_vertices = static_cast<std::uint32_t>(parse_long_option(a, "--base-vertices", 0, 4, 10000000));
-  bo.target_faces = static_cast<std::uint32_t>(parse_long_option(a, "--base-faces", 0, 4, 20000000));
+  bo.target_vertices = static_cast<std::uint32_t>(integer_option(a, "--base-vertices", 0, 4, 10000000));
+  bo.target_faces = static_cast<std::uint32_t>(integer_option(a, "--base-faces", 0, 4, 20000000));
   if (const auto v = a.value("--feature-angle")) {
     const auto d = parse_double(*v);
     if (!d || *d <= 0 || *d >= 180) throw UsageError("--feature-angle must be in (0, 180) degrees, got '" + *v + "'");

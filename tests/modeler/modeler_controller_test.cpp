@@ -806,6 +806,8 @@ TEST(ModelerFfdTest, ScriptCommands) {
 }  // namespace sublift
 
 #include <fstream>
+
+#include "tests/io_test_util.h"
 #include <sstream>
 
 #include "core/complex/complex_build.h"
@@ -921,16 +923,14 @@ namespace {
 // A mesh with a loose vertex (the stanford bunny has 1,113) opens: level detection refuses
 // it, and says why instead of failing the open.
 TEST(ModelerOpenTest, LooseVerticesStillOpen) {
-  const auto dir = std::filesystem::temp_directory_path() / "sublift_modeler_loose";
-  std::filesystem::create_directories(dir);
-  const std::string path = (dir / "loose.obj").string();
+  const testing::TempDir dir("sublift_modeler_loose");
+  const std::string path = dir.file("loose.obj");
   std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\n";
   ModelerState m;
   m.open(path);
   ASSERT_TRUE(m.has_session());
   EXPECT_EQ(m.rebuild_offer().levels, 0);
   EXPECT_NE(m.rebuild_offer().stop.find("in no face"), std::string::npos) << m.rebuild_offer().stop;
-  std::filesystem::remove_all(dir);
 }
 
 // A dense mesh opens with fewer added levels, so its finest level stays within

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include <glm/geometric.hpp>
 
@@ -25,11 +26,12 @@ void put(std::vector<double>& x, std::uint32_t v, const glm::dvec3& p) {
   for (int k = 0; k < 3; ++k) x[3 * std::size_t(v) + k] = p[k];
 }
 
-// The coefficients that synthesise `x` (level L's net) at level L, finer wavelets zero.
-void set_level(Hierarchy& h, int L, std::vector<double> x) {
-  for (int j = L - 1; j >= 0; --j) analyze_transition(h, j, x.data(), h.channels, h.integer);
-  std::fill(h.coeffs.begin(), h.coeffs.end(), 0.0);
-  std::copy(x.begin(), x.end(), h.coeffs.begin());
+// Level j's net subdivided to level j + 1: one synthesis step with the level's wavelets zero.
+std::vector<double> subdivided(const Hierarchy& h, int j, std::span<const double> x) {
+  std::vector<double> y(std::size_t(h.num_vertices(j + 1)) * 3, 0.0);
+  std::copy(x.begin(), x.end(), y.begin());
+  synthesize_transition(h, j, y.data(), 3, false, /*wavelets_zero=*/true);
+  return y;
 }
 
 // Where p lands on the input: the nearer of the first hits along +n and -n on the side of the
@@ -207,6 +209,7 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
   Hierarchy& h = out.hierarchy;
   set_base(h, base.positions);
   double hierarchy_ms = 0, levels_ms = 0;
+  std::optional<LimitStencils> finest_limit;  // built for the limit fit, kept for the report
   std::vector<double> x;
   const auto measure = [&](int l, const Complex& c, const std::vector<double>& net) {
     FitLevelReport rep;
@@ -224,7 +227,7 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
     h.coeffs.resize(std::size_t(h.num_vertices(l)) * 3, 0.0);  // the new wavelets, zero
     const auto t1 = std::chrono::steady_clock::now();
     hierarchy_ms += std::chrono::duration<double, std::milli>(t1 - t0).count();
-    x = synthesize(h, l);  // the fitted level l-1, subdivided
+    x = subdivided(h, l - 1, l == 1 ? std::span<const double>(base.positions) : std::span<const double>(x));
     Complex c = h.levels[static_cast<std::size_t>(l)];
     if (c.vertex_edges.rows() != c.num_vertices) build_adjacency(c);
     const std::uint32_t n = c.num_vertices;
@@ -254,7 +257,8 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
     double reach_max = 0;  // the fitted surface's larger distance, both ways
     if (approximating && (o.tolerance > 0 || l == o.levels)) {
       // Its points projected as the net's were (no relaxing), the net solved under it.
-      const LimitStencils ls = build_limit_stencils(h);
+      finest_limit = build_limit_stencils(h);
+      const LimitStencils& ls = *finest_limit;
       const Mover project_only{c, project, lines, n, 0.0};
       std::vector<double> y(x.size()), targets(x.size());
       for (int round = 0; round < o.limit_rounds; ++round) {
@@ -282,7 +286,6 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
     out.levels.push_back(rep);
     out.reached_tolerance = reached;
     if (last) break;
-    set_level(h, l, x);
   }
   out.stage_ms.emplace_back("hierarchy", hierarchy_ms);
   out.stage_ms.emplace_back("levels", levels_ms);
@@ -292,7 +295,8 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
   analyze(h, x);
   stage_done("analysis");
   // The limit surface of the finest level (its limit points, as a triangle mesh), both ways.
-  const LimitStencils ls = build_limit_stencils(h);
+  if (!finest_limit) finest_limit = build_limit_stencils(h);
+  const LimitStencils& ls = *finest_limit;
   std::vector<double> limit(x.size());
   eval_limit(ls, x.data(), limit.data());
   std::tie(out.limit_rms, out.limit_max) = distances(input, limit, diag);

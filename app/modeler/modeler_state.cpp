@@ -181,7 +181,7 @@ ModelerState::PreparedFit ModelerState::prepare_fit(const std::string& file, con
   fo.scheme = settings.scheme;
   fo.levels = settings.levels > 0 ? settings.levels : default_fit_levels(shape.base.num_vertices, base.num_vertices);
   fo.progress = progress;
-  return {fit_levels(base, shape.base.faces, shape.positions, fo), base.num_vertices};
+  return {fit_levels(base, shape.base.faces, shape.positions, fo), base.num_vertices, feature_tags_of(shape.base)};
 }
 
 std::string ModelerState::install_fit(PreparedFit p) {
@@ -194,6 +194,10 @@ std::string ModelerState::install_fit(PreparedFit p) {
   m << "Fitted a base of " << p.base_vertices << " vertices and " << f.levels.size() << " level" << (f.levels.size() == 1 ? "" : "s")
     << " (" << scheme_name(f.hierarchy.scheme) << "): the " << (limit ? "limit surface" : "net") << " lies within " << 100 * to
     << " % of the mesh and the mesh within " << 100 * back << " % of it (of the diagonal); the detail is kept as wavelets (history cleared)";
+  if (const std::size_t tags = p.file_tags.crease_edges.size() + p.file_tags.corner_vertices.size(); tags > 0)
+    warnings_.push_back("not kept by the fit: the file's " + std::to_string(p.file_tags.crease_edges.size()) + " crease and " +
+                        std::to_string(p.file_tags.corner_vertices.size()) +
+                        " corner tags (the fitted creases come from the feature angle)");
   if (const std::uint32_t folded = limit ? f.limit_folded : f.levels.empty() ? 0 : f.levels.back().folded; folded > 0)
     warnings_.push_back(std::to_string(folded) + " folded faces in the fitted surface (docs/fit.md)");
   install(std::make_unique<Session>(std::move(p.fitted.hierarchy)));

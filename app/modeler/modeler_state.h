@@ -118,6 +118,7 @@ class ModelerState {
   struct PreparedFit {
     Fitted fitted;
     std::uint32_t base_vertices = 0;
+    FeatureTags file_tags;  // the file's crease and corner tags, which the fit does not carry
   };
   /// True for an opened surface mesh file (not a project): what fitting takes.
   bool can_fit() const { return project_path_.empty() && !file_path_.empty() && session_ && dim() == 2; }

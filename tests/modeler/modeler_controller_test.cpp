@@ -1034,6 +1034,13 @@ TEST(ModelerFitTest, FitScriptCommand) {
   EXPECT_TRUE(c2.poll_job(true));
   EXPECT_EQ(c2.model.session().num_vertices(0), opened);
   EXPECT_NE(c2.message.find("Fitting cancelled; nothing changed"), std::string::npos) << c2.message << c2.error;
+  // The file's crease and corner tags do not come along (the fit makes its own): said by name.
+  ModelerState tagged;
+  tagged.open(std::string(SUBLIFT_ASSETS_DIR) + "/tri_crease_grid.obj");
+  tagged.fit_base(24, 1);
+  bool said = false;
+  for (const std::string& w : tagged.import_warnings()) said |= w.find("not kept by the fit: the file's") != std::string::npos;
+  EXPECT_TRUE(said);
   // Script: fit-preview and its errors.
   ModelerState sp;
   ScriptRunner pv("pv", "open " + path + "\nfit-preview 60 45\n");

@@ -60,7 +60,7 @@ void BM_Fit(benchmark::State& st) {
     const BaseMesh base = decimate_to_base(in.n, in.faces, in.xyz);
     bench::note(key("base", nu), bench::since_ms(t0));
     FitOptions o;
-    o.levels = default_fit_levels(in.n, base.num_vertices);
+    o.levels = default_fit_levels(in.n, base.num_vertices, Scheme::Loop);
     const Fitted f = fit_levels(base, in.faces, in.xyz, o);
     bench::note(key("fit", nu), bench::since_ms(t0));
     for (const auto& [stage, ms] : f.stage_ms) bench::note(key(stage.c_str(), nu), ms);

@@ -2,6 +2,7 @@
 // Base meshes and lattices generated in code, shared by the peer tests and the benchmarks:
 // a regular quad torus, a cube and an n^3 hexahedral block. Positions are xyz doubles, three
 // per vertex, in vertex order.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <vector>
 
+#include "core/schemes/registry.h"
 #include "ui/modeler_keys.h"
 
 namespace sublift {
@@ -89,12 +91,17 @@ void draw_fit_section(const ModelerPanelData& d, FileFields& f, ModelerPanelRequ
   ImGui::SliderFloat("Feature angle", &q.feature_angle_deg, 5.0f, 175.0f, "%.0f deg");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Edges whose faces meet more sharply stay creases; where they meet or turn, corners");
   ImGui::SetNextItemWidth(120.0f);
-  ImGui::SliderInt("Levels", &q.levels, 0, 6, q.levels == 0 ? "auto" : "%d");
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("auto: the levels that bring the finest to about the mesh's vertex count");
-  const char* schemes[] = {"linear-tri", "butterfly", "loop"};
-  int pick = std::clamp(q.scheme - 3, 0, 2);
+  // Every scheme fits: the triangle schemes from a triangle base, the others from quads.
+  std::vector<const char*> schemes;
+  for (const SchemeInfo& i : all_schemes()) schemes.push_back(i.name);
+  int pick = std::clamp(q.scheme, 0, static_cast<int>(schemes.size()) - 1);
   ImGui::SetNextItemWidth(120.0f);
-  if (ImGui::Combo("Fit scheme", &pick, schemes, 3)) q.scheme = pick + 3;
+  if (ImGui::Combo("Fit scheme", &pick, schemes.data(), static_cast<int>(schemes.size()))) q.scheme = pick;
+  const int most_levels = 6 * scheme_levels_per_split(static_cast<Scheme>(q.scheme));
+  q.levels = std::min(q.levels, most_levels);
+  ImGui::SetNextItemWidth(120.0f);
+  ImGui::SliderInt("Levels", &q.levels, 0, most_levels, q.levels == 0 ? "auto" : "%d");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("auto: the levels that bring the finest to about the mesh's vertex count");
   if (ImGui::Button("Preview base")) r.fit_preview = q;
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Draw the base the fit would start from over the mesh");
   if (d.fit_preview) {

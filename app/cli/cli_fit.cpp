@@ -24,7 +24,7 @@ namespace sublift::cli {
 namespace {
 
 constexpr const char* kHelp =
-    "usage: sublift-cli fit MESH [--scheme linear-tri|butterfly|loop] [--base-faces N | --base-vertices N]\n"
+    "usage: sublift-cli fit MESH [--scheme S] [--base-faces N | --base-vertices N]\n"
     "                       [--levels J | --tolerance E] [--feature-angle DEG] -o OUT.sublift|OUT.obj [--json]\n"
     "  Fits any triangle mesh (docs/fit.md): a coarse base from OpenMesh's decimater (N faces or\n"
     "  vertices, default 1/64 of the mesh's vertices; genus, boundaries, and edges sharper than DEG,\n"
@@ -52,19 +52,20 @@ int run_fit(int argc, char** argv) {
   const std::string out = output_option(a, project ? 0 : 2);
   FitOptions fo;
   fo.scheme = a.value("--scheme") ? scheme_option(a) : Scheme::Loop;
-  if (!scheme_is_tri(fo.scheme)) throw UsageError("fit takes linear-tri, butterfly or loop for now (docs/fit.md)");
   if (a.value("--levels") && a.value("--tolerance")) throw UsageError("give --levels or --tolerance, not both");
   if (a.value("--base-vertices") && a.value("--base-faces")) throw UsageError("give --base-faces or --base-vertices, not both");
-  fo.levels = static_cast<int>(integer_option(a, "--levels", 3, 0, 6));
+  const int most_levels = 6 * scheme_levels_per_split(fo.scheme);  // six 1-to-4 splits
+  fo.levels = static_cast<int>(integer_option(a, "--levels", 3, 0, most_levels));
   if (const auto t = a.value("--tolerance")) {
     const bool percent = !t->empty() && t->back() == '%';
     const auto d = parse_double(percent ? t->substr(0, t->size() - 1) : *t);
     if (!d || *d <= 0 || (percent ? *d / 100 : *d) >= 1)
       throw UsageError("--tolerance must be a fraction of the diagonal in (0, 1) or a percentage, got '" + *t + "'");
     fo.tolerance = percent ? *d / 100 : *d;
-    fo.levels = 6;  // the most; fit_levels also stops at four times the mesh's vertices
+    fo.levels = most_levels;  // fit_levels also stops at four times the mesh's vertices
   }
   BaseMeshOptions bo;
+  bo.quads = fit_base_quads(fo.scheme);
   bo.target_vertices = static_cast<std::uint32_t>(integer_option(a, "--base-vertices", 0, 4, 10000000));
   bo.target_faces = static_cast<std::uint32_t>(integer_option(a, "--base-faces", 0, 4, 20000000));
   if (const auto v = a.value("--feature-angle")) {
@@ -94,7 +95,7 @@ int run_fit(int argc, char** argv) {
     base_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     // By default, the levels that bring the finest level to about the mesh's vertex count.
     if (!a.value("--levels") && !a.value("--tolerance"))
-      fo.levels = default_fit_levels(n, base.num_vertices);
+      fo.levels = default_fit_levels(n, base.num_vertices, fo.scheme);
     f = fit_levels(base, faces, xyz, fo);
   } catch (const TopologyError& e) {
     throw InputError(in, 0, e.what());
@@ -108,6 +109,8 @@ int run_fit(int argc, char** argv) {
   }
   nlohmann::json stages = {{"base", base_ms}};
   for (const auto& [name, ms] : f.stage_ms) stages[name] = ms;
+  std::size_t quads = 0;
+  for (std::size_t q = 0; q < base.faces.rows(); ++q) quads += base.faces.size(q) == 4;
   if (a.has("--json")) {
     nlohmann::json levels = nlohmann::json::array();
     for (const FitLevelReport& r : f.levels)
@@ -122,7 +125,7 @@ int run_fit(int argc, char** argv) {
     const nlohmann::json j = {{"input", in},
                               {"output", out},
                               {"scheme", scheme_name(fo.scheme)},
-                              {"base", {{"vertices", base.num_vertices}, {"faces", base.faces.rows()}, {"creases", base.tags.crease_edges.size()}}},
+                              {"base", {{"vertices", base.num_vertices}, {"faces", base.faces.rows()}, {"quads", quads}, {"creases", base.tags.crease_edges.size()}}},
                               {"euler", {{"input", base.euler_before}, {"base", base.euler_after}}},
                               {"boundary_loops", {{"input", base.boundary_loops_before}, {"base", base.boundary_loops_after}}},
                               {"levels", levels},
@@ -140,8 +143,9 @@ int run_fit(int argc, char** argv) {
                               {"warnings", report_json(lm.report)}};
     std::cout << j.dump(2) << "\n";
   } else {
-    std::cout << in << ": base of " << base.num_vertices << " vertices (Euler characteristic " << base.euler_after << ", as the mesh's "
-              << base.euler_before << "), " << f.levels.size() << " levels fitted\n";
+    std::cout << in << ": base of " << base.num_vertices << " vertices and " << base.faces.rows() << " faces (" << quads
+              << " quads; Euler characteristic " << base.euler_after << ", as the mesh's " << base.euler_before << "), "
+              << f.levels.size() << " " << scheme_name(fo.scheme) << " levels fitted\n";
     if (fo.tolerance > 0 && !f.reached_tolerance)
       std::cout << "  the tolerance " << 100 * fo.tolerance << " % was not reached (the finest level tried is reported below)\n";
     for (const FitLevelReport& r : f.levels)
@@ -153,8 +157,8 @@ int run_fit(int argc, char** argv) {
               << f.limit_folded << " folded faces\n";
     if (f.feature_lines)
       std::cout << "  feature lines: " << f.feature_lines << " in the mesh, within " << 100 * f.feature_max
-                << " % of the fitted creases and boundaries\n"
-              << "wrote " << out << "\n";
+                << " % of the fitted creases and boundaries\n";
+    std::cout << "wrote " << out << "\n";
   }
   return 0;
 }

@@ -138,6 +138,7 @@ BaseMeshOptions base_options(const ModelerState::FitSettings& s) {
   BaseMeshOptions bo;
   bo.target_vertices = s.base_vertices;
   bo.feature_angle_deg = s.feature_angle_deg;
+  bo.quads = fit_base_quads(s.scheme);
   return bo;
 }
 
@@ -179,7 +180,7 @@ ModelerState::PreparedFit ModelerState::prepare_fit(const std::string& file, con
   const BaseMesh base = decimate_to_base(shape.base.num_vertices, shape.base.faces, shape.positions, base_options(settings));
   FitOptions fo;
   fo.scheme = settings.scheme;
-  fo.levels = settings.levels > 0 ? settings.levels : default_fit_levels(shape.base.num_vertices, base.num_vertices);
+  fo.levels = settings.levels > 0 ? settings.levels : default_fit_levels(shape.base.num_vertices, base.num_vertices, settings.scheme);
   fo.progress = progress;
   return {fit_levels(base, shape.base.faces, shape.positions, fo), base.num_vertices, feature_tags_of(shape.base)};
 }
@@ -210,11 +211,8 @@ std::string ModelerState::install_fit(PreparedFit p) {
   return m.str();
 }
 
-void ModelerState::fit_base(std::uint32_t base_vertices, int levels) {
+void ModelerState::fit_base(const FitSettings& s) {
   check_fit();
-  FitSettings s;
-  s.base_vertices = base_vertices;
-  s.levels = levels;
   install_fit(prepare_fit(file_path_, s, {}));
 }
 

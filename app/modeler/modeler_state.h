@@ -132,7 +132,7 @@ class ModelerState {
   /// Installs the fit (level 0, history cleared); returns what to tell the user.
   std::string install_fit(PreparedFit prepared);
   /// check_fit, prepare_fit and install_fit in one (the script command `fit`).
-  void fit_base(std::uint32_t base_vertices, int levels);
+  void fit_base(const FitSettings& settings);
   static PreparedRebuild prepare_rebuild(const std::string& file, const RebuildOffer& offer, int levels, const RebuildProgress& progress);
   void install_rebuild(PreparedRebuild prepared);
   /// The file order of a rebuilt mesh (empty otherwise); saved with the project.

@@ -172,6 +172,14 @@ void basis(const Call& c) {
   state.set_basis(b);
 }
 
+Scheme script_scheme(const std::string& name) {
+  try {
+    return parse_scheme(name);
+  } catch (const std::exception&) {
+    throw ScriptError("unknown scheme '" + name + "' (" + scheme_names_list() + ")");
+  }
+}
+
 // One entry per command, in the order `sublift --help` lists them. Handlers run after the
 // argument count passed, so they index w[1..min] freely.
 constexpr Command kCommands[] = {
@@ -179,13 +187,7 @@ constexpr Command kCommands[] = {
     {"model", kPath, 0, "model PATH", [](const Call& c) { c.state.load_model(c.raw); c.step.reframe = true; }, false},
     {"ffd", 1, kMany, "ffd box NX NY NZ [MARGIN] | ffd bind [nearest] | ffd unbind | ffd remove | ffd export PATH", ffd},
     {"scheme", 1, 1, "scheme linear|cubic|sqrt2|linear-tri|butterfly|loop", [](const Call& c) {
-      Scheme s;
-      try {
-        s = parse_scheme(c.w[1]);
-      } catch (const std::exception&) {
-        throw ScriptError("unknown scheme '" + c.w[1] + "' (linear, cubic, sqrt2, linear-tri, butterfly or loop)");
-      }
-      c.state.set_scheme(s);
+      c.state.set_scheme(script_scheme(c.w[1]));
     }},
     {"subdivide", 0, 1, "subdivide [N]", [](const Call& c) {
       const long long n = c.w.size() == 2 ? integer(c.w[1], "N") : 1;
@@ -200,24 +202,30 @@ constexpr Command kCommands[] = {
       }
       c.state.rebuild_levels(static_cast<int>(n));
     }},
-    {"fit", 0, 2, "fit [BASE_VERTICES [LEVELS]]", [](const Call& c) {
+    {"fit", 0, 3, "fit [BASE_VERTICES [LEVELS [SCHEME]]]", [](const Call& c) {
+      ModelerState::FitSettings s;
+      if (c.w.size() == 4) s.scheme = script_scheme(c.w[3]);
       const long long n = c.w.size() >= 2 ? integer(c.w[1], "BASE_VERTICES") : 0;
-      const long long l = c.w.size() == 3 ? integer(c.w[2], "LEVELS") : 0;
+      const long long l = c.w.size() >= 3 ? integer(c.w[2], "LEVELS") : 0;
+      const int most = 6 * scheme_levels_per_split(s.scheme);
       if (n < 0 || n > 10000000) throw ScriptError("fit BASE_VERTICES needs 0 (the default size) to 10000000");
-      if (l < 0 || l > 6) throw ScriptError("fit LEVELS needs 0 (to about the mesh's vertex count) to 6");
-      c.state.fit_base(static_cast<std::uint32_t>(n), static_cast<int>(l));
+      if (l < 0 || l > most) throw ScriptError("fit LEVELS needs 0 (to about the mesh's vertex count) to " + std::to_string(most));
+      s.base_vertices = static_cast<std::uint32_t>(n);
+      s.levels = static_cast<int>(l);
+      c.state.fit_base(s);
     }},
-    {"fit-preview", 0, 2, "fit-preview [BASE_VERTICES [FEATURE_ANGLE]] | fit-preview off", [](const Call& c) {
+    {"fit-preview", 0, 3, "fit-preview [BASE_VERTICES [FEATURE_ANGLE [SCHEME]]] | fit-preview off", [](const Call& c) {
       if (c.w.size() == 2 && c.w[1] == "off") return c.state.clear_fit_preview();
       ModelerState::FitSettings s;
       const long long n = c.w.size() >= 2 ? integer(c.w[1], "BASE_VERTICES") : 0;
       if (n < 0 || n > 10000000) throw ScriptError("fit-preview BASE_VERTICES needs 0 (the default size) to 10000000");
       s.base_vertices = static_cast<std::uint32_t>(n);
-      if (c.w.size() == 3) {
+      if (c.w.size() >= 3) {
         const double a = number(c.w[2], "FEATURE_ANGLE");
         if (!(a > 0 && a < 180)) throw ScriptError("fit-preview FEATURE_ANGLE needs degrees in (0, 180)");
         s.feature_angle_deg = a;
       }
+      if (c.w.size() == 4) s.scheme = script_scheme(c.w[3]);
       c.state.preview_fit(s);
     }},
     {"level", 1, 1, "level L", [](const Call& c) {

@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "core/base/errors.h"
+#include "core/fit/base_quads.h"
 
 namespace sublift {
 
@@ -71,6 +72,8 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
   const std::uint32_t target = options.target_vertices ? options.target_vertices : std::max<std::uint32_t>(24, used / 64);
   if (options.target_faces == 0 && target > used)
     throw TopologyError("a base of " + std::to_string(target) + " vertices is more than the mesh's " + std::to_string(used));
+  // Quads: two triangles per polygon asked for (the pairing leaves some triangles, so about).
+  const std::size_t target_triangles = std::size_t(options.target_faces) * (options.quads ? 2 : 1);
   if (options.target_faces > m.n_faces())
     throw TopologyError("a base of " + std::to_string(options.target_faces) + " faces is more than the mesh's " + std::to_string(m.n_faces()));
 
@@ -154,7 +157,7 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
   dec.module(aspect).set_aspect_ratio(10.0);
   dec.module(aspect).set_binary(true);
   dec.initialize();
-  if (options.target_faces) dec.decimate_to_faces(0, options.target_faces);
+  if (options.target_faces) dec.decimate_to_faces(0, std::min(target_triangles, m.n_faces()));
   else dec.decimate_to(target + (num_vertices - used));  // loose vertices stay (locked) and are dropped below
 
   // Surviving vertices keep their input index until garbage collection: read them first.
@@ -184,6 +187,7 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
   }
   out.euler_after = static_cast<long long>(out.num_vertices) - edges + static_cast<long long>(out.faces.rows());
   out.boundary_loops_after = boundary_loops(m);
+  if (options.quads) pair_into_quads(out);
   return out;
 }
 

@@ -26,11 +26,13 @@ struct BaseMeshOptions {
   std::uint32_t target_faces = 0;     // > 0: instead of a vertex count, at most this many faces
   double feature_angle_deg = 60.0;    // edges whose faces meet at a sharper angle are creases
   double max_normal_deviation_deg = 60.0;  // no collapse turns a face normal further
+  bool quads = false;                 // pair the triangles into quads (base_quads.h); target_faces
+                                      // then counts the polygons, about two triangles each
 };
 
 struct BaseMesh {
   std::uint32_t num_vertices = 0;
-  Csr faces;                          // triangles, oriented as the input
+  Csr faces;                          // triangles (quad-dominant with `quads`), oriented as the input
   std::vector<double> positions;      // 3 per vertex
   std::vector<std::uint32_t> input_vertex;  // the input vertex each base vertex is
   FeatureTags tags;                   // creases (sharp input edges kept) and corners, in base vertex numbers

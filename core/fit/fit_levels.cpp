@@ -180,13 +180,19 @@ struct Mover {
 
 }  // namespace
 
-int default_fit_levels(std::uint32_t input_vertices, std::uint32_t base_vertices) {
-  if (base_vertices == 0 || input_vertices <= base_vertices) return 1;
-  return std::clamp(static_cast<int>(std::lround(std::log(double(input_vertices) / base_vertices) / std::log(4.0))), 1, 6);
+int default_fit_levels(std::uint32_t input_vertices, std::uint32_t base_vertices, Scheme scheme) {
+  const int per_split = scheme_info(scheme).levels_per_split;
+  if (base_vertices == 0 || input_vertices <= base_vertices) return per_split;
+  const double splits = std::log(double(input_vertices) / base_vertices) / std::log(4.0);
+  return std::clamp(static_cast<int>(std::lround(splits * per_split)), per_split, 6 * per_split);
 }
 
+bool fit_base_quads(Scheme scheme) { return !scheme_info(scheme).triangles_only; }
+
 Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double> positions, const FitOptions& o) {
-  if (!scheme_is_tri(o.scheme)) throw Error("fitting takes the triangle schemes for now (linear-tri, butterfly, loop)");
+  if (scheme_info(o.scheme).triangles_only)
+    for (std::size_t f = 0; f < base.faces.rows(); ++f)
+      if (base.faces.size(f) != 3) throw Error("the " + scheme_name(o.scheme) + " scheme needs a triangle base (BaseMeshOptions::quads off)");
   const auto report = [&](const char* stage, double fraction) {
     if (o.progress && !o.progress(stage, fraction)) throw Cancelled("fitting cancelled");
   };
@@ -253,7 +259,7 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
     }
     // An approximating scheme's finest level gets its limit surface fitted; with a tolerance,
     // every level does, since the limit surface is what the tolerance is about there.
-    const bool approximating = o.two_way && !scheme_interpolates(o.scheme);
+    const bool approximating = o.two_way && scheme_info(o.scheme).limit != LimitRule::ControlNet;
     double reach_max = 0;  // the fitted surface's larger distance, both ways
     if (approximating && (o.tolerance > 0 || l == o.levels)) {
       // Its points projected as the net's were (no relaxing), the net solved under it.

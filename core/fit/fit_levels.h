@@ -25,7 +25,7 @@ namespace sublift {
 using FitProgress = std::function<bool(const char* stage, double fraction)>;
 
 struct FitOptions {
-  Scheme scheme = Scheme::Loop;  // the triangle schemes (the base is triangles)
+  Scheme scheme = Scheme::Loop;  // any surface scheme (a triangle scheme needs a triangle base)
   int levels = 3;                // with a tolerance: the most levels
   double tolerance = 0;          // > 0: stop at the first level whose fitted surface (Loop: its
                                  // limit surface; else the net) lies within this fraction of the
@@ -63,9 +63,14 @@ struct Fitted {
   std::vector<std::pair<std::string, double>> stage_ms;  // indexing, hierarchy (level setup), levels, analysis, report
 };
 
-/// The levels that bring a base of `base_vertices` to about `input_vertices` (each level has
-/// about four times the vertices of the one above): 1 to 6; 3 for the default base (1/64).
-int default_fit_levels(std::uint32_t input_vertices, std::uint32_t base_vertices);
+/// The levels that bring a base of `base_vertices` to about `input_vertices` (a 1-to-4 split has
+/// about four times the vertices of the level above, a sqrt(2) step twice): 1 to 6 splits;
+/// 3 (sqrt(2): 6) for the default base (1/64).
+int default_fit_levels(std::uint32_t input_vertices, std::uint32_t base_vertices, Scheme scheme);
+
+/// Whether `scheme` gets a quad-dominant base (BaseMeshOptions::quads): the schemes that refine
+/// any polygon do; the triangle schemes take triangles.
+bool fit_base_quads(Scheme scheme);
 
 /// Fits `base` (from decimate_to_base of this input) to the input (`faces`, `positions`).
 /// Throws Error for schemes other than the triangle schemes.

@@ -1,6 +1,7 @@
 #include "core/fit/net_solve.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
@@ -38,8 +39,10 @@ std::vector<double> solve_net(const Complex& c, const NetSolveState& st, std::sp
   if (n == 0 || ni == 0) return {st.control.begin(), st.control.end()};
   // Each input vertex's closest point on the surface.
   const TriangleBvh surface(st.surface, c.faces);
+  // On a polygon, the foot lies on one triangle of its fan (corners 0, t, t + 1), as the
+  // hierarchy of closest points triangulates it.
   struct Foot {
-    std::uint32_t face;
+    std::uint32_t face, fan;
     glm::dvec3 b;
   };
   std::vector<Foot> foot(ni);
@@ -49,13 +52,23 @@ std::vector<double> solve_net(const Complex& c, const NetSolveState& st, std::sp
       TriangleBvh::Closest cl = glm::dot(nq, nq) > 0 ? surface.closest(q, nq) : surface.closest(q);
       if (cl.face == UINT32_MAX) cl = surface.closest(q);
       const auto r = c.faces.row(cl.face);
-      foot[i] = {cl.face, barycentric(cl.point, at(st.surface, r[0]), at(st.surface, r[1]), at(st.surface, r[2]))};
+      Foot best{cl.face, 1, {}};
+      double best_d = INFINITY;
+      for (std::uint32_t t = 1; t + 1 < r.size(); ++t) {
+        const glm::dvec3 p0 = at(st.surface, r[0]), p1 = at(st.surface, r[t]), p2 = at(st.surface, r[t + 1]);
+        const glm::dvec3 b = barycentric(cl.point, p0, p1, p2);
+        const double d = glm::distance(cl.point, b[0] * p0 + b[1] * p1 + b[2] * p2);
+        if (d < best_d) best_d = d, best = {cl.face, t, b};
+      }
+      foot[i] = best;
     }
   });
   // The data terms on the surface points: M = D + s B^T B lives on the net's vertices and edges
-  // (B^T B couples the corners of a face only), with right-hand side D c + s B^T q.
+  // (B^T B couples the corners of a face only), with right-hand side D c + s B^T q. A polygon's
+  // fan diagonals are no edges: their couplings go to `diagonals`.
   const double scale = double(n) / double(ni);
   std::vector<double> diag(n), off(ne, 0.0);
+  std::vector<Eigen::Triplet<double>> diagonals;
   Eigen::MatrixX3d rhs(n, 3);
   for (std::uint32_t v = 0; v < n; ++v) {
     diag[v] = wt.alpha * (hold.empty() ? 1.0 : hold[v]);
@@ -64,18 +77,26 @@ std::vector<double> solve_net(const Complex& c, const NetSolveState& st, std::sp
   for (std::uint32_t i = 0; i < ni; ++i) {
     const auto r = c.faces.row(foot[i].face);
     const auto es = c.face_edges.row(foot[i].face);
+    const std::uint32_t t = foot[i].fan, k = static_cast<std::uint32_t>(r.size());
+    const std::uint32_t corner[3] = {0, t, t + 1};
     const glm::dvec3 q = at(input, i);
-    for (int k = 0; k < 3; ++k) {
-      const double bk = foot[i].b[k];
-      diag[r[k]] += scale * bk * bk;
-      rhs.row(r[k]) += scale * bk * Eigen::RowVector3d(q.x, q.y, q.z);
-      off[es[k]] += scale * bk * foot[i].b[(k + 1) % 3];  // edge k joins corners k and k + 1
+    for (int j = 0; j < 3; ++j) {
+      const double bj = foot[i].b[j];
+      const std::uint32_t a = corner[j], b = corner[(j + 1) % 3];
+      diag[r[a]] += scale * bj * bj;
+      rhs.row(r[a]) += scale * bj * Eigen::RowVector3d(q.x, q.y, q.z);
+      const double w = scale * bj * foot[i].b[(j + 1) % 3];
+      // face edge m joins corners m and m + 1 (mod k)
+      if (b == a + 1) off[es[a]] += w;
+      else if (a == k - 1 && b == 0) off[es[a]] += w;
+      else diagonals.emplace_back(r[a], r[b], w), diagonals.emplace_back(r[b], r[a], w);
     }
   }
   using Sparse = Eigen::SparseMatrix<double>;
-  const auto on_edges = [&](const std::vector<double>& d, const std::vector<double>& o) {
+  const auto on_edges = [&](const std::vector<double>& d, const std::vector<double>& o, std::span<const Eigen::Triplet<double>> more) {
     std::vector<Eigen::Triplet<double>> t;
-    t.reserve(n + 2 * std::size_t(ne));
+    t.reserve(n + 2 * std::size_t(ne) + more.size());
+    t.insert(t.end(), more.begin(), more.end());
     for (std::uint32_t v = 0; v < n; ++v) t.emplace_back(v, v, d[v]);
     for (std::uint32_t e = 0; e < ne; ++e) {
       t.emplace_back(c.edge_verts[2 * e], c.edge_verts[2 * e + 1], o[e]);
@@ -85,11 +106,11 @@ std::vector<double> solve_net(const Complex& c, const NetSolveState& st, std::sp
     m.setFromTriplets(t.begin(), t.end());
     return m;
   };
-  const Sparse M = on_edges(diag, off);
+  const Sparse M = on_edges(diag, off, diagonals);
   // The springs: kappa times the graph Laplacian, towards x0's edge vectors.
   std::vector<double> degree(n, 0.0);
   for (std::uint32_t e = 0; e < ne; ++e) degree[c.edge_verts[2 * e]] += wt.kappa, degree[c.edge_verts[2 * e + 1]] += wt.kappa;
-  const Sparse spring = on_edges(degree, std::vector<double>(ne, -wt.kappa));
+  const Sparse spring = on_edges(degree, std::vector<double>(ne, -wt.kappa), {});
   Eigen::MatrixX3d x0(n, 3);
   for (std::uint32_t v = 0; v < n; ++v) x0.row(v) = Eigen::RowVector3d(st.control[3 * v], st.control[3 * v + 1], st.control[3 * v + 2]);
   Sparse A;

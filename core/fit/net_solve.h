@@ -33,7 +33,8 @@ struct NetSolveState {
   const LimitStencils* limit = nullptr;  // L; null: the surface is the net
 };
 
-/// Returns the solved control points (3 per vertex of triangle net `c`, derived rows built).
+/// Returns the solved control points (3 per vertex of polygon net `c`, derived rows built;
+/// polygons are fan-triangulated as TriangleBvh does).
 /// `input`: the input's vertices (3 each); an input vertex pulls the nearest surface face that
 /// faces like its normal (`input_normals`; a zero normal: the nearest face), so a thin part's
 /// sides do not pull each other. `hold` scales alpha per net vertex (empty: 1 everywhere).

@@ -8,6 +8,8 @@
 
 #include "core/analysis/sphere_resample.h"
 #include "core/io/lattice/shape_io.h"
+#include "core/io/project/project_io.h"
+#include "core/schemes/registry.h"
 #include "tests/cli_run.h"
 #include "tests/io_test_util.h"
 
@@ -53,8 +55,21 @@ TEST(CliFit, SphereFitsWithinHalfAPercent) {
   EXPECT_LE(nlohmann::json::parse(bf.out)["base"]["faces"].get<int>(), 150);
   ASSERT_EQ(run_cli({"fit", mesh, "--base-vertices", "100", "--levels", "1", "-o", obj}, 120).exit_code, 0);
   EXPECT_EQ(read_shape(obj).base.num_vertices, 100u * 4 - 6);  // V0 + E0 of a genus-0 triangle mesh (E0 = 3 V0 - 6)
+  // Bertram's cubic scheme and sqrt(2) fit from a quad-dominant base.
+  for (const char* scheme : {"cubic", "sqrt2"}) {
+    const std::string levels = std::string(scheme) == "sqrt2" ? "2" : "1";
+    const ProcessResult q = run_cli({"fit", mesh, "--scheme", scheme, "--base-vertices", "100", "--levels", levels, "-o", out, "--json"}, 120);
+    ASSERT_EQ(q.exit_code, 0) << scheme << ": " << q.err;
+    const nlohmann::json jq = nlohmann::json::parse(q.out);
+    EXPECT_EQ(jq["scheme"], scheme);
+    EXPECT_GT(2 * jq["base"]["quads"].get<int>(), jq["base"]["faces"].get<int>()) << scheme;
+    EXPECT_EQ(jq["euler"]["base"], 2);
+    EXPECT_EQ(jq["limit"]["folded_faces"], 0);
+    EXPECT_LT(jq["input_to_fit_max"].get<double>(), 0.01) << scheme;
+    EXPECT_EQ(read_project(out).scheme, parse_scheme(scheme));
+  }
   // Usage errors.
-  EXPECT_EQ(run_cli({"fit", mesh, "--scheme", "cubic", "-o", out}).exit_code, 2);
+  EXPECT_EQ(run_cli({"fit", mesh, "--scheme", "sqrt2", "--levels", "13", "-o", out}).exit_code, 2);
   EXPECT_EQ(run_cli({"fit", mesh, "--levels", "9", "-o", out}).exit_code, 2);
   EXPECT_EQ(run_cli({"fit", mesh, "--feature-angle", "200", "-o", out}).exit_code, 2);
   EXPECT_EQ(run_cli({"fit", mesh, "--levels", "2", "--tolerance", "0.01", "-o", out}).exit_code, 2);

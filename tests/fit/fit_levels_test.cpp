@@ -155,17 +155,26 @@ TEST(FitLevels, GeneratedSurfacesFitBothWays) {
   };
   const Case cases[] = {{"sphere", sphere(5), 2, 0, Scheme::Loop},        {"torus", torus(), 0, 0, Scheme::Loop},
                         {"genus 3", voxel_plate(3), -4, 0, Scheme::Loop}, {"sheet", sheet(), 1, 1, Scheme::Loop},
-                        {"torus, butterfly", torus(), 0, 0, Scheme::Butterfly}};
+                        {"torus, butterfly", torus(), 0, 0, Scheme::Butterfly},
+                        // the polygon schemes, from quad-dominant bases
+                        {"torus, cubic", torus(), 0, 0, Scheme::Cubic},
+                        {"genus 3, cubic", voxel_plate(3), -4, 0, Scheme::Cubic},
+                        {"sheet, cubic", sheet(), 1, 1, Scheme::Cubic},
+                        {"torus, sqrt2", torus(), 0, 0, Scheme::Sqrt2},
+                        {"sheet, linear", sheet(), 1, 1, Scheme::Linear}};
   for (const Case& k : cases) {
     SCOPED_TRACE(k.name);
-    const BaseMesh base = decimate_to_base(k.in.n, k.in.faces, k.in.xyz, {std::max<std::uint32_t>(60, k.in.n / 50)});
+    BaseMeshOptions bo;
+    bo.target_vertices = std::max<std::uint32_t>(60, k.in.n / 50);
+    bo.quads = fit_base_quads(k.scheme);
+    const BaseMesh base = decimate_to_base(k.in.n, k.in.faces, k.in.xyz, bo);
     EXPECT_EQ(base.euler_after, k.euler);
     EXPECT_EQ(base.boundary_loops_after, k.loops);
     FitOptions o;
     o.scheme = k.scheme;
-    o.levels = 3;
+    o.levels = 3 * scheme_levels_per_split(k.scheme);
     const Fitted f = fit_levels(base, k.in.faces, k.in.xyz, o);
-    ASSERT_EQ(f.levels.size(), 3u);
+    ASSERT_EQ(f.levels.size(), std::size_t(o.levels));
     for (const FitLevelReport& r : f.levels)
       std::printf("%s level %d: %u vertices, net->input %.4f %% rms %.4f %% max, input->net %.4f %% rms %.4f %% max, %u folded, %.1f ms\n",
                   k.name, r.level, r.vertices, 100 * r.rms, 100 * r.max, 100 * r.back_rms, 100 * r.back_max, r.folded, r.ms);
@@ -174,7 +183,7 @@ TEST(FitLevels, GeneratedSurfacesFitBothWays) {
     const FitLevelReport& r = f.levels.back();
     EXPECT_EQ(r.folded, 0u);
     EXPECT_EQ(f.limit_folded, 0u);
-    if (scheme_interpolates(k.scheme)) {
+    if (scheme_info(k.scheme).limit == LimitRule::ControlNet) {
       EXPECT_LT(r.max, 0.005);
       EXPECT_LT(r.back_max, 0.005);
       EXPECT_LT(r.rms, 0.001);
@@ -197,22 +206,31 @@ TEST(FitLevels, GeneratedSurfacesFitBothWays) {
 
 TEST(FitLevels, PerfectReconstructionAndCoarseEditsCarryTheDetail) {
   const Input in = sphere();
-  const BaseMesh base = decimate_to_base(in.n, in.faces, in.xyz, {80});
-  const Fitted f = fit_levels(base, in.faces, in.xyz, {});
-  const int J = f.hierarchy.finest_level();
-  EXPECT_LE(testing::max_abs_diff(synthesize(f.hierarchy, J), f.finest), 1e-12);
-  // World frames: a level-0 move changes the finest level by the pure subdivision of the move.
-  Hierarchy edited = f.hierarchy, delta = f.hierarchy;
-  std::fill(delta.coeffs.begin(), delta.coeffs.end(), 0.0);
-  const double d[3] = {0.2, -0.1, 0.05};
-  for (int k = 0; k < 3; ++k) edited.coeffs[k] += d[k], delta.coeffs[k] = d[k];
-  const std::vector<double> a = synthesize(edited, J), b = synthesize(delta, J);
-  std::vector<double> moved(a.size());
-  for (std::size_t i = 0; i < a.size(); ++i) moved[i] = a[i] - f.finest[i];
-  EXPECT_LE(testing::max_abs_diff(moved, b), 1e-12);
-  EXPECT_GT(*std::max_element(b.begin(), b.end()), 0.01);  // the edit reached the finest level
+  for (Scheme s : {Scheme::Loop, Scheme::Cubic, Scheme::Sqrt2}) {
+    SCOPED_TRACE(scheme_name(s));
+    BaseMeshOptions bo;
+    bo.target_vertices = 80;
+    bo.quads = fit_base_quads(s);
+    const BaseMesh base = decimate_to_base(in.n, in.faces, in.xyz, bo);
+    FitOptions o;
+    o.scheme = s;
+    o.levels = 3 * scheme_levels_per_split(s);
+    const Fitted f = fit_levels(base, in.faces, in.xyz, o);
+    const int J = f.hierarchy.finest_level();
+    ASSERT_EQ(J, o.levels);
+    EXPECT_LE(testing::max_abs_diff(synthesize(f.hierarchy, J), f.finest), 1e-12);
+    // World frames: a level-0 move changes the finest level by the pure subdivision of the move.
+    Hierarchy edited = f.hierarchy, delta = f.hierarchy;
+    std::fill(delta.coeffs.begin(), delta.coeffs.end(), 0.0);
+    const double d[3] = {0.2, -0.1, 0.05};
+    for (int k = 0; k < 3; ++k) edited.coeffs[k] += d[k], delta.coeffs[k] = d[k];
+    const std::vector<double> a = synthesize(edited, J), b = synthesize(delta, J);
+    std::vector<double> moved(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) moved[i] = a[i] - f.finest[i];
+    EXPECT_LE(testing::max_abs_diff(moved, b), 1e-12);
+    EXPECT_GT(*std::max_element(b.begin(), b.end()), 0.01);  // the edit reached the finest level
+  }
 }
-
 
 // A real scan, the npm bunny, with every triangle scheme: its decimated base is so coarse around
 // the ears that faces' patches meet themselves there (once refused: docs/fit.md). The fit

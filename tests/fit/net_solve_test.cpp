@@ -17,6 +17,7 @@
 #include "core/complex/polygon_normal.h"
 #include "core/fit/feature_lines.h"
 #include "core/multires/hierarchy.h"
+#include "tests/mesh_fixtures.h"
 #include "tests/test_shapes.h"
 
 namespace sublift {
@@ -73,6 +74,39 @@ TEST(NetSolve, InputBeyondTheNetPullsItOut) {
   // Held firmly (hold 1e6), the net does not move.
   const std::vector<double> hold(c.num_vertices, 1e6);
   EXPECT_LE(testing::max_abs_diff(solve_net(c, {x, x, x}, input, area_weighted_normals(c.faces, input), hold), x), 1e-6);
+}
+
+// A polygon net solves as its fan triangulation would (springs off: the springs live on the
+// edges, and the triangulation has the diagonals as edges too): an input point's foot is on one
+// triangle of its face's fan, and the couplings across the diagonal are kept.
+TEST(NetSolve, AQuadNetSolvesAsItsFanTriangulation) {
+  const fixtures::Polygons cube = fixtures::cube();
+  Hierarchy h = make_hierarchy(complex_from_polygons(cube.num_vertices, cube.faces), 2, Scheme::Cubic, 3);
+  set_base(h, cube.positions);
+  const Complex quads = finest_with_adjacency(h);
+  const std::vector<double> x = synthesize(h, 2);
+  Csr fan;
+  for (std::size_t f = 0; f < quads.faces.rows(); ++f) {
+    const auto r = quads.faces.row(f);
+    for (std::size_t t = 1; t + 1 < r.size(); ++t) fixtures::push_row(fan, {r[0], r[t], r[t + 1]});
+  }
+  Complex tris = complex_from_polygons(quads.num_vertices, fan);
+  build_adjacency(tris);
+  // The input: the net's points pushed out by 10 % and turned a little; targets 5 % out.
+  std::vector<double> input(x.size()), targets(x.size());
+  for (std::size_t v = 0; v < x.size() / 3; ++v)
+    for (int k = 0; k < 3; ++k) {
+      const double* p = &x[3 * v];
+      input[3 * v + k] = 1.1 * p[k] + 0.02 * p[(k + 1) % 3];
+      targets[3 * v + k] = 1.05 * p[k];
+    }
+  const std::vector<double> n = area_weighted_normals(fan, input);
+  NetSolveWeights w;
+  w.kappa = 0;
+  const std::vector<double> a = solve_net(quads, {x, x, targets}, input, n, {}, w);
+  const std::vector<double> b = solve_net(tris, {x, x, targets}, input, n, {}, w);
+  EXPECT_LE(testing::max_abs_diff(a, b), 1e-9);
+  EXPECT_GT(testing::max_abs_diff(a, x), 0.01);  // and the input did pull the net
 }
 
 TEST(FeatureLines, ClosestPointIsTheBruteForceOne) {

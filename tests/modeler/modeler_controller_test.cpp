@@ -973,17 +973,28 @@ TEST(ModelerFitTest, FitScriptCommand) {
   EXPECT_EQ(m.session().num_vertices(0), 100u);
   EXPECT_EQ(m.session().finest_level(), 2);
   EXPECT_EQ(m.level(), 0);
-  const std::pair<std::string, std::string> cases[] = {{"fit 100 9\n", "script:1: fit LEVELS needs 0 (to about the mesh's vertex count) to 6"}};
+  // Any scheme: the polygon schemes from a quad-dominant base (fewer faces than the 2 V - 4
+  // triangles of a genus-0 triangle base).
+  ModelerState mc;
+  ScriptRunner cubic("cubic", "open " + path + "\nfit 100 1 cubic\n");
+  EXPECT_EQ(cubic.next(mc).kind, ScriptStep::Kind::End);
+  EXPECT_EQ(mc.session().hierarchy().scheme, Scheme::Cubic);
+  EXPECT_EQ(mc.session().num_vertices(0), 100u);
+  EXPECT_LT(mc.session().hierarchy().levels[0].faces.rows(), 2u * 100 - 4);
+  const std::pair<std::string, std::string> cases[] = {
+      {"fit 100 9\n", "script:1: fit LEVELS needs 0 (to about the mesh's vertex count) to 6"},
+      {"fit 100 13 sqrt2\n", "script:1: fit LEVELS needs 0 (to about the mesh's vertex count) to 12"},
+      {"fit 100 1 quintic\n", "script:1: unknown scheme 'quintic' (linear, cubic, sqrt2, linear-tri, butterfly or loop)"}};
   expect_script_errors(m, cases);
   const std::filesystem::path scan = std::filesystem::path(SUBLIFT_SHARED_DATA) / "scans/bunny_npm_lowres.obj";
   if (std::filesystem::exists(scan)) {
     ModelerState b;
     b.open(scan.string());
     const std::uint32_t before = b.session().num_vertices(0);
-    EXPECT_THROW(b.fit_base(5000, 3), Error);  // a base larger than the scan
+    EXPECT_THROW(b.fit_base({5000, 60.0, 3}), Error);  // a base larger than the scan
     EXPECT_EQ(b.session().num_vertices(0), before);  // nothing changed
     // The default base is so coarse at the ears that faces' patches meet themselves: it fits.
-    b.fit_base(0, 3);
+    b.fit_base({0, 60.0, 3});
     EXPECT_EQ(b.session().num_vertices(0), 30u);
     EXPECT_EQ(b.session().finest_level(), 3);
   }
@@ -1009,7 +1020,7 @@ TEST(ModelerFitTest, FitScriptCommand) {
   EXPECT_TRUE(app.job_running());
   EXPECT_TRUE(app.poll_job(true));
   EXPECT_EQ(app.model.session().num_vertices(0), 80u);
-  EXPECT_EQ(app.model.session().finest_level(), default_fit_levels(g.fine.num_vertices, 80));
+  EXPECT_EQ(app.model.session().finest_level(), default_fit_levels(g.fine.num_vertices, 80, Scheme::Loop));
   EXPECT_EQ(app.model.level(), 0);
   EXPECT_EQ(app.model.fit_preview(), nullptr);  // the preview goes with the fit
   EXPECT_EQ(app.model.file_vertices(), g.fine.num_vertices);  // the Fit section still counts the file's
@@ -1037,7 +1048,7 @@ TEST(ModelerFitTest, FitScriptCommand) {
   // The file's crease and corner tags do not come along (the fit makes its own): said by name.
   ModelerState tagged;
   tagged.open(std::string(SUBLIFT_ASSETS_DIR) + "/tri_crease_grid.obj");
-  tagged.fit_base(24, 1);
+  tagged.fit_base({24, 60.0, 1});
   bool said = false;
   for (const std::string& w : tagged.import_warnings()) said |= w.find("not kept by the fit: the file's") != std::string::npos;
   EXPECT_TRUE(said);

@@ -14,6 +14,7 @@
 #include "core/complex/complex_build.h"
 #include "core/complex/polygon_normal.h"
 #include "core/fit/feature_lines.h"
+#include "core/fit/folds.h"
 #include "core/fit/net_solve.h"
 #include "core/multires/limit.h"
 
@@ -90,12 +91,6 @@ std::vector<glm::dvec3> input_facing(const TriangleBvh& input, std::span<const d
   return out;
 }
 
-bool turned(const Csr& faces, std::size_t f, std::span<const double> x, const glm::dvec3& facing) {
-  double a[3] = {0, 0, 0};
-  polygon_area_vector(faces.row(f), x.data(), a);
-  return a[0] * facing.x + a[1] * facing.y + a[2] * facing.z <= 0.0;
-}
-
 // The faces of the net that are folded over: turned away from the way the input faces there.
 std::vector<std::uint32_t> folded_list(const TriangleBvh& input, std::span<const double> input_normals, const Csr& input_faces,
                                        const Csr& faces, std::span<const double> x) {
@@ -104,28 +99,6 @@ std::vector<std::uint32_t> folded_list(const TriangleBvh& input, std::span<const
   for (std::size_t f = 0; f < faces.rows(); ++f)
     if (turned(faces, f, x, facing[f])) out.push_back(static_cast<std::uint32_t>(f));
   return out;
-}
-
-// Takes back the moves (from `before` to `after`) that fold a face over (`facing`: the input's
-// way at each face, from input_facing): each such face's corners move half as far, up to four
-// times, then not at all. A face folded before may move: it can only come right.
-void keep_unfolded(const Csr& faces, const std::vector<glm::dvec3>& facing, std::span<const double> before, std::vector<double>& after) {
-  std::vector<std::uint8_t> was_folded(faces.rows());
-  for (std::size_t f = 0; f < faces.rows(); ++f) was_folded[f] = turned(faces, f, before, facing[f]);
-  for (int round = 0;; ++round) {
-    bool again = false;
-    for (std::size_t f = 0; f < faces.rows(); ++f) {
-      if (was_folded[f] || !turned(faces, f, after, facing[f])) continue;
-      for (std::uint32_t v : faces.row(f))
-        for (int k = 0; k < 3; ++k) {
-          double& y = after[3 * std::size_t(v) + k];
-          const double b = before[3 * std::size_t(v) + k];
-          again |= y != b;
-          y = round < 4 ? 0.5 * (y + b) : b;
-        }
-    }
-    if (!again) break;
-  }
 }
 
 // How strongly the solve holds each net point on its projection: corners stay, crease and
@@ -251,12 +224,14 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
       const std::vector<glm::dvec3> facing = input_facing(input, input_normals, faces, c.faces, x);
       keep_unfolded(c.faces, facing, x, next);
       x.swap(next);
+      untangle(c, project, lines, facing, x);  // before the solve, which pulls the moved points back
       if (o.two_way) {
         std::vector<double> solved = solve_net(c, {x, x, x}, positions, input_normals, hold, o.weights);
         keep_unfolded(c.faces, facing, x, solved);
         x.swap(solved);
       }
     }
+    const auto facing_of = [&](std::span<const double> net) { return input_facing(input, input_normals, faces, c.faces, net); };
     // An approximating scheme's finest level gets its limit surface fitted; with a tolerance,
     // every level does, since the limit surface is what the tolerance is about there.
     const bool approximating = o.two_way && scheme_info(o.scheme).limit != LimitRule::ControlNet;
@@ -273,10 +248,13 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
         parallel_for(n, 1024, [&](std::uint32_t b, std::uint32_t e) {
           for (std::uint32_t v = b; v < e; ++v) put(targets, v, project_only(y, normal, v));
         });
+        untangle_limit(c, ls, project, lines, facing_of, x);
+        eval_limit(ls, x.data(), y.data());
         std::vector<double> solved = solve_net(c, {x, y, targets, &ls}, positions, input_normals, hold, o.weights);
         keep_unfolded(c.faces, input_facing(input, input_normals, faces, c.faces, x), x, solved);
         x.swap(solved);
       }
+      untangle_limit(c, ls, project, lines, facing_of, x);
       if (o.tolerance > 0) {
         eval_limit(ls, x.data(), y.data());
         reach_max = std::max(distances(input, y, diag).second, distances(TriangleBvh(y, c.faces), positions, diag).second);

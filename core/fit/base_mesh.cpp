@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
 #include <numbers>
 
 #include "core/base/errors.h"
@@ -37,6 +39,42 @@ std::size_t boundary_loops(const Mesh& m) {
     for (auto g = h; !seen[static_cast<std::size_t>(g.idx())]; g = m.next_halfedge_handle(g)) seen[static_cast<std::size_t>(g.idx())] = 1;
   }
   return loops;
+}
+
+// The crease tags from the input's lines. A feature vertex only collapses along its line, so
+// each run of input feature edges between two surviving vertices became one base edge; that
+// edge is a crease (unless a boundary). OpenMesh's edge flags alone lose some: when the two
+// edges of a triangle beside a collapsed edge merge, the one kept may be the unflagged one (on
+// fandisk a whole crease ended at a base vertex that way).
+void add_chain_creases(BaseMesh& out, const std::vector<std::uint32_t>& base_of) {
+  const std::size_t nv = base_of.size();
+  std::vector<std::vector<std::uint32_t>> along(nv);  // input feature neighbours
+  for (std::size_t k = 0; k + 1 < out.input_feature_edges.size(); k += 2) {
+    along[out.input_feature_edges[k]].push_back(out.input_feature_edges[k + 1]);
+    along[out.input_feature_edges[k + 1]].push_back(out.input_feature_edges[k]);
+  }
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;  // base edges and their face counts
+  for (std::size_t f = 0; f < out.faces.rows(); ++f) {
+    const auto r = out.faces.row(f);
+    for (std::size_t k = 0; k < r.size(); ++k) ++uses[std::minmax(r[k], r[(k + 1) % r.size()])];
+  }
+  std::set<std::pair<std::uint32_t, std::uint32_t>> creases;
+  for (const auto& [a, b] : out.tags.crease_edges) creases.insert(std::minmax(a, b));
+  for (std::uint32_t a = 0; a < nv; ++a) {
+    if (base_of[a] == UINT32_MAX) continue;
+    for (std::uint32_t first : along[a]) {
+      std::uint32_t prev = a, cur = first;
+      for (std::size_t steps = 0; base_of[cur] == UINT32_MAX && along[cur].size() == 2 && steps < nv; ++steps) {
+        const std::uint32_t next = along[cur][0] == prev ? along[cur][1] : along[cur][0];
+        prev = cur, cur = next;
+      }
+      if (base_of[cur] == UINT32_MAX || cur == a) continue;
+      const auto e = std::minmax(base_of[a], base_of[cur]);
+      const auto it = uses.find(e);
+      if (it != uses.end() && it->second == 2) creases.insert(e);
+    }
+  }
+  out.tags.crease_edges.assign(creases.begin(), creases.end());
 }
 
 }  // namespace
@@ -99,8 +137,8 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
     out.input_feature_edges.push_back(static_cast<std::uint32_t>(m.to_vertex_handle(h).idx()));
     ++out.feature_edges;
   }
-  // Corners: where feature lines meet, or where one turns by more than the feature angle (a
-  // sheet's corners, a box's). They stay through the decimation and are tagged, so the schemes
+  // Corners: where feature lines meet or end, or where one turns by more than the feature angle
+  // (a sheet's corners, a box's). They stay through the decimation and are tagged, so the schemes
   // keep them sharp instead of rounding them off.
   // Only on lines of at least kLineEdges edges: a scan's noise makes short sharp runs.
   constexpr std::size_t kLineEdges = 8;
@@ -135,8 +173,11 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
     for (auto h : m.voh_range(v))
       if (m.status(m.edge_handle(h)).feature()) out_dirs.push_back((m.point(m.to_vertex_handle(h)) - m.point(v)).normalized());
     // Two edges straight on make cosine -1; a turn by more than the feature angle, above -cos.
+    // A crease that fades out (one feature edge: fandisk's) ends at a corner too: it stays where
+    // the crease ends (else the decimation cuts the end off and the fit lets the crease's last
+    // point drift over the surface).
     const bool turns = out_dirs.size() == 2 && OpenMesh::dot(out_dirs[0], out_dirs[1]) > -cos_limit;
-    if (out_dirs.size() >= 3 || turns) {
+    if (out_dirs.size() >= 3 || out_dirs.size() == 1 || turns) {
       corner[static_cast<std::size_t>(v.idx())] = 1;
       m.status(v).set_locked(true);
     }
@@ -185,6 +226,7 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
       out.tags.crease_edges.emplace_back(base_of[static_cast<std::size_t>(m.from_vertex_handle(h).idx())],
                                          base_of[static_cast<std::size_t>(m.to_vertex_handle(h).idx())]);
   }
+  add_chain_creases(out, base_of);
   out.euler_after = static_cast<long long>(out.num_vertices) - edges + static_cast<long long>(out.faces.rows());
   out.boundary_loops_after = boundary_loops(m);
   if (options.quads) pair_into_quads(out);

@@ -27,6 +27,12 @@ TEST(CliFit, SphereFitsWithinHalfAPercent) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["base"]["vertices"], 100);
+  // The base's vertices are mesh vertices, each named once (so a fit can be compared and redone).
+  std::vector<std::uint32_t> map = j["base"]["input_vertex"].get<std::vector<std::uint32_t>>();
+  ASSERT_EQ(map.size(), 100u);
+  std::sort(map.begin(), map.end());
+  EXPECT_TRUE(std::adjacent_find(map.begin(), map.end()) == map.end());
+  EXPECT_LT(map.back(), g.fine.num_vertices);
   EXPECT_EQ(j["euler"]["base"], 2);
   EXPECT_EQ(j["levels"].size(), 2u);
   EXPECT_LT(j["input_to_fit_max"].get<double>(), 0.005);

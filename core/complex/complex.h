@@ -55,6 +55,12 @@ inline std::uint32_t face_prev_slot(const Complex& c, std::uint32_t f, std::uint
   return s == c.faces.offsets[f] ? c.faces.offsets[f + 1] - 1 : s - 1;
 }
 
+/// The other end of edge e from v.
+inline std::uint32_t edge_other_end(const Complex& c, std::uint32_t e, std::uint32_t v) {
+  const std::uint32_t a = c.edge_verts[2 * std::size_t(e)];
+  return a == v ? c.edge_verts[2 * std::size_t(e) + 1] : a;
+}
+
 /// Fills the derived rows of `c` from its downward connectivity.
 void build_adjacency(Complex& c);
 

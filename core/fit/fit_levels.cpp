@@ -15,6 +15,7 @@
 #include "core/complex/polygon_normal.h"
 #include "core/fit/feature_lines.h"
 #include "core/fit/folds.h"
+#include "core/fit/points.h"
 #include "core/fit/net_solve.h"
 #include "core/multires/limit.h"
 
@@ -22,10 +23,6 @@ namespace sublift {
 
 namespace {
 
-glm::dvec3 at(std::span<const double> x, std::uint32_t v) { return {x[3 * std::size_t(v)], x[3 * std::size_t(v) + 1], x[3 * std::size_t(v) + 2]}; }
-void put(std::vector<double>& x, std::uint32_t v, const glm::dvec3& p) {
-  for (int k = 0; k < 3; ++k) x[3 * std::size_t(v) + k] = p[k];
-}
 
 // Level j's net subdivided to level j + 1: one synthesis step with the level's wavelets zero.
 std::vector<double> subdivided(const Hierarchy& h, int j, std::span<const double> x) {
@@ -131,7 +128,7 @@ struct Mover {
     glm::dvec3 mean(0.0), line_mean(0.0);
     int on_line = 0;
     for (std::uint32_t e : c.vertex_edges.row(v)) {
-      const glm::dvec3 w = at(x, c.edge_verts[2 * e] == v ? c.edge_verts[2 * e + 1] : c.edge_verts[2 * e]);
+      const glm::dvec3 w = at(x, edge_other_end(c, e, v));
       edge = std::max(edge, glm::distance(p, w));
       mean += w;
       if (c.edge_dim[e] == 1) line_mean += w, ++on_line;

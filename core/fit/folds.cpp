@@ -1,4 +1,5 @@
 #include "core/fit/folds.h"
+#include "core/fit/points.h"
 
 #include <algorithm>
 #include <array>
@@ -14,10 +15,6 @@ namespace sublift {
 
 namespace {
 
-glm::dvec3 at(std::span<const double> x, std::uint32_t v) { return {x[3 * std::size_t(v)], x[3 * std::size_t(v) + 1], x[3 * std::size_t(v) + 2]}; }
-void put(std::vector<double>& x, std::uint32_t v, const glm::dvec3& p) {
-  for (int k = 0; k < 3; ++k) x[3 * std::size_t(v) + k] = p[k];
-}
 
 // Whether any face of v's star is turned against the input.
 bool star_turned(const Complex& c, std::uint32_t v, std::span<const double> x, const std::vector<glm::dvec3>& facing) {
@@ -57,7 +54,7 @@ std::optional<glm::dvec3> star_kernel_point(const Complex& c, std::uint32_t v, s
   };
   double size = 0;
   for (std::uint32_t e : c.vertex_edges.row(v))
-    size = std::max(size, glm::distance(o, at(x, c.edge_verts[2 * e] == v ? c.edge_verts[2 * e + 1] : c.edge_verts[2 * e])));
+    size = std::max(size, glm::distance(o, at(x, edge_other_end(c, e, v))));
   if (!(size > 0)) return std::nullopt;
   std::vector<P2> poly = {P2{-4 * size, -4 * size}, P2{4 * size, -4 * size}, P2{4 * size, 4 * size}, P2{-4 * size, 4 * size}}, next;
   for (std::uint32_t f : c.vertex_faces.row(v)) {
@@ -139,7 +136,7 @@ void untangle(const Complex& c, const ProjectFn& project, const FeatureLines& li
         glm::dvec3 best = before;
         double best_score = star_score(c, v, next, facing);
         for (std::uint32_t e : c.vertex_edges.row(v)) {
-          const glm::dvec3 w = at(next, c.edge_verts[2 * e] == v ? c.edge_verts[2 * e + 1] : c.edge_verts[2 * e]);
+          const glm::dvec3 w = at(next, edge_other_end(c, e, v));
           for (double t : {0.25, 0.5}) {
             put(next, v, before + t * (w - before));
             if (const double sc = star_score(c, v, next, facing); sc > best_score) best_score = sc, best = at(next, v);
@@ -156,7 +153,7 @@ void untangle(const Complex& c, const ProjectFn& project, const FeatureLines& li
         glm::dvec3 mean(0.0);
         int count = 0;
         for (std::uint32_t e : c.vertex_edges.row(v))
-          if (c.edge_dim[e] == 1) mean += at(next, c.edge_verts[2 * e] == v ? c.edge_verts[2 * e + 1] : c.edge_verts[2 * e]), ++count;
+          if (c.edge_dim[e] == 1) mean += at(next, edge_other_end(c, e, v)), ++count;
         if (!lines.empty()) tries.push_back(lines.closest(*k));
         if (count && !lines.empty()) tries.push_back(lines.closest(mean / double(count)));
       } else {
@@ -232,7 +229,7 @@ void untangle_limit(const Complex& c, const LimitStencils& ls, const ProjectFn& 
       std::vector<std::uint32_t> controls;
       for (std::uint32_t v : k) {
         controls.push_back(v);
-        for (std::uint32_t e : c.vertex_edges.row(v)) controls.push_back(c.edge_verts[2 * e] == v ? c.edge_verts[2 * e + 1] : c.edge_verts[2 * e]);
+        for (std::uint32_t e : c.vertex_edges.row(v)) controls.push_back(edge_other_end(c, e, v));
       }
       std::sort(controls.begin(), controls.end());
       controls.erase(std::unique(controls.begin(), controls.end()), controls.end());

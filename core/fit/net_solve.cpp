@@ -10,12 +10,12 @@
 
 #include "core/base/parallel.h"
 #include "core/base/triangle_bvh.h"
+#include "core/fit/points.h"
 
 namespace sublift {
 
 namespace {
 
-glm::dvec3 at(std::span<const double> x, std::uint32_t v) { return {x[3 * std::size_t(v)], x[3 * std::size_t(v) + 1], x[3 * std::size_t(v) + 2]}; }
 
 // Barycentric weights of q (on or near triangle a, b, c) clamped into the triangle.
 glm::dvec3 barycentric(const glm::dvec3& q, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {

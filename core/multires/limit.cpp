@@ -332,11 +332,6 @@ struct Regular {
   std::array<double, 27> w{}, du{}, dv{};
 };
 
-// The other end of edge e from v.
-inline std::uint32_t other_end(const Complex& C, std::uint32_t e, std::uint32_t v) {
-  const std::uint32_t a = C.edge_verts[2 * std::size_t(e)];
-  return a == v ? C.edge_verts[2 * std::size_t(e) + 1] : a;
-}
 
 // Classifies v; fills r for the regular kinds.
 void classify(const Complex& C, const Adj& A, std::uint32_t v, Regular& r) {
@@ -354,7 +349,7 @@ void classify(const Complex& C, const Adj& A, std::uint32_t v, Regular& r) {
     for (std::uint32_t e : A.vertex_edges.row(v))
       if (C.edge_dim[e] <= 1) {
         if (cnt == 2) return;
-        nb[cnt++] = other_end(C, e, v);
+        nb[cnt++] = edge_other_end(C, e, v);
       }
     if (cnt != 2 || nb[0] == nb[1]) return;
     r.kind = kCurve;
@@ -471,7 +466,7 @@ void classify(const Complex& C, const Adj& A, std::uint32_t v, Regular& r) {
     if (C.edge_dim[e] != 3) return;
   std::uint32_t n = 0;
   r.verts[n++] = v;
-  for (std::uint32_t e : ve) r.verts[n++] = other_end(C, e, v);
+  for (std::uint32_t e : ve) r.verts[n++] = edge_other_end(C, e, v);
   for (std::uint32_t f : vf) {
     if (C.face_dim[f] != 3 || C.faces.size(f) != 4) return;
     const auto q = C.faces.row(f);

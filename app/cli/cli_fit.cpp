@@ -5,6 +5,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 
 #include "app/cli/cli_args.h"
@@ -103,7 +104,9 @@ int run_fit(int argc, char** argv) {
   const double fit_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const double back = f.levels.empty() ? f.limit_back_max : f.levels.back().back_max;
   if (project) {
-    write_project(out, f.hierarchy);
+    ProjectExtras extras;  // the base-to-mesh map, for comparing and fitting again
+    extras.fit_source = {std::filesystem::absolute(in).lexically_normal().string(), n, base.input_vertex};
+    write_project(out, f.hierarchy, extras);
   } else {
     for (const std::string& note : write_shape(out, f.hierarchy.levels.back(), f.finest)) std::cerr << out << ": warning: " << note << "\n";
   }

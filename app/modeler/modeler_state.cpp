@@ -46,10 +46,12 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   bool project = false;
   RebuildOffer offer;
   InputOrder order;
+  FitSource source;
   if (is_project_file(path)) {
     ProjectExtras extras;
     Hierarchy h = read_project(path, &extras);
     order = std::move(extras.input_order);
+    source = std::move(extras.fit_source);
     session = std::make_unique<Session>(std::move(h), extras.gains);
     if (extras.local_frames) session->set_detail_frames(DetailFrames::Local);
     level = extras.current_level;
@@ -95,6 +97,7 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   install(std::move(session));
   rebuild_offer_ = std::move(offer);
   input_order_ = std::move(order);
+  fit_source_ = std::move(source);
   level_ = std::clamp(level, 0, session_->finest_level());
   selection_.clear();
   update_.topology = true;
@@ -182,7 +185,8 @@ ModelerState::PreparedFit ModelerState::prepare_fit(const std::string& file, con
   fo.scheme = settings.scheme;
   fo.levels = settings.levels > 0 ? settings.levels : default_fit_levels(shape.base.num_vertices, base.num_vertices, settings.scheme);
   fo.progress = progress;
-  return {fit_levels(base, shape.base.faces, shape.positions, fo), base.num_vertices, feature_tags_of(shape.base)};
+  return {fit_levels(base, shape.base.faces, shape.positions, fo), base.num_vertices, feature_tags_of(shape.base),
+          FitSource{std::filesystem::absolute(file).lexically_normal().string(), shape.base.num_vertices, base.input_vertex}};
 }
 
 std::string ModelerState::install_fit(PreparedFit p) {
@@ -202,6 +206,7 @@ std::string ModelerState::install_fit(PreparedFit p) {
   if (const std::uint32_t folded = limit ? f.limit_folded : f.levels.empty() ? 0 : f.levels.back().folded; folded > 0)
     warnings_.push_back(std::to_string(folded) + " folded faces in the fitted surface (docs/fit.md)");
   install(std::make_unique<Session>(std::move(p.fitted.hierarchy)));
+  fit_source_ = std::move(p.source);
   rebuild_offer_ = {};
   clear_fit_preview();
   level_ = 0;
@@ -240,6 +245,7 @@ void ModelerState::install_rebuild(PreparedRebuild p) {
 void ModelerState::install(std::unique_ptr<Session> session) {
   compress_.reset();  // ranked the old session's wavelets
   input_order_ = {};  // described the old session's levels; callers that keep it set it again
+  fit_source_ = {};   // so did the fit's base map
   session_ = std::move(session);
   ++serial_;
   dragging_ = false;
@@ -574,6 +580,7 @@ ProjectExtras ModelerState::project_extras() const {
   extras.gains.assign(session_->gains().begin(), session_->gains().end());
   extras.local_frames = session_->detail_frames() == DetailFrames::Local;
   if (!input_order_.empty() && input_order_.level <= session_->finest_level()) extras.input_order = input_order_;
+  if (fit_source_.base_vertex.size() == session_->num_vertices(0)) extras.fit_source = fit_source_;
   return extras;
 }
 

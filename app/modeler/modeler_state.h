@@ -119,6 +119,7 @@ class ModelerState {
     Fitted fitted;
     std::uint32_t base_vertices = 0;
     FeatureTags file_tags;  // the file's crease and corner tags, which the fit does not carry
+    FitSource source;       // the mesh and the base-to-mesh map, saved with the project
   };
   /// True for an opened surface mesh file (not a project): what fitting takes.
   bool can_fit() const { return project_path_.empty() && !file_path_.empty() && session_ && dim() == 2; }
@@ -137,6 +138,8 @@ class ModelerState {
   void install_rebuild(PreparedRebuild prepared);
   /// The file order of a rebuilt mesh (empty otherwise); saved with the project.
   const InputOrder& input_order() const { return input_order_; }
+  /// The mesh a fitted model was fitted to (empty otherwise); saved with the project.
+  const FitSource& fit_source() const { return fit_source_; }
   void set_level(int level);
   void subdivide();
   bool undo();
@@ -288,6 +291,7 @@ class ModelerState {
   std::optional<FitPreview> fit_preview_;
   std::uint32_t file_vertices_ = 0;
   InputOrder input_order_;
+  FitSource fit_source_;
   std::string file_path_, project_path_;
   std::vector<std::string> warnings_;
   int level_ = 0;

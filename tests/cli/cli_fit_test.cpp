@@ -30,6 +30,14 @@ TEST(CliFit, SphereFitsWithinHalfAPercent) {
   // The base's vertices are mesh vertices, each named once (so a fit can be compared and redone).
   std::vector<std::uint32_t> map = j["base"]["input_vertex"].get<std::vector<std::uint32_t>>();
   ASSERT_EQ(map.size(), 100u);
+  {  // the project keeps the map and the mesh it names
+    ProjectExtras extras;
+    const Hierarchy fitted = read_project(out, &extras);
+    EXPECT_EQ(extras.fit_source.base_vertex, map);
+    EXPECT_EQ(extras.fit_source.mesh_vertices, g.fine.num_vertices);
+    EXPECT_EQ(std::filesystem::path(extras.fit_source.mesh), std::filesystem::absolute(mesh).lexically_normal());
+    EXPECT_EQ(fitted.levels[0].num_vertices, 100u);
+  }
   std::sort(map.begin(), map.end());
   EXPECT_TRUE(std::adjacent_find(map.begin(), map.end()) == map.end());
   EXPECT_LT(map.back(), g.fine.num_vertices);

@@ -201,9 +201,9 @@ std::string without_key(std::string s, const std::string& key) {
   return s.erase(at, end - at);
 }
 
-// Replaces the value of `"key":` in the header by `value`.
+// Replaces the value of `"key":` in the header by `value` (adds the key when absent).
 std::string with_value(const std::string& s, const std::string& key, const std::string& value) {
-  std::string t = without_key(s, key);
+  std::string t = s.find("\"" + key + "\":") == std::string::npos ? s : without_key(s, key);
   return t.insert(t.find('{') + 1, "\"" + key + "\":" + value + ",");
 }
 
@@ -212,7 +212,7 @@ std::string with_value(const std::string& s, const std::string& key, const std::
 TEST(ProjectIo, ExtrasRoundTrip) {
   TempDir dir("sublift_project_extras");
   const Hierarchy h = random_hierarchy(lattice_with_features(), 2, 3, false, 11);
-  const ProjectExtras extras{1, {1.0 / 3.0, -2.5}, true, {}};
+  const ProjectExtras extras{1, {1.0 / 3.0, -2.5}, true, {}, {}};
   const std::string path = dir.file("p.sublift");
   write_project(path, h, extras);
   ProjectExtras back;
@@ -227,19 +227,35 @@ TEST(ProjectIo, ExtrasRoundTrip) {
   expect_same(h, read_project_from_memory("p.sublift", read_file_bytes(path), &mem));
   EXPECT_EQ(mem.gains, extras.gains);
   // Empty gains mean all 1; the two-argument writer stores the defaults.
-  write_project(path, h, ProjectExtras{2, {}, false, {}});
+  write_project(path, h, ProjectExtras{2, {}, false, {}, {}});
   read_project(path, &back);
   EXPECT_EQ(back.current_level, 2);
   EXPECT_EQ(back.gains, std::vector<double>(2, 1.0));
   EXPECT_FALSE(back.local_frames);
   write_project(path, h);
-  back = ProjectExtras{1, {5.0}, true, {}};
+  back = ProjectExtras{1, {5.0}, true, {}, {}};
   read_project(path, &back);
   EXPECT_EQ(back.current_level, 0);
   EXPECT_EQ(back.gains, std::vector<double>(2, 1.0));
   EXPECT_FALSE(back.local_frames);
   // Still version 1.
   EXPECT_EQ(read_file_bytes(path).substr(0, 18), "sublift-project 1\n");
+  // A fitted project's base-to-mesh map (docs/fit.md).
+  ProjectExtras fitted;
+  const std::uint32_t nb = h.levels[0].num_vertices;
+  fitted.fit_source.mesh = "/scans/bunny \"1\".obj";
+  fitted.fit_source.mesh_vertices = 5000;
+  for (std::uint32_t v = 0; v < nb; ++v) fitted.fit_source.base_vertex.push_back(4999 - 7 * v);
+  write_project(path, h, fitted);
+  back = {};
+  expect_same(h, read_project(path, &back));
+  EXPECT_EQ(back.fit_source.mesh, fitted.fit_source.mesh);
+  EXPECT_EQ(back.fit_source.mesh_vertices, 5000u);
+  EXPECT_EQ(back.fit_source.base_vertex, fitted.fit_source.base_vertex);
+  // Not fitted: none.
+  write_project(path, h);
+  read_project(path, &back);
+  EXPECT_TRUE(back.fit_source.empty());
 }
 
 TEST(ProjectIo, VersionOneFilesWithoutExtrasLoadWithDefaults) {
@@ -250,7 +266,7 @@ TEST(ProjectIo, VersionOneFilesWithoutExtrasLoadWithDefaults) {
   ASSERT_EQ(old.find("current_level"), std::string::npos);
   ASSERT_EQ(old.find("gains"), std::string::npos);
   ASSERT_EQ(old.find("local_frames"), std::string::npos);
-  ProjectExtras x{2, {3.0, 4.0}, true};
+  ProjectExtras x{2, {3.0, 4.0}, true, {}, {}};
   expect_same(h, read_project_from_memory("old.sublift", old, &x));
   EXPECT_EQ(x.current_level, 0);
   EXPECT_EQ(x.gains, std::vector<double>(2, 1.0));
@@ -280,6 +296,12 @@ TEST(ProjectIo, RefusesBadExtras) {
       {"gains", "[1e999,1.0]", "malformed header"},  // JSON has no infinity: overflow is a parse error
       {"gains", "1.0", "'gains' is not an array"},
       {"local_frames", "1", "'local_frames' is not true or false"},
+      {"fit_source", "[]", "'fit_source' is not an object"},
+      {"fit_source", "{\"mesh\":\"m.obj\",\"mesh_vertices\":10,\"base_vertex\":[]}", "base_vertex is not a non-empty array"},
+      {"fit_source", "{\"mesh\":\"m.obj\",\"mesh_vertices\":10,\"base_vertex\":[1,2]}", "fit_source names 2 base vertices, but the base has"},
+      {"fit_source", "{\"mesh\":\"m.obj\",\"mesh_vertices\":10,\"base_vertex\":[-1]}", "something other than a vertex number"},
+      {"fit_source", "{\"mesh\":\"m.obj\",\"base_vertex\":[1]}", "malformed header"},
+      {"fit_source", "{\"mesh\":\"m.obj\",\"mesh_vertices\":1e20,\"base_vertex\":[1]}", "mesh_vertices is not a vertex count"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(std::string(c.key) + " = " + c.value);
@@ -292,10 +314,26 @@ TEST(ProjectIo, RefusesBadExtras) {
     // The old entry point refuses the same file.
     EXPECT_FALSE(input_error([&] { read_project_from_memory("p.sublift", with_value(good, c.key, c.value)); }).empty());
   }
+  {  // a base vertex past the mesh's vertices
+    std::string list;
+    for (std::uint32_t v = 0; v < h.levels[0].num_vertices; ++v) list += (v ? "," : "") + std::string(v == 2 ? "7" : "0");
+    std::size_t line = 0;
+    const std::string e = input_error(
+        [&] { read_project_from_memory("p.sublift", with_value(good, "fit_source", "{\"mesh\":\"m.obj\",\"mesh_vertices\":5,\"base_vertex\":[" + list + "]}")); },
+        &line);
+    EXPECT_NE(e.find("base vertex 2 is mesh vertex 7, but the mesh has 5"), std::string::npos) << e;
+    EXPECT_EQ(line, 2u);
+  }
   // The writer refuses bad extras and leaves no file behind.
   const std::string path = dir.file("bad.sublift");
-  EXPECT_THROW(write_project(path, h, ProjectExtras{3, {}, false, {}}), Error);
-  EXPECT_THROW(write_project(path, h, ProjectExtras{0, {1.0}, false, {}}), Error);
-  EXPECT_THROW(write_project(path, h, ProjectExtras{0, {1.0, std::numeric_limits<double>::infinity()}, false, {}}), Error);
+  EXPECT_THROW(write_project(path, h, ProjectExtras{3, {}, false, {}, {}}), Error);
+  EXPECT_THROW(write_project(path, h, ProjectExtras{0, {1.0}, false, {}, {}}), Error);
+  EXPECT_THROW(write_project(path, h, ProjectExtras{0, {1.0, std::numeric_limits<double>::infinity()}, false, {}, {}}), Error);
+  ProjectExtras wrong_map;
+  wrong_map.fit_source = {"m.obj", 3, std::vector<std::uint32_t>(h.levels[0].num_vertices, 3)};  // vertex 3 of 3
+  EXPECT_THROW(write_project(path, h, wrong_map), Error);
+  wrong_map.fit_source.base_vertex.pop_back();
+  wrong_map.fit_source.base_vertex.assign(wrong_map.fit_source.base_vertex.size(), 0);
+  EXPECT_THROW(write_project(path, h, wrong_map), Error);  // one base vertex short
   EXPECT_FALSE(std::filesystem::exists(path));
 }

@@ -973,6 +973,22 @@ TEST(ModelerFitTest, FitScriptCommand) {
   EXPECT_EQ(m.session().num_vertices(0), 100u);
   EXPECT_EQ(m.session().finest_level(), 2);
   EXPECT_EQ(m.level(), 0);
+  {  // the base-to-mesh map rides with the project: saved, reopened, saved again
+    ASSERT_EQ(m.fit_source().base_vertex.size(), 100u);
+    EXPECT_EQ(m.fit_source().mesh_vertices, g.fine.num_vertices);
+    const std::string saved = (dir / "fitted.sublift").string(), again = (dir / "again.sublift").string();
+    m.save_project(saved);
+    ModelerState r;
+    r.open(saved);
+    EXPECT_EQ(r.fit_source().base_vertex, m.fit_source().base_vertex);
+    r.save_project(again);
+    ProjectExtras x;
+    read_project(again, &x);
+    EXPECT_EQ(x.fit_source.base_vertex, m.fit_source().base_vertex);
+    EXPECT_EQ(x.fit_source.mesh, m.fit_source().mesh);
+    r.open(path);  // a mesh, not a fit
+    EXPECT_TRUE(r.fit_source().empty());
+  }
   // Any scheme: the polygon schemes from a quad-dominant base (fewer faces than the 2 V - 4
   // triangles of a genus-0 triangle base).
   ModelerState mc;

@@ -51,7 +51,15 @@ std::vector<T> take(std::string_view bytes, std::size_t& pos, std::size_t n) {
 }
 
 // The optional session keys of the header, checked against the number of levels J.
-void check_extras(const ProjectExtras& x, int levels, const std::function<void(const std::string&)>& fail) {
+void check_extras(const ProjectExtras& x, int levels, std::size_t base_vertices, const std::function<void(const std::string&)>& fail) {
+  if (const FitSource& fs = x.fit_source; !fs.empty()) {
+    if (fs.base_vertex.size() != base_vertices)
+      fail("fit_source names " + std::to_string(fs.base_vertex.size()) + " base vertices, but the base has " + std::to_string(base_vertices));
+    for (std::size_t v = 0; v < fs.base_vertex.size(); ++v)
+      if (fs.base_vertex[v] >= fs.mesh_vertices)
+        fail("fit_source: base vertex " + std::to_string(v) + " is mesh vertex " + std::to_string(fs.base_vertex[v]) + ", but the mesh has " +
+             std::to_string(fs.mesh_vertices));
+  }
   if (x.current_level < 0 || x.current_level > levels)
     fail("current_level " + std::to_string(x.current_level) + " outside 0.." + std::to_string(levels));
   if (!x.gains.empty() && x.gains.size() != static_cast<std::size_t>(levels))
@@ -67,7 +75,7 @@ void write_project(const std::string& path, const Hierarchy& h) { write_project(
 
 void write_project(const std::string& path, const Hierarchy& h, const ProjectExtras& extras) {
   const Complex& b = h.levels.at(0);
-  check_extras(extras, h.finest_level(), [&](const std::string& why) { throw Error(path + ": cannot save project: " + why); });
+  check_extras(extras, h.finest_level(), b.num_vertices, [&](const std::string& why) { throw Error(path + ": cannot save project: " + why); });
   if (!extras.input_order.empty()) {
     if (extras.input_order.level > h.finest_level()) throw Error(path + ": cannot save project: input order of a level it lacks");
     if (const std::string why = input_order_problem(extras.input_order, h.levels[static_cast<std::size_t>(extras.input_order.level)]); !why.empty())
@@ -95,6 +103,8 @@ void write_project(const std::string& path, const Hierarchy& h, const ProjectExt
                         {"vertices", io.engine_vertex.size()},
                         {"faces", io.faces.rows()},
                         {"face_corners", io.faces.items.size()}};
+  if (const FitSource& fs = extras.fit_source; !fs.empty())
+    j["fit_source"] = {{"mesh", fs.mesh}, {"mesh_vertices", fs.mesh_vertices}, {"base_vertex", fs.base_vertex}};
   j["payload"] =
       "little-endian u32 edge_verts[2*edges] face_offsets[faces+1] face_verts[face_corners] "
       "face_edges[face_corners] cell_offsets[cells+1] cell_faces[cell_faces]; u8 vertex_dim[vertices] "
@@ -196,6 +206,22 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
       IK = it->at("face_corners").get<std::uint64_t>();
       if (io_level < 0 || io_level > levels) throw InputError(file, 2, "input_order level " + std::to_string(io_level) + " outside 0.." + std::to_string(levels));
     }
+    if (const auto it = j.find("fit_source"); it != j.end()) {
+      if (!it->is_object()) throw InputError(file, 2, "header 'fit_source' is not an object");
+      FitSource& fs = extras.fit_source;
+      fs.mesh = it->at("mesh").get<std::string>();
+      const auto& mv = it->at("mesh_vertices");
+      if (!mv.is_number_unsigned() || mv.get<std::uint64_t>() > 0xfffffffeu)
+        throw InputError(file, 2, "fit_source mesh_vertices is not a vertex count below 2^32 - 1");
+      const std::uint64_t n = mv.get<std::uint64_t>();
+      fs.mesh_vertices = static_cast<std::uint32_t>(n);
+      const auto& bv = it->at("base_vertex");
+      if (!bv.is_array() || bv.empty()) throw InputError(file, 2, "header 'fit_source' base_vertex is not a non-empty array");
+      for (const auto& x : bv) {
+        if (!x.is_number_unsigned()) throw InputError(file, 2, "fit_source base_vertex holds something other than a vertex number");
+        fs.base_vertex.push_back(static_cast<std::uint32_t>(std::min<std::uint64_t>(x.get<std::uint64_t>(), 0xffffffffu)));
+      }
+    }
     if (const auto it = j.find("local_frames"); it != j.end()) {
       if (!it->is_boolean()) throw InputError(file, 2, "header 'local_frames' is not true or false");
       extras.local_frames = it->get<bool>();
@@ -271,7 +297,7 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   if (current_level < 0 || current_level > levels)
     throw InputError(file, 2, "current_level " + std::to_string(current_level) + " outside 0.." + std::to_string(levels));
   extras.current_level = static_cast<int>(current_level);
-  check_extras(extras, levels, [&](const std::string& why) { throw InputError(file, 2, why); });
+  check_extras(extras, levels, static_cast<std::size_t>(V), [&](const std::string& why) { throw InputError(file, 2, why); });
   std::vector<double> coeffs = take<double>(bytes, pos, N);
   for (std::size_t i = 0; i < coeffs.size(); ++i)
     if (!std::isfinite(coeffs[i])) throw InputError(file, 0, "coefficient " + std::to_string(i) + " is not finite");

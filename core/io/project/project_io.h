@@ -10,7 +10,8 @@
 // Optional header keys (still version 1; files without them read with the defaults):
 // `current_level`, `gains` and `local_frames`, the modeler's session state (ProjectExtras), and
 // `input_order` {level, vertices, faces, face_corners}: then the payload ends with u32
-// engine_vertex[vertices] face_offsets[faces+1] face_verts[face_corners] (InputOrder).
+// engine_vertex[vertices] face_offsets[faces+1] face_verts[face_corners] (InputOrder);
+// `fit_source` {mesh, mesh_vertices, base_vertex[base vertices]} (FitSource).
 #include <cstdint>
 #include <span>
 #include <string>
@@ -34,6 +35,17 @@ struct InputOrder {
   bool empty() const { return level < 0; }
 };
 
+/// The mesh a fitted project was fitted to (sublift-cli fit, the modeler's Fit; docs/fit.md):
+/// its file, its vertex count, and the mesh vertex each base vertex was decimated from
+/// (BaseMesh::input_vertex), so the fit can be compared with the mesh and fitted again. Empty
+/// for projects not fitted.
+struct FitSource {
+  std::string mesh;                          // the path the mesh was read from
+  std::uint32_t mesh_vertices = 0;
+  std::vector<std::uint32_t> base_vertex;    // the mesh vertex of each base vertex
+  bool empty() const { return base_vertex.empty(); }
+};
+
 /// Session state a project keeps beside the hierarchy. Defaults are what a version-1 file
 /// without the optional header keys means.
 struct ProjectExtras {
@@ -41,6 +53,7 @@ struct ProjectExtras {
   std::vector<double> gains;  // detail gain per level 0..J-1; empty means all 1
   bool local_frames = false;  // detail kept in local frames (session.h DetailFrames::Local)
   InputOrder input_order;     // header key `input_order` and a payload tail when not empty
+  FitSource fit_source;       // header key `fit_source` when not empty
 };
 
 /// Level `order.level`'s complex numbered as the file: a surface with the file's faces (in the

@@ -84,6 +84,14 @@ void TriangleBvh::init(std::vector<Tri> tris) {
   build(order, centers, tris, 0, static_cast<std::uint32_t>(order.size()));
   tris_.resize(tris.size());
   for (std::size_t i = 0; i < order.size(); ++i) tris_[i] = tris[order[i]];
+  std::uint32_t faces = 0;
+  for (const Tri& t : tris_) faces = std::max(faces, t.face + 1);
+  face_tris_.offsets.assign(std::size_t(faces) + 1, 0);
+  for (const Tri& t : tris_) ++face_tris_.offsets[t.face + 1];
+  for (std::uint32_t f = 0; f < faces; ++f) face_tris_.offsets[f + 1] += face_tris_.offsets[f];
+  face_tris_.items.resize(tris_.size());
+  std::vector<std::uint32_t> fill(face_tris_.offsets.begin(), face_tris_.offsets.end() - 1);
+  for (std::uint32_t i = 0; i < tris_.size(); ++i) face_tris_.items[fill[tris_[i].face]++] = i;
 }
 
 std::uint32_t TriangleBvh::build(std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers,
@@ -204,32 +212,48 @@ double box_distance2(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec
 
 }  // namespace
 
-TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p) const { return closest_impl(p, nullptr); }
+TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p) const { return closest_impl(p, nullptr, UINT32_MAX); }
 
-TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p, const glm::dvec3& facing) const { return closest_impl(p, &facing); }
+TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p, const glm::dvec3& facing) const { return closest_impl(p, &facing, UINT32_MAX); }
 
-TriangleBvh::Closest TriangleBvh::closest_impl(const glm::dvec3& p, const glm::dvec3* facing) const {
+TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p, const glm::dvec3* facing, std::uint32_t hint) const {
+  return closest_impl(p, facing, hint);
+}
+
+TriangleBvh::Closest TriangleBvh::closest_impl(const glm::dvec3& p, const glm::dvec3* facing, std::uint32_t hint) const {
   Closest best;
   double best2 = std::numeric_limits<double>::infinity();
-  std::array<std::uint32_t, 128> stack;
+  const auto consider = [&](std::uint32_t i) {
+    if (facing && glm::dot(glm::cross(tris_[i].e1, tris_[i].e2), *facing) <= 0.0) return;
+    const glm::dvec3 q = closest_on_triangle(p, tris_[i].p0, tris_[i].e1, tris_[i].e2);
+    const double d2 = glm::dot(q - p, q - p);
+    // Of equally near triangles the lowest polygon wins, so the answer does not depend on the
+    // order of the search (nor on a hint).
+    if (d2 < best2 || (d2 == best2 && tris_[i].face < best.face)) best2 = d2, best.point = q, best.face = tris_[i].face;
+  };
+  if (hint < face_tris_.rows())
+    for (std::uint32_t i : face_tris_.row(hint)) consider(i);
+  // Each entry keeps its box's distance, measured once when its parent was opened.
+  struct Entry {
+    std::uint32_t node;
+    double d2;
+  };
+  std::array<Entry, 128> stack;
   std::size_t top = 0;
-  if (!nodes_.empty()) stack[top++] = 0;
+  if (!nodes_.empty()) stack[top++] = {0, box_distance2(nodes_[0].lo, nodes_[0].hi, p)};
   while (top > 0) {
-    const std::uint32_t index = stack[--top];
-    const Node& n = nodes_[index];
-    if (box_distance2(n.lo, n.hi, p) >= best2) continue;
+    const Entry e = stack[--top];
+    if (e.d2 > best2) continue;  // (a box just as near may hold a lower polygon)
+    const Node& n = nodes_[e.node];
     if (n.count == 0) {  // the nearer child last, so it is searched first
-      const bool left_first = box_distance2(nodes_[index + 1].lo, nodes_[index + 1].hi, p) <= box_distance2(nodes_[n.right].lo, nodes_[n.right].hi, p);
-      stack[top++] = left_first ? n.right : index + 1;
-      stack[top++] = left_first ? index + 1 : n.right;
+      const Entry l{e.node + 1, box_distance2(nodes_[e.node + 1].lo, nodes_[e.node + 1].hi, p)};
+      const Entry r{n.right, box_distance2(nodes_[n.right].lo, nodes_[n.right].hi, p)};
+      const bool left_first = l.d2 <= r.d2;
+      stack[top++] = left_first ? r : l;
+      stack[top++] = left_first ? l : r;
       continue;
     }
-    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-      if (facing && glm::dot(glm::cross(tris_[i].e1, tris_[i].e2), *facing) <= 0.0) continue;
-      const glm::dvec3 q = closest_on_triangle(p, tris_[i].p0, tris_[i].e1, tris_[i].e2);
-      const double d2 = glm::dot(q - p, q - p);
-      if (d2 < best2) best2 = d2, best.point = q, best.face = tris_[i].face;
-    }
+    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) consider(i);
   }
   best.distance = std::sqrt(best2);
   return best;

@@ -57,12 +57,21 @@ struct Projector {
   }
 };
 
+// Closest-point hints (TriangleBvh::closest): per point, the face it was nearest last time
+// (in and out); empty: none. Points and surfaces move little between the rounds of a level, so
+// a search started there opens a fraction of the boxes.
+std::uint32_t hint_of(std::span<const std::uint32_t> hints, std::uint32_t i) { return hints.empty() ? UINT32_MAX : hints[i]; }
+
 // RMS and largest distance from the points x to `to`, over `diag`.
-std::pair<double, double> distances(const TriangleBvh& to, std::span<const double> x, double diag) {
+std::pair<double, double> distances(const TriangleBvh& to, std::span<const double> x, double diag, std::span<std::uint32_t> hints = {}) {
   const std::uint32_t n = static_cast<std::uint32_t>(x.size() / 3);
   std::vector<double> d(n);
   parallel_for(n, 2048, [&](std::uint32_t b, std::uint32_t e) {
-    for (std::uint32_t v = b; v < e; ++v) d[v] = to.closest(at(x, v)).distance / diag;
+    for (std::uint32_t v = b; v < e; ++v) {
+      const TriangleBvh::Closest cl = to.closest(at(x, v), nullptr, hint_of(hints, v));
+      d[v] = cl.distance / diag;
+      if (!hints.empty()) hints[v] = cl.face;
+    }
   });
   double sum = 0, worst = 0;
   for (double v : d) sum += v * v, worst = std::max(worst, v);
@@ -73,13 +82,14 @@ std::pair<double, double> distances(const TriangleBvh& to, std::span<const doubl
 // normals of the input face closest to the face's centroid (a scan's noise flips single small
 // triangles; their vertex normals hold).
 std::vector<glm::dvec3> input_facing(const TriangleBvh& input, std::span<const double> input_normals, const Csr& input_faces,
-                                     const Csr& faces, std::span<const double> x) {
+                                     const Csr& faces, std::span<const double> x, std::span<std::uint32_t> hints = {}) {
   std::vector<glm::dvec3> out(faces.rows());
   parallel_for(static_cast<std::uint32_t>(faces.rows()), 2048, [&](std::uint32_t b, std::uint32_t e) {
     for (std::uint32_t f = b; f < e; ++f) {
       glm::dvec3 m(0.0);
       for (std::uint32_t v : faces.row(f)) m += at(x, v);
-      const TriangleBvh::Closest cl = input.closest(m / double(faces.size(f)));
+      const TriangleBvh::Closest cl = input.closest(m / double(faces.size(f)), nullptr, hint_of(hints, f));
+      if (!hints.empty()) hints[f] = cl.face;
       glm::dvec3 n(0.0);
       for (std::uint32_t v : input_faces.row(cl.face)) n += at(input_normals, v);
       out[f] = n;
@@ -90,8 +100,8 @@ std::vector<glm::dvec3> input_facing(const TriangleBvh& input, std::span<const d
 
 // The faces of the net that are folded over: turned away from the way the input faces there.
 std::vector<std::uint32_t> folded_list(const TriangleBvh& input, std::span<const double> input_normals, const Csr& input_faces,
-                                       const Csr& faces, std::span<const double> x) {
-  const std::vector<glm::dvec3> facing = input_facing(input, input_normals, input_faces, faces, x);
+                                       const Csr& faces, std::span<const double> x, std::span<std::uint32_t> hints = {}) {
+  const std::vector<glm::dvec3> facing = input_facing(input, input_normals, input_faces, faces, x, hints);
   std::vector<std::uint32_t> out;
   for (std::size_t f = 0; f < faces.rows(); ++f)
     if (turned(faces, f, x, facing[f])) out.push_back(static_cast<std::uint32_t>(f));
@@ -187,13 +197,16 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
   double hierarchy_ms = 0, levels_ms = 0;
   std::optional<LimitStencils> finest_limit;  // built for the limit fit, kept for the report
   std::vector<double> x;
+  // Closest-point hints within a level (its faces and vertices keep their numbers there): input
+  // vertex -> net face, net face -> input face, net vertex -> input face.
+  std::vector<std::uint32_t> input_hint, face_hint, vertex_hint;
   const auto measure = [&](int l, const Complex& c, const std::vector<double>& net) {
     FitLevelReport rep;
     rep.level = l;
     rep.vertices = c.num_vertices;
-    std::tie(rep.rms, rep.max) = distances(input, net, diag);
-    std::tie(rep.back_rms, rep.back_max) = distances(TriangleBvh(net, c.faces), positions, diag);
-    rep.folded = static_cast<std::uint32_t>(folded_list(input, input_normals, faces, c.faces, net).size());
+    std::tie(rep.rms, rep.max) = distances(input, net, diag, vertex_hint);
+    std::tie(rep.back_rms, rep.back_max) = distances(TriangleBvh(net, c.faces), positions, diag, input_hint);
+    rep.folded = static_cast<std::uint32_t>(folded_list(input, input_normals, faces, c.faces, net, face_hint).size());
     return rep;
   };
   for (int l = 1; l <= o.levels; ++l) {
@@ -209,6 +222,9 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
     const std::uint32_t n = c.num_vertices;
     const Mover move{c, project, lines, h.num_vertices(l - 1), o.relax};
     const std::vector<double> hold = held(c);
+    input_hint.assign(positions.size() / 3, UINT32_MAX);
+    face_hint.assign(c.faces.rows(), UINT32_MAX);
+    vertex_hint.assign(n, UINT32_MAX);
     std::vector<double> next(x.size());
     for (int round = 0; round < o.relax_rounds; ++round) {
       // Every point onto the input, then the two-way solve (core/fit/net_solve.h); neither step
@@ -218,17 +234,17 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
         for (std::uint32_t v = b; v < e; ++v) put(next, v, move(x, normal, v));
       });
       // The input's way at each face, from before the moves (they are small): both guards use it.
-      const std::vector<glm::dvec3> facing = input_facing(input, input_normals, faces, c.faces, x);
+      const std::vector<glm::dvec3> facing = input_facing(input, input_normals, faces, c.faces, x, face_hint);
       keep_unfolded(c.faces, facing, x, next);
       x.swap(next);
       untangle(c, project, lines, facing, x);  // before the solve, which pulls the moved points back
       if (o.two_way) {
-        std::vector<double> solved = solve_net(c, {x, x, x}, positions, input_normals, hold, o.weights);
+        std::vector<double> solved = solve_net(c, {x, x, x, nullptr, input_hint}, positions, input_normals, hold, o.weights);
         keep_unfolded(c.faces, facing, x, solved);
         x.swap(solved);
       }
     }
-    const auto facing_of = [&](std::span<const double> net) { return input_facing(input, input_normals, faces, c.faces, net); };
+    const auto facing_of = [&](std::span<const double> net) { return input_facing(input, input_normals, faces, c.faces, net, face_hint); };
     // An approximating scheme's finest level gets its limit surface fitted; with a tolerance,
     // every level does, since the limit surface is what the tolerance is about there.
     const bool approximating = o.two_way && scheme_info(o.scheme).limit != LimitRule::ControlNet;
@@ -247,14 +263,14 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
         });
         untangle_limit(c, ls, project, lines, facing_of, x);
         eval_limit(ls, x.data(), y.data());
-        std::vector<double> solved = solve_net(c, {x, y, targets, &ls}, positions, input_normals, hold, o.weights);
-        keep_unfolded(c.faces, input_facing(input, input_normals, faces, c.faces, x), x, solved);
+        std::vector<double> solved = solve_net(c, {x, y, targets, &ls, input_hint}, positions, input_normals, hold, o.weights);
+        keep_unfolded(c.faces, facing_of(x), x, solved);
         x.swap(solved);
       }
       untangle_limit(c, ls, project, lines, facing_of, x);
       if (o.tolerance > 0) {
         eval_limit(ls, x.data(), y.data());
-        reach_max = std::max(distances(input, y, diag).second, distances(TriangleBvh(y, c.faces), positions, diag).second);
+        reach_max = std::max(distances(input, y, diag, vertex_hint).second, distances(TriangleBvh(y, c.faces), positions, diag, input_hint).second);
       }
     }
     FitLevelReport rep = measure(l, c, x);
@@ -280,9 +296,11 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
   const LimitStencils& ls = *finest_limit;
   std::vector<double> limit(x.size());
   eval_limit(ls, x.data(), limit.data());
-  std::tie(out.limit_rms, out.limit_max) = distances(input, limit, diag);
-  std::tie(out.limit_back_rms, out.limit_back_max) = distances(TriangleBvh(limit, h.levels.back().faces), positions, diag);
-  out.limit_folded = static_cast<std::uint32_t>(folded_list(input, input_normals, faces, h.levels.back().faces, limit).size());
+  // The last level's hints hold when it is the finest (no fitted level: none).
+  if (face_hint.size() != h.levels.back().faces.rows() || vertex_hint.size() * 3 != limit.size()) input_hint = face_hint = vertex_hint = {};
+  std::tie(out.limit_rms, out.limit_max) = distances(input, limit, diag, vertex_hint);
+  std::tie(out.limit_back_rms, out.limit_back_max) = distances(TriangleBvh(limit, h.levels.back().faces), positions, diag, input_hint);
+  out.limit_folded = static_cast<std::uint32_t>(folded_list(input, input_normals, faces, h.levels.back().faces, limit, face_hint).size());
   // The input's feature lines against the fitted creases and boundaries (their limit curves).
   const Complex& fine = h.levels.back();
   std::vector<std::uint32_t> crease_edges;

@@ -49,8 +49,10 @@ std::vector<double> solve_net(const Complex& c, const NetSolveState& st, std::sp
   parallel_for(ni, 2048, [&](std::uint32_t lo, std::uint32_t hi) {
     for (std::uint32_t i = lo; i < hi; ++i) {
       const glm::dvec3 q = at(input, i), nq = at(input_normals, i);
-      TriangleBvh::Closest cl = glm::dot(nq, nq) > 0 ? surface.closest(q, nq) : surface.closest(q);
-      if (cl.face == UINT32_MAX) cl = surface.closest(q);
+      const std::uint32_t hint = st.hints.empty() ? UINT32_MAX : st.hints[i];
+      TriangleBvh::Closest cl = surface.closest(q, glm::dot(nq, nq) > 0 ? &nq : nullptr, hint);
+      if (cl.face == UINT32_MAX) cl = surface.closest(q, nullptr, hint);
+      if (!st.hints.empty()) st.hints[i] = cl.face;
       const auto r = c.faces.row(cl.face);
       Foot best{cl.face, 1, {}};
       double best_d = INFINITY;

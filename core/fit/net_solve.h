@@ -31,6 +31,9 @@ struct NetSolveState {
   std::span<const double> surface;  // its surface points: x0 itself, or L x0
   std::span<const double> targets;  // the surface points' projections onto the input
   const LimitStencils* limit = nullptr;  // L; null: the surface is the net
+  // Per input vertex, the surface face it was nearest in an earlier solve of this net (in and
+  // out; UINT32_MAX: none): the closest-point search starts there. Empty: no hints.
+  std::span<std::uint32_t> hints = {};
 };
 
 /// Returns the solved control points (3 per vertex of polygon net `c`, derived rows built;

@@ -94,6 +94,16 @@ TEST(TriangleBvh, ClosestPointsAgreeWithBruteForce) {
     EXPECT_NEAR(glm::distance(c.point, p), c.distance, 1e-12);
     EXPECT_EQ(c.face, face);  // the polygon, also for a quad's second triangle
     EXPECT_NEAR(bvh.closest(p, facing).distance, best_facing, 1e-12);
+    // A hint (here any polygon: the nearest, a random one, none at all) only starts the search.
+    for (const std::uint32_t hint : {face, static_cast<std::uint32_t>(rng() % s.faces.rows()), UINT32_MAX, 1u << 30}) {
+      const TriangleBvh::Closest h = bvh.closest(p, nullptr, hint);
+      EXPECT_EQ(h.distance, c.distance) << hint;  // the same answer, bit for bit
+      EXPECT_EQ(h.face, c.face);
+      EXPECT_EQ(h.point, c.point);
+      const TriangleBvh::Closest hf = bvh.closest(p, &facing, hint), f = bvh.closest(p, facing);
+      EXPECT_EQ(hf.distance, f.distance) << hint;
+      EXPECT_EQ(hf.face, f.face);
+    }
   }
 }
 
@@ -136,6 +146,34 @@ TEST(TriangleBvh, RayHitsAgreeWithBruteForce) {
     }
   }
   EXPECT_GT(hit_rays, 100);  // the soup is dense enough that most rays meet something
+}
+
+
+// Ties: above a grid vertex every face around it is as near. The lowest numbered one is named,
+// however the search went and whichever face it was told to start from.
+TEST(TriangleBvh, EquallyNearFacesNameTheLowest) {
+  Soup s;
+  const int n = 12;  // n x n squares, two triangles each, over the unit square
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) s.xyz.insert(s.xyz.end(), {double(i) / n, double(j) / n, 0.0});
+  const auto id = [&](int i, int j) { return static_cast<std::uint32_t>(i + (n + 1) * j); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      for (const auto& tri : {std::array{id(i, j), id(i + 1, j), id(i + 1, j + 1)}, std::array{id(i, j), id(i + 1, j + 1), id(i, j + 1)}}) {
+        s.faces.items.insert(s.faces.items.end(), tri.begin(), tri.end());
+        s.faces.offsets.push_back(static_cast<std::uint32_t>(s.faces.items.size()));
+      }
+  const TriangleBvh bvh(s.xyz, s.faces);
+  for (int j = 1; j < n; ++j)
+    for (int i = 1; i < n; ++i) {
+      const glm::dvec3 p(double(i) / n, double(j) / n, 0.25);
+      // Six triangles meet at the vertex; the lowest is the first of the square below-left.
+      const std::uint32_t lowest = static_cast<std::uint32_t>(2 * ((i - 1) + n * (j - 1)));
+      EXPECT_EQ(bvh.closest(p).face, lowest);
+      for (std::uint32_t hint = 0; hint < s.faces.rows(); hint += 7) EXPECT_EQ(bvh.closest(p, nullptr, hint).face, lowest) << hint;
+      const glm::dvec3 up(0, 0, 1);
+      EXPECT_EQ(bvh.closest(p, &up, 2 * (i + n * j)).face, lowest);
+    }
 }
 
 }  // namespace

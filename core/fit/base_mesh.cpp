@@ -201,36 +201,52 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
   if (options.target_faces) dec.decimate_to_faces(0, std::min(target_triangles, m.n_faces()));
   else dec.decimate_to(target + (num_vertices - used));  // loose vertices stay (locked) and are dropped below
 
-  // Surviving vertices keep their input index until garbage collection: read them first.
-  std::vector<std::uint32_t> base_of(num_vertices, UINT32_MAX);
-  for (auto v : m.vertices()) {
-    if (m.status(v).deleted() || m.is_isolated(v)) continue;
-    base_of[static_cast<std::size_t>(v.idx())] = static_cast<std::uint32_t>(out.input_vertex.size());
-    out.input_vertex.push_back(static_cast<std::uint32_t>(v.idx()));
-    const auto p = m.point(v);
-    out.positions.insert(out.positions.end(), {p[0], p[1], p[2]});
-    if (corner[static_cast<std::size_t>(v.idx())]) out.tags.corner_vertices.push_back(static_cast<std::uint32_t>(out.input_vertex.size() - 1));
-  }
-  out.num_vertices = static_cast<std::uint32_t>(out.input_vertex.size());
-  long long edges = 0;
-  for (auto f : m.faces()) {
-    if (m.status(f).deleted()) continue;
-    for (auto v : m.fv_range(f)) out.faces.items.push_back(base_of[static_cast<std::size_t>(v.idx())]);
-    out.faces.offsets.push_back(static_cast<std::uint32_t>(out.faces.items.size()));
-  }
-  for (auto e : m.edges()) {
-    if (m.status(e).deleted()) continue;
-    ++edges;
-    const auto h = m.halfedge_handle(e, 0);
-    if (m.status(e).feature() && !m.is_boundary(e))
-      out.tags.crease_edges.emplace_back(base_of[static_cast<std::size_t>(m.from_vertex_handle(h).idx())],
+  // The base from what survived (`b` holds what was read before the decimation).
+  const auto extract = [&](BaseMesh b) {
+    // Surviving vertices keep their input index until garbage collection: read them first.
+    std::vector<std::uint32_t> base_of(num_vertices, UINT32_MAX);
+    for (auto v : m.vertices()) {
+      if (m.status(v).deleted() || m.is_isolated(v)) continue;
+      base_of[static_cast<std::size_t>(v.idx())] = static_cast<std::uint32_t>(b.input_vertex.size());
+      b.input_vertex.push_back(static_cast<std::uint32_t>(v.idx()));
+      const auto p = m.point(v);
+      b.positions.insert(b.positions.end(), {p[0], p[1], p[2]});
+      if (corner[static_cast<std::size_t>(v.idx())]) b.tags.corner_vertices.push_back(static_cast<std::uint32_t>(b.input_vertex.size() - 1));
+    }
+    b.num_vertices = static_cast<std::uint32_t>(b.input_vertex.size());
+    long long edges = 0;
+    for (auto f : m.faces()) {
+      if (m.status(f).deleted()) continue;
+      for (auto v : m.fv_range(f)) b.faces.items.push_back(base_of[static_cast<std::size_t>(v.idx())]);
+      b.faces.offsets.push_back(static_cast<std::uint32_t>(b.faces.items.size()));
+    }
+    for (auto e : m.edges()) {
+      if (m.status(e).deleted()) continue;
+      ++edges;
+      const auto h = m.halfedge_handle(e, 0);
+      if (m.status(e).feature() && !m.is_boundary(e))
+        b.tags.crease_edges.emplace_back(base_of[static_cast<std::size_t>(m.from_vertex_handle(h).idx())],
                                          base_of[static_cast<std::size_t>(m.to_vertex_handle(h).idx())]);
+    }
+    add_chain_creases(b, base_of);
+    b.euler_after = static_cast<long long>(b.num_vertices) - edges + static_cast<long long>(b.faces.rows());
+    b.boundary_loops_after = boundary_loops(m);
+    if (options.quads) pair_into_quads(b);
+    return b;
+  };
+  BaseMesh result = extract(out);
+  // Quads with a face target: the pairing leaves some triangles, so the decimation goes on
+  // until the polygons are at most the target.
+  while (options.quads && options.target_faces && result.faces.rows() > options.target_faces) {
+    std::size_t alive = 0;
+    for (auto f : m.faces()) alive += !m.status(f).deleted();
+    const std::size_t over = result.faces.rows() - options.target_faces;
+    if (alive <= 2 * over + 2) break;
+    // OpenMesh counts deleted faces until garbage collection: the target is offset by them.
+    if (dec.decimate_to_faces(0, alive - 2 * over + (m.n_faces() - alive)) == 0) break;  // nothing more gives way
+    result = extract(out);
   }
-  add_chain_creases(out, base_of);
-  out.euler_after = static_cast<long long>(out.num_vertices) - edges + static_cast<long long>(out.faces.rows());
-  out.boundary_loops_after = boundary_loops(m);
-  if (options.quads) pair_into_quads(out);
-  return out;
+  return result;
 }
 
 }  // namespace sublift

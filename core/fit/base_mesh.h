@@ -27,7 +27,8 @@ struct BaseMeshOptions {
   double feature_angle_deg = 60.0;    // edges whose faces meet at a sharper angle are creases
   double max_normal_deviation_deg = 60.0;  // no collapse turns a face normal further
   bool quads = false;                 // pair the triangles into quads (base_quads.h); target_faces
-                                      // then counts the polygons, about two triangles each
+                                      // then counts the polygons (still at most: the decimation
+                                      // goes on while the pairing leaves too many triangles)
 };
 
 struct BaseMesh {

@@ -70,6 +70,21 @@ TEST(BaseMesh, TorusKeepsItsGenusAndFoldsNothing) {
     for (int k = 0; k < 3; ++k) EXPECT_NE(b.positions[3 * i + k], HUGE_VAL);
 }
 
+// With quads a face target still bounds the polygons: the pairing leaves some triangles, and
+// the decimation goes on until they fit.
+TEST(BaseMesh, QuadBasesKeepToTheirFaceTarget) {
+  const fixtures::Polygons t = triangulated(fixtures::torus(64, 32));
+  for (const std::uint32_t faces : {57u, 100u, 150u, 301u}) {
+    BaseMeshOptions o;
+    o.target_faces = faces;
+    o.quads = true;
+    const BaseMesh b = decimate_to_base(t.num_vertices, t.faces, t.positions, o);
+    EXPECT_LE(b.faces.rows(), faces);
+    EXPECT_GE(b.faces.rows(), faces * 3 / 4) << "far below the target";
+    EXPECT_EQ(b.euler_after, 0);
+  }
+}
+
 TEST(BaseMesh, OpenSheetKeepsItsBoundary) {
   fixtures::Polygons g;
   const std::uint32_t n = 40;

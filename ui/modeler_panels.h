@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/fit/fit_levels.h"
 #include "core/multires/hierarchy.h"
 #include "ui/basis_settings.h"
 #include "ui/viewport_input.h"
@@ -84,7 +85,7 @@ struct FitRequest {
   int base_vertices = 0;  // 0: the default (1/64 of the mesh's)
   float feature_angle_deg = 60.0f;
   int levels = 0;         // 0: to about the mesh's vertex count
-  int scheme = 5;         // Scheme's value: loop
+  int scheme = static_cast<int>(kDefaultFitScheme);  // Scheme's value
 };
 
 /// What the panel shows (filled by the app each frame).

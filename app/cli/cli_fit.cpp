@@ -27,7 +27,8 @@ namespace {
 constexpr const char* kHelp =
     "usage: sublift-cli fit MESH [--scheme S] [--base-faces N | --base-vertices N]\n"
     "                       [--levels J | --tolerance E] [--feature-angle DEG] -o OUT.sublift|OUT.obj [--json]\n"
-    "  Fits any triangle mesh (docs/fit.md): a coarse base from OpenMesh's decimater (N faces or\n"
+    "  Fits any triangle mesh (docs/fit.md) with scheme S (default sqrt2, which fits the shared\n"
+    "  scans best): a coarse base from OpenMesh's decimater (N faces or\n"
     "  vertices, default 1/64 of the mesh's vertices; genus, boundaries, and edges sharper than DEG,\n"
     "  default 60, kept as creases and corners), then levels fitted to the mesh coarse to fine both\n"
     "  ways and analysed, so the mesh's detail becomes wavelets. Levels: J, or the first whose net\n"
@@ -52,7 +53,7 @@ int run_fit(int argc, char** argv) {
   const bool project = o && file_extension(*o) == "sublift";
   const std::string out = output_option(a, project ? 0 : 2);
   FitOptions fo;
-  fo.scheme = a.value("--scheme") ? scheme_option(a) : Scheme::Loop;
+  fo.scheme = a.value("--scheme") ? scheme_option(a) : kDefaultFitScheme;
   if (a.value("--levels") && a.value("--tolerance")) throw UsageError("give --levels or --tolerance, not both");
   if (a.value("--base-vertices") && a.value("--base-faces")) throw UsageError("give --base-faces or --base-vertices, not both");
   const int most_levels = 6 * scheme_levels_per_split(fo.scheme);  // six 1-to-4 splits

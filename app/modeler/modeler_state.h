@@ -107,7 +107,7 @@ class ModelerState {
     std::uint32_t base_vertices = 0;  // 0: the default size (1/64 of the mesh's)
     double feature_angle_deg = 60.0;
     int levels = 0;                   // 0: to about the mesh's vertex count
-    Scheme scheme = Scheme::Loop;
+    Scheme scheme = kDefaultFitScheme;
   };
   struct FitPreview {
     std::vector<std::uint32_t> edges;  // 2 base vertices each

@@ -24,8 +24,12 @@ namespace sublift {
 /// Called between stages and levels; answering false cancels the fit (it throws Cancelled).
 using FitProgress = std::function<bool(const char* stage, double fraction)>;
 
+/// The scheme a fit takes when none is named (the CLI, the modeler, scripts): sqrt(2), the one
+/// that meets the distance and fold goals on the shared scans (docs/fit.md).
+inline constexpr Scheme kDefaultFitScheme = Scheme::Sqrt2;
+
 struct FitOptions {
-  Scheme scheme = Scheme::Loop;  // any surface scheme (a triangle scheme needs a triangle base)
+  Scheme scheme = kDefaultFitScheme;  // any surface scheme (a triangle scheme needs a triangle base)
   int levels = 3;                // with a tolerance: the most levels
   double tolerance = 0;          // > 0: stop at the first level whose fitted surface (Loop: its
                                  // limit surface; else the net) lies within this fraction of the

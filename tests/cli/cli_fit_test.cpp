@@ -23,7 +23,8 @@ TEST(CliFit, SphereFitsWithinHalfAPercent) {
   std::vector<double> xyz;
   for (const auto& d : g.directions) xyz.insert(xyz.end(), {d.x, d.y, d.z});
   write_shape(mesh, g.fine, xyz);
-  const ProcessResult r = run_cli({"fit", mesh, "--base-vertices", "100", "--levels", "2", "-o", out, "--json"}, 120);
+  // Loop's fit (the default is sqrt(2), below).
+  const ProcessResult r = run_cli({"fit", mesh, "--scheme", "loop", "--base-vertices", "100", "--levels", "2", "-o", out, "--json"}, 120);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["base"]["vertices"], 100);
@@ -50,7 +51,7 @@ TEST(CliFit, SphereFitsWithinHalfAPercent) {
   for (const char* k : {"base", "indexing", "hierarchy", "levels", "analysis", "report"}) EXPECT_TRUE(j["stage_ms"].contains(k)) << k;
   EXPECT_TRUE(std::filesystem::exists(out));
   // A tolerance picks the levels: the first whose limit surface lies within it both ways.
-  const ProcessResult t = run_cli({"fit", mesh, "--base-vertices", "100", "--tolerance", "0.2%", "-o", out, "--json"}, 120);
+  const ProcessResult t = run_cli({"fit", mesh, "--scheme", "loop", "--base-vertices", "100", "--tolerance", "0.2%", "-o", out, "--json"}, 120);
   ASSERT_EQ(t.exit_code, 0) << t.err;
   const nlohmann::json jt = nlohmann::json::parse(t.out);
   EXPECT_TRUE(jt["reached_tolerance"].get<bool>());
@@ -59,7 +60,8 @@ TEST(CliFit, SphereFitsWithinHalfAPercent) {
   const std::size_t used = jt["levels"].size();
   EXPECT_GE(used, 1u);
   if (used > 1) {  // the level above did not reach it: a coarser fit would have done
-    const ProcessResult fewer = run_cli({"fit", mesh, "--base-vertices", "100", "--levels", std::to_string(used - 1), "-o", out, "--json"}, 120);
+    const ProcessResult fewer =
+        run_cli({"fit", mesh, "--scheme", "loop", "--base-vertices", "100", "--levels", std::to_string(used - 1), "-o", out, "--json"}, 120);
     const nlohmann::json jf = nlohmann::json::parse(fewer.out);
     EXPECT_GT(std::max(jf["limit"]["to_input_max"].get<double>(), jf["limit"]["input_to_limit_max"].get<double>()), 0.002);
   }
@@ -67,7 +69,7 @@ TEST(CliFit, SphereFitsWithinHalfAPercent) {
   const ProcessResult bf = run_cli({"fit", mesh, "--base-faces", "150", "--levels", "1", "-o", out, "--json"}, 120);
   ASSERT_EQ(bf.exit_code, 0) << bf.err;
   EXPECT_LE(nlohmann::json::parse(bf.out)["base"]["faces"].get<int>(), 150);
-  ASSERT_EQ(run_cli({"fit", mesh, "--base-vertices", "100", "--levels", "1", "-o", obj}, 120).exit_code, 0);
+  ASSERT_EQ(run_cli({"fit", mesh, "--scheme", "loop", "--base-vertices", "100", "--levels", "1", "-o", obj}, 120).exit_code, 0);
   EXPECT_EQ(read_shape(obj).base.num_vertices, 100u * 4 - 6);  // V0 + E0 of a genus-0 triangle mesh (E0 = 3 V0 - 6)
   // Bertram's cubic scheme and sqrt(2) fit from a quad-dominant base.
   for (const char* scheme : {"cubic", "sqrt2"}) {
@@ -84,7 +86,8 @@ TEST(CliFit, SphereFitsWithinHalfAPercent) {
   }
   // Usage errors.
   EXPECT_EQ(run_cli({"fit", mesh, "--scheme", "sqrt2", "--levels", "13", "-o", out}).exit_code, 2);
-  EXPECT_EQ(run_cli({"fit", mesh, "--levels", "9", "-o", out}).exit_code, 2);
+  EXPECT_EQ(run_cli({"fit", mesh, "--levels", "13", "-o", out}).exit_code, 2);  // the default, sqrt(2): 12 at most
+  EXPECT_EQ(run_cli({"fit", mesh, "--scheme", "loop", "--levels", "7", "-o", out}).exit_code, 2);
   EXPECT_EQ(run_cli({"fit", mesh, "--feature-angle", "200", "-o", out}).exit_code, 2);
   EXPECT_EQ(run_cli({"fit", mesh, "--levels", "2", "--tolerance", "0.01", "-o", out}).exit_code, 2);
   EXPECT_EQ(run_cli({"fit", mesh, "--base-faces", "100", "--base-vertices", "50", "-o", out}).exit_code, 2);
@@ -107,6 +110,8 @@ TEST(CliFit, ThinScanFits) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["euler"]["base"], 2);
-  EXPECT_EQ(j["levels"].size(), 3u);
+  EXPECT_EQ(j["scheme"], "sqrt2");   // the default
+  EXPECT_EQ(j["levels"].size(), 6u);  // three splits of two sqrt(2) steps: about the scan's count
+  EXPECT_GT(j["base"]["quads"].get<int>(), 0);
   EXPECT_TRUE(std::filesystem::exists(dir.file("b.sublift")));
 }

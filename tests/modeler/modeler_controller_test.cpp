@@ -998,8 +998,8 @@ TEST(ModelerFitTest, FitScriptCommand) {
   EXPECT_EQ(mc.session().num_vertices(0), 100u);
   EXPECT_LT(mc.session().hierarchy().levels[0].faces.rows(), 2u * 100 - 4);
   const std::pair<std::string, std::string> cases[] = {
-      {"fit 100 9\n", "script:1: fit LEVELS needs 0 (to about the mesh's vertex count) to 6"},
-      {"fit 100 13 sqrt2\n", "script:1: fit LEVELS needs 0 (to about the mesh's vertex count) to 12"},
+      {"fit 100 7 loop\n", "script:1: fit LEVELS needs 0 (to about the mesh's vertex count) to 6"},
+      {"fit 100 13\n", "script:1: fit LEVELS needs 0 (to about the mesh's vertex count) to 12"},  // sqrt(2), the default
       {"fit 100 1 quintic\n", "script:1: unknown scheme 'quintic' (linear, cubic, sqrt2, linear-tri, butterfly or loop)"}};
   expect_script_errors(m, cases);
   const std::filesystem::path scan = std::filesystem::path(SUBLIFT_SHARED_DATA) / "scans/bunny_npm_lowres.obj";
@@ -1030,7 +1030,9 @@ TEST(ModelerFitTest, FitScriptCommand) {
   app.apply_panel_requests(preview);
   ASSERT_NE(app.model.fit_preview(), nullptr) << app.error;
   EXPECT_EQ(app.model.fit_preview()->vertices, 80u);
-  EXPECT_EQ(app.model.fit_preview()->edges.size(), 2u * (3 * 80 - 6));  // E = 3 V - 6 for a sphere
+  // A sphere's: V - E + F = 2 (quads and triangles, for the default sqrt(2)).
+  EXPECT_EQ(app.model.fit_preview()->edges.size() / 2, 80u + app.model.fit_preview()->faces - 2);
+  EXPECT_LT(app.model.fit_preview()->faces, 2u * 80 - 4);  // fewer than a triangle base's
   EXPECT_TRUE(app.model.take_view_update().fit_preview);
   EXPECT_NE(app.message.find("80 vertices"), std::string::npos) << app.message;
   ModelerPanelRequests go;
@@ -1039,7 +1041,7 @@ TEST(ModelerFitTest, FitScriptCommand) {
   EXPECT_TRUE(app.job_running());
   EXPECT_TRUE(app.poll_job(true));
   EXPECT_EQ(app.model.session().num_vertices(0), 80u);
-  EXPECT_EQ(app.model.session().finest_level(), default_fit_levels(g.fine.num_vertices, 80, Scheme::Loop));
+  EXPECT_EQ(app.model.session().finest_level(), default_fit_levels(g.fine.num_vertices, 80, kDefaultFitScheme));
   EXPECT_EQ(app.model.level(), 0);
   EXPECT_EQ(app.model.fit_preview(), nullptr);  // the preview goes with the fit
   EXPECT_EQ(app.model.file_vertices(), g.fine.num_vertices);  // the Fit section still counts the file's

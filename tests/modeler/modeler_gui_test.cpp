@@ -363,7 +363,7 @@ TEST(ModelerGuiTest, HeadlessFitPreviewDrawsTheBaseAndTheFitKeepsTheShape) {
   for (const char* f : {"fit_a.png", "fit_b.png", "fit_c.png"}) fs::remove(dir / f);
   write_uv_sphere(dir / "sphere.obj", 64, 32);
   const std::string script = "open sphere.obj\ndisplay net off\nscreenshot fit_a.png\nfit-preview 60\nscreenshot fit_b.png\n"
-                             "fit 60 2\nscreenshot fit_c.png\n";
+                             "fit 60 4\nscreenshot fit_c.png\n";  // sqrt(2), the default: two splits
   const ProcessResult r = run_script("headless", "fit", script);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Png a = load_png(dir / "fit_a.png"), b = load_png(dir / "fit_b.png"), c = load_png(dir / "fit_c.png");

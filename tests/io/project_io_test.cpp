@@ -125,6 +125,11 @@ TEST(ProjectIo, RefusesBadMagicVersionAndHeader) {
   EXPECT_NE(error_of(with("\"scheme\":\"cubic\"", "\"scheme\":\"catmark\"")).find("unknown scheme 'catmark'"), std::string::npos);
   EXPECT_NE(error_of(with("\"channels\":3", "\"channels\":0")).find("channels 0"), std::string::npos);
   EXPECT_NE(error_of(with("\"dim\":3", "\"dim\":4")).find("dim 4"), std::string::npos);
+  // Numbers of the wrong kind: JSON takes 1e20 or 2.5 anywhere, a cast would not.
+  EXPECT_NE(error_of(with("\"levels\":1", "\"levels\":1.5")).find("p.sublift:2: header 'levels' is not an integer"), std::string::npos);
+  EXPECT_NE(error_of(with("\"coefficients\":", "\"coefficients\":1e20,\"x\":")).find("header 'coefficients' is not a count"), std::string::npos);
+  EXPECT_NE(error_of(with("\"vertices\":", "\"vertices\":-3,\"x\":")).find("header 'vertices' is not a count"), std::string::npos);
+  EXPECT_NE(error_of(with("\"channels\":3", "\"channels\":3.0")).find("header 'channels' is not an integer"), std::string::npos);
 }
 
 TEST(ProjectIo, RefusesTruncatedOrPaddedPayloadAndLyingCounts) {

@@ -1,5 +1,6 @@
 #include "core/io/project/project_io.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -48,6 +49,19 @@ std::vector<T> take(std::string_view bytes, std::size_t& pos, std::size_t n) {
     }
   pos += n * sizeof(T);
   return v;
+}
+
+// Header numbers read as what they must be: a count is a non-negative integer, a level or flag
+// an integer (JSON's 1e20 or 2.5 would otherwise be cast, out of range, undefined).
+std::uint64_t header_count(const std::string& file, const nlohmann::json& j, const char* key) {
+  const nlohmann::json& v = j.at(key);
+  if (!v.is_number_unsigned()) throw InputError(file, 2, std::string("header '") + key + "' is not a count (a non-negative integer)");
+  return v.get<std::uint64_t>();
+}
+std::int64_t header_integer(const std::string& file, const nlohmann::json& j, const char* key) {
+  const nlohmann::json& v = j.at(key);
+  if (!v.is_number_integer()) throw InputError(file, 2, std::string("header '") + key + "' is not an integer");
+  return v.get<std::int64_t>();
 }
 
 // The optional session keys of the header, checked against the number of levels J.
@@ -164,7 +178,7 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   try {
     j = nlohmann::json::parse(bytes.substr(nl1 + 1, nl2 - nl1 - 1));
     if (j.at("format").get<std::string>() != "sublift-project") throw InputError(file, 2, "header 'format' is not sublift-project");
-    if (j.at("version").get<int>() != 1) throw InputError(file, 2, "header version is not 1");
+    if (header_integer(file, j, "version") != 1) throw InputError(file, 2, "header version is not 1");
     try {
       scheme = parse_scheme(j.at("scheme").get<std::string>());
     } catch (const std::invalid_argument&) {
@@ -173,17 +187,17 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
     integer = j.at("integer").get<bool>();
     disc = j.value("disc", 2);
     if (disc < 1 || disc > 3) throw InputError(file, 2, "header 'disc' must be 1, 2 or 3, got " + std::to_string(disc));
-    levels = j.at("levels").get<int>();
-    channels = j.at("channels").get<int>();
-    dim = j.at("dim").get<int>();
+    levels = static_cast<int>(std::clamp<std::int64_t>(header_integer(file, j, "levels"), -1, 1 << 20));
+    channels = static_cast<int>(std::clamp<std::int64_t>(header_integer(file, j, "channels"), -1, 1 << 20));
+    dim = static_cast<int>(std::clamp<std::int64_t>(header_integer(file, j, "dim"), -1, 1 << 20));
     const auto& b = j.at("base");
-    V = b.at("vertices").get<std::uint64_t>();
-    E = b.at("edges").get<std::uint64_t>();
-    F = b.at("faces").get<std::uint64_t>();
-    C = b.at("cells").get<std::uint64_t>();
-    SF = b.at("face_corners").get<std::uint64_t>();
-    CF = b.at("cell_faces").get<std::uint64_t>();
-    N = j.at("coefficients").get<std::uint64_t>();
+    V = header_count(file, b, "vertices");
+    E = header_count(file, b, "edges");
+    F = header_count(file, b, "faces");
+    C = header_count(file, b, "cells");
+    SF = header_count(file, b, "face_corners");
+    CF = header_count(file, b, "cell_faces");
+    N = header_count(file, j, "coefficients");
     // Optional session keys (absent in older version-1 files).
     if (const auto it = j.find("current_level"); it != j.end()) {
       if (!it->is_number_integer()) throw InputError(file, 2, "header 'current_level' is not an integer");
@@ -200,10 +214,10 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
     }
     if (const auto it = j.find("input_order"); it != j.end()) {
       if (!it->is_object()) throw InputError(file, 2, "header 'input_order' is not an object");
-      io_level = it->at("level").get<std::int64_t>();
-      IV = it->at("vertices").get<std::uint64_t>();
-      IF = it->at("faces").get<std::uint64_t>();
-      IK = it->at("face_corners").get<std::uint64_t>();
+      io_level = header_integer(file, *it, "level");
+      IV = header_count(file, *it, "vertices");
+      IF = header_count(file, *it, "faces");
+      IK = header_count(file, *it, "face_corners");
       if (io_level < 0 || io_level > levels) throw InputError(file, 2, "input_order level " + std::to_string(io_level) + " outside 0.." + std::to_string(levels));
     }
     if (const auto it = j.find("fit_source"); it != j.end()) {

@@ -130,6 +130,7 @@ TEST(ProjectIo, RefusesBadMagicVersionAndHeader) {
   EXPECT_NE(error_of(with("\"coefficients\":", "\"coefficients\":1e20,\"x\":")).find("header 'coefficients' is not a count"), std::string::npos);
   EXPECT_NE(error_of(with("\"vertices\":", "\"vertices\":-3,\"x\":")).find("header 'vertices' is not a count"), std::string::npos);
   EXPECT_NE(error_of(with("\"channels\":3", "\"channels\":3.0")).find("header 'channels' is not an integer"), std::string::npos);
+  EXPECT_NE(error_of(with("\"channels\":3", "\"disc\":2.5,\"channels\":3")).find("header 'disc' is not an integer"), std::string::npos);
 }
 
 TEST(ProjectIo, RefusesTruncatedOrPaddedPayloadAndLyingCounts) {

@@ -185,7 +185,7 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
       throw InputError(file, 2, "unknown scheme '" + j.at("scheme").get<std::string>() + "'");
     }
     integer = j.at("integer").get<bool>();
-    disc = j.value("disc", 2);
+    if (j.contains("disc")) disc = static_cast<int>(std::clamp<std::int64_t>(header_integer(file, j, "disc"), -1, 1 << 20));
     if (disc < 1 || disc > 3) throw InputError(file, 2, "header 'disc' must be 1, 2 or 3, got " + std::to_string(disc));
     levels = static_cast<int>(std::clamp<std::int64_t>(header_integer(file, j, "levels"), -1, 1 << 20));
     channels = static_cast<int>(std::clamp<std::int64_t>(header_integer(file, j, "channels"), -1, 1 << 20));

@@ -146,35 +146,46 @@ double input_to_fit(const Input& in, const Fitted& f) {
 // their vertices to a finest level with about as many: the fitted surface (Loop's limit
 // surface; butterfly's finest net, which it interpolates) within 0.5 % of the input's diagonal
 // both ways and 0.1 % RMS, no folded face, the input's Euler characteristic and boundary loops.
-TEST(FitLevels, GeneratedSurfacesFitBothWays) {
-  struct Case {
-    const char* name;
-    Input in;
-    long long euler;
-    std::size_t loops;
-    Scheme scheme;
-  };
-  const Case cases[] = {{"sphere", sphere(5), 2, 0, Scheme::Loop},        {"torus", torus(), 0, 0, Scheme::Loop},
-                        {"genus 3", voxel_plate(3), -4, 0, Scheme::Loop}, {"sheet", sheet(), 1, 1, Scheme::Loop},
-                        {"torus, butterfly", torus(), 0, 0, Scheme::Butterfly},
-                        // the polygon schemes, from quad-dominant bases
-                        {"torus, cubic", torus(), 0, 0, Scheme::Cubic},
-                        {"genus 3, cubic", voxel_plate(3), -4, 0, Scheme::Cubic},
-                        {"sheet, cubic", sheet(), 1, 1, Scheme::Cubic},
-                        {"torus, sqrt2", torus(), 0, 0, Scheme::Sqrt2},
-                        {"sheet, linear", sheet(), 1, 1, Scheme::Linear}};
-  for (const Case& k : cases) {
+// One test per surface and scheme: together they take minutes under the sanitizers, so each
+// gets its own timeout and ctest spreads them over the cores.
+struct GeneratedCase {
+  const char* name;
+  Input (*make)();
+  long long euler;
+  std::size_t loops;
+  Scheme scheme;
+};
+
+const GeneratedCase kGenerated[] = {
+    {"sphere", [] { return sphere(5); }, 2, 0, Scheme::Loop},
+    {"torus", [] { return torus(); }, 0, 0, Scheme::Loop},
+    {"genus3", [] { return voxel_plate(3); }, -4, 0, Scheme::Loop},
+    {"sheet", [] { return sheet(); }, 1, 1, Scheme::Loop},
+    {"torus_butterfly", [] { return torus(); }, 0, 0, Scheme::Butterfly},
+    // the polygon schemes, from quad-dominant bases
+    {"torus_cubic", [] { return torus(); }, 0, 0, Scheme::Cubic},
+    {"genus3_cubic", [] { return voxel_plate(3); }, -4, 0, Scheme::Cubic},
+    {"sheet_cubic", [] { return sheet(); }, 1, 1, Scheme::Cubic},
+    {"torus_sqrt2", [] { return torus(); }, 0, 0, Scheme::Sqrt2},
+    {"sheet_linear", [] { return sheet(); }, 1, 1, Scheme::Linear}};
+
+class GeneratedSurfaces : public ::testing::TestWithParam<int> {};
+
+TEST_P(GeneratedSurfaces, FitBothWays) {
+  const GeneratedCase& k = kGenerated[GetParam()];
+  {
+    const Input in = k.make();
     SCOPED_TRACE(k.name);
     BaseMeshOptions bo;
-    bo.target_vertices = std::max<std::uint32_t>(60, k.in.n / 50);
+    bo.target_vertices = std::max<std::uint32_t>(60, in.n / 50);
     bo.quads = fit_base_quads(k.scheme);
-    const BaseMesh base = decimate_to_base(k.in.n, k.in.faces, k.in.xyz, bo);
+    const BaseMesh base = decimate_to_base(in.n, in.faces, in.xyz, bo);
     EXPECT_EQ(base.euler_after, k.euler);
     EXPECT_EQ(base.boundary_loops_after, k.loops);
     FitOptions o;
     o.scheme = k.scheme;
     o.levels = 3 * scheme_levels_per_split(k.scheme);
-    const Fitted f = fit_levels(base, k.in.faces, k.in.xyz, o);
+    const Fitted f = fit_levels(base, in.faces, in.xyz, o);
     ASSERT_EQ(f.levels.size(), std::size_t(o.levels));
     for (const FitLevelReport& r : f.levels)
       std::printf("%s level %d: %u vertices, net->input %.4f %% rms %.4f %% max, input->net %.4f %% rms %.4f %% max, %u folded, %.1f ms\n",
@@ -196,7 +207,7 @@ TEST(FitLevels, GeneratedSurfacesFitBothWays) {
       EXPECT_LT(f.limit_back_rms, 0.001);
     }
     // An independent check of the report's input->net distance.
-    EXPECT_NEAR(input_to_fit(k.in, f), r.back_max, 1e-12);
+    EXPECT_NEAR(input_to_fit(in, f), r.back_max, 1e-12);
     // Feature lines: only the sheet has one (its boundary), kept by the fitted boundary.
     EXPECT_EQ(f.feature_lines, k.loops);
     if (k.loops) {
@@ -204,6 +215,9 @@ TEST(FitLevels, GeneratedSurfacesFitBothWays) {
     }
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(FitLevels, GeneratedSurfaces, ::testing::Range(0, int(std::size(kGenerated))),
+                         [](const ::testing::TestParamInfo<int>& i) { return std::string(kGenerated[i.param].name); });
 
 TEST(FitLevels, PerfectReconstructionAndCoarseEditsCarryTheDetail) {
   const Input in = sphere();

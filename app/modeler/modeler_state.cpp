@@ -580,6 +580,7 @@ ProjectExtras ModelerState::project_extras() const {
   extras.gains.assign(session_->gains().begin(), session_->gains().end());
   extras.local_frames = session_->detail_frames() == DetailFrames::Local;
   if (!input_order_.empty() && input_order_.level <= session_->finest_level()) extras.input_order = input_order_;
+  // (A session never changes level 0; the check keeps a map of another base out of the file.)
   if (fit_source_.base_vertex.size() == session_->num_vertices(0)) extras.fit_source = fit_source_;
   return extras;
 }

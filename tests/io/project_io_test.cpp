@@ -307,7 +307,7 @@ TEST(ProjectIo, RefusesBadExtras) {
       {"fit_source", "{\"mesh\":\"m.obj\",\"mesh_vertices\":10,\"base_vertex\":[1,2]}", "fit_source names 2 base vertices, but the base has"},
       {"fit_source", "{\"mesh\":\"m.obj\",\"mesh_vertices\":10,\"base_vertex\":[-1]}", "something other than a vertex number"},
       {"fit_source", "{\"mesh\":\"m.obj\",\"base_vertex\":[1]}", "malformed header"},
-      {"fit_source", "{\"mesh\":\"m.obj\",\"mesh_vertices\":1e20,\"base_vertex\":[1]}", "mesh_vertices is not a vertex count"},
+      {"fit_source", "{\"mesh\":\"m.obj\",\"mesh_vertices\":1e20,\"base_vertex\":[1]}", "header 'mesh_vertices' is not a count"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(std::string(c.key) + " = " + c.value);

@@ -63,6 +63,10 @@ std::int64_t header_integer(const std::string& file, const nlohmann::json& j, co
   if (!v.is_number_integer()) throw InputError(file, 2, std::string("header '") + key + "' is not an integer");
   return v.get<std::int64_t>();
 }
+// An integer held to -1..2^20 (the range checks that follow name what it must be).
+int header_small_integer(const std::string& file, const nlohmann::json& j, const char* key) {
+  return static_cast<int>(std::clamp<std::int64_t>(header_integer(file, j, key), -1, 1 << 20));
+}
 
 // The optional session keys of the header, checked against the number of levels J.
 void check_extras(const ProjectExtras& x, int levels, std::size_t base_vertices, const std::function<void(const std::string&)>& fail) {
@@ -185,11 +189,11 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
       throw InputError(file, 2, "unknown scheme '" + j.at("scheme").get<std::string>() + "'");
     }
     integer = j.at("integer").get<bool>();
-    if (j.contains("disc")) disc = static_cast<int>(std::clamp<std::int64_t>(header_integer(file, j, "disc"), -1, 1 << 20));
+    if (j.contains("disc")) disc = header_small_integer(file, j, "disc");
     if (disc < 1 || disc > 3) throw InputError(file, 2, "header 'disc' must be 1, 2 or 3, got " + std::to_string(disc));
-    levels = static_cast<int>(std::clamp<std::int64_t>(header_integer(file, j, "levels"), -1, 1 << 20));
-    channels = static_cast<int>(std::clamp<std::int64_t>(header_integer(file, j, "channels"), -1, 1 << 20));
-    dim = static_cast<int>(std::clamp<std::int64_t>(header_integer(file, j, "dim"), -1, 1 << 20));
+    levels = header_small_integer(file, j, "levels");
+    channels = header_small_integer(file, j, "channels");
+    dim = header_small_integer(file, j, "dim");
     const auto& b = j.at("base");
     V = header_count(file, b, "vertices");
     E = header_count(file, b, "edges");
@@ -199,10 +203,7 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
     CF = header_count(file, b, "cell_faces");
     N = header_count(file, j, "coefficients");
     // Optional session keys (absent in older version-1 files).
-    if (const auto it = j.find("current_level"); it != j.end()) {
-      if (!it->is_number_integer()) throw InputError(file, 2, "header 'current_level' is not an integer");
-      current_level = it->get<std::int64_t>();
-    }
+    if (j.contains("current_level")) current_level = header_integer(file, j, "current_level");
     if (const auto it = j.find("gains"); it != j.end()) {
       if (!it->is_array()) throw InputError(file, 2, "header 'gains' is not an array");
       if (it->size() > static_cast<std::size_t>(max_levels(scheme)))
@@ -224,10 +225,8 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
       if (!it->is_object()) throw InputError(file, 2, "header 'fit_source' is not an object");
       FitSource& fs = extras.fit_source;
       fs.mesh = it->at("mesh").get<std::string>();
-      const auto& mv = it->at("mesh_vertices");
-      if (!mv.is_number_unsigned() || mv.get<std::uint64_t>() > 0xfffffffeu)
-        throw InputError(file, 2, "fit_source mesh_vertices is not a vertex count below 2^32 - 1");
-      const std::uint64_t n = mv.get<std::uint64_t>();
+      const std::uint64_t n = header_count(file, *it, "mesh_vertices");
+      if (n > 0xfffffffeu) throw InputError(file, 2, "fit_source mesh_vertices exceeds 2^32 - 2");
       fs.mesh_vertices = static_cast<std::uint32_t>(n);
       const auto& bv = it->at("base_vertex");
       if (!bv.is_array() || bv.empty()) throw InputError(file, 2, "header 'fit_source' base_vertex is not a non-empty array");

@@ -7,6 +7,7 @@
 #include "app/cli/cli_args.h"
 #include "app/cli/cli_commands.h"
 #include "app/cli/cli_json.h"
+#include "core/base/errors.h"
 #include "core/base/file_io.h"
 #include "core/io/mesh/mesh_export.h"
 #include "core/io/mesh/mesh_import.h"
@@ -50,6 +51,9 @@ int run_info(int argc, char** argv) {
   const std::string ext = file_extension(file);
   if (ext == "sublift") return info_project(file, a.has("--json"));
   if (ext == "lattice" || ext == "vtk") return info_shape(file, a.has("--json"));
+  // Everything info reads, so an unknown extension is answered with the whole list.
+  if (ext != "obj" && ext != "off" && ext != "ply")
+    throw InputError(file, 0, "unsupported format '." + ext + "' (info reads .obj, .off, .ply, .lattice, .vtk and .sublift)");
   const LoadedMesh loaded = import_surface_mesh(file);
   std::cerr << loaded.report.format(file);
   const MeshStats s = compute_mesh_stats(loaded.mesh);

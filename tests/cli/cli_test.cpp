@@ -1,6 +1,7 @@
 // Drives sublift-cli as a user's script would: exit codes, messages, --json documents, the
 // bundled assets and the third-party bad-input corpus (../shared/data, skipped when absent).
 #include <filesystem>
+#include <fstream>
 #include <map>
 
 #include <gtest/gtest.h>
@@ -119,6 +120,18 @@ TEST(Cli, InfoOnEveryAssetSucceedsWithoutWarnings) {
     }
     EXPECT_EQ(j["non_manifold_vertices"], 0) << f;
   }
+}
+
+TEST(Cli, InfoOnAnUnknownExtensionListsEveryFormatItReads) {
+  const fs::path tmp = fs::temp_directory_path() / "sublift_cli_info_ext";
+  fs::create_directories(tmp);
+  const fs::path f = tmp / "shape.stl";
+  std::ofstream(f) << "solid x\nendsolid x\n";
+  const ProcessResult r = run_process({kCli, "info", f.string()});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("unsupported format '.stl' (info reads .obj, .off, .ply, .lattice, .vtk and .sublift)"),
+            std::string::npos)
+      << r.err;
 }
 
 TEST(Cli, TextInfoIsReadable) {

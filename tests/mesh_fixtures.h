@@ -140,4 +140,70 @@ inline Cells hex_block(std::uint32_t n) {
   return m;
 }
 
+// ---- high valence (issue 18: limit stencils whose cost must stay gentle) --------------------
+
+/// A closed wavy prism over an n-gon (caps of n vertices, n side quads), jittered so every
+/// rotational frequency is present: after one level each cap's face point has valence n.
+inline Polygons ngon_prism(std::uint32_t n, unsigned seed = 1) {
+  Polygons m;
+  m.num_vertices = 2 * n;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.02, 0.02);
+  for (std::uint32_t z = 0; z < 2; ++z)
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const double a = 2 * std::numbers::pi * i / n;
+      const double r = 1.0 + 0.1 * std::cos(5 * a) + jitter(rng);
+      m.positions.insert(m.positions.end(), {r * std::cos(a), r * std::sin(a), z + 0.1 * std::sin(3 * a) + jitter(rng)});
+    }
+  m.faces.offsets = {0};
+  for (std::uint32_t i = 0; i < n; ++i) m.faces.items.push_back(n - 1 - i);  // bottom, facing down
+  m.faces.offsets.push_back(n);
+  for (std::uint32_t i = 0; i < n; ++i) m.faces.items.push_back(n + i);
+  m.faces.offsets.push_back(2 * n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t j = (i + 1) % n;
+    push_row(m.faces, {i, j, n + j, n + i});
+  }
+  return m;
+}
+
+/// A cone of n triangles around apex 0 (ring 1..n, open at the rim): a valence-n vertex.
+inline Polygons triangle_cone(std::uint32_t n) {
+  Polygons m;
+  m.num_vertices = n + 1;
+  m.positions = {0.1, -0.05, 0.8};
+  m.faces.offsets = {0};
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const double a = 2 * std::numbers::pi * i / n;
+    const double r = 1.0 + 0.15 * std::sin(4 * a);
+    m.positions.insert(m.positions.end(), {r * std::cos(a), r * std::sin(a), 0.2 * std::cos(7 * a)});
+    push_row(m.faces, {0u, 1 + i, 1 + (i + 1) % n});
+  }
+  return m;
+}
+
+/// n quads around vertex 0 (edge vertices 1..n, corners n+1..2n), or, with `mixed`, every
+/// third face a triangle instead (a fan without rotational symmetry).
+inline Polygons quad_fan(std::uint32_t n, bool mixed = false) {
+  Polygons m;
+  m.num_vertices = 2 * n + 1;
+  m.positions = {0.0, 0.0, 0.4};
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const double a = 2 * std::numbers::pi * i / n;
+    m.positions.insert(m.positions.end(), {std::cos(a), std::sin(a), 0.1 * std::sin(2 * a)});
+  }
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const double b = 2 * std::numbers::pi * (i + 0.5) / n;
+    m.positions.insert(m.positions.end(), {1.4 * std::cos(b), 1.4 * std::sin(b), -0.1 * std::cos(3 * b)});
+  }
+  m.faces.offsets = {0};
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (mixed && i % 3 == 2)
+      push_row(m.faces, {0u, 1 + i, 1 + (i + 1) % n});
+    else
+      push_row(m.faces, {0u, 1 + i, n + 1 + i, 1 + (i + 1) % n});
+  }
+  return m;
+}
+
 }  // namespace sublift::fixtures

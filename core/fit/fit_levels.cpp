@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/base/bounds.h"
+#include "core/base/memory_budget.h"
 #include "core/base/errors.h"
 #include "core/base/parallel.h"
 #include "core/base/triangle_bvh.h"
@@ -183,6 +184,12 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
     out.stage_ms.emplace_back(name, std::chrono::duration<double, std::milli>(now - t_stage).count());
     t_stage = now;
   };
+  // Up front, before the costly indexing: all the levels asked for must fit (a tolerance may stop
+  // earlier; append_level checks each level again).
+  {
+    const Complex c = complex_from_polygons(base.num_vertices, base.faces, base.tags);
+    check_memory(predicted_hierarchy_bytes(c, o.levels, o.scheme), "fitting " + std::to_string(o.levels) + " levels");
+  }
   report("indexing the mesh", 0.0);
   const TriangleBvh input(positions, faces);
   const FeatureLines lines(positions, base.input_feature_edges);

@@ -6,6 +6,7 @@
 
 #include "core/engine/executor.h"
 #include "core/base/errors.h"
+#include "core/base/memory_budget.h"
 #include "core/complex/level_counts.h"
 #include "core/complex/refine_sqrt2.h"
 
@@ -19,12 +20,31 @@ std::size_t Hierarchy::bytes() const {
   return b;
 }
 
+namespace {
+
+// Refuses, before anything is built, levels 0..levels of base that would pass the budget.
+void check_levels_memory(const Complex& base, int levels, Scheme scheme, int first_level) {
+  const double need = predicted_hierarchy_bytes(base, levels, scheme, first_level);
+  if (need <= kUncheckedBytes) return;  // not even the level counts' text
+  const double top = predicted_level_counts(base, levels, scheme, first_level).back();
+  check_memory(need, "subdividing to level " + std::to_string(levels) + " (" + std::to_string(std::llround(top)) + " vertices)");
+}
+
+}  // namespace
+
+double predicted_hierarchy_bytes(const Complex& c, int levels, Scheme scheme, int first_level) {
+  const SchemeInfo& info = scheme_info(scheme);
+  const double per = info.peak_bytes[c.dim == 3 && info.peak_bytes[1] > 0 ? 1 : 0];
+  return predicted_level_counts(c, levels, scheme, first_level).back() * per;
+}
+
 void append_level(Hierarchy& h, bool adjacency) {
   Complex& parent = h.levels.back();
   if (parent.vertex_edges.rows() != parent.num_vertices) build_adjacency(parent);
   const int j = h.finest_level();
   if (predicted_level_counts(parent, 1, h.scheme, h.first_level + j).back() > 4.0e9)
     throw Error("level " + std::to_string(j + 1) + " would have more than 2^32 vertices");
+  check_levels_memory(h.levels.front(), j + 1, h.scheme, h.first_level);
   LevelBuild b = scheme_info(h.scheme).build(parent, {h.first_level + j, h.disc, adjacency});
   if (!b.norms.empty()) {
     h.wavelet_norms.resize(std::size_t(parent.num_vertices) - h.levels.front().num_vertices);
@@ -67,6 +87,7 @@ Hierarchy make_hierarchy(Complex base, int levels, Scheme scheme, int channels, 
   if (disc < 1 || disc > 3) throw Error("the wavelet disc must have 1, 2 or 3 rings, got " + std::to_string(disc));
   h.disc = disc;
   if (base.vertex_edges.rows() != base.num_vertices) build_adjacency(base);
+  check_levels_memory(base, levels, scheme, h.first_level);
   h.levels.reserve(static_cast<std::size_t>(levels) + 1);
   h.levels.push_back(std::move(base));
   for (int j = 0; j < levels; ++j) append_level(h, /*adjacency=*/j + 1 < levels);

@@ -66,6 +66,12 @@ void analyze_transition(const Hierarchy& h, int j, double* x, int channels, bool
 /// estimate from an odd one.
 std::vector<double> predicted_level_counts(const Complex& c, int levels, Scheme scheme, int first_level = 0);
 
+/// Peak bytes of make_hierarchy(c, levels, scheme, ..., first_level) plus one synthesis of its
+/// finest level: the predicted finest vertex count times the scheme's measured cost per vertex
+/// (SchemeInfo::peak_bytes). make_hierarchy and append_level refuse up front, with this number,
+/// what would pass memory_budget() (core/base/memory_budget.h).
+double predicted_hierarchy_bytes(const Complex& c, int levels, Scheme scheme, int first_level = 0);
+
 /// Sets the level-0 scaling coefficients (num_vertices(0) * channels values) and zeroes all
 /// wavelets: the hierarchy then describes the pure subdivision of the base.
 void set_base(Hierarchy& h, std::span<const double> base_values);

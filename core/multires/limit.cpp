@@ -1,22 +1,23 @@
 #include "core/multires/limit.h"
 #include "core/schemes/tri/tri_transform.h"
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <complex>
 #include <map>
 #include <numeric>
+#include <unordered_map>
 
 #include "core/base/parallel.h"
 #include "core/complex/polygon_normal.h"
+#include "core/multires/limit_solve.h"
 
 namespace sublift {
 namespace {
 
 constexpr std::uint32_t kGrain = 4096;
-constexpr std::int32_t kOther = -1;  // dim of a patch primitive not incident to the centre (irrelevant)
+constexpr std::int32_t kOther = -1;
+constexpr std::size_t kKeyedRotations = 16;  // fans up to this valence key every rotation (canonical_patch)  // dim of a patch primitive not incident to the centre (irrelevant)
 
 // ---------------------------------------------------------------------------------------------
 // Local patches: the feature-filtered closed star of a vertex as a small Complex whose vertex 0 is
@@ -30,27 +31,32 @@ struct Patch {
   std::vector<std::int32_t> key;      // determines c completely
 };
 
-template <class T>
-std::uint32_t local_id(std::vector<T>& list, T g) {
-  for (std::size_t i = 0; i < list.size(); ++i)
-    if (list[i] == g) return static_cast<std::uint32_t>(i);
-  list.push_back(g);
-  return static_cast<std::uint32_t>(list.size() - 1);
-}
+// First-appearance numbering of source ids (hashed: a patch of a valence-1000 vertex has
+// thousands of vertices).
+struct LocalIds {
+  std::vector<std::uint32_t>& list;
+  std::unordered_map<std::uint32_t, std::uint32_t> at{};
+  // The local id of g and whether it was new.
+  std::pair<std::uint32_t, bool> get(std::uint32_t g) {
+    const auto [it, fresh] = at.try_emplace(g, static_cast<std::uint32_t>(list.size()));
+    if (fresh) list.push_back(g);
+    return {it->second, fresh};
+  }
+};
 
 // Builds the patch of `v` from its star primitives in the given order (edges, faces, cells).
 Patch make_patch(const Complex& C, std::uint32_t v, std::span<const std::uint32_t> E, std::span<const std::uint32_t> F,
                  std::span<const std::uint32_t> K) {
   Patch p;
   std::vector<std::uint32_t> gedges, gfaces;
-  p.global.push_back(v);
+  LocalIds verts{p.global}, edges{gedges}, faces{gfaces};
+  verts.get(v);
   const std::uint8_t D = static_cast<std::uint8_t>(C.dim);
   auto add_edge = [&](std::uint32_t e) {
-    const std::size_t before = gedges.size();
-    const std::uint32_t le = local_id(gedges, e);
-    if (gedges.size() != before) {
+    const auto [le, fresh] = edges.get(e);
+    if (fresh) {
       const std::uint32_t a = C.edge_verts[2 * std::size_t(e)], b = C.edge_verts[2 * std::size_t(e) + 1];
-      std::uint32_t la = local_id(p.global, a), lb = local_id(p.global, b);
+      std::uint32_t la = verts.get(a).first, lb = verts.get(b).first;
       if (la > lb) std::swap(la, lb);
       p.c.edge_verts.insert(p.c.edge_verts.end(), {la, lb});
       p.c.edge_dim.push_back(a == v || b == v ? C.edge_dim[e] : D);
@@ -59,9 +65,8 @@ Patch make_patch(const Complex& C, std::uint32_t v, std::span<const std::uint32_
   };
   for (std::uint32_t e : E) add_edge(e);
   auto add_face = [&](std::uint32_t f) {
-    const std::size_t before = gfaces.size();
-    const std::uint32_t lf = local_id(gfaces, f);
-    if (gfaces.size() == before) return lf;
+    const auto [lf, fresh] = faces.get(f);
+    if (!fresh) return lf;
     const auto vs = C.faces.row(f);
     const auto es = C.face_edges.row(f);
     const std::size_t n = vs.size();
@@ -70,7 +75,7 @@ Patch make_patch(const Complex& C, std::uint32_t v, std::span<const std::uint32_
       if (vs[i] == v) start = i;
     const bool at_v = start != n;
     std::vector<std::uint32_t> lv(n), le(n);
-    for (std::size_t i = 0; i < n; ++i) lv[i] = local_id(p.global, vs[i]);
+    for (std::size_t i = 0; i < n; ++i) lv[i] = verts.get(vs[i]).first;
     if (!at_v) start = std::size_t(std::min_element(lv.begin(), lv.end()) - lv.begin());
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t i = (start + k) % n;
@@ -185,139 +190,53 @@ Patch canonical_patch(const Complex& C, std::uint32_t v, const Star& s) {
     fan = fan && cyc_f.size() == n && cur == 0;
   }
   if (!fan) return make_patch(C, v, s.edges, s.faces, s.cells);
-  Patch best;
+  // The star edges and faces from cyclic position `start`, forwards (dir 0) or backwards.
   std::vector<std::uint32_t> es(n), fs(n);
-  for (std::size_t start = 0; start < n; ++start)
-    for (int dir = 0; dir < 2; ++dir) {
-      for (std::size_t k = 0; k < n; ++k) {
-        if (dir == 0) {
-          es[k] = cyc_e[(start + k) % n];
-          fs[k] = cyc_f[(start + k) % n];
-        } else {
-          es[k] = cyc_e[(start + n - k) % n];
-          fs[k] = cyc_f[(start + 2 * n - k - 1) % n];
-        }
+  auto order = [&](std::size_t start, int dir) {
+    for (std::size_t k = 0; k < n; ++k) {
+      if (dir == 0) {
+        es[k] = cyc_e[(start + k) % n];
+        fs[k] = cyc_f[(start + k) % n];
+      } else {
+        es[k] = cyc_e[(start + n - k) % n];
+        fs[k] = cyc_f[(start + 2 * n - k - 1) % n];
       }
+    }
+  };
+  // Large fans: the key of every start costs O(n^2) in all, so only the starts whose sequence of
+  // (face size, face dim, edge dim) is smallest are keyed, one per direction. Any start gives a
+  // correct patch; the choice only decides which rotated copies share a cache entry.
+  std::vector<std::size_t> starts[2];
+  if (n <= kKeyedRotations) {
+    for (int dir = 0; dir < 2; ++dir)
+      for (std::size_t start = 0; start < n; ++start) starts[dir].push_back(start);
+  } else {
+    auto sig = [&](std::size_t start, int dir, std::size_t k) {
+      const std::uint32_t f = dir == 0 ? cyc_f[(start + k) % n] : cyc_f[(start + 2 * n - k - 1) % n];
+      const std::uint32_t e = dir == 0 ? cyc_e[(start + k) % n] : cyc_e[(start + n - k) % n];
+      return std::array<std::uint32_t, 3>{C.faces.size(f), C.face_dim[f], C.edge_dim[e]};
+    };
+    for (int dir = 0; dir < 2; ++dir) {
+      std::size_t best = 0;
+      for (std::size_t start = 1; start < n; ++start)
+        for (std::size_t k = 0; k < n; ++k) {
+          const auto a = sig(start, dir, k), b = sig(best, dir, k);
+          if (a != b) {
+            if (a < b) best = start;
+            break;
+          }
+        }
+      starts[dir].push_back(best);
+    }
+  }
+  Patch best;
+  for (int dir = 0; dir < 2; ++dir)
+    for (const std::size_t start : starts[dir]) {
+      order(start, dir);
       Patch p = make_patch(C, v, es, fs, {});
       if (best.key.empty() || p.key < best.key) best = std::move(p);
     }
   return best;
-}
-
-// ---------------------------------------------------------------------------------------------
-// The eigen solve on a patch.
-
-struct Solved {
-  bool ok = false;
-  std::vector<double> weights, du, dv;  // over the patch's local vertices
-  std::vector<double> spectrum;
-};
-
-Solved solve_patch(const Complex& patch) {
-  Solved out;
-  const std::uint32_t np = patch.num_vertices;
-  Hierarchy h = make_hierarchy(patch, 2, Scheme::Cubic, static_cast<int>(np));
-  std::vector<double> id(std::size_t(np) * np, 0.0);
-  for (std::uint32_t i = 0; i < np; ++i) id[std::size_t(i) * np + i] = 1.0;
-  set_base(h, id);
-  const std::vector<double> L1 = synthesize(h, 1);
-  const Complex& P0 = h.levels[0];
-  const Complex& P1 = h.levels[1];
-  const std::uint8_t m = P0.vertex_dim[0];
-  // Star of the centre at level 0 (feature-filtered) and the level-1 vertices it maps to.
-  std::vector<std::uint32_t> se, sf, sc;
-  for (std::uint32_t e : P0.vertex_edges.row(0))
-    if (P0.edge_dim[e] <= m) se.push_back(e);
-  for (std::uint32_t f : P0.vertex_faces.row(0))
-    if (P0.face_dim[f] <= m) sf.push_back(f);
-  if (m == 3)
-    for (std::uint32_t k : P0.vertex_cells.row(0)) sc.push_back(k);
-  const std::uint32_t E0 = P0.num_vertices, F0 = E0 + P0.num_edges(), K0 = F0 + P0.num_faces();
-  std::vector<std::uint32_t> I1{0};
-  for (std::uint32_t e : se) I1.push_back(E0 + e);
-  for (std::uint32_t f : sf) I1.push_back(F0 + f);
-  for (std::uint32_t k : sc) I1.push_back(K0 + k);
-  // The level-1 primitives at the centre that are children of those, and their level-2 children.
-  const std::uint32_t nv1 = P1.num_vertices, ne1 = P1.num_edges(), nf1 = P1.num_faces();
-  std::vector<std::uint32_t> I2{0};
-  for (std::uint32_t e : se) {
-    std::uint32_t hit = ~0u;
-    for (std::uint32_t e1 : P1.vertex_edges.row(0))
-      if (P1.edge_verts[2 * e1] == E0 + e || P1.edge_verts[2 * e1 + 1] == E0 + e) hit = e1;
-    if (hit == ~0u) return out;
-    I2.push_back(nv1 + hit);
-  }
-  for (std::uint32_t f : sf) {
-    std::uint32_t hit = ~0u, count = 0;
-    for (std::uint32_t f1 : P1.vertex_faces.row(0)) {
-      const auto r = P1.faces.row(f1);
-      if (std::find(r.begin(), r.end(), F0 + f) != r.end()) hit = f1, ++count;
-    }
-    if (count != 1) return out;
-    I2.push_back(nv1 + ne1 + hit);
-  }
-  for (std::uint32_t k : sc) {
-    std::uint32_t hit = ~0u, count = 0;
-    for (std::uint32_t k1 : P1.vertex_cells.row(0)) {
-      const auto r = P1.cell_verts.row(k1);
-      if (std::find(r.begin(), r.end(), K0 + k) != r.end()) hit = k1, ++count;
-    }
-    if (count != 1) return out;
-    I2.push_back(nv1 + ne1 + nf1 + hit);
-  }
-  // S: level-2 star from the level-1 star, by impulses on every level-1 vertex.
-  Hierarchy h2 = make_hierarchy(P1, 1, Scheme::Cubic, static_cast<int>(nv1));
-  std::vector<double> id1(std::size_t(nv1) * nv1, 0.0);
-  for (std::uint32_t i = 0; i < nv1; ++i) id1[std::size_t(i) * nv1 + i] = 1.0;
-  set_base(h2, id1);
-  const std::vector<double> L2 = synthesize(h2, 1);
-  const std::size_t k = I1.size();
-  Eigen::MatrixXd S(k, k), P(k, np);
-  std::vector<char> in_star(nv1, 0);
-  for (std::uint32_t x : I1) in_star[x] = 1;
-  for (std::size_t i = 0; i < k; ++i) {
-    const double* row = &L2[std::size_t(I2[i]) * nv1];
-    double outside = 0;
-    for (std::uint32_t j = 0; j < nv1; ++j)
-      if (!in_star[j]) outside += std::abs(row[j]);
-    if (outside > 1e-12) return out;  // the star is not invariant: no stencil from it
-    for (std::size_t j = 0; j < k; ++j) S(Eigen::Index(i), Eigen::Index(j)) = row[I1[j]];
-    for (std::uint32_t j = 0; j < np; ++j) P(Eigen::Index(i), j) = L1[std::size_t(I1[i]) * np + j];
-  }
-  // Spectrum, descending by modulus.
-  Eigen::EigenSolver<Eigen::MatrixXd> es(S, /*computeEigenvectors=*/false);
-  std::vector<std::complex<double>> ev(es.eigenvalues().data(), es.eigenvalues().data() + k);
-  std::sort(ev.begin(), ev.end(), [](auto a, auto b) { return std::abs(a) > std::abs(b); });
-  for (auto z : ev) out.spectrum.push_back(std::abs(z));
-  if (std::abs(ev[0] - 1.0) > 1e-9 || (k > 1 && std::abs(ev[1]) > 1.0 - 1e-9)) return out;
-  // Left eigenvector for 1: (S^T - I) l = 0 with sum(l) = 1; the rows of S^T - I sum to zero
-  // (S reproduces constants), so one of them can be replaced by the normalisation.
-  Eigen::MatrixXd A = S.transpose() - Eigen::MatrixXd::Identity(Eigen::Index(k), Eigen::Index(k));
-  A.row(0).setOnes();
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(Eigen::Index(k));
-  b(0) = 1.0;
-  const Eigen::VectorXd l = A.fullPivLu().solve(b);
-  const Eigen::VectorXd w = P.transpose() * l;
-  out.weights.assign(w.data(), w.data() + np);
-  out.ok = true;
-  // Tangents of a surface point: a real double subdominant eigenvalue with a gap below it.
-  if (m == 2 && k >= 4) {
-    const auto l2 = ev[1], l3 = ev[2];
-    const double gap = k > 3 ? std::abs(l3) - std::abs(ev[3]) : 1.0;
-    if (std::abs(l2.imag()) < 1e-9 && std::abs(l3.imag()) < 1e-9 && std::abs(l2 - l3) < 1e-9 && gap > 1e-6 &&
-        std::abs(l2) > 1e-6) {
-      Eigen::MatrixXd B = S.transpose() - l2.real() * Eigen::MatrixXd::Identity(Eigen::Index(k), Eigen::Index(k));
-      Eigen::JacobiSVD<Eigen::MatrixXd> svd(B, Eigen::ComputeFullV);
-      const auto& sv = svd.singularValues();
-      if (sv(Eigen::Index(k) - 2) < 1e-8 * std::max(1.0, sv(0))) {
-        const Eigen::VectorXd t1 = P.transpose() * svd.matrixV().col(Eigen::Index(k) - 1);
-        const Eigen::VectorXd t2 = P.transpose() * svd.matrixV().col(Eigen::Index(k) - 2);
-        out.du.assign(t1.data(), t1.data() + np);
-        out.dv.assign(t2.data(), t2.data() + np);
-      }
-    }
-  }
-  return out;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -583,11 +502,11 @@ inline void finish_normal(const LimitStencils& s, std::uint32_t v, const double*
 
 }  // namespace
 
-ProbedStencil probe_limit_stencil(const Complex& c, std::uint32_t v) {
+ProbedStencil probe_limit_stencil(const Complex& c, std::uint32_t v, LimitSolver solver) {
   ProbedStencil out;
   const Adj A{c.vertex_edges, c.vertex_faces, c.vertex_cells, c.cell_verts};
   const Patch p = canonical_patch(c, v, filtered_star(c, A, v));
-  const Solved s = solve_patch(p.c);
+  const PatchSolution s = solve_limit_patch(p.c, solver);
   out.ok = s.ok;
   out.spectrum = s.spectrum;
   out.vertices = p.global;
@@ -654,19 +573,19 @@ LimitStencils build_limit_stencils(const Hierarchy& h) {
     }
   });
   // Generic vertices: canonical patch, cached solve.
-  std::map<std::vector<std::int32_t>, Solved> cache;
+  std::map<std::vector<std::int32_t>, PatchSolution> cache;
   struct GenericRow {
     std::uint32_t v;
     std::vector<std::uint32_t> verts;
-    const Solved* solved;
+    const PatchSolution* solved;
   };
   std::vector<GenericRow> generic;
   for (std::uint32_t v = 0; v < nv; ++v) {
     if (kind[v] != kGeneric) continue;
     Patch p = canonical_patch(C, v, filtered_star(C, A, v));
     auto it = cache.find(p.key);
-    if (it == cache.end()) it = cache.emplace(p.key, solve_patch(p.c)).first;
-    const Solved& sol = it->second;
+    if (it == cache.end()) it = cache.emplace(p.key, solve_limit_patch(p.c, LimitSolver::Auto)).first;
+    const PatchSolution& sol = it->second;
     if (sol.ok) {
       ++s.extraordinary;
       s.rows.offsets[v + 1] = static_cast<std::uint32_t>(p.global.size());

@@ -9,10 +9,11 @@
 // at corners (feature dim 0, which the scheme interpolates). Every other configuration
 // (extraordinary vertices, darts, curve junctions, irregular lattice vertices, n-gons at level 0)
 // is solved by probing the engine's own synthesis on a small patch around the vertex: the local
-// subdivision matrix S of the vertex's feature-filtered star is read off lift_synthesize with unit
-// impulses, and the limit stencil is the left eigenvector of S for eigenvalue 1 (exact tangent
-// stencils: the left eigenvectors of a double subdominant eigenvalue). Results are cached per
-// configuration.
+// subdivision matrix S of the vertex's feature-filtered star is read off the executor's sparse
+// synthesis with unit impulses, and the limit stencil is the left eigenvector of S for eigenvalue
+// 1 (exact tangent stencils: the left eigenvectors of a double subdominant eigenvalue). Results
+// are cached per configuration; the cost grows about linearly with the valence (limit_solve.h).
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -62,17 +63,26 @@ void orient_tangents(LimitStencils& s, const Csr& faces, const double* control, 
 void limit_normals_subset(const LimitStencils& s, const Csr& faces, const Csr& vertex_faces, const double* control,
                           const double* limit, std::span<const std::uint32_t> vertices, double* normals);
 
+/// How an extraordinary configuration's eigenproblem is solved (docs/limit_stencils.md). Both read
+/// the star's local subdivision matrix off sparse impulses through the engine (cost linear in the
+/// patch). Dense: Eigen's full eigen-analysis of that matrix (every configuration, cubic in the
+/// star size). Structured: the position by power iteration, and the tangents and spectrum from the
+/// per-frequency blocks of a uniform fan's rotational symmetry (no tangents for other large stars:
+/// their normals come from the faces). Auto: dense for stars of up to kLimitDenseStar vertices.
+enum class LimitSolver { Auto, Dense, Structured };
+inline constexpr std::size_t kLimitDenseStar = 65;  // valence 32 among quads: the dense solve takes ~8 ms there
+
 /// The eigenvector path for one vertex, whatever its configuration (for tests and tools).
 struct ProbedStencil {
   bool ok = false;                      // S had a simple dominant eigenvalue 1
   std::vector<std::uint32_t> vertices;  // vertices of `c` the stencils read (vertices[0] = v)
   std::vector<double> weights;          // limit-position weights, aligned with vertices
   std::vector<double> du, dv;           // tangent weights (empty: no double subdominant eigenvalue)
-  std::vector<double> spectrum;         // |eigenvalues| of the local subdivision matrix, descending
+  std::vector<double> spectrum;         // |eigenvalues| of the local subdivision matrix, descending (empty: not computed)
 };
 
 /// Probes the cubic scheme's zero-detail synthesis on the feature-filtered star of vertex `v` of
 /// `c` (which needs adjacency) and solves the local eigenproblem.
-ProbedStencil probe_limit_stencil(const Complex& c, std::uint32_t v);
+ProbedStencil probe_limit_stencil(const Complex& c, std::uint32_t v, LimitSolver solver = LimitSolver::Auto);
 
 }  // namespace sublift

@@ -21,12 +21,12 @@ using L = LimitRule;
 // id, name, refinement, surfaces only, triangles only, interpolates, integer, levels per split,
 // limit, exact norms, builder
 constexpr SchemeInfo kSchemes[] = {
-    {Scheme::Linear, "linear", R::Split, false, false, false, true, 1, L::ControlNet, false, linear_level},
-    {Scheme::Cubic, "cubic", R::Split, false, false, false, true, 1, L::Eigen, false, cubic_level},
-    {Scheme::Sqrt2, "sqrt2", R::Sqrt2, true, false, true, true, 2, L::ControlNet, false, build_sqrt2_level},
-    {Scheme::LinearTri, "linear-tri", R::Tri, true, true, true, true, 1, L::ControlNet, true, linear_tri_level},
-    {Scheme::Butterfly, "butterfly", R::Tri, true, true, true, true, 1, L::ControlNet, true, butterfly_level},
-    {Scheme::Loop, "loop", R::Tri, true, true, false, false, 1, L::LoopMasks, true, loop_level},
+    {Scheme::Linear, "linear", R::Split, false, false, false, true, 1, L::ControlNet, false, linear_level, {400, 900}},
+    {Scheme::Cubic, "cubic", R::Split, false, false, false, true, 1, L::Eigen, false, cubic_level, {400, 900}},
+    {Scheme::Sqrt2, "sqrt2", R::Sqrt2, true, false, true, true, 2, L::ControlNet, false, build_sqrt2_level, {900, 0}},
+    {Scheme::LinearTri, "linear-tri", R::Tri, true, true, true, true, 1, L::ControlNet, true, linear_tri_level, {1250, 0}},
+    {Scheme::Butterfly, "butterfly", R::Tri, true, true, true, true, 1, L::ControlNet, true, butterfly_level, {1600, 0}},
+    {Scheme::Loop, "loop", R::Tri, true, true, false, false, 1, L::LoopMasks, true, loop_level, {1500, 0}},
 };
 
 }  // namespace

@@ -39,6 +39,10 @@ struct SchemeInfo {
   LimitRule limit;
   bool exact_norms;        // the builder gives each wavelet's exact L2 norm
   LevelBuilder build;
+  // Peak bytes per finest-level vertex of building a hierarchy and synthesizing its finest level
+  // (surfaces and curves, lattices; 0: not refined), measured with sublift-cli subdivide's
+  // peak RSS at 10^5..10^6 vertices, rounded up (docs/memory.md). The up-front memory check.
+  double peak_bytes[2];
 };
 
 /// Largest number of levels a project, command or hierarchy accepts per 1-to-4 split; a scheme

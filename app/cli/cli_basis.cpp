@@ -14,6 +14,7 @@
 #include "core/analysis/boundary_surface.h"
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
+#include "core/base/magnitude.h"
 #include "core/complex/level_counts.h"
 #include "core/io/mesh/mesh_export.h"
 #include "core/io/project/project_io.h"
@@ -76,6 +77,7 @@ std::uint32_t index_option(const Args& a, const std::string& key) {
 void write_ply(const std::string& path, std::span<const double> xyz, std::span<const double> values, const Csr& faces) {
   std::uint32_t widest = 0;
   for (std::size_t f = 0; f < faces.rows(); ++f) widest = std::max(widest, faces.size(f));
+  check_writable_positions(path, xyz);
   write_file_atomic(path, [&](std::ostream& o) {
     o << "ply\nformat ascii 1.0\ncomment sublift basis function\n"
       << "element vertex " << values.size() << "\nproperty double x\nproperty double y\nproperty double z\n"
@@ -94,6 +96,7 @@ void write_ply(const std::string& path, std::span<const double> xyz, std::span<c
 }
 
 void write_curve_json(const std::string& path, std::span<const double> xyz, std::span<const double> values) {
+  check_writable_positions(path, xyz);
   nlohmann::json j;
   j["positions"] = nlohmann::json::array();
   for (std::size_t v = 0; v < values.size(); ++v) j["positions"].push_back({xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]});

@@ -8,8 +8,8 @@
 #include "core/base/errors.h"
 #include "core/complex/feature_tags.h"
 #include "core/base/file_io.h"
+#include "core/base/magnitude.h"
 #include "core/io/mesh/mesh_export.h"
-#include "core/io/mesh/mesh_readers.h"
 #include "core/complex/shape_builder.h"
 #include "core/base/text_lines.h"
 
@@ -72,7 +72,7 @@ Shape read_lattice(std::string_view bytes, const std::string& file) {
         auto d = parse_double(tok[k]);
         if (!d) throw InputError(file, ln, "'" + std::string(tok[k].substr(0, 32)) + "' is not a finite number");
         if (std::abs(*d) > kMaxCoordinate)
-          throw InputError(file, ln, "coordinate " + std::string(tok[k]) + " exceeds the supported magnitude 1e30");
+          throw InputError(file, ln, "coordinate " + std::string(tok[k]) + " exceeds the supported magnitude " + max_coordinate_text());
         shape.positions.push_back(*d);
       }
       vertex_lines.push_back(ln);
@@ -130,6 +130,7 @@ void write_lattice(const std::string& path, const Complex& c, std::span<const do
   if (c.dim != 3) throw InputError(path, 0, "a .lattice holds volumes; this shape has dimension " + std::to_string(c.dim));
   if (xyz.size() != 3 * static_cast<std::size_t>(c.num_vertices))
     throw InputError(path, 0, "positions do not match the vertex count");
+  check_writable_positions(path, xyz);
   const FeatureTags tags = derive_feature_tags(c);
   write_file_atomic(path, [&](std::ostream& out) {
     out << kMagic << " 1\n# written by Sublift: " << c.num_vertices << " vertices, " << c.num_cells()

@@ -12,8 +12,8 @@
 #include "core/base/errors.h"
 #include "core/complex/feature_tags.h"
 #include "core/base/file_io.h"
+#include "core/base/magnitude.h"
 #include "core/io/mesh/mesh_export.h"
-#include "core/io/mesh/mesh_readers.h"
 #include "core/complex/shape_builder.h"
 #include "core/base/text_lines.h"
 
@@ -305,7 +305,7 @@ Grid parse(std::string_view bytes, const std::string& file) {
       read_values(s, binary, type, 3 * n, "POINTS", file, g.xyz);
       for (double v : g.xyz)
         if (std::abs(v) > kMaxCoordinate)
-          throw InputError(file, ln, "a coordinate exceeds the supported magnitude 1e30");
+          throw InputError(file, ln, "a coordinate exceeds the supported magnitude " + max_coordinate_text());
       g.have_points = true;
     } else if (key == "cells") {
       if (g.have_cells) throw InputError(file, ln, "a second CELLS section");
@@ -466,6 +466,7 @@ Shape read_vtk(std::string_view bytes, const std::string& file) {
 void write_vtk(const std::string& path, const Complex& c, std::span<const double> xyz) {
   if (xyz.size() != 3 * static_cast<std::size_t>(c.num_vertices))
     throw InputError(path, 0, "positions do not match the vertex count");
+  check_writable_positions(path, xyz);
   const FeatureTags tags = derive_feature_tags(c);
   // Records (count first) and types, built before writing so that the sizes are known.
   std::vector<std::int64_t> rec;

@@ -86,7 +86,7 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
           ok = false;
         } else if (std::abs(*d) > kMaxCoordinate) {
           throw InputError(file, ln, "coordinate " + std::string(tok[k + 1]) +
-                                         " exceeds the supported magnitude 1e30");
+                                         " exceeds the supported magnitude " + max_coordinate_text());
         } else {
           p[k] = *d;
         }

@@ -35,7 +35,7 @@ void check_counts(const std::string& file, std::size_t line, const OffCounts& c,
 void check_coordinate(const std::string& file, std::size_t line, double v) {
   if (!std::isfinite(v)) throw InputError(file, line, "non-finite coordinate");
   if (std::abs(v) > kMaxCoordinate)
-    throw InputError(file, line, "coordinate exceeds the supported magnitude 1e30");
+    throw InputError(file, line, "coordinate exceeds the supported magnitude " + max_coordinate_text());
 }
 
 LoadedMesh read_off_binary(std::string_view bytes, std::size_t offset, const std::string& file,

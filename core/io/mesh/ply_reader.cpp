@@ -228,7 +228,7 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
             if (!std::isfinite(v))
               throw InputError(file, in.line(), "non-finite coordinate" + (in.ascii() ? std::string() : " at byte offset " + std::to_string(in.offset())));
             if (std::abs(v) > kMaxCoordinate)
-              throw InputError(file, in.line(), "coordinate exceeds the supported magnitude 1e30");
+              throw InputError(file, in.line(), "coordinate exceeds the supported magnitude " + max_coordinate_text());
             pos[p.name[0] - 'x'] = v;
           }
           continue;

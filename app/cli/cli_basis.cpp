@@ -78,6 +78,7 @@ void write_ply(const std::string& path, std::span<const double> xyz, std::span<c
   std::uint32_t widest = 0;
   for (std::size_t f = 0; f < faces.rows(); ++f) widest = std::max(widest, faces.size(f));
   check_writable_positions(path, xyz);
+  if (faces.rows() == 0) throw InputError(path, 0, "the surface has no faces (a lattice without boundary faces?); nothing written");
   write_file_atomic(path, [&](std::ostream& o) {
     o << "ply\nformat ascii 1.0\ncomment sublift basis function\n"
       << "element vertex " << values.size() << "\nproperty double x\nproperty double y\nproperty double z\n"

@@ -348,3 +348,20 @@ TEST(CliHierarchy, CoefficientsOutOfRangeAreRefusedNotSynthesised) {
   EXPECT_FALSE(fs::exists(out));
   ok(cli({"synthesize", project, "--level", "0", "-o", out}));  // level 0 is the coefficients themselves
 }
+
+// Issue 18: a lattice listing the same hexahedron twice loaded without a word (and its boundary
+// exported as vertices without faces); now every command refuses it, exit 1, nothing written.
+TEST(CliHierarchy, LatticeWithACellListedTwiceIsRefused) {
+  TempDir dir("sublift_cli_twice");
+  const std::string in = dir.file("twice.lattice"), out = dir.file("out.lattice");
+  std::ofstream(in) << "sublift-lattice 1\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                       "hex 0 1 2 3 4 5 6 7\nhex 0 1 2 3 4 5 6 7\n";
+  const std::string why = in + ":11: cell 1 (hexahedron) has the same vertices as cell 0 (hexahedron) on line 10: a cell listed twice\n";
+  ProcessResult r = cli({"subdivide", in, "--scheme", "cubic", "--levels", "1", "-o", out});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "sublift-cli subdivide: error: " + why);
+  EXPECT_FALSE(fs::exists(out));
+  r = cli({"info", in});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "sublift-cli info: error: " + why);
+}

@@ -36,6 +36,8 @@ Surface checked_surface(const std::string& path, const Csr& faces, std::span<con
   if (xyz.size() / 3 > 0xffffffffu) throw InputError(path, 0, "more than 2^32 vertices");
   if (faces.offsets.empty() || faces.offsets.front() != 0 || faces.offsets.back() != faces.items.size())
     throw InputError(path, 0, "face offsets do not run from 0 to the corner count");
+  // A lattice whose every face is shared has no boundary: an OBJ of bare vertices says nothing.
+  if (faces.rows() == 0) throw InputError(path, 0, "the surface has no faces (a lattice without boundary faces?); nothing written");
   const std::size_t nv = xyz.size() / 3;
   for (std::size_t f = 0; f < faces.rows(); ++f) {
     if (faces.offsets[f + 1] < faces.offsets[f] + 3)

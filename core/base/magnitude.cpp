@@ -1,23 +1,14 @@
 #include "core/base/magnitude.h"
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "core/base/errors.h"
+#include "core/base/text_lines.h"
 
 namespace sublift {
 
 namespace {
-// The shortest form that reads back as v: "1.7e+308", not "1.6999999999999999e+308".
-std::string exact(double v) {
-  char buf[40];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    if (!std::isfinite(v) || std::strtod(buf, nullptr) == v) break;
-  }
-  return buf;
-}
+std::string exact(double v) { return format_shortest(v); }
 std::string why(double v) { return std::isfinite(v) ? "exceeds the supported magnitude " + max_coordinate_text() : "is not finite"; }
 }  // namespace
 

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base/errors.h"
+#include "core/base/text_lines.h"
 #include "core/base/file_io.h"
 #include "core/base/magnitude.h"
 #include "core/complex/complex_build.h"
@@ -188,7 +189,7 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   if (!first.empty() && first.back() == '\r') first.remove_suffix(1);
   if (first != "sublift-project 1") {
     const std::string_view ver = first.substr(std::min(first.size(), kMagic.size() + 1));
-    throw InputError(file, 1, "unsupported project version '" + std::string(ver) + "' (this Sublift reads version 1)");
+    throw InputError(file, 1, "unsupported project version '" + printable(ver) + "' (this Sublift reads version 1)");
   }
   // Line 2: JSON header.
   const std::size_t nl2 = bytes.find('\n', nl1 + 1);
@@ -210,7 +211,7 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
     try {
       scheme = parse_scheme(j.at("scheme").get<std::string>());
     } catch (const std::invalid_argument&) {
-      throw InputError(file, 2, "unknown scheme '" + j.at("scheme").get<std::string>() + "'");
+      throw InputError(file, 2, "unknown scheme '" + printable(j.at("scheme").get<std::string>()) + "'");
     }
     integer = j.at("integer").get<bool>();
     if (j.contains("disc")) disc = header_small_integer(file, j, "disc");

@@ -9,6 +9,7 @@
 
 #include "app/cli/cli_args.h"
 #include "app/cli/cli_commands.h"
+#include "app/cli/cli_json.h"
 #include "app/cli/cli_hierarchy.h"
 #include "core/multires/basis.h"
 #include "core/analysis/boundary_surface.h"
@@ -135,6 +136,7 @@ int run_basis(int argc, char** argv) {
   Complex base;
   std::vector<double> base_xyz;
   Scheme scheme = Scheme::Cubic;
+  ImportReport report;
   if (is_project_path(in)) {
     Hierarchy p = read_project(in);
     scheme = a.value("--scheme") ? scheme_option(a) : p.scheme;
@@ -143,10 +145,12 @@ int run_basis(int argc, char** argv) {
   } else {
     scheme = scheme_option(a);
     Shape s = read_shape(in);
-    std::cerr << s.report.format(in);
+    report = std::move(s.report);
     base = std::move(s.base);
     base_xyz = std::move(s.positions);
   }
+  add_topology_warnings(report, base);
+  std::cerr << report.format(in);
   const int dim = base.dim;
   const std::string ext = file_extension(out);
   if (dim == 1 && ext != "json") throw UsageError("a curve's basis function is written as .json, got '" + out + "'");
@@ -208,6 +212,7 @@ int run_basis(int argc, char** argv) {
                               {"moments", {b.moment[0], b.moment[1], b.moment[2]}},
                               {"min", b.min},
                               {"max", b.max},
+                              {"warnings", report_json(report)},
                               {"output", out}};
     std::cout << j.dump(2) << "\n";
   }

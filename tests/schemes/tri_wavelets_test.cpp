@@ -85,7 +85,8 @@ TEST(TriGram, ThinTorusEqualsWrappedLatticeSolution) {
     const ip::LatticeInnerProducts& lat = ip::cached_inner_products({s, 6});
     std::vector<std::pair<int, int>> sizes = {{3, 3}, {4, 5}, {16, 5}};
     for (int w = 3; w <= 14; ++w) sizes.emplace_back(w, 16);
-    for (const auto& [w, h] : sizes) {
+    for (const auto& wh : sizes) {
+      const int w = wh.first, h = wh.second;  // not a structured binding: clang 14 cannot capture one
       SCOPED_TRACE(std::to_string(static_cast<int>(s)) + " torus " + std::to_string(w) + " x " + std::to_string(h));
       const Complex torus = regular_torus(w, h);
       FaceGramCache cache(s);

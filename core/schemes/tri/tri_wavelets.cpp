@@ -90,10 +90,13 @@ EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
     for (std::size_t p = 0; p < fg.verts.size(); ++p) with_m[fg.verts[p]] += 0.25 * (*fg.G)(static_cast<int>(p), im);
   }
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nd);
-  for (const auto& [cv, value] : with_m)
-    for_each_stencil_weight(st, nv, cv, [&](std::uint32_t i, double w) {
+  // Not a structured binding: clang 14 (the fuzz build's compiler) cannot capture one in a lambda.
+  for (const auto& entry : with_m) {
+    const double value = entry.second;
+    for_each_stencil_weight(st, nv, entry.first, [&](std::uint32_t i, double w) {
       if (const std::uint32_t l = in_disc(i); l != UINT32_MAX) rhs(l) += w * value;
     });
+  }
 
   EdgeWavelet out;
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(G);

@@ -1,0 +1,9 @@
+// libFuzzer target: the FFD edits parser (`level index dx dy dz` lines, sublift-cli ffd --edits).
+#include "core/ffd/ffd_edits.h"
+#include "fuzz/fuzz_input.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string bytes = sublift::fuzz::bytes_of(data, size);
+  sublift::fuzz::expect_clean([&] { sublift::parse_ffd_edits(bytes, "fuzz.edits"); });
+  return 0;
+}

@@ -1,5 +1,7 @@
 #pragma once
 // Small helpers for tests that build files in code.
+#include <cstdlib>
+#include <functional>
 #include <string>
 
 #include "core/base/errors.h"
@@ -29,5 +31,27 @@ inline std::string load_error(const std::string& name, const std::string& bytes,
   }
   return "";
 }
+
+/// The message of the sublift::Error that `work` throws, or "" if it throws none.
+inline std::string error_text(const std::function<void()>& work) {
+  try {
+    work();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+/// An environment variable set for one scope (child processes started inside inherit it).
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) { setenv(name, value, 1); }
+  ~ScopedEnv() { unsetenv(name_); }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  const char* name_;
+};
 
 }  // namespace sublift::testing

@@ -8,6 +8,8 @@
 #include <complex>
 #include <numbers>
 #include <numeric>
+#include <span>
+#include <unordered_map>
 
 #include "core/engine/executor.h"
 #include "core/multires/hierarchy.h"
@@ -59,6 +61,28 @@ double impulse_columns(const Transition& t, const Complex& parent, std::uint32_t
   return outside;
 }
 
+// For each star primitive p of level 0, the level-1 primitive at the centre (one of `upward`)
+// whose corners hold p's child vertex first + p; appends id_base + its index to `out`. One pass
+// over the centre's rows (a valence-1000 star has 1000 of each). `unique`: exactly one must.
+template <class Corners>
+bool append_children(std::span<const std::uint32_t> upward, const Corners& corners, std::uint32_t first,
+                     const std::vector<std::uint32_t>& parents, std::uint32_t id_base, bool unique,
+                     std::vector<std::uint32_t>& out) {
+  std::unordered_map<std::uint32_t, std::pair<std::uint32_t, std::uint32_t>> holder;  // vertex -> (primitive, count)
+  for (const std::uint32_t u : upward)
+    for (const std::uint32_t x : corners(u)) {
+      auto& h = holder[x];
+      h.first = u;
+      ++h.second;
+    }
+  for (const std::uint32_t p : parents) {
+    const auto it = holder.find(first + p);
+    if (it == holder.end() || (unique && it->second.second != 1)) return false;
+    out.push_back(id_base + it->second.first);
+  }
+  return true;
+}
+
 Operators local_operators(const Complex& patch) {
   Operators o;
   const std::uint32_t np = patch.num_vertices;
@@ -85,31 +109,15 @@ Operators local_operators(const Complex& patch) {
   // The level-1 primitives at the centre that are children of those, and their level-2 children.
   const std::uint32_t nv1 = P1.num_vertices, ne1 = P1.num_edges(), nf1 = P1.num_faces();
   std::vector<std::uint32_t> I2{0};
-  for (std::uint32_t e : se) {
-    std::uint32_t hit = ~0u;
-    for (std::uint32_t e1 : P1.vertex_edges.row(0))
-      if (P1.edge_verts[2 * e1] == E0 + e || P1.edge_verts[2 * e1 + 1] == E0 + e) hit = e1;
-    if (hit == ~0u) return o;
-    I2.push_back(nv1 + hit);
-  }
-  for (std::uint32_t f : sf) {
-    std::uint32_t hit = ~0u, count = 0;
-    for (std::uint32_t f1 : P1.vertex_faces.row(0)) {
-      const auto r = P1.faces.row(f1);
-      if (std::find(r.begin(), r.end(), F0 + f) != r.end()) hit = f1, ++count;
-    }
-    if (count != 1) return o;
-    I2.push_back(nv1 + ne1 + hit);
-  }
-  for (std::uint32_t k : sc) {
-    std::uint32_t hit = ~0u, count = 0;
-    for (std::uint32_t k1 : P1.vertex_cells.row(0)) {
-      const auto r = P1.cell_verts.row(k1);
-      if (std::find(r.begin(), r.end(), K0 + k) != r.end()) hit = k1, ++count;
-    }
-    if (count != 1) return o;
-    I2.push_back(nv1 + ne1 + nf1 + hit);
-  }
+  const auto edge_ends = [&](std::uint32_t e1) {
+    return std::array<std::uint32_t, 2>{P1.edge_verts[2 * e1], P1.edge_verts[2 * e1 + 1]};
+  };
+  const auto face_corners = [&](std::uint32_t f1) { return P1.faces.row(f1); };
+  const auto cell_corners = [&](std::uint32_t k1) { return P1.cell_verts.row(k1); };
+  if (!append_children(P1.vertex_edges.row(0), edge_ends, E0, se, nv1, false, I2) ||
+      !append_children(P1.vertex_faces.row(0), face_corners, F0, sf, nv1 + ne1, true, I2) ||
+      (!sc.empty() && !append_children(P1.vertex_cells.row(0), cell_corners, K0, sc, nv1 + ne1 + nf1, true, I2)))
+    return o;
   const auto k = static_cast<std::int32_t>(I1.size());
   std::vector<std::int32_t> row1(nv1, -1), row2(h.num_vertices(2), -1), col_p(np), col_s(nv1, -1);
   for (std::int32_t i = 0; i < k; ++i) row1[I1[std::size_t(i)]] = row2[I2[std::size_t(i)]] = col_s[I1[std::size_t(i)]] = i;

@@ -2,8 +2,6 @@
 // format, and hierarchies, sessions and fits refused before they are built.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-#include <functional>
 #include <string>
 
 #include "core/base/errors.h"
@@ -12,14 +10,14 @@
 #include "core/edit/session.h"
 #include "core/multires/hierarchy.h"
 #include "tests/mesh_fixtures.h"
+#include "tests/test_util.h"
 
 namespace sublift {
 namespace {
 
-// Sets SUBLIFT_MEMORY_BUDGET for one scope.
-struct BudgetScope {
-  explicit BudgetScope(const char* value) { setenv("SUBLIFT_MEMORY_BUDGET", value, 1); }
-  ~BudgetScope() { unsetenv("SUBLIFT_MEMORY_BUDGET"); }
+// SUBLIFT_MEMORY_BUDGET for one scope.
+struct BudgetScope : testing::ScopedEnv {
+  explicit BudgetScope(const char* value) : ScopedEnv("SUBLIFT_MEMORY_BUDGET", value) {}
 };
 
 // Two unit quads side by side: level L of a 1-to-4 scheme has (2^(L+1) + 1)(2^L + 1) vertices.
@@ -31,14 +29,7 @@ Complex two_quads() {
   return complex_from_polygons(6, f);
 }
 
-std::string refusal(const std::function<void()>& work) {
-  try {
-    work();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::error_text;
 
 TEST(MemoryBudget, ReadsSizesWithUnits) {
   {
@@ -69,7 +60,7 @@ TEST(MemoryBudget, ReadsSizesWithUnits) {
 TEST(MemoryBudget, RefusesMalformedSizesByName) {
   for (const char* bad : {"lots", "-5G", "6X", "0", "G"}) {
     BudgetScope b(bad);
-    const std::string e = refusal([] { memory_budget(); });
+    const std::string e = error_text([] { memory_budget(); });
     EXPECT_EQ(e, std::string("SUBLIFT_MEMORY_BUDGET must be a positive size such as 6G, 512M or 1000000 (bytes); got '") + bad + "'");
   }
 }
@@ -85,7 +76,7 @@ TEST(MemoryBudget, SmallWorkIsNeverChecked) {
   BudgetScope b("1000");  // smaller than anything
   EXPECT_NO_THROW(check_memory(kUncheckedBytes, "small work"));
   EXPECT_NO_THROW(make_hierarchy(two_quads(), 4, Scheme::Cubic, 3));
-  EXPECT_EQ(refusal([] { check_memory(kUncheckedBytes + 1, "this"); }),
+  EXPECT_EQ(error_text([] { check_memory(kUncheckedBytes + 1, "this"); }),
             "this needs about 64 MB, more than the memory budget of 1000 bytes (SUBLIFT_MEMORY_BUDGET=1000)");
 }
 
@@ -93,7 +84,7 @@ TEST(MemoryBudget, TwelveLevelsOfTwoQuadsAreRefusedUpFront) {
   // 33,566,721 vertices at level 12 (issue 18: it climbed to 8 GB and died after 20 s).
   EXPECT_EQ(predicted_level_counts(two_quads(), 12, Scheme::Cubic).back(), 8193.0 * 4097.0);
   BudgetScope b("4G");
-  const std::string e = refusal([] { make_hierarchy(two_quads(), 12, Scheme::Cubic, 3); });
+  const std::string e = error_text([] { make_hierarchy(two_quads(), 12, Scheme::Cubic, 3); });
   EXPECT_EQ(e, "subdividing to level 12 (33566721 vertices) needs about 13 GB, more than the memory budget of 4.0 GB "
                "(SUBLIFT_MEMORY_BUDGET=4G)");
 }
@@ -102,7 +93,7 @@ TEST(MemoryBudget, ASessionRefusesTheLevelThatWouldNotFitAndStaysAsItWas) {
   Hierarchy h = make_hierarchy(two_quads(), 8, Scheme::Cubic, 3);
   Session s(std::move(h));
   BudgetScope b("100M");  // level 9: 525,825 vertices, about 200 MB
-  const std::string e = refusal([&] { s.subdivide(); });
+  const std::string e = error_text([&] { s.subdivide(); });
   EXPECT_EQ(e, "subdividing to level 9 (525825 vertices) needs about 201 MB, more than the memory budget of 100 MB "
                "(SUBLIFT_MEMORY_BUDGET=100M)");
   EXPECT_EQ(s.finest_level(), 8);

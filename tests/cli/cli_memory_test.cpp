@@ -12,6 +12,7 @@
 #include "tests/cli_run.h"
 #include "tests/io_test_util.h"
 #include "tests/mesh_fixtures.h"
+#include "tests/test_util.h"
 
 #if defined(__SANITIZE_ADDRESS__)  // gcc
 #define SUBLIFT_ASAN 1
@@ -43,9 +44,8 @@ std::string write(const testing::TempDir& dir, const std::string& name, const st
 TEST(CliMemory, SubdivideRefusesTwelveLevelsUpFrontWithThePredictedSize) {
   const testing::TempDir dir("sublift_cli_memory_refuse");
   const std::string in = write(dir, "two_quads.obj", kTwoQuads);
-  setenv("SUBLIFT_MEMORY_BUDGET", "4G", 1);
+  const testing::ScopedEnv budget("SUBLIFT_MEMORY_BUDGET", "4G");
   const auto r = run_cli({"subdivide", in, "--scheme", "cubic", "--levels", "12", "-o", dir.file("out.obj")});
-  unsetenv("SUBLIFT_MEMORY_BUDGET");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("subdividing to level 12 (33566721 vertices) needs about 13 GB, more than the memory budget of 4.0 GB "
                        "(SUBLIFT_MEMORY_BUDGET=4G)"),
@@ -58,9 +58,8 @@ TEST(CliMemory, SubdivideRefusesTwelveLevelsUpFrontWithThePredictedSize) {
 TEST(CliMemory, AMalformedBudgetIsNamed) {
   const testing::TempDir dir("sublift_cli_memory_bad");
   const std::string in = write(dir, "two_quads.obj", kTwoQuads);
-  setenv("SUBLIFT_MEMORY_BUDGET", "plenty", 1);
+  const testing::ScopedEnv budget("SUBLIFT_MEMORY_BUDGET", "plenty");
   const auto r = run_cli({"subdivide", in, "--scheme", "cubic", "--levels", "11", "-o", dir.file("out.obj")});
-  unsetenv("SUBLIFT_MEMORY_BUDGET");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("SUBLIFT_MEMORY_BUDGET must be a positive size such as 6G, 512M or 1000000 (bytes); got 'plenty'"),
             std::string::npos)

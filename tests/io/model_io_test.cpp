@@ -18,6 +18,7 @@
 #include "core/base/file_io.h"
 #include "core/io/model/model.h"
 #include "tests/io_test_util.h"
+#include "tests/test_util.h"
 
 namespace {
 
@@ -44,15 +45,7 @@ void spit(const fs::path& p, const std::string& bytes) {
   out << bytes;
 }
 
-// The message of the sublift::Error that `f` throws ("" when it throws none).
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using sublift::testing::error_text;  // the message of the sublift::Error a call throws ("" when none)
 
 double bbox_diagonal(const std::vector<double>& p) {
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
@@ -359,13 +352,13 @@ TEST(GltfModel, SkinnedModelsUseTheBindPoseAsStoredAndSayWhy) {
 TEST(GltfModel, InvalidModelsFailWithMessagesNamingFileAndElement) {
   const fs::path dir = kGltf / "invalid";
   REQUIRE_DIR(dir);
-  const std::string one = error_of([&] { import_model((dir / "IndexOutOfRange.gltf").string()); });
+  const std::string one = error_text([&] { import_model((dir / "IndexOutOfRange.gltf").string()); });
   EXPECT_NE(one.find("IndexOutOfRange.gltf"), std::string::npos) << one;
   EXPECT_NE(one.find("accessor 0 (indices of mesh 0 primitive 0): index 255 >= 24 vertices"), std::string::npos) << one;
-  const std::string all = error_of([&] { import_model((dir / "AllIndicesOutOfRange.gltf").string()); });
+  const std::string all = error_text([&] { import_model((dir / "AllIndicesOutOfRange.gltf").string()); });
   EXPECT_NE(all.find("AllIndicesOutOfRange.gltf"), std::string::npos) << all;
   EXPECT_NE(all.find(">= 24 vertices"), std::string::npos) << all;
-  const std::string inf = error_of([&] { import_model((dir / "BoxWithInfinites.glb").string()); });
+  const std::string inf = error_text([&] { import_model((dir / "BoxWithInfinites.glb").string()); });
   EXPECT_NE(inf.find("BoxWithInfinites.glb"), std::string::npos) << inf;
   EXPECT_NE(inf.find("accessor 2 (POSITION of mesh 0 primitive 0): element 0 component 0 is not finite"), std::string::npos) << inf;
 }
@@ -395,7 +388,7 @@ TEST(GltfModel, BadInputCorpus) {
         EXPECT_FALSE(m.notes.empty());
       }
     } else {
-      const std::string msg = error_of([&] { import_model(e.path().string()); });
+      const std::string msg = error_text([&] { import_model(e.path().string()); });
       EXPECT_NE(msg.find(name), std::string::npos) << "must name the file: '" << msg << "'";
     }
   }
@@ -404,7 +397,7 @@ TEST(GltfModel, BadInputCorpus) {
   EXPECT_NE(traversal.notes.front().find("outside the model's folder"), std::string::npos) << traversal.notes.front();
   EXPECT_FALSE(fs::exists("/tmp/sublift-probe/PWNED_backtick"));
   EXPECT_FALSE(fs::exists("/tmp/sublift-probe/PWNED_dollar"));
-  const std::string parent = error_of([&] { import_model((dir / "gltf_buffer_uri_parent_dir.gltf").string()); });
+  const std::string parent = error_text([&] { import_model((dir / "gltf_buffer_uri_parent_dir.gltf").string()); });
   EXPECT_NE(parent.find("outside the model's folder"), std::string::npos) << parent;
 }
 
@@ -585,7 +578,7 @@ TEST(GltfModel, RefusesWhatItCannotWriteBack) {
     MiniGltf g = roof(false);
     c.make(g);
     const std::string path = g.write(dir.path(), "bad");
-    const std::string msg = error_of([&] { import_model(path); });
+    const std::string msg = error_text([&] { import_model(path); });
     EXPECT_NE(msg.find("bad.gltf"), std::string::npos) << msg;
     EXPECT_NE(msg.find(c.expect), std::string::npos) << msg;
   }
@@ -607,7 +600,7 @@ TEST(GltfModel, ExternalFilesAreReadOnlyFromTheModelsFolder) {
     MiniGltf g = base;
     g.buffer_uri = uri;
     spit(inner / "m.gltf", g.json(bin.size()));
-    const std::string msg = error_of([&] { import_model((inner / "m.gltf").string()); });
+    const std::string msg = error_text([&] { import_model((inner / "m.gltf").string()); });
     EXPECT_NE(msg.find("m.gltf"), std::string::npos) << msg;
     EXPECT_NE(msg.find("outside the model's folder"), std::string::npos) << msg;
   }
@@ -643,16 +636,16 @@ TEST(GltfModel, ExternalImagesAreCopiedBesideAnOutputInAnotherFolder) {
 TEST(Model, ExportKeepsTheSourceFormatFamily) {
   TempDir dir("sublift_model_family");
   const Model obj = import_model((kAssets / "cube.obj").string());
-  const std::string msg = error_of([&] { export_model(obj, obj.positions, dir.file("cube.ply")); });
+  const std::string msg = error_text([&] { export_model(obj, obj.positions, dir.file("cube.ply")); });
   EXPECT_NE(msg.find("cube.ply"), std::string::npos) << msg;
   EXPECT_NE(msg.find(".obj"), std::string::npos) << msg;
-  EXPECT_NE(error_of([&] { export_model(obj, obj.positions, dir.file("cube.glb")); }), "");
-  EXPECT_NE(error_of([&] { export_model(obj, obj.positions, dir.file("cube.stl")); }), "");
-  EXPECT_NE(error_of([&] { export_model(obj, std::vector<double>(3), dir.file("cube.obj")); }), "");
+  EXPECT_NE(error_text([&] { export_model(obj, obj.positions, dir.file("cube.glb")); }), "");
+  EXPECT_NE(error_text([&] { export_model(obj, obj.positions, dir.file("cube.stl")); }), "");
+  EXPECT_NE(error_text([&] { export_model(obj, std::vector<double>(3), dir.file("cube.obj")); }), "");
   EXPECT_THROW(export_model(obj, obj.positions, dir.file("missing/cube.obj")), IoError);
   EXPECT_FALSE(fs::exists(dir.file("cube.ply")));
-  EXPECT_NE(error_of([&] { import_model(dir.file("nothing.glb")); }), "");
-  EXPECT_NE(error_of([&] { import_model(dir.file("x.fbx")); }), "");
+  EXPECT_NE(error_text([&] { import_model(dir.file("nothing.glb")); }), "");
+  EXPECT_NE(error_text([&] { import_model(dir.file("x.fbx")); }), "");
 }
 
 TEST(Model, ExtensionsAreCaseInsensitive) {

@@ -21,6 +21,7 @@
 #include "core/multires/limit.h"
 #include "core/io/mesh/mesh_import.h"
 #include "core/complex/shapes.h"
+#include "tests/limit_convergence.h"
 #include "tests/mesh_fixtures.h"
 
 namespace sublift {
@@ -247,22 +248,9 @@ TEST(Limit, HexLatticeInteriorIsTricubic) {
 
 // Refines `m` (finest level `base_levels`) `more` further levels with zero detail and checks that
 // the control points of `vertex` approach the predicted limit geometrically.
+// Convergence of the extraordinary stencils: tests/limit_convergence.h, 20 % a level at least.
 void expect_converges(const Polygons& m, int base_levels, std::uint32_t vertex, int more, double final_tol) {
-  const Hierarchy h = surface(m, base_levels);
-  const LimitStencils s = build_limit_stencils(h);
-  const std::vector<double> x = synthesize(h, base_levels);
-  std::vector<double> lim(x.size());
-  eval_limit(s, x.data(), lim.data());
-  const Hierarchy deep = surface(m, base_levels + more);
-  std::vector<double> errors;
-  for (int j = base_levels; j <= base_levels + more; ++j) {
-    const std::vector<double> xj = synthesize(deep, j);
-    errors.push_back(dist(&xj[3 * vertex], &lim[3 * vertex]));
-  }
-  EXPECT_GT(errors.front(), 1e-4) << "the control point should not already be its limit";
-  for (std::size_t k = 1; k < errors.size(); ++k) EXPECT_LT(errors[k], 0.8 * errors[k - 1]) << "level " << k;
-  EXPECT_LT(errors.back(), final_tol);
-  EXPECT_LT(errors.back(), errors.front() * 1e-2);
+  testing::expect_converges(m, base_levels, vertex, more, {.min_first = 1e-4, .rate = 0.8, .final_tol = final_tol, .last_ratio = 1e-2});
 }
 
 TEST(Limit, ConvergesAtValenceThreeCubeCorner) {

@@ -10,6 +10,7 @@
 #include "core/complex/complex_build.h"
 #include "core/multires/hierarchy.h"
 #include "core/multires/limit.h"
+#include "tests/limit_convergence.h"
 #include "tests/mesh_fixtures.h"
 
 namespace sublift {
@@ -102,25 +103,10 @@ TEST(LimitValence, LargeDartGetsItsPositionAndFaceNormals) {
   EXPECT_LT(worst, 1e-13);
 }
 
-// The control point of `vertex` after each further zero-detail level approaches the stencil's
-// limit: the error falls by at least `rate` a level and ends below `last` times the first.
-void expect_converges(const Polygons& m, int base_levels, std::uint32_t vertex, int more, double rate, double last) {
-  const Hierarchy h = surface(m, base_levels);
-  const LimitStencils s = build_limit_stencils(h);
-  EXPECT_EQ(s.unsolved, 0u);
-  const std::vector<double> x = synthesize(h, base_levels);
-  std::vector<double> lim(x.size());
-  eval_limit(s, x.data(), lim.data());
-  const Hierarchy deep = surface(m, base_levels + more);
-  std::vector<double> errors;
-  for (int j = base_levels; j <= base_levels + more; ++j) {
-    const std::vector<double> xj = synthesize(deep, j);
-    errors.push_back(std::hypot(xj[3 * vertex] - lim[3 * vertex], xj[3 * vertex + 1] - lim[3 * vertex + 1],
-                                xj[3 * vertex + 2] - lim[3 * vertex + 2]));
-  }
-  EXPECT_GT(errors.front(), 1e-3) << "the control point should not already be its limit";
-  for (std::size_t k = 1; k < errors.size(); ++k) EXPECT_LT(errors[k], rate * errors[k - 1]) << "level " << k;
-  EXPECT_LT(errors.back(), last * errors.front());
+// |lambda_2| is about 0.6545 at high valence: at least 20 % a level, and a quarter (or a third)
+// of the first error after four (three) levels (tests/limit_convergence.h).
+void expect_converges(const Polygons& m, int base_levels, std::uint32_t vertex, int more, double last) {
+  testing::expect_converges(m, base_levels, vertex, more, {.min_first = 1e-3, .rate = 0.8, .last_ratio = last});
 }
 
 TEST(LimitValence, ThousandGonFacePointConvergesToItsStencil) {
@@ -139,14 +125,14 @@ TEST(LimitValence, ThousandGonFacePointConvergesToItsStencil) {
   EXPECT_GT(p.spectrum[1], 0.65);
   EXPECT_LT(p.spectrum[1], 0.66);
   // 0.6545 per level asymptotically: three levels take the error below a third.
-  expect_converges(m, 1, centre, 3, 0.8, 0.35);
-  expect_converges(m, 1, centre + 1, 3, 0.8, 0.35);  // the other cap
+  expect_converges(m, 1, centre, 3, 0.35);
+  expect_converges(m, 1, centre + 1, 3, 0.35);  // the other cap
 }
 
 TEST(LimitValence, ValenceThousandVertexConvergesToItsStencil) {
   const Polygons m = fixtures::triangle_cone(1000);
-  expect_converges(m, 1, 0, 4, 0.8, 0.25);  // a valence-1000 vertex among quads
-  expect_converges(m, 0, 0, 4, 0.8, 0.25);  // the base itself: its triangles in the star
+  expect_converges(m, 1, 0, 4, 0.25);  // a valence-1000 vertex among quads
+  expect_converges(m, 0, 0, 4, 0.25);  // the base itself: its triangles in the star
 }
 
 }  // namespace

@@ -48,6 +48,7 @@ int run_analyze(int argc, char** argv) {
   const std::string& fine_path = a.positional[0];
 
   Shape base = read_shape(*base_path);
+  add_topology_warnings(base.report, base.base);
   std::cerr << base.report.format(*base_path);
   check_refined_size(base.base, levels, scheme);
   Shape fine = read_shape(fine_path);
@@ -65,7 +66,7 @@ int run_analyze(int argc, char** argv) {
                         {"scheme", scheme_name(scheme)}, {"integer", a.has("--integer")}, {"levels", levels},
                         {"disc", h.disc},
                         {"vertices", h.num_vertices(levels)}, {"per_level", stats},
-                        {"warnings", report_json(fine.report)}};
+                        {"warnings", report_json(fine.report)}, {"base_warnings", report_json(base.report)}};
     std::cout << j.dump(2) << "\n";
   }
   return 0;

@@ -9,11 +9,13 @@
 
 #include "app/cli/cli_args.h"
 #include "app/cli/cli_commands.h"
+#include "app/cli/cli_json.h"
 #include "app/cli/cli_hierarchy.h"
 #include "core/multires/basis.h"
 #include "core/analysis/boundary_surface.h"
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
+#include "core/base/magnitude.h"
 #include "core/complex/level_counts.h"
 #include "core/io/mesh/mesh_export.h"
 #include "core/io/project/project_io.h"
@@ -76,6 +78,8 @@ std::uint32_t index_option(const Args& a, const std::string& key) {
 void write_ply(const std::string& path, std::span<const double> xyz, std::span<const double> values, const Csr& faces) {
   std::uint32_t widest = 0;
   for (std::size_t f = 0; f < faces.rows(); ++f) widest = std::max(widest, faces.size(f));
+  check_writable_positions(path, xyz);
+  if (faces.rows() == 0) throw InputError(path, 0, "the surface has no faces (a lattice without boundary faces?); nothing written");
   write_file_atomic(path, [&](std::ostream& o) {
     o << "ply\nformat ascii 1.0\ncomment sublift basis function\n"
       << "element vertex " << values.size() << "\nproperty double x\nproperty double y\nproperty double z\n"
@@ -94,6 +98,7 @@ void write_ply(const std::string& path, std::span<const double> xyz, std::span<c
 }
 
 void write_curve_json(const std::string& path, std::span<const double> xyz, std::span<const double> values) {
+  check_writable_positions(path, xyz);
   nlohmann::json j;
   j["positions"] = nlohmann::json::array();
   for (std::size_t v = 0; v < values.size(); ++v) j["positions"].push_back({xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]});
@@ -131,6 +136,7 @@ int run_basis(int argc, char** argv) {
   Complex base;
   std::vector<double> base_xyz;
   Scheme scheme = Scheme::Cubic;
+  ImportReport report;
   if (is_project_path(in)) {
     Hierarchy p = read_project(in);
     scheme = a.value("--scheme") ? scheme_option(a) : p.scheme;
@@ -139,10 +145,12 @@ int run_basis(int argc, char** argv) {
   } else {
     scheme = scheme_option(a);
     Shape s = read_shape(in);
-    std::cerr << s.report.format(in);
+    report = std::move(s.report);
     base = std::move(s.base);
     base_xyz = std::move(s.positions);
   }
+  add_topology_warnings(report, base);
+  std::cerr << report.format(in);
   const int dim = base.dim;
   const std::string ext = file_extension(out);
   if (dim == 1 && ext != "json") throw UsageError("a curve's basis function is written as .json, got '" + out + "'");
@@ -204,6 +212,7 @@ int run_basis(int argc, char** argv) {
                               {"moments", {b.moment[0], b.moment[1], b.moment[2]}},
                               {"min", b.min},
                               {"max", b.max},
+                              {"warnings", report_json(report)},
                               {"output", out}};
     std::cout << j.dump(2) << "\n";
   }

@@ -6,6 +6,7 @@
 
 #include "app/cli/cli_args.h"
 #include "app/cli/cli_commands.h"
+#include "app/cli/cli_json.h"
 #include "app/cli/cli_hierarchy.h"
 #include "core/analysis/compress.h"
 #include "core/base/errors.h"
@@ -86,6 +87,9 @@ int run_compress(int argc, char** argv) {
   const std::string& in = a.positional[0];
   ProjectExtras extras;
   const Hierarchy h = read_project(in, &extras);
+  ImportReport topology;  // of the base whose wavelets are compressed
+  add_topology_warnings(topology, h.levels.front());
+  std::cerr << topology.format(in);
   const bool project_out = is_project_path(*a.value("-o"));
   const std::string out = output_option(a, project_out ? 0 : h.levels.front().dim);
   options.gains = extras.gains;
@@ -122,6 +126,7 @@ int run_compress(int argc, char** argv) {
                         {"region", a.value("--region").value_or("")},
                         {"ranking_ms", ms(t0, t1)},
                         {"compress_ms", ms(t1, t2)},
+                        {"warnings", report_json(topology)},
                         {"notes", notes}};
     std::cout << j.dump(2) << "\n";
   } else {

@@ -6,6 +6,7 @@
 
 #include "app/cli/cli_args.h"
 #include "app/cli/cli_commands.h"
+#include "app/cli/cli_json.h"
 #include "app/cli/cli_hierarchy.h"
 #include "core/io/project/project_io.h"
 #include "core/edit/session.h"
@@ -74,6 +75,9 @@ int run_edit(int argc, char** argv) {
   const std::string& in = a.positional[0];
   ProjectExtras extras;
   Hierarchy h = read_project(in, &extras);
+  ImportReport topology;  // of the base the edit moves
+  add_topology_warnings(topology, h.levels.front());
+  std::cerr << topology.format(in);
   const int level = static_cast<int>(*lv);
   if (level > h.finest_level())
     throw UsageError("--level " + std::to_string(level) + " is beyond the project's finest level " +
@@ -109,6 +113,7 @@ int run_edit(int argc, char** argv) {
                               {"resynthesis_ms", r.resynthesis_ms},
                               {"vertices_updated", r.vertices_updated},
                               {"finest_vertices", session.num_vertices(session.finest_level())},
+                              {"warnings", report_json(topology)},
                               {"notes", notes}};
     std::cout << j.dump(2) << "\n";
   }

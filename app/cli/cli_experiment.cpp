@@ -8,6 +8,7 @@
 
 #include "app/cli/cli_args.h"
 #include "app/cli/cli_commands.h"
+#include "app/cli/cli_json.h"
 #include "app/cli/cli_hierarchy.h"
 #include "core/complex/connectivity_match.h"
 #include "core/base/errors.h"
@@ -184,11 +185,13 @@ int run_experiment(int argc, char** argv) {
   }
 
   Shape base = read_shape(*model);
+  add_topology_warnings(base.report, base.base);
   std::cerr << base.report.format(*model);
   check_refined_size(base.base, levels, scheme);
   Hierarchy h = make_hierarchy(base.base, levels, scheme, 3);
   nlohmann::json j = {{"experiment", kind}, {"scheme", scheme_name(scheme)}, {"model", *model},
-                      {"finest_level", levels}, {"finest_vertices", h.num_vertices(levels)}};
+                      {"finest_level", levels}, {"finest_vertices", h.num_vertices(levels)},
+                      {"warnings", report_json(base.report)}};
   const bool json = a.has("--json");
 
   if (kind == "noise") {

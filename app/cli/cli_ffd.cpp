@@ -7,6 +7,7 @@
 
 #include "app/cli/cli_args.h"
 #include "app/cli/cli_commands.h"
+#include "app/cli/cli_json.h"
 #include "core/base/errors.h"
 #include "core/ffd/ffd_edits.h"
 #include "core/ffd/ffd_scene.h"
@@ -104,6 +105,15 @@ int run_ffd(int argc, char** argv) {
   if (const auto e = a.value("--edits")) edits = read_ffd_edits(*e);
 
   Model model = import_model(model_path);
+  ImportReport topology;  // of a mesh model (glTF triangles split at seams say nothing of the surface)
+  if (model.format == ModelFormat::Obj || model.format == ModelFormat::Ply || model.format == ModelFormat::Off) {
+    SurfaceMesh m;
+    m.positions.assign(model.num_vertices(), glm::dvec3(0.0));
+    m.face_offsets = model.faces.offsets;
+    m.face_indices = model.faces.items;
+    add_topology_warnings(topology, m);
+    std::cerr << topology.format(model_path);
+  }
   const Shape lattice = has_box ? box_lattice_around(model, positive_int(box->second[0], "--box NX"),
                                                      positive_int(box->second[1], "--box NY"),
                                                      positive_int(box->second[2], "--box NZ"), margin)
@@ -152,6 +162,7 @@ int run_ffd(int argc, char** argv) {
                               {"bind_ms", r.ms},
                               {"edit_ms", edit_ms},
                               {"deform_ms", deform_ms},
+                              {"warnings", report_json(topology)},
                               {"notes", scene.model.notes}};
     std::cout << j.dump(2) << "\n";
   }

@@ -76,7 +76,8 @@ int run_fit(int argc, char** argv) {
     bo.feature_angle_deg = *d;
   }
   const std::string& in = a.positional[0];
-  const LoadedMesh lm = import_surface_mesh(in);
+  LoadedMesh lm = import_surface_mesh(in);
+  add_topology_warnings(lm.report, lm.mesh);
   std::cerr << lm.report.format(in);
   if (const std::string s = lm.report.not_kept_summary(); !s.empty())
     std::cerr << in << ": warning: not kept by the fit: " << s << "\n";

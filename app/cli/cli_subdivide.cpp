@@ -40,6 +40,7 @@ int run_subdivide(int argc, char** argv) {
   if (!a.value("-o")) throw UsageError("missing -o OUT");
   const std::string& in = a.positional[0];
   Shape shape = read_shape(in);
+  add_topology_warnings(shape.report, shape.base);
   std::cerr << shape.report.format(in);
   const std::string out = output_option(a, shape.base.dim);
   check_refined_size(shape.base, levels, scheme);

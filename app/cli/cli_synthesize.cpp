@@ -10,6 +10,7 @@
 #include "core/multires/hierarchy.h"
 #include "core/io/project/project_io.h"
 #include "core/io/lattice/shape_io.h"
+#include "core/base/errors.h"
 #include "core/base/text_lines.h"
 
 namespace sublift::cli {
@@ -58,7 +59,12 @@ int run_synthesize(int argc, char** argv) {
   std::size_t kept = 0;
   if (keep) kept = keep_largest(h, *keep);
   const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<double> x = synthesize(h, L);
+  std::vector<double> x;
+  try {  // values no reader would read back are not written (core/base/magnitude.h)
+    x = synthesize_in_range(h, L);
+  } catch (const Error& e) {
+    throw Error(in + ": " + e.what() + "; nothing written");
+  }
   const double synthesis_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const auto notes = write_level(out, h, L, x, h.channels, extras.input_order);
   for (const std::string& n : notes) std::cerr << out << ": warning: " << n << "\n";

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/analysis/boundary_surface.h"
+#include "core/analysis/mesh_stats.h"
 #include "core/base/bounds.h"
 #include "core/base/errors.h"
 #include "core/ffd/ffd_scene.h"
@@ -50,6 +51,11 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   if (is_project_file(path)) {
     ProjectExtras extras;
     Hierarchy h = read_project(path, &extras);
+    ImportReport topology;  // of the base the session subdivides and edits
+    add_topology_warnings(topology, h.levels.front());
+    std::istringstream in(topology.format(std::filesystem::path(path).filename().string()));
+    for (std::string line; std::getline(in, line);)
+      if (!line.empty()) warnings.push_back(line);
     order = std::move(extras.input_order);
     source = std::move(extras.fit_source);
     session = std::make_unique<Session>(std::move(h), extras.gains);
@@ -58,6 +64,7 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
     project = true;
   } else {
     Shape shape = read_shape(path);
+    add_topology_warnings(shape.report, shape.base);  // non-manifold or misoriented: said before it surprises
     if (!shape.report.empty()) {
       std::istringstream in(shape.report.format(std::filesystem::path(path).filename().string()));
       for (std::string line; std::getline(in, line);) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <string>
 #include <vector>
 
 #include <glm/common.hpp>
@@ -74,7 +75,9 @@ MeshStats compute_mesh_stats(const SurfaceMesh& mesh) {
     parts.unite(a, b);
     std::size_t fwd = 0;
     for (std::size_t k = i; k < j; ++k) fwd += half[k].forward;
-    if (fwd > 1 || uses - fwd > 1) ++s.misoriented_edges;
+    if (fwd > 1 || uses - fwd > 1) {
+      if (s.misoriented_edges++ < MeshStats::kFirstElements) s.first_misoriented_edges.emplace_back(a, b);
+    }
     if (uses == 1) {
       ++s.boundary_edges;
       boundary.unite(a, b);
@@ -87,7 +90,7 @@ MeshStats compute_mesh_stats(const SurfaceMesh& mesh) {
         for (std::uint32_t y : {c1, c1n})
           if (mesh.face_indices[x] == mesh.face_indices[y]) fans.unite(x, y);
     } else {
-      ++s.non_manifold_edges;
+      if (s.non_manifold_edges++ < MeshStats::kFirstElements) s.first_non_manifold_edges.emplace_back(a, b);
       nonmanifold_vertex[a] = nonmanifold_vertex[b] = 1;
     }
     i = j;
@@ -119,7 +122,8 @@ MeshStats compute_mesh_stats(const SurfaceMesh& mesh) {
     }
     ++s.used_vertices;
     ++s.valences[valence[v]];
-    s.non_manifold_vertices += nonmanifold_vertex[v];
+    if (nonmanifold_vertex[v] && s.non_manifold_vertices++ < MeshStats::kFirstElements)
+      s.first_non_manifold_vertices.push_back(v);
     if (parts.find(v) == v) ++s.components;
     if (on_boundary[v] && boundary.find(v) == v) ++s.boundary_loops;
     const glm::dvec3& p = mesh.positions[v];
@@ -138,6 +142,57 @@ MeshStats compute_mesh_stats(const SurfaceMesh& mesh) {
   s.euler_characteristic = static_cast<long long>(s.used_vertices) - static_cast<long long>(s.edges) +
                            static_cast<long long>(s.faces);
   return s;
+}
+
+namespace {
+
+// "(vertex 4)", "(vertices 4, 9, ...)", "(edges 1-2, 3-4)": the first elements of `count`.
+template <class T, class Name>
+std::string first_of(const std::vector<T>& first, std::size_t count, const char* one, const char* many, Name name) {
+  std::string s = std::string(" (") + (count == 1 ? one : many) + " ";
+  for (std::size_t i = 0; i < first.size(); ++i) s += (i ? ", " : "") + name(first[i]);
+  return s + (count > first.size() ? ", ...; 0-based)" : "; 0-based)");
+}
+
+std::string edge_name(const std::pair<std::uint32_t, std::uint32_t>& e) {
+  return std::to_string(e.first) + "-" + std::to_string(e.second);
+}
+
+}  // namespace
+
+std::vector<ImportWarning> topology_warnings(const MeshStats& s) {
+  std::vector<ImportWarning> out;
+  auto vertex_name = [](std::uint32_t v) { return std::to_string(v); };
+  if (s.non_manifold_vertices)
+    out.push_back({"non-manifold vertex: its faces do not form one fan" +
+                       first_of(s.first_non_manifold_vertices, s.non_manifold_vertices, "vertex", "vertices", vertex_name),
+                   s.non_manifold_vertices, {}});
+  if (s.non_manifold_edges)
+    out.push_back({"non-manifold edge: in more than two faces" +
+                       first_of(s.first_non_manifold_edges, s.non_manifold_edges, "edge", "edges", edge_name),
+                   s.non_manifold_edges, {}});
+  if (s.misoriented_edges)
+    out.push_back({"misoriented edge: two faces run it the same way, so the faces are not consistently oriented" +
+                       first_of(s.first_misoriented_edges, s.misoriented_edges, "edge", "edges", edge_name),
+                   s.misoriented_edges, {}});
+  return out;
+}
+
+std::vector<ImportWarning> topology_warnings(const Complex& c) {
+  if (c.dim != 2) return {};
+  SurfaceMesh m;
+  m.positions.assign(c.num_vertices, glm::dvec3(0.0));  // topology only
+  m.face_offsets = c.faces.offsets;
+  m.face_indices = c.faces.items;
+  return topology_warnings(compute_mesh_stats(m));
+}
+
+void add_topology_warnings(ImportReport& report, const Complex& c) {
+  for (ImportWarning& w : topology_warnings(c)) report.warnings.push_back(std::move(w));
+}
+
+void add_topology_warnings(ImportReport& report, const SurfaceMesh& mesh) {
+  for (ImportWarning& w : topology_warnings(compute_mesh_stats(mesh))) report.warnings.push_back(std::move(w));
 }
 
 }  // namespace sublift

@@ -2,10 +2,11 @@
 
 #include <filesystem>
 #include <fstream>
-#include <random>
+#include <atomic>
 #include <system_error>
 
 #include "core/base/errors.h"
+#include "core/base/temp_files.h"
 #include "core/base/text_lines.h"
 
 namespace sublift {
@@ -37,8 +38,15 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
   if (dir.empty()) dir = ".";
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw IoError(path + ": folder " + dir.string() + " does not exist");
-  std::random_device rd;
-  const fs::path tmp = dir / (target.filename().string() + ".tmp-" + std::to_string(rd() % 1000000));
+  install_interrupt_cleanup();
+  remove_stale_temp_files(path);
+  static std::atomic<unsigned long> saves{0};
+  const fs::path tmp = dir / temp_file_name(target.filename().string(), saves++);
+  const int slot = register_temp_file(tmp.string());
+  struct Forget {  // after the rename or the removal below, whichever ends the save
+    int slot;
+    ~Forget() { unregister_temp_file(slot); }
+  } forget{slot};
   try {
     {
       std::ofstream out(tmp, binary ? std::ios::binary | std::ios::trunc : std::ios::trunc);

@@ -1,7 +1,10 @@
 #include "core/base/text_lines.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "core/base/errors.h"
 
@@ -82,6 +85,60 @@ std::string to_lower(std::string_view s) {
   for (char& c : r)
     if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
   return r;
+}
+
+std::string printable(std::string_view bytes, std::size_t max_bytes) {
+  std::string out;
+  const std::size_t n = std::min(bytes.size(), max_bytes);
+  auto hex = [&](unsigned char c) {
+    static const char* digits = "0123456789ABCDEF";
+    out += "\\x";
+    out.push_back(digits[c >> 4]);
+    out.push_back(digits[c & 15]);
+  };
+  for (std::size_t i = 0; i < n;) {
+    const auto c = static_cast<unsigned char>(bytes[i]);
+    if (c < 0x20 || c == 0x7f) {
+      hex(c);
+      ++i;
+      continue;
+    }
+    if (c < 0x80) {
+      out.push_back(static_cast<char>(c));
+      ++i;
+      continue;
+    }
+    // A UTF-8 sequence: lead byte, then continuation bytes 10xxxxxx; overlong forms, surrogates
+    // and values beyond U+10FFFF are not valid UTF-8.
+    const std::size_t len = c >= 0xc2 && c <= 0xdf ? 2 : c >= 0xe0 && c <= 0xef ? 3 : c >= 0xf0 && c <= 0xf4 ? 4 : 0;
+    bool ok = len > 0 && i + len <= n;
+    for (std::size_t k = 1; ok && k < len; ++k) ok = (static_cast<unsigned char>(bytes[i + k]) & 0xc0) == 0x80;
+    if (ok && len >= 3) {
+      const auto c1 = static_cast<unsigned char>(bytes[i + 1]);
+      if (c == 0xe0 && c1 < 0xa0) ok = false;  // overlong
+      if (c == 0xed && c1 >= 0xa0) ok = false;  // surrogate
+      if (c == 0xf0 && c1 < 0x90) ok = false;  // overlong
+      if (c == 0xf4 && c1 >= 0x90) ok = false;  // beyond U+10FFFF
+    }
+    if (!ok) {
+      hex(c);
+      ++i;
+      continue;
+    }
+    out.append(bytes.substr(i, len));
+    i += len;
+  }
+  if (bytes.size() > max_bytes) out += "...";
+  return out;
+}
+
+std::string format_shortest(double v) {
+  char buf[40];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    if (!std::isfinite(v) || std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
 }
 
 }  // namespace sublift

@@ -45,6 +45,16 @@ std::optional<double> parse_double(std::string_view token);
 /// Parses a whole token as a signed 64-bit integer; nullopt otherwise.
 std::optional<std::int64_t> parse_int(std::string_view token);
 
+/// File content quoted in a message, as the one place that makes it safe to print: at most
+/// `max_bytes` bytes (then "..."), control bytes, DEL and bytes that are not valid UTF-8 written
+/// as \xNN (so a NUL cannot cut the message nor raw bytes garble a terminal); valid UTF-8 is
+/// kept. Used by every message that quotes what a file holds.
+std::string printable(std::string_view bytes, std::size_t max_bytes = 32);
+
+/// The shortest "%g" form that reads back as v, for messages: "1.7e+308", not
+/// "1.6999999999999999e+308"; "nan", "inf", "-inf" as printf writes them.
+std::string format_shortest(double v);
+
 /// Lower-case ASCII copy (for extensions and keywords).
 std::string to_lower(std::string_view s);
 

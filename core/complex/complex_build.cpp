@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "core/base/errors.h"
+#include "core/base/text_lines.h"
 #include "core/complex/face_loop.h"
 
 namespace sublift {
@@ -117,7 +118,7 @@ FeatureTags feature_tags_from_obj(const std::vector<MeshTag>& tags, ImportReport
   for (const MeshTag& t : tags) {
     const bool crease = t.name == "crease", corner = t.name == "corner";
     if (!crease && !corner) {
-      report.add("tag '" + t.name + "' ignored (only crease and corner are used)", t.line);
+      report.add("tag '" + printable(t.name) + "' ignored (only crease and corner are used)", t.line);
       continue;
     }
     const std::size_t n = t.ints.size();

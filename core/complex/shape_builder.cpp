@@ -89,9 +89,17 @@ void ShapeBuilder::build(const std::string& file, std::uint32_t nv, std::span<co
   std::vector<char> used(nv, 0);
   Csr loops, cells;
   if (dim == 3) {
-    for (const Element& c : cells_) {
+    // A solid: no cell twice, no face between more than two cells (docs/file_formats.md).
+    std::map<std::vector<std::uint32_t>, std::size_t> cell_with_vertices;
+    struct FaceUse { std::size_t cell; bool forward; };  // forward: listed as its canonical loop runs
+    std::map<std::vector<std::uint32_t>, std::vector<FaceUse>> face_uses;
+    std::vector<std::size_t> misoriented;  // cells whose own faces disagree on orientation
+    for (std::size_t ci = 0; ci < cells_.size(); ++ci) {
+      const Element& c = cells_[ci];
       const std::size_t nf = c.end_loop - c.first_loop;
       std::map<std::uint64_t, int> uses;
+      std::set<std::uint64_t> directed;  // a -> b edges of the faces as listed
+      bool consistent = true;
       std::set<std::vector<std::uint32_t>> own;
       for (std::size_t i = c.first_loop; i < c.end_loop; ++i) {
         const auto f = loop(i);
@@ -99,7 +107,10 @@ void ShapeBuilder::build(const std::string& file, std::uint32_t nv, std::span<co
         check_polygon(f, line, c.label + ", face " + std::to_string(i - c.first_loop));
         if (!own.insert(canonical_loop(f)).second)
           throw InputError(file, line, c.label + " lists the same face twice (face " + std::to_string(i - c.first_loop) + ")");
-        for (std::size_t k = 0; k < f.size(); ++k) ++uses[edge_key(f[k], f[(k + 1) % f.size()])];
+        for (std::size_t k = 0; k < f.size(); ++k) {
+          ++uses[edge_key(f[k], f[(k + 1) % f.size()])];
+          if (!directed.insert(std::uint64_t(f[k]) << 32 | std::uint64_t(f[(k + 1) % f.size()])).second) consistent = false;
+        }
         cells.items.push_back(static_cast<std::uint32_t>(loops.rows()));
         loops.items.insert(loops.items.end(), f.begin(), f.end());
         loops.offsets.push_back(static_cast<std::uint32_t>(loops.items.size()));
@@ -112,9 +123,58 @@ void ShapeBuilder::build(const std::string& file, std::uint32_t nv, std::span<co
                                std::to_string(e & 0xffffffffu) + " is used by " + std::to_string(n) +
                                " of its faces (each edge of a closed cell belongs to exactly two of its faces)");
       cells.offsets.push_back(static_cast<std::uint32_t>(cells.items.size()));
+      std::vector<std::uint32_t> vertices;
+      for (std::size_t i = c.first_loop; i < c.end_loop; ++i) vertices.insert(vertices.end(), loop(i).begin(), loop(i).end());
+      std::sort(vertices.begin(), vertices.end());
+      vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+      if (const auto [it, fresh] = cell_with_vertices.emplace(vertices, ci); !fresh) {
+        const Element& first = cells_[it->second];
+        throw InputError(file, c.line, c.label + " has the same vertices as " + first.label + " on line " +
+                                           std::to_string(first.line) + ": a cell listed twice");
+      }
+      if (!consistent) misoriented.push_back(ci);
+      for (std::size_t i = c.first_loop; i < c.end_loop; ++i) {
+        const auto f = loop(i);
+        std::vector<std::uint32_t> key = canonical_loop(f);
+        const auto m = std::min_element(f.begin(), f.end()) - f.begin();
+        const bool forward = f[static_cast<std::size_t>(m + 1) % f.size()] == key[1];
+        std::vector<FaceUse>& users = face_uses[key];
+        users.push_back({ci, forward});
+        if (users.size() > 2) {
+          std::string names, verts;
+          for (std::uint32_t v : key) verts += (verts.empty() ? "" : " ") + std::to_string(v);
+          for (const FaceUse& u : users)
+            names += (names.empty() ? "" : ", ") + cells_[u.cell].label + " on line " + std::to_string(cells_[u.cell].line);
+          throw InputError(file, c.line, "face " + verts + " is shared by " + std::to_string(users.size()) + " cells: " + names +
+                                             " (a face of a solid bounds at most two cells)");
+        }
+      }
       for (auto [e, n] : uses) edges.insert(e);
       for (auto& f : own) faces.insert(f);
     }
+    // Orientation is not kept (cells are oriented from their geometry where it matters,
+    // cell_shapes.h), so faces listed against the others are a repair, not an error.
+    std::vector<std::size_t> against_neighbour;  // consistent cells listing a shared face as their neighbour does
+    for (const auto& [key, users] : face_uses)
+      if (users.size() == 2 && users[0].forward == users[1].forward) {
+        for (const FaceUse& u : users)
+          if (!std::binary_search(misoriented.begin(), misoriented.end(), u.cell)) against_neighbour.push_back(u.cell);
+      }
+    std::sort(against_neighbour.begin(), against_neighbour.end());
+    against_neighbour.erase(std::unique(against_neighbour.begin(), against_neighbour.end()), against_neighbour.end());
+    auto warn_cells = [&](const std::vector<std::size_t>& which, const std::string& what) {
+      if (which.empty()) return;
+      ImportWarning w{what + ": ", which.size(), {}};
+      for (std::size_t i = 0; i < which.size() && i < ImportReport::kMaxLines; ++i) {
+        w.what += (i ? ", " : "") + cells_[which[i]].label;
+        if (cells_[which[i]].line) w.first_lines.push_back(cells_[which[i]].line);
+      }
+      if (which.size() > ImportReport::kMaxLines) w.what += ", ...";
+      shape.report.warnings.push_back(std::move(w));
+    };
+    warn_cells(misoriented, "cells whose faces are not consistently oriented (kept: Sublift orients cells from their geometry)");
+    warn_cells(against_neighbour,
+               "cells listing a shared face in the same direction as their neighbour (kept: Sublift orients cells from their geometry)");
   } else if (dim == 2) {
     for (const Element& p : polygons_) {
       const auto f = loop(p.first_loop);

@@ -21,11 +21,11 @@ std::vector<FfdEdit> parse_ffd_edits(std::string_view text, const std::string& f
     e.line = line;
     const auto level = parse_int(tokens[0]);
     if (!level || *level < 0 || *level > 64) {
-      throw InputError(file, line, "level must be a non-negative integer, got '" + std::string(tokens[0]) + "'");
+      throw InputError(file, line, "level must be a non-negative integer, got '" + printable(tokens[0]) + "'");
     }
     const auto index = parse_int(tokens[1]);
     if (!index || *index < 0 || *index > 0xffffffffLL) {
-      throw InputError(file, line, "index must be a non-negative integer, got '" + std::string(tokens[1]) + "'");
+      throw InputError(file, line, "index must be a non-negative integer, got '" + printable(tokens[1]) + "'");
     }
     e.level = static_cast<int>(*level);
     e.index = static_cast<std::uint32_t>(*index);
@@ -33,7 +33,7 @@ std::vector<FfdEdit> parse_ffd_edits(std::string_view text, const std::string& f
       const auto d = parse_double(tokens[static_cast<std::size_t>(2 + k)]);
       if (!d) {
         throw InputError(file, line, std::string("d") + static_cast<char>('x' + k) + " must be a finite number, got '" +
-                                         std::string(tokens[static_cast<std::size_t>(2 + k)]) + "'");
+                                         printable(tokens[static_cast<std::size_t>(2 + k)]) + "'");
       }
       e.delta[k] = *d;
     }

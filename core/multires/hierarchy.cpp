@@ -7,6 +7,7 @@
 #include "core/engine/executor.h"
 #include "core/base/errors.h"
 #include "core/base/memory_budget.h"
+#include "core/base/magnitude.h"
 #include "core/complex/level_counts.h"
 #include "core/complex/refine_sqrt2.h"
 
@@ -158,18 +159,37 @@ void analyze(Hierarchy& h, std::span<const double> finest_values) {
   for (int j = h.finest_level() - 1; j >= 0; --j) analyze_transition(h, j, h.coeffs.data(), h.channels, h.integer);
 }
 
-std::vector<double> synthesize(const Hierarchy& h, int level) {
+namespace {
+
+// Synthesis to `level`; with `checked`, each level's values are checked as soon as they exist.
+std::vector<double> run_synthesis(const Hierarchy& h, int level, bool checked) {
   if (level < 0 || level > h.finest_level())
     throw Error("level " + std::to_string(level) + " is outside 0.." + std::to_string(h.finest_level()));
-  std::vector<double> x(h.coeffs.begin(), h.coeffs.begin() + std::size_t(h.num_vertices(level)) * h.channels);
+  const auto ch = static_cast<std::size_t>(h.channels);
+  std::vector<double> x(h.coeffs.begin(), h.coeffs.begin() + std::size_t(h.num_vertices(level)) * ch);
+  auto check = [&](int j) {
+    if (!checked) return;
+    const auto i = first_out_of_range(std::span<const double>(x.data(), std::size_t(h.num_vertices(j)) * ch));
+    if (i)
+      throw Error("synthesis overflows at level " + std::to_string(j) + ": vertex " + std::to_string(*i / ch) + ", channel " +
+                  std::to_string(*i % ch) + " " + out_of_range_text(x[*i]));
+  };
+  check(0);
   for (int j = 0; j < level; ++j) {
-    const auto b = x.begin() + std::size_t(h.num_vertices(j)) * h.channels;
-    const auto e = x.begin() + std::size_t(h.num_vertices(j + 1)) * h.channels;
+    const auto b = x.begin() + std::size_t(h.num_vertices(j)) * ch;
+    const auto e = x.begin() + std::size_t(h.num_vertices(j + 1)) * ch;
     const bool zero = std::all_of(b, e, [](double v) { return v == 0.0; });
     synthesize_transition(h, j, x.data(), h.channels, h.integer, zero);
+    check(j + 1);
   }
   return x;
 }
+
+}  // namespace
+
+std::vector<double> synthesize(const Hierarchy& h, int level) { return run_synthesis(h, level, false); }
+
+std::vector<double> synthesize_in_range(const Hierarchy& h, int level) { return run_synthesis(h, level, true); }
 
 static double norm(const double* v, int ch) {
   double s = 0;

@@ -84,6 +84,11 @@ void analyze(Hierarchy& h, std::span<const double> finest_values);
 /// coefficients of levels < L.
 std::vector<double> synthesize(const Hierarchy& h, int level);
 
+/// synthesize(h, level), refusing (Error naming the level, vertex and channel) as soon as a
+/// level's values are not finite or exceed kMaxCoordinate (core/base/magnitude.h): results no
+/// reader would read back.
+std::vector<double> synthesize_in_range(const Hierarchy& h, int level);
+
 /// Per-level wavelet statistics; magnitudes are Euclidean norms of the coefficient vectors.
 struct LevelStats {
   int level = 0;               // wavelets of this level live on level+1's e/f/c vertices

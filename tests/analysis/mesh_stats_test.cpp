@@ -58,3 +58,37 @@ TEST(MeshStats, ComponentsAndIsolatedVertices) {
   EXPECT_EQ(s.used_vertices, 6u);
   EXPECT_EQ(s.bbox_max, glm::dvec3(4, 1, 0));  // the isolated (5,5,5) is not in the box
 }
+
+// Issue 18: the one text of the topology warnings, with counts and the first five elements.
+TEST(MeshStats, TopologyWarningsNameTheFirstFiveElements) {
+  EXPECT_TRUE(topology_warnings(compute_mesh_stats(make_quad_torus(4, 3))).empty());
+  // Seven triangles on the edge 0-1: a non-manifold edge, run the same way by all, whose ends
+  // are non-manifold vertices.
+  SurfaceMesh fan;
+  fan.positions.assign(9, glm::dvec3(0.0));
+  for (std::uint32_t k = 2; k < 9; ++k) {
+    const std::uint32_t f[3] = {0, 1, k};
+    fan.add_face(f);
+  }
+  const std::vector<ImportWarning> w = topology_warnings(compute_mesh_stats(fan));
+  ASSERT_EQ(w.size(), 3u);
+  EXPECT_EQ(w[0].what, "non-manifold vertex: its faces do not form one fan (vertices 0, 1; 0-based)");
+  EXPECT_EQ(w[0].count, 2u);
+  EXPECT_EQ(w[1].what, "non-manifold edge: in more than two faces (edge 0-1; 0-based)");
+  EXPECT_EQ(w[2].what, "misoriented edge: two faces run it the same way, so the faces are not consistently oriented (edge 0-1; 0-based)");
+  // Seven bowties sharing nothing but their apexes: more than five are cut with "...".
+  SurfaceMesh bows;
+  bows.positions.assign(7 * 5, glm::dvec3(0.0));
+  for (std::uint32_t b = 0; b < 7; ++b) {
+    const std::uint32_t o = 5 * b, t1[3] = {o, o + 1, o + 2}, t2[3] = {o, o + 3, o + 4};
+    bows.add_face(t1);
+    bows.add_face(t2);
+  }
+  const std::vector<ImportWarning> v = topology_warnings(compute_mesh_stats(bows));
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_EQ(v[0].count, 7u);
+  EXPECT_EQ(v[0].what, "non-manifold vertex: its faces do not form one fan (vertices 0, 5, 10, 15, 20, ...; 0-based)");
+  ImportReport r;
+  add_topology_warnings(r, bows);
+  EXPECT_EQ(r.format("b.obj"), "b.obj: warning: 7 x non-manifold vertex: its faces do not form one fan (vertices 0, 5, 10, 15, 20, ...; 0-based)\n");
+}

@@ -1,3 +1,5 @@
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "core/base/errors.h"
@@ -62,4 +64,25 @@ TEST(SplitTokens, SplitsOnAnyBlank) {
   ASSERT_EQ(t.size(), 4u);
   EXPECT_EQ(t[0], "f");
   EXPECT_EQ(t[3], "3");
+}
+
+// Issue 18: file content quoted in messages is escaped by one function.
+TEST(Printable, EscapesControlAndNonUtf8BytesAndKeepsUtf8) {
+  EXPECT_EQ(printable("plain"), "plain");
+  EXPECT_EQ(printable(std::string_view("a\0b", 3)), "a\\x00b");  // a NUL does not cut the message
+  EXPECT_EQ(printable("tab\there\x7f"), "tab\\x09here\\x7F");
+  EXPECT_EQ(printable("caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x98\x80"), "caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x98\x80");  // é € 😀 kept
+  EXPECT_EQ(printable("\xff\xfe"), "\\xFF\\xFE");
+  EXPECT_EQ(printable("\xc0\xaf"), "\\xC0\\xAF");          // overlong '/'
+  EXPECT_EQ(printable("\xed\xa0\x80"), "\\xED\\xA0\\x80");  // a surrogate
+  EXPECT_EQ(printable("\xc3"), "\\xC3");                    // a sequence cut short
+  EXPECT_EQ(printable(std::string(40, 'x')), std::string(32, 'x') + "...");
+  EXPECT_EQ(printable("abcdef", 3), "abc...");
+}
+
+TEST(FormatShortest, ReadsBackAndIsShort) {
+  EXPECT_EQ(format_shortest(1.7e308), "1.7e+308");
+  EXPECT_EQ(format_shortest(0.1), "0.1");
+  EXPECT_EQ(format_shortest(1.0 / 3.0), "0.3333333333333333");
+  EXPECT_EQ(format_shortest(-HUGE_VAL), "-inf");
 }

@@ -2,6 +2,7 @@
 // would run them: exact reconstruction, --keep 0 = subdivision of the base, JSON fields,
 // usage and input errors.
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -10,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base/file_io.h"
+#include "core/base/magnitude.h"
+#include "core/io/project/project_io.h"
 #include "core/io/lattice/shape_io.h"
 #include "tests/io_test_util.h"
 #include "tests/cli_run.h"
@@ -305,4 +308,60 @@ TEST(CliHierarchy, InputErrorsExitWithOneAndExplain) {
   r = cli({"subdivide", dir.file("bad.lattice"), "--scheme", "cubic", "--levels", "1", "-o", dir.file("x.lattice")});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find(dir.file("bad.lattice") + ":3:"), std::string::npos) << r.err;
+}
+
+// Issue 18: a project whose coefficients are huge but finite opened, and synthesize wrote
+// nan/inf with exit 0. Now the reader refuses it, and a synthesis that overflows is refused.
+TEST(CliHierarchy, CoefficientsOutOfRangeAreRefusedNotSynthesised) {
+  TempDir dir("sublift_cli_overflow");
+  const std::string cube = kAssets + "/cube.obj", fine = dir.file("fine.obj"), project = dir.file("p.sublift");
+  const std::string out = dir.file("out.obj");
+  ok(cli({"subdivide", cube, "--scheme", "cubic", "--levels", "1", "-o", fine}));
+  ok(cli({"analyze", fine, "--base", cube, "--scheme", "cubic", "--levels", "1", "-o", project}));
+  std::string bytes = sublift::read_file_bytes(project);
+  const double huge = 1.7e308;
+  std::memcpy(bytes.data() + bytes.size() - 8, &huge, 8);  // the last vertex's last channel
+  std::ofstream(project, std::ios::binary) << bytes;
+  const std::size_t last = sublift::read_shape(fine).positions.size() / 3 - 1;
+  const std::string why = project + ": coefficient at vertex " + std::to_string(last) +
+                          ", level 1, channel 2 exceeds the supported magnitude 1e30 (1.7e+308)\n";
+  ProcessResult r = cli({"synthesize", project, "-o", out});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "sublift-cli synthesize: error: " + why);
+  EXPECT_FALSE(fs::exists(out));
+  r = cli({"info", project});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "sublift-cli info: error: " + why);
+  EXPECT_EQ(r.out.find("inf"), std::string::npos) << r.out;
+
+  // Every coefficient at the limit: each is readable, their synthesis is not.
+  ok(cli({"analyze", fine, "--base", cube, "--scheme", "cubic", "--levels", "1", "-o", project}));
+  sublift::Hierarchy h = sublift::read_project(project);
+  std::fill(h.coeffs.begin(), h.coeffs.end(), sublift::kMaxCoordinate);
+  sublift::write_project(project, h);
+  r = cli({"synthesize", project, "-o", out});
+  EXPECT_EQ(r.exit_code, 1);
+  // Vertex 20, the first face point of the cube's level 1: its face's mean plus lifted wavelets.
+  EXPECT_EQ(r.err, "sublift-cli synthesize: error: " + project +
+                       ": synthesis overflows at level 1: vertex 20, channel 0 exceeds the supported magnitude 1e30 "
+                       "(1.5624999999999998e+30); nothing written\n");
+  EXPECT_FALSE(fs::exists(out));
+  ok(cli({"synthesize", project, "--level", "0", "-o", out}));  // level 0 is the coefficients themselves
+}
+
+// Issue 18: a lattice listing the same hexahedron twice loaded without a word (and its boundary
+// exported as vertices without faces); now every command refuses it, exit 1, nothing written.
+TEST(CliHierarchy, LatticeWithACellListedTwiceIsRefused) {
+  TempDir dir("sublift_cli_twice");
+  const std::string in = dir.file("twice.lattice"), out = dir.file("out.lattice");
+  std::ofstream(in) << "sublift-lattice 1\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                       "hex 0 1 2 3 4 5 6 7\nhex 0 1 2 3 4 5 6 7\n";
+  const std::string why = in + ":11: cell 1 (hexahedron) has the same vertices as cell 0 (hexahedron) on line 10: a cell listed twice\n";
+  ProcessResult r = cli({"subdivide", in, "--scheme", "cubic", "--levels", "1", "-o", out});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "sublift-cli subdivide: error: " + why);
+  EXPECT_FALSE(fs::exists(out));
+  r = cli({"info", in});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "sublift-cli info: error: " + why);
 }

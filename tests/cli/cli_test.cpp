@@ -254,3 +254,65 @@ TEST(Cli, RealMeshesOfTheSharedDataLoad) {
     EXPECT_EQ(r.exit_code, 0) << f << "\n" << r.err;
   }
 }
+
+// Issue 18: non-manifold vertices and edges and inconsistent orientation were counted by
+// `info` and never warned about where they matter. Every command that subdivides or edits now
+// prints the warning (counts and first elements) and lists it in --json `warnings`.
+TEST(Cli, TopologyWarningsFromEveryCommandThatSubdividesOrEdits) {
+  const fs::path dir = fs::temp_directory_path() / "sublift_cli_topology";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string bow = (dir / "bowtie.obj").string(), flip = (dir / "flip.obj").string();
+  std::ofstream(bow) << "v 0 0 0\nv 1 1 0\nv 1 -1 0\nv -1 1 0\nv -1 -1 0\nf 1 3 2\nf 1 4 5\n";  // two fans at vertex 0
+  std::ofstream(flip) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 4 3\n";  // both run the diagonal 3 -> 1
+  const std::string bow_text = "non-manifold vertex: its faces do not form one fan (vertex 0; 0-based)";
+  const std::string bow_line = bow + ": warning: 1 x " + bow_text + "\n";
+  auto file = [&](const std::string& n) { return (dir / n).string(); };
+  auto run = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), kCli);
+    return run_process(args, 60.0);
+  };
+  auto expect_warned = [&](const ProcessResult& r, const std::string& line, const char* what) {
+    EXPECT_EQ(r.exit_code, 0) << what << "\n" << r.err;
+    EXPECT_EQ(r.err, line) << what;
+  };
+  // subdivide, with the JSON form.
+  ProcessResult r = run({"subdivide", bow, "--scheme", "cubic", "--levels", "1", "-o", file("fine.obj"), "--json"});
+  expect_warned(r, bow_line, "subdivide");
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["warnings"].size(), 1u) << j.dump();
+  EXPECT_EQ(j["warnings"][0]["what"], bow_text);
+  EXPECT_EQ(j["warnings"][0]["count"], 1);
+  // analyze (the base is subdivided), rebuild (its fine mesh is as non-manifold), edit,
+  // compress and basis on the project, the noise experiment, ffd of the mesh as a model.
+  r = run({"analyze", file("fine.obj"), "--base", bow, "--scheme", "cubic", "--levels", "1", "-o", file("p.sublift"), "--json"});
+  expect_warned(r, bow_line, "analyze");
+  EXPECT_EQ(nlohmann::json::parse(r.out)["base_warnings"][0]["what"], bow_text);
+  expect_warned(run({"rebuild", file("fine.obj"), "-o", file("r.sublift")}), file("fine.obj") + ": warning: 1 x " + bow_text + "\n", "rebuild");
+  const std::string project_line = file("p.sublift") + ": warning: 1 x " + bow_text + "\n";
+  r = run({"edit", file("p.sublift"), "--level", "0", "--vertex", "1", "--delta", "0", "0", "1", "-o", file("e.obj"), "--json"});
+  expect_warned(r, project_line, "edit");
+  EXPECT_EQ(nlohmann::json::parse(r.out)["warnings"][0]["what"], bow_text);
+  r = run({"compress", file("p.sublift"), "--keep", "0.5", "-o", file("c.obj"), "--json"});
+  expect_warned(r, project_line, "compress");
+  EXPECT_EQ(nlohmann::json::parse(r.out)["warnings"][0]["what"], bow_text);
+  r = run({"basis", file("p.sublift"), "--level", "0", "--vertex", "0", "-o", file("b.ply"), "--json"});
+  expect_warned(r, project_line, "basis");
+  EXPECT_EQ(nlohmann::json::parse(r.out)["warnings"][0]["what"], bow_text);
+  r = run({"experiment", "noise", "--model", bow, "--scheme", "cubic", "--levels", "1", "--sigma", "0.01", "--json"});
+  expect_warned(r, bow_line, "experiment");
+  EXPECT_EQ(nlohmann::json::parse(r.out)["warnings"][0]["what"], bow_text);
+  r = run({"ffd", "--box", "1", "1", "1", "--model", bow, "-o", file("d.obj"), "--json"});
+  expect_warned(r, bow_line, "ffd");
+  EXPECT_EQ(nlohmann::json::parse(r.out)["warnings"][0]["what"], bow_text);
+  // fit warns before it fails on a mesh this small.
+  r = run({"fit", bow, "-o", file("f.sublift")});
+  EXPECT_EQ(r.err.substr(0, bow_line.size()), bow_line) << r.err;
+  // Inconsistent orientation, named by its edge; a clean mesh says nothing.
+  r = run({"subdivide", flip, "--scheme", "linear", "--levels", "1", "-o", file("flip_fine.obj")});
+  expect_warned(r, flip + ": warning: 1 x misoriented edge: two faces run it the same way, so the faces are not consistently "
+                           "oriented (edge 0-2; 0-based)\n", "subdivide of an inconsistently oriented mesh");
+  expect_warned(run({"subdivide", (kAssets / "cube.obj").string(), "--scheme", "cubic", "--levels", "1", "-o", file("cube.obj")}), "",
+                "subdivide of a clean mesh");
+  fs::remove_all(dir);
+}

@@ -180,3 +180,40 @@ TEST(ImportNotKept, PlyPropertiesAndOffColoursAreNamed) {
 }
 
 }  // namespace
+
+// Issue 18: a big-endian file labelled little-endian (and the reverse) was reported only as
+// "face dropped"; now the report says which byte order would fit, at which byte offset.
+TEST(ImportPly, MislabelledByteOrderGetsAHintWithTheByteOffset) {
+  for (bool big : {true, false}) {
+    SCOPED_TRACE(big ? "big-endian data labelled little" : "little-endian data labelled big");
+    const std::string header = std::string("ply\nformat ") + (big ? "binary_little_endian" : "binary_big_endian") +
+                               " 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                               "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    std::string s = header;
+    for (float c : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) put<float>(s, c, big);  // 1.0 swapped: 4.6e-41, in range
+    put<std::uint8_t>(s, 3, big);
+    for (std::int32_t i : {0, 1, 2}) put<std::int32_t>(s, i, big);
+    const std::string face_at = std::to_string(header.size() + 36);
+    // Every face is out of range, so nothing is left: the refusal carries the hint.
+    EXPECT_EQ(load_error("m.ply", s),
+              std::string("m.ply: no usable face or polyline left after dropping bad elements:\nm.ply: warning: 1 x the file may be ") +
+                  (big ? "big-endian (its header says binary_little_endian)" : "little-endian (its header says binary_big_endian)") +
+                  ": face 0 at byte offset " + face_at + " has vertex indices out of range that are all in range with their bytes swapped\n"
+                  "m.ply: warning: 1 x face dropped: vertex index out of range\n");
+    // Read with the right label, the same bytes are a triangle.
+    std::string right = s;
+    right.replace(0, header.size(), std::string(header).replace(11, big ? 20 : 17, big ? "binary_big_endian" : "binary_little_endian"));
+    EXPECT_EQ(load("m.ply", right).mesh.num_faces(), 1u);
+  }
+  // Coordinates that only make sense the other way round: refused with the offset and the hint.
+  std::string s = "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty double x\nproperty double y\n"
+                  "property double z\nend_header\n";
+  const std::size_t at = s.size();
+  for (double c : {1.0 / 3.0, 0.0, 0.0}) put<double>(s, c, true);  // 1/3 read the wrong way: 8.9e102
+  EXPECT_EQ(load_error("c.ply", s), "c.ply: coordinate exceeds the supported magnitude 1e30 at byte offset " + std::to_string(at) +
+                                        "; the file may be big-endian (its header says binary_little_endian): with its bytes swapped the value is 0.3333333333333333");
+}
+
+TEST(ImportPly, HeaderBytesInMessagesAreEscaped) {
+  EXPECT_EQ(load_error("h.ply", "ply\nformat \xff\xfe 1.0\nend_header\n"), "h.ply:2: unknown PLY format '\\xFF\\xFE'");
+}

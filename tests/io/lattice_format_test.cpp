@@ -220,3 +220,41 @@ TEST(LatticeFormat, WriterRefusesNonVolumesAndKeepsOldFileOnFailure) {
   EXPECT_THROW(write_lattice("/nonexistent_dir/x.lattice", s.base, s.positions), IoError);
   EXPECT_THROW(write_lattice(dir.file("short.lattice"), s.base, std::vector<double>(3, 0.0)), InputError);
 }
+
+// Issue 18: lattices that make no solid. A cell listed twice and a face between three cells
+// were accepted; now both are errors naming every cell involved.
+TEST(LatticeFormat, RefusesCellsListedTwiceNamingBoth) {
+  EXPECT_EQ(error_of(kCubeVerts + "hex 0 1 2 3 4 5 6 7\nhex 0 1 2 3 4 5 6 7\n"),
+            "t.lattice:11: cell 1 (hexahedron) has the same vertices as cell 0 (hexahedron) on line 10: a cell listed twice");
+  // The same solid again as a general cell, and in another vertex order: still the same cell.
+  EXPECT_EQ(error_of(kCubeVerts + "hex 0 1 2 3 4 5 6 7\ncell\nf 0 3 2 1\nf 4 5 6 7\nf 0 1 5 4\nf 1 2 6 5\nf 2 3 7 6\nf 3 0 4 7\nend\n"),
+            "t.lattice:11: cell 1 has the same vertices as cell 0 (hexahedron) on line 10: a cell listed twice");
+}
+
+TEST(LatticeFormat, RefusesAFaceSharedByThreeCells) {
+  // Two pyramids on the cube's top face 4 5 6 7.
+  const std::string text = kCubeVerts + "v 0.5 0.5 2\nv 0.5 0.5 3\nhex 0 1 2 3 4 5 6 7\npyramid 4 5 6 7 8\npyramid 4 5 6 7 9\n";
+  EXPECT_EQ(error_of(text), "t.lattice:14: face 4 5 6 7 is shared by 3 cells: cell 0 (hexahedron) on line 12, cell 1 (pyramid) on "
+                            "line 13, cell 2 (pyramid) on line 14 (a face of a solid bounds at most two cells)");
+}
+
+TEST(LatticeFormat, InconsistentlyOrientedCellsAreKeptWithAWarningNamingThem) {
+  const std::string cube = "cell\nf 0 3 2 1\nf 4 5 6 7\nf 0 1 5 4\nf 1 2 6 5\nf 2 3 7 6\nf 3 0 4 7\nend\n";
+  const Shape good = read_lattice(kCubeVerts + cube, "t.lattice");
+  EXPECT_TRUE(good.report.empty()) << good.report.format("t.lattice");
+  // The top face turned against the others.
+  const Shape flipped = read_lattice(kCubeVerts + "cell\nf 0 3 2 1\nf 7 6 5 4\nf 0 1 5 4\nf 1 2 6 5\nf 2 3 7 6\nf 3 0 4 7\nend\n", "t.lattice");
+  EXPECT_EQ(flipped.report.format("t.lattice"),
+            "t.lattice: warning: 1 x cells whose faces are not consistently oriented (kept: Sublift orients cells from their "
+            "geometry): cell 0 (line 10)\n");
+  EXPECT_EQ(flipped.base.num_cells(), good.base.num_cells());
+  EXPECT_EQ(flipped.base.faces.items.size(), good.base.faces.items.size());
+  // Each cell consistent, but the second one inside out (its faces point in): their shared face
+  // runs the same way in both.
+  const std::string two = kCubeVerts + "v 0 0 2\nv 1 0 2\nv 1 1 2\nv 0 1 2\nhex 0 1 2 3 4 5 6 7\nhex 8 9 10 11 4 5 6 7\n";
+  EXPECT_EQ(read_lattice(two, "t.lattice").report.format("t.lattice"),
+            "t.lattice: warning: 2 x cells listing a shared face in the same direction as their neighbour (kept: Sublift "
+            "orients cells from their geometry): cell 0 (hexahedron), cell 1 (hexahedron) (lines 14, 15)\n");
+  EXPECT_TRUE(read_lattice(kCubeVerts + "v 0 0 2\nv 1 0 2\nv 1 1 2\nv 0 1 2\nhex 0 1 2 3 4 5 6 7\nhex 4 5 6 7 8 9 10 11\n", "t.lattice")
+                  .report.empty());
+}

@@ -336,8 +336,12 @@ TEST(SurfaceExport, SupportedExtensionsAndBadInput) {
   Csr dangling = s.faces;
   dangling.items[2] = 100000;
   EXPECT_NE(error("s.glb", dangling, s.xyz, s.normals).find("names vertex 100000"), std::string::npos);
+  // No faces (a lattice whose cells share every face has no boundary): refused in every format,
+  // not written as bare vertices.
   Csr empty;
-  EXPECT_NE(error("s.gltf", empty, s.xyz, s.normals).find("at least one face"), std::string::npos);
+  for (const char* name : {"s.gltf", "s.obj", "s.ply", "s.glb"})
+    EXPECT_EQ(error(name, empty, s.xyz, s.normals),
+              dir.file(name) + ": the surface has no faces (a lattice without boundary faces?); nothing written");
   EXPECT_TRUE(std::filesystem::is_empty(dir.path()));  // nothing written, no temporary left
 }
 

@@ -307,3 +307,10 @@ TEST(VtkFormat, SharedGmshCubeLoadsWithItsFeatures) {
   EXPECT_EQ(creases, 60u);  // its 12 edges, 5 segments each (Gmsh lines)
   EXPECT_NO_THROW(validate(s.base));
 }
+
+// Issue 18: the VTK reader builds its cells through the same checks as .lattice: a hexahedron
+// listed twice is refused naming both cells.
+TEST(VtkFormat, RefusesACellListedTwice) {
+  const std::string text = grid(kCubePoints, "CELLS 2 18\n8 0 1 2 3 4 5 6 7\n8 4 5 6 7 0 1 2 3\n", "CELL_TYPES 2\n12\n12\n");
+  EXPECT_EQ(error_of(text), "t.vtk:16: cell 1 (VTK_HEXAHEDRON) has the same vertices as cell 0 (VTK_HEXAHEDRON) on line 15: a cell listed twice");
+}

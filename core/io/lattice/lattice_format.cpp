@@ -8,8 +8,8 @@
 #include "core/base/errors.h"
 #include "core/complex/feature_tags.h"
 #include "core/base/file_io.h"
+#include "core/base/magnitude.h"
 #include "core/io/mesh/mesh_export.h"
-#include "core/io/mesh/mesh_readers.h"
 #include "core/complex/shape_builder.h"
 #include "core/base/text_lines.h"
 
@@ -45,7 +45,7 @@ Shape read_lattice(std::string_view bytes, const std::string& file) {
   if (tok.size() != 2 || !parse_int(tok[1]))
     throw InputError(file, 1, "the first line must be 'sublift-lattice VERSION'");
   if (*parse_int(tok[1]) != 1)
-    throw InputError(file, 1, "unsupported .lattice version " + std::string(tok[1]) + " (this Sublift reads version 1)");
+    throw InputError(file, 1, "unsupported .lattice version " + printable(tok[1]) + " (this Sublift reads version 1)");
 
   std::size_t open_cell = 0;  // line of the `cell` being read, 0 outside
   std::size_t cells = 0;
@@ -53,9 +53,9 @@ Shape read_lattice(std::string_view bytes, const std::string& file) {
     ids.clear();
     for (std::size_t k = first; k < tok.size(); ++k) {
       auto v = parse_int(tok[k]);
-      if (!v) throw InputError(file, ln, "'" + std::string(tok[k].substr(0, 32)) + "' is not a vertex index");
+      if (!v) throw InputError(file, ln, "'" + printable(tok[k]) + "' is not a vertex index");
       if (*v < 0 || *v > 0xfffffffeLL)
-        throw InputError(file, ln, "vertex index " + std::string(tok[k]) + " out of range (indices are 0-based)");
+        throw InputError(file, ln, "vertex index " + printable(tok[k]) + " out of range (indices are 0-based)");
       ids.push_back(*v);
     }
   };
@@ -64,15 +64,15 @@ Shape read_lattice(std::string_view bytes, const std::string& file) {
     const std::string_view key = tok[0];
     CellShape cs;
     if (open_cell && key != "f" && key != "end")
-      throw InputError(file, open_cell, "cell is not closed: '" + std::string(key.substr(0, 16)) + "' on line " +
+      throw InputError(file, open_cell, "cell is not closed: '" + printable(key, 16) + "' on line " +
                                             std::to_string(ln) + " before its 'end'");
     if (key == "v") {
       if (tok.size() != 4) throw InputError(file, ln, "a vertex line is 'v x y z'");
       for (int k = 1; k <= 3; ++k) {
         auto d = parse_double(tok[k]);
-        if (!d) throw InputError(file, ln, "'" + std::string(tok[k].substr(0, 32)) + "' is not a finite number");
+        if (!d) throw InputError(file, ln, "'" + printable(tok[k]) + "' is not a finite number");
         if (std::abs(*d) > kMaxCoordinate)
-          throw InputError(file, ln, "coordinate " + std::string(tok[k]) + " exceeds the supported magnitude 1e30");
+          throw InputError(file, ln, "coordinate " + printable(tok[k]) + " exceeds the supported magnitude " + max_coordinate_text());
         shape.positions.push_back(*d);
       }
       vertex_lines.push_back(ln);
@@ -81,7 +81,7 @@ Shape read_lattice(std::string_view bytes, const std::string& file) {
       read_ids(1, ln);
       const int n = cell_shape_vertex_count(cs);
       if (ids.size() != static_cast<std::size_t>(n))
-        throw InputError(file, ln, "'" + std::string(key) + "' takes " + std::to_string(n) + " vertex indices, got " +
+        throw InputError(file, ln, "'" + printable(key) + "' takes " + std::to_string(n) + " vertex indices, got " +
                                        std::to_string(ids.size()));
       builder.begin_cell(ln, "cell " + std::to_string(cells++) + " (" + cell_shape_name(cs) + ")");
       std::vector<std::int64_t> loop;
@@ -115,7 +115,7 @@ Shape read_lattice(std::string_view bytes, const std::string& file) {
       if (ids.size() < 3) throw InputError(file, ln, "'feature_face' takes a loop of at least 3 vertex indices");
       builder.add_feature_face(ids, ln);
     } else {
-      throw InputError(file, ln, "unknown statement '" + std::string(key.substr(0, 32)) +
+      throw InputError(file, ln, "unknown statement '" + printable(key) +
                                      "' (expected v, hex, wedge, pyramid, tet, cell, f, end, corner, crease, feature_face)");
     }
   }
@@ -130,6 +130,7 @@ void write_lattice(const std::string& path, const Complex& c, std::span<const do
   if (c.dim != 3) throw InputError(path, 0, "a .lattice holds volumes; this shape has dimension " + std::to_string(c.dim));
   if (xyz.size() != 3 * static_cast<std::size_t>(c.num_vertices))
     throw InputError(path, 0, "positions do not match the vertex count");
+  check_writable_positions(path, xyz);
   const FeatureTags tags = derive_feature_tags(c);
   write_file_atomic(path, [&](std::ostream& out) {
     out << kMagic << " 1\n# written by Sublift: " << c.num_vertices << " vertices, " << c.num_cells()

@@ -12,8 +12,8 @@
 #include "core/base/errors.h"
 #include "core/complex/feature_tags.h"
 #include "core/base/file_io.h"
+#include "core/base/magnitude.h"
 #include "core/io/mesh/mesh_export.h"
-#include "core/io/mesh/mesh_readers.h"
 #include "core/complex/shape_builder.h"
 #include "core/base/text_lines.h"
 
@@ -123,7 +123,7 @@ class Scanner {
   std::int64_t need_int(const std::string& what) {
     const auto t = need(what);
     auto v = parse_int(t);
-    if (!v) throw InputError(file_, line_, "'" + std::string(t.substr(0, 32)) + "' is not an integer (" + what + ")");
+    if (!v) throw InputError(file_, line_, "'" + printable(t) + "' is not an integer (" + what + ")");
     return *v;
   }
   std::int64_t need_count(const std::string& what) {
@@ -137,8 +137,8 @@ class Scanner {
     if (!v) {
       const std::string low = to_lower(t);
       if (low.find("nan") != std::string::npos || low.find("inf") != std::string::npos)
-        throw InputError(file_, line_, "non-finite coordinate '" + std::string(t.substr(0, 32)) + "'");
-      throw InputError(file_, line_, "'" + std::string(t.substr(0, 32)) + "' is not a number (" + what + ")");
+        throw InputError(file_, line_, "non-finite coordinate '" + printable(t) + "'");
+      throw InputError(file_, line_, "'" + printable(t) + "' is not a number (" + what + ")");
     }
     return *v;
   }
@@ -200,7 +200,7 @@ struct Grid {
 void read_values(Scanner& s, bool binary, const std::string& type, std::int64_t n, const std::string& what,
                  const std::string& file, std::vector<double>& out, std::vector<std::size_t>* lines = nullptr) {
   const std::size_t size = type_size(type);
-  if (size == 0 || type == "bit") throw InputError(file, s.line(), "unsupported data type '" + type + "' for " + what);
+  if (size == 0 || type == "bit") throw InputError(file, s.line(), "unsupported data type '" + printable(type) + "' for " + what);
   s.check_fits(n, binary ? size : 0, what);
   out.reserve(out.size() + static_cast<std::size_t>(n));
   if (!binary) {
@@ -260,7 +260,7 @@ void skip_field(Scanner& s, bool binary, const std::string& file) {
     if (type == "string" || type == "utf8_string") throw InputError(file, s.line(), "string field arrays are not supported");
     if (binary) {
       const std::size_t size = type_size(type);
-      if (size == 0) throw InputError(file, s.line(), "unsupported data type '" + type + "' in field data");
+      if (size == 0) throw InputError(file, s.line(), "unsupported data type '" + printable(type) + "' in field data");
       s.to_next_line();
       s.check_fits(n, size, "field array " + name);
       s.skip_bytes(static_cast<std::size_t>(n) * size);
@@ -284,7 +284,7 @@ Grid parse(std::string_view bytes, const std::string& file) {
   bool binary = false;
   if (mode.rfind("binary", 0) == 0) binary = true;
   else if (mode.rfind("ascii", 0) != 0)
-    throw InputError(file, 3, "the third line must be ASCII or BINARY, not '" + mode.substr(0, 32) + "'");
+    throw InputError(file, 3, "the third line must be ASCII or BINARY, not '" + printable(mode) + "'");
   if (to_lower(s.need("DATASET")) != "dataset") throw InputError(file, s.line(), "expected 'DATASET UNSTRUCTURED_GRID'");
   const std::string kind = to_lower(s.need("dataset type"));
   if (kind != "unstructured_grid")
@@ -305,7 +305,7 @@ Grid parse(std::string_view bytes, const std::string& file) {
       read_values(s, binary, type, 3 * n, "POINTS", file, g.xyz);
       for (double v : g.xyz)
         if (std::abs(v) > kMaxCoordinate)
-          throw InputError(file, ln, "a coordinate exceeds the supported magnitude 1e30");
+          throw InputError(file, ln, "a coordinate exceeds the supported magnitude " + max_coordinate_text());
       g.have_points = true;
     } else if (key == "cells") {
       if (g.have_cells) throw InputError(file, ln, "a second CELLS section");
@@ -361,7 +361,7 @@ Grid parse(std::string_view bytes, const std::string& file) {
     } else if (key == "cell_data" || key == "point_data") {
       break;  // attributes: not needed
     } else {
-      throw InputError(file, ln, "unknown keyword '" + std::string(t->substr(0, 32)) + "'");
+      throw InputError(file, ln, "unknown keyword '" + printable(*t) + "'");
     }
   }
   if (!g.have_points) throw InputError(file, 0, "no POINTS section");
@@ -466,6 +466,7 @@ Shape read_vtk(std::string_view bytes, const std::string& file) {
 void write_vtk(const std::string& path, const Complex& c, std::span<const double> xyz) {
   if (xyz.size() != 3 * static_cast<std::size_t>(c.num_vertices))
     throw InputError(path, 0, "positions do not match the vertex count");
+  check_writable_positions(path, xyz);
   const FeatureTags tags = derive_feature_tags(c);
   // Records (count first) and types, built before writing so that the sizes are known.
   std::vector<std::int64_t> rec;

@@ -5,6 +5,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
+#include "core/base/magnitude.h"
 
 namespace sublift {
 
@@ -85,6 +86,7 @@ void write_surface_mesh(const std::string& path, const SurfaceMesh& mesh) {
   else throw InputError(path, 0, "cannot write '." + ext + "' (expected .obj, .off or .ply)");
   if (ext != "obj" && mesh.num_faces() == 0 && mesh.num_polylines() > 0)
     throw InputError(path, 0, "." + ext + " cannot hold polylines (a curve); write .obj");
+  check_writable_positions(path, mesh.positions);
   write_file_atomic(path, [&](std::ostream& out) { writer(out, mesh); });
 }
 

@@ -4,13 +4,10 @@
 #include <string>
 #include <string_view>
 
+#include "core/base/magnitude.h"
 #include "core/io/mesh/mesh_import.h"
 
 namespace sublift {
-
-/// Largest coordinate magnitude accepted: beyond it products in normals, areas and inner
-/// products overflow or lose all precision.
-inline constexpr double kMaxCoordinate = 1e30;
 
 LoadedMesh read_obj(std::string_view bytes, const std::string& file, const ImportLimits& limits);
 LoadedMesh read_off(std::string_view bytes, const std::string& file, const ImportLimits& limits);

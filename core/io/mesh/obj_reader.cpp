@@ -82,11 +82,11 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
           // A literal nan/inf is a number the file really states: refuse the file.
           const std::string t = to_lower(tok[k + 1]);
           if (t.find("nan") != std::string::npos || t.find("inf") != std::string::npos)
-            throw InputError(file, ln, "non-finite coordinate '" + std::string(tok[k + 1]) + "'");
+            throw InputError(file, ln, "non-finite coordinate '" + printable(tok[k + 1]) + "'");
           ok = false;
         } else if (std::abs(*d) > kMaxCoordinate) {
-          throw InputError(file, ln, "coordinate " + std::string(tok[k + 1]) +
-                                         " exceeds the supported magnitude 1e30");
+          throw InputError(file, ln, "coordinate " + printable(tok[k + 1]) +
+                                         " exceeds the supported magnitude " + max_coordinate_text());
         } else {
           p[k] = *d;
         }
@@ -143,7 +143,7 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
     } else if (key == "p") {
       report.add("point element ignored (not a face or polyline)", ln);
     } else if (!ignorable_statement(key)) {
-      report.add("unknown statement ignored ('" + std::string(key.substr(0, 16)) + "')", ln);
+      report.add("unknown statement ignored ('" + printable(key, 16) + "')", ln);
     }
   }
   faces.finish(mesh, report);

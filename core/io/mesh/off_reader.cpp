@@ -35,7 +35,7 @@ void check_counts(const std::string& file, std::size_t line, const OffCounts& c,
 void check_coordinate(const std::string& file, std::size_t line, double v) {
   if (!std::isfinite(v)) throw InputError(file, line, "non-finite coordinate");
   if (std::abs(v) > kMaxCoordinate)
-    throw InputError(file, line, "coordinate exceeds the supported magnitude 1e30");
+    throw InputError(file, line, "coordinate exceeds the supported magnitude " + max_coordinate_text());
 }
 
 LoadedMesh read_off_binary(std::string_view bytes, std::size_t offset, const std::string& file,
@@ -97,7 +97,7 @@ LoadedMesh read_off(std::string_view bytes, const std::string& file, const Impor
     dims = 4;
   }
   if (kind != "OFF")
-    throw InputError(file, lines.line_number(), "not an OFF file (header '" + magic.substr(0, 16) + "')");
+    throw InputError(file, lines.line_number(), "not an OFF file (header '" + printable(magic, 16) + "')");
   std::size_t first = 1;
   if (tok.size() >= 2 && tok[1] == "BINARY") {
     if (magic != "OFF") throw InputError(file, lines.line_number(), "only plain 'OFF BINARY' is supported");
@@ -127,7 +127,7 @@ LoadedMesh read_off(std::string_view bytes, const std::string& file, const Impor
     double x[4] = {0, 0, 0, 1};
     for (int k = 0; k < dims; ++k) {
       auto d = parse_double(tok[k]);
-      if (!d) throw InputError(file, lines.line_number(), "bad or non-finite number '" + std::string(tok[k].substr(0, 32)) + "'");
+      if (!d) throw InputError(file, lines.line_number(), "bad or non-finite number '" + printable(tok[k]) + "'");
       x[k] = *d;
     }
     if (dims == 4) {

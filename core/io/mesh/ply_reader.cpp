@@ -1,7 +1,11 @@
 // Stanford PLY: ascii, binary_little_endian and binary_big_endian 1.0. Reads `vertex` (x, y, z),
 // `face` (vertex_indices / vertex_index list) and Stanford `tristrips`; other elements and
 // properties are skipped by their declared types. Counts are bounded by the file size first.
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -31,6 +35,37 @@ struct PlyElement {
 
 enum class PlyFormat { Ascii, BinaryLE, BinaryBE };
 
+// The value of type t whose bytes end at `end`, read in the byte order the header does not
+// say: what a file mislabelled little- for big-endian (or back) really holds.
+double swapped_value(std::string_view bytes, std::size_t end, PlyType t, PlyFormat fmt) {
+  const std::size_t n = ply_type_size(t);
+  unsigned char b[8] = {};
+  std::memcpy(b, bytes.data() + end - n, n);
+  const bool want_big = fmt == PlyFormat::BinaryLE;
+  if ((std::endian::native == std::endian::big) != want_big) std::reverse(b, b + n);
+  auto as = [&](auto v) {
+    std::memcpy(&v, b, sizeof v);
+    return static_cast<double>(v);
+  };
+  switch (t) {
+    case PlyType::Int8: return as(std::int8_t{});
+    case PlyType::UInt8: return as(std::uint8_t{});
+    case PlyType::Int16: return as(std::int16_t{});
+    case PlyType::UInt16: return as(std::uint16_t{});
+    case PlyType::Int32: return as(std::int32_t{});
+    case PlyType::UInt32: return as(std::uint32_t{});
+    case PlyType::Float32: return as(float{});
+    case PlyType::Float64: return as(double{});
+  }
+  return 0.0;
+}
+
+// "the file may be big-endian (its header says binary_little_endian)", or the reverse.
+std::string byte_order_hint(PlyFormat fmt) {
+  return fmt == PlyFormat::BinaryLE ? "the file may be big-endian (its header says binary_little_endian)"
+                                    : "the file may be little-endian (its header says binary_big_endian)";
+}
+
 // Reads values of the body one at a time, from text tokens or from binary.
 class PlyValues {
  public:
@@ -47,12 +82,12 @@ class PlyValues {
       if (ply_type_is_float(t)) {
         auto d = parse_double(tok);
         if (!d) throw InputError(file_, line(), std::string("bad or non-finite number '") +
-                                                    std::string(tok.substr(0, 32)) + "' in " + what);
+                                                    printable(tok) + "' in " + what);
         return *d;
       }
       auto i = parse_int(tok);
       if (!i) throw InputError(file_, line(), std::string("bad integer '") +
-                                                  std::string(tok.substr(0, 32)) + "' in " + what);
+                                                  printable(tok) + "' in " + what);
       return static_cast<double>(*i);
     }
     switch (t) {
@@ -136,7 +171,7 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
       if (tok[1] == "ascii") fmt = PlyFormat::Ascii;
       else if (tok[1] == "binary_little_endian") fmt = PlyFormat::BinaryLE;
       else if (tok[1] == "binary_big_endian") fmt = PlyFormat::BinaryBE;
-      else throw InputError(file, ln, "unknown PLY format '" + std::string(tok[1].substr(0, 32)) + "'");
+      else throw InputError(file, ln, "unknown PLY format '" + printable(tok[1]) + "'");
       have_format = true;
     } else if (key == "element") {
       if (tok.size() != 3) throw InputError(file, ln, "expected 'element NAME COUNT'");
@@ -149,13 +184,13 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
       if (tok.size() == 5 && tok[1] == "list") {
         p.is_list = true;
         if (!parse_ply_type(tok[2], p.count_type) || ply_type_is_float(p.count_type))
-          throw InputError(file, ln, "unknown or non-integer list count type '" + std::string(tok[2].substr(0, 32)) + "'");
+          throw InputError(file, ln, "unknown or non-integer list count type '" + printable(tok[2]) + "'");
         if (!parse_ply_type(tok[3], p.type))
-          throw InputError(file, ln, "unknown property type '" + std::string(tok[3].substr(0, 32)) + "'");
+          throw InputError(file, ln, "unknown property type '" + printable(tok[3]) + "'");
         p.name = tok[4];
       } else if (tok.size() == 3) {
         if (!parse_ply_type(tok[1], p.type))
-          throw InputError(file, ln, "unknown property type '" + std::string(tok[1].substr(0, 32)) + "'");
+          throw InputError(file, ln, "unknown property type '" + printable(tok[1]) + "'");
         p.name = tok[2];
       } else {
         throw InputError(file, ln, "expected 'property TYPE NAME' or 'property list CTYPE TYPE NAME'");
@@ -164,7 +199,7 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
     } else if (key == "end_header") {
       ended = true;
     } else {
-      throw InputError(file, ln, "unknown PLY header keyword '" + std::string(key.substr(0, 32)) +
+      throw InputError(file, ln, "unknown PLY header keyword '" + printable(key) +
                                     "' (is the 'end_header' line missing?)");
     }
   }
@@ -179,7 +214,7 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
       row += fmt == PlyFormat::Ascii ? 2.0 : double(ply_type_size(p.is_list ? p.count_type : p.type));
     min_bytes += row * double(e.count);
     if (min_bytes > double(bytes.size() - body))
-      throw InputError(file, e.line, "element '" + e.name + "' claims " + std::to_string(e.count) +
+      throw InputError(file, e.line, "element '" + printable(e.name) + "' claims " + std::to_string(e.count) +
                                          " rows but only " + std::to_string(bytes.size() - body) +
                                          " bytes of data follow the header");
   }
@@ -191,13 +226,13 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
   for (const PlyElement& e : elements) {
     const bool is_vertex = e.name == "vertex", is_face = e.name == "face" || e.name == "tristrips";
     if (!is_vertex && !is_face) {
-      out.report.not_kept.push_back({"'" + e.name + "' elements (PLY)", std::size_t(e.count), {e.line}});
+      out.report.not_kept.push_back({"'" + printable(e.name) + "' elements (PLY)", std::size_t(e.count), {e.line}});
       continue;
     }
     for (const PlyProperty& p : e.props) {
       const bool used = is_vertex ? (p.name == "x" || p.name == "y" || p.name == "z")
                                   : (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index"));
-      if (!used) out.report.not_kept.push_back({e.name + " property '" + p.name + "' (PLY)", std::size_t(e.count), {e.line}});
+      if (!used) out.report.not_kept.push_back({printable(e.name) + " property '" + printable(p.name) + "' (PLY)", std::size_t(e.count), {e.line}});
     }
   }
   FaceBuilder faces;
@@ -206,6 +241,8 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
   in.set_header_lines(header.line_number());
   std::vector<std::int64_t> list;
   bool have_vertices = false;
+  bool vertices_read = false;  // the vertex element is behind us: indices can be checked
+  bool hinted = false;         // binary indices out of range reported once, with their offset
   for (const PlyElement& e : elements) {
     const bool is_vertex = e.name == "vertex";
     const bool is_face = e.name == "face" || e.name == "tristrips";
@@ -225,14 +262,23 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
           const double v = in.read(p.type, is_vertex ? "vertex data" : "element data");
           row_line = row_line ? row_line : in.line();
           if (is_vertex && (p.name == "x" || p.name == "y" || p.name == "z")) {
-            if (!std::isfinite(v))
-              throw InputError(file, in.line(), "non-finite coordinate" + (in.ascii() ? std::string() : " at byte offset " + std::to_string(in.offset())));
-            if (std::abs(v) > kMaxCoordinate)
-              throw InputError(file, in.line(), "coordinate exceeds the supported magnitude 1e30");
+            if (!in_supported_range(v)) {
+              std::string where;
+              if (!in.ascii()) {
+                const std::size_t at = in.offset() - ply_type_size(p.type);
+                where = " at byte offset " + std::to_string(at);
+                if (in_supported_range(swapped_value(bytes, in.offset(), p.type, fmt)))
+                  where += "; " + byte_order_hint(fmt) + ": with its bytes swapped the value is " +
+                           format_shortest(swapped_value(bytes, in.offset(), p.type, fmt));
+              }
+              throw InputError(file, in.line(), (std::isfinite(v) ? "coordinate exceeds the supported magnitude " + max_coordinate_text()
+                                                                  : std::string("non-finite coordinate")) + where);
+            }
             pos[p.name[0] - 'x'] = v;
           }
           continue;
         }
+        const std::size_t record_at = in.ascii() ? 0 : in.offset();
         const double nd = in.read(p.count_type, "a list count");
         row_line = row_line ? row_line : in.line();
         const auto n = static_cast<std::int64_t>(nd);
@@ -244,12 +290,30 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
                                                 (in.ascii() ? std::string() : " at byte offset " + std::to_string(in.offset())) +
                                                 " exceeds the face-size limit or the file");
         list.clear();
+        const std::size_t list_start = in.ascii() ? 0 : in.offset();
         for (std::int64_t k = 0; k < n; ++k) {
           const double v = in.read(p.type, "list entries");
           if (ply_type_is_float(p.type) && v != std::floor(v)) list.push_back(-1);
           else list.push_back(static_cast<std::int64_t>(v));
         }
         if (is_face && (p.name == "vertex_indices" || p.name == "vertex_index")) {
+          // Binary indices out of range: name the byte offset, and say when the other byte
+          // order would put them all in range (a mislabelled file, not a damaged one).
+          const auto nv = static_cast<std::int64_t>(mesh.positions.size());
+          const auto out_of_range = [&](double v) { return v < 0 || v >= static_cast<double>(nv); };
+          if (!in.ascii() && !hinted && vertices_read &&
+              std::any_of(list.begin(), list.end(), [&](std::int64_t v) { return out_of_range(double(v)); })) {
+            hinted = true;
+            const std::size_t size = ply_type_size(p.type);
+            bool swapped_fit = !ply_type_is_float(p.type);
+            for (std::size_t k = 0; swapped_fit && k < list.size(); ++k)
+              swapped_fit = !out_of_range(swapped_value(bytes, list_start + (k + 1) * size, p.type, fmt));
+            const std::string face = "face " + std::to_string(r) + " at byte offset " + std::to_string(record_at);
+            out.report.add(swapped_fit ? byte_order_hint(fmt) + ": " + face +
+                                             " has vertex indices out of range that are all in range with their bytes swapped"
+                                       : face + " is the first with a vertex index out of range",
+                           0);
+          }
           if (e.name == "face") {
             faces.add(list, row_line);
           } else {  // tristrips: -1 restarts a strip; every other triangle flips orientation
@@ -271,6 +335,7 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
         vertex_lines.push_back(row_line);
       }
     }
+    if (is_vertex) vertices_read = true;
   }
   if (!have_vertices) throw InputError(file, 0, "PLY file has no 'vertex' element");
   if (!in.at_end()) out.report.add("trailing data after the last element ignored", in.line());

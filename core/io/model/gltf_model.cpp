@@ -19,7 +19,9 @@
 #include <glm/mat4x4.hpp>
 
 #include "core/base/errors.h"
+#include "core/base/text_lines.h"
 #include "core/base/file_io.h"
+#include "core/io/model/gltf_precheck.h"
 #include "core/io/model/gltf_sandbox.h"
 #include "core/io/model/model_source.h"
 
@@ -28,6 +30,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr std::size_t kMaxGltfBytes = std::size_t(1) << 31;  // tinygltf takes 32-bit lengths
+constexpr std::size_t kMaxQuotedUri = 256;  // a uri (or tinygltf's message quoting one) in a message
 
 // A checked accessor: element i occupies [base + i * stride, base + i * stride + elem) of buffer.
 struct AccessorSpan {
@@ -392,11 +395,13 @@ Model import_gltf_model(const std::string& path, ModelFormat format) {
       std::uint32_t json_len = 0;
       for (int k = 3; k >= 0; --k) json_len = (json_len << 8) | static_cast<unsigned char>(bytes[12 + std::size_t(k)]);
       check_json_depth(std::string_view(bytes).substr(20, json_len), path);
+      precheck_gltf_json(std::string_view(bytes).substr(20, json_len), path);
       ok = loader.LoadBinaryFromMemory(&g, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
                                        static_cast<unsigned int>(length), source->folder);
     } else {
       if (bytes.empty()) throw InputError(path, 0, "empty file");
       check_json_depth(bytes, path);
+      precheck_gltf_json(bytes, path);
       ok = loader.LoadASCIIFromString(&g, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), source->folder);
     }
   } catch (const Error&) {
@@ -406,16 +411,16 @@ Model import_gltf_model(const std::string& path, ModelFormat format) {
   }
   if (!ok) {
     if (!box.refused.empty())
-      throw InputError(path, 0, "uri '" + box.refused.front() + "' points outside the model's folder (an absolute path, '..', a URL or a symlink out): refused");
+      throw InputError(path, 0, "uri '" + printable(box.refused.front(), kMaxQuotedUri) + "' points outside the model's folder (an absolute path, '..', a URL or a symlink out): refused");
     const auto errs = lines_of(err);
-    throw InputError(path, 0, "glTF: " + (errs.empty() ? std::string("tinygltf could not read it") : errs.front()));
+    throw InputError(path, 0, "glTF: " + (errs.empty() ? std::string("tinygltf could not read it") : printable(errs.front(), kMaxQuotedUri)));
   }
   Model model;
   model.path = path;
   model.format = format;
   for (const std::string& r : box.refused)
-    model.notes.push_back("image uri '" + r + "' points outside the model's folder: not read, the reference is kept as it is");
-  for (const std::string& w : lines_of(warn)) model.notes.push_back("tinygltf: " + w);
+    model.notes.push_back("image uri '" + printable(r, kMaxQuotedUri) + "' points outside the model's folder: not read, the reference is kept as it is");
+  for (const std::string& w : lines_of(warn)) model.notes.push_back("tinygltf: " + printable(w, kMaxQuotedUri));
 
   for (const char* ext : {"KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_mesh_quantization", "EXT_mesh_gpu_instancing"})
     if (has_extension(g.extensionsRequired, ext))

@@ -2,6 +2,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
+#include "core/base/magnitude.h"
 #include "core/io/model/model_source.h"
 #include "core/complex/polygon_normal.h"
 
@@ -61,9 +62,7 @@ void export_model(const Model& model, std::span<const double> world_positions, c
   if (world_positions.size() != model.positions.size())
     throw InputError(path, 0, std::to_string(world_positions.size() / 3) + " positions given for a model of " +
                                   std::to_string(model.num_vertices()) + " vertices");
-  for (std::size_t i = 0; i < world_positions.size(); ++i)
-    if (!std::isfinite(world_positions[i]))
-      throw InputError(path, 0, "position of vertex " + std::to_string(i / 3) + " is not finite");
+  check_writable_positions(path, world_positions);
   if (is_gltf(f)) export_gltf_model(model, world_positions, path);
   else export_mesh_model(model, world_positions, path);
 }

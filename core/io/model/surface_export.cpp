@@ -14,6 +14,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
+#include "core/base/magnitude.h"
 #include "core/io/mesh/mesh_export.h"
 
 namespace sublift {
@@ -35,6 +36,8 @@ Surface checked_surface(const std::string& path, const Csr& faces, std::span<con
   if (xyz.size() / 3 > 0xffffffffu) throw InputError(path, 0, "more than 2^32 vertices");
   if (faces.offsets.empty() || faces.offsets.front() != 0 || faces.offsets.back() != faces.items.size())
     throw InputError(path, 0, "face offsets do not run from 0 to the corner count");
+  // A lattice whose every face is shared has no boundary: an OBJ of bare vertices says nothing.
+  if (faces.rows() == 0) throw InputError(path, 0, "the surface has no faces (a lattice without boundary faces?); nothing written");
   const std::size_t nv = xyz.size() / 3;
   for (std::size_t f = 0; f < faces.rows(); ++f) {
     if (faces.offsets[f + 1] < faces.offsets[f] + 3)
@@ -42,8 +45,7 @@ Surface checked_surface(const std::string& path, const Csr& faces, std::span<con
     for (std::uint32_t v : faces.row(f))
       if (v >= nv) throw InputError(path, 0, "face " + std::to_string(f) + " names vertex " + std::to_string(v) + ", beyond " + std::to_string(nv));
   }
-  for (std::size_t i = 0; i < xyz.size(); ++i)
-    if (!std::isfinite(xyz[i])) throw InputError(path, 0, "position of vertex " + std::to_string(i / 3) + " is not finite");
+  check_writable_positions(path, xyz);
   Surface s{faces, xyz, std::vector<double>(normals.begin(), normals.end())};
   for (std::size_t v = 0; v < nv; ++v) {
     double* n = &s.normals[3 * v];

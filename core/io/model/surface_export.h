@@ -20,7 +20,7 @@ namespace sublift {
 /// per vertex) to path by extension (.obj, .ply, .gltf, .glb). Normals off unit length by more
 /// than 1e-12 are renormalised, a zero normal is written as (0, 0, 1). Throws InputError
 /// (unknown extension, sizes that do not match, a face of fewer than 3 corners or naming a
-/// missing vertex, non-finite values, no face for glTF) or IoError (write failure).
+/// missing vertex, no face at all, values not finite or beyond the supported magnitude) or IoError (write failure).
 void write_surface_with_normals(const std::string& path, const Csr& faces, std::span<const double> xyz,
                                 std::span<const double> normals);
 

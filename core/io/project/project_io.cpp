@@ -10,7 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base/errors.h"
+#include "core/base/text_lines.h"
 #include "core/base/file_io.h"
+#include "core/base/magnitude.h"
 #include "core/complex/complex_build.h"
 #include "core/complex/connectivity_match.h"
 #include "core/complex/level_counts.h"
@@ -89,10 +91,33 @@ void check_extras(const ProjectExtras& x, int levels, std::size_t base_vertices,
 
 }  // namespace
 
+namespace {
+
+// The level a vertex is born at (its coefficient: a scaling one at level 0, else a wavelet of
+// the level before), for messages.
+int birth_level(const Hierarchy& h, std::size_t vertex) {
+  int j = 0;
+  while (j < h.finest_level() && vertex >= h.num_vertices(j)) ++j;
+  return j;
+}
+
+// Empty when every coefficient is finite and within kMaxCoordinate; else which one is not.
+std::string coefficient_problem(const Hierarchy& h, std::span<const double> coeffs) {
+  const auto i = first_out_of_range(coeffs);
+  if (!i) return "";
+  const std::size_t v = *i / static_cast<std::size_t>(h.channels);
+  return "coefficient at vertex " + std::to_string(v) + ", level " + std::to_string(birth_level(h, v)) + ", channel " +
+         std::to_string(*i % static_cast<std::size_t>(h.channels)) + " " + out_of_range_text(coeffs[*i]);
+}
+
+}  // namespace
+
 void write_project(const std::string& path, const Hierarchy& h) { write_project(path, h, ProjectExtras{}); }
 
 void write_project(const std::string& path, const Hierarchy& h, const ProjectExtras& extras) {
   const Complex& b = h.levels.at(0);
+  if (const std::string why = coefficient_problem(h, h.coeffs); !why.empty())
+    throw Error(path + ": cannot save project: " + why + "; nothing written");
   check_extras(extras, h.finest_level(), b.num_vertices, [&](const std::string& why) { throw Error(path + ": cannot save project: " + why); });
   if (!extras.input_order.empty()) {
     if (extras.input_order.level > h.finest_level()) throw Error(path + ": cannot save project: input order of a level it lacks");
@@ -164,7 +189,7 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   if (!first.empty() && first.back() == '\r') first.remove_suffix(1);
   if (first != "sublift-project 1") {
     const std::string_view ver = first.substr(std::min(first.size(), kMagic.size() + 1));
-    throw InputError(file, 1, "unsupported project version '" + std::string(ver) + "' (this Sublift reads version 1)");
+    throw InputError(file, 1, "unsupported project version '" + printable(ver) + "' (this Sublift reads version 1)");
   }
   // Line 2: JSON header.
   const std::size_t nl2 = bytes.find('\n', nl1 + 1);
@@ -186,7 +211,7 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
     try {
       scheme = parse_scheme(j.at("scheme").get<std::string>());
     } catch (const std::invalid_argument&) {
-      throw InputError(file, 2, "unknown scheme '" + j.at("scheme").get<std::string>() + "'");
+      throw InputError(file, 2, "unknown scheme '" + printable(j.at("scheme").get<std::string>()) + "'");
     }
     integer = j.at("integer").get<bool>();
     if (j.contains("disc")) disc = header_small_integer(file, j, "disc");
@@ -312,8 +337,6 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   extras.current_level = static_cast<int>(current_level);
   check_extras(extras, levels, static_cast<std::size_t>(V), [&](const std::string& why) { throw InputError(file, 2, why); });
   std::vector<double> coeffs = take<double>(bytes, pos, N);
-  for (std::size_t i = 0; i < coeffs.size(); ++i)
-    if (!std::isfinite(coeffs[i])) throw InputError(file, 0, "coefficient " + std::to_string(i) + " is not finite");
   Hierarchy h;
   try {
     h = make_hierarchy(std::move(c), levels, scheme, channels, integer, 0, disc);
@@ -322,6 +345,7 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   }
   if (h.coeffs.size() != coeffs.size())
     throw InputError(file, 2, "coefficient count does not match the refined base");
+  if (const std::string why = coefficient_problem(h, coeffs); !why.empty()) throw InputError(file, 0, why);
   h.coeffs = std::move(coeffs);
   if (io_level >= 0) {
     InputOrder& io = extras.input_order;

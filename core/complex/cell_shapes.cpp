@@ -48,8 +48,10 @@ const std::vector<std::vector<int>>& cell_shape_faces(CellShape s) {
   return kPyramidFaces;
 }
 
-std::vector<std::vector<std::uint32_t>> oriented_cell_loops(const Complex& c, std::span<const double> xyz,
-                                                            std::uint32_t k) {
+namespace {
+
+// Cell k's loops oriented consistently across its edges, the first face's orientation kept.
+std::vector<std::vector<std::uint32_t>> consistent_cell_loops(const Complex& c, std::uint32_t k) {
   std::vector<std::vector<std::uint32_t>> loops;
   for (std::uint32_t f : c.cell_faces.row(k)) {
     auto r = c.faces.row(f);
@@ -87,20 +89,85 @@ std::vector<std::vector<std::uint32_t>> oriented_cell_loops(const Complex& c, st
       }
     }
   }
-  if (xyz.size() >= 3 * static_cast<std::size_t>(c.num_vertices) && !loops.empty()) {
-    // Signed volume by the divergence theorem, relative to the first vertex (fan triangles).
-    auto p = [&](std::uint32_t v) { return std::array<double, 3>{xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]}; };
-    const auto o = p(loops[0][0]);
-    double vol = 0;
-    for (const auto& l : loops)
-      for (std::size_t i = 1; i + 1 < l.size(); ++i) {
-        auto a = p(l[0]), b = p(l[i]), d = p(l[i + 1]);
-        for (int t = 0; t < 3; ++t) a[t] -= o[t], b[t] -= o[t], d[t] -= o[t];
-        vol += a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
-               a[2] * (b[0] * d[1] - b[1] * d[0]);
-      }
-    if (vol < 0)
-      for (auto& l : loops) std::reverse(l.begin(), l.end());
+  return loops;
+}
+
+// Signed volume of closed loops by the divergence theorem (fan triangles about the first vertex).
+double signed_volume(const std::vector<std::vector<std::uint32_t>>& loops, std::span<const double> xyz) {
+  if (loops.empty()) return 0;
+  auto p = [&](std::uint32_t v) { return std::array<double, 3>{xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]}; };
+  const auto o = p(loops[0][0]);
+  double vol = 0;
+  for (const auto& l : loops)
+    for (std::size_t i = 1; i + 1 < l.size(); ++i) {
+      auto a = p(l[0]), b = p(l[i]), d = p(l[i + 1]);
+      for (int t = 0; t < 3; ++t) a[t] -= o[t], b[t] -= o[t], d[t] -= o[t];
+      vol += a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
+             a[2] * (b[0] * d[1] - b[1] * d[0]);
+    }
+  return vol;
+}
+
+bool has_positions(const Complex& c, std::span<const double> xyz) {
+  return xyz.size() >= 3 * static_cast<std::size_t>(c.num_vertices);
+}
+
+// Whether cell k's loop for face f runs as c.faces.row(f) does.
+bool runs_forward(const Complex& c, const std::vector<std::vector<std::uint32_t>>& loops, std::uint32_t k,
+                  std::uint32_t f) {
+  const auto row = c.cell_faces.row(k);
+  const auto i = static_cast<std::size_t>(std::find(row.begin(), row.end(), f) - row.begin());
+  const auto r = c.faces.row(f);
+  return loops[i].size() > 1 && loops[i][0] == r[0] && loops[i][1] == r[1];
+}
+
+void reverse_all(std::vector<std::vector<std::uint32_t>>& loops) {
+  for (auto& l : loops) std::reverse(l.begin(), l.end());
+}
+
+}  // namespace
+
+std::vector<std::vector<std::uint32_t>> oriented_cell_loops(const Complex& c, std::span<const double> xyz,
+                                                            std::uint32_t k) {
+  auto loops = consistent_cell_loops(c, k);
+  if (has_positions(c, xyz) && signed_volume(loops, xyz) < 0) reverse_all(loops);
+  return loops;
+}
+
+std::vector<std::vector<std::vector<std::uint32_t>>> oriented_lattice_loops(const Complex& c,
+                                                                            std::span<const double> xyz) {
+  const std::uint32_t n = c.num_cells();
+  std::vector<std::vector<std::vector<std::uint32_t>>> loops(n);
+  for (std::uint32_t k = 0; k < n; ++k) loops[k] = consistent_cell_loops(c, k);
+  const bool geometry = has_positions(c, xyz);
+  const bool upward = c.face_cells.rows() == c.num_faces();  // absent on a bare downward complex
+  std::vector<char> seen(n, 0);
+  for (std::uint32_t seed = 0; seed < n; ++seed) {
+    if (seen[seed]) continue;
+    // One connected component through shared faces: each neighbour is flipped so that the
+    // shared face runs against this cell's (the first visit decides on a non-orientable lattice).
+    std::vector<std::uint32_t> component{seed}, stack{seed};
+    seen[seed] = 1;
+    while (!stack.empty()) {
+      const std::uint32_t k = stack.back();
+      stack.pop_back();
+      if (!upward) break;
+      for (std::uint32_t f : c.cell_faces.row(k))
+        for (std::uint32_t m : c.face_cells.row(f)) {
+          if (m == k || seen[m]) continue;
+          if (runs_forward(c, loops[k], k, f) == runs_forward(c, loops[m], m, f)) reverse_all(loops[m]);
+          seen[m] = 1;
+          component.push_back(m);
+          stack.push_back(m);
+        }
+    }
+    // Outward where the geometry says so for most of the volume.
+    if (geometry) {
+      double vol = 0;
+      for (std::uint32_t k : component) vol += signed_volume(loops[k], xyz);
+      if (vol < 0)
+        for (std::uint32_t k : component) reverse_all(loops[k]);
+    }
   }
   return loops;
 }

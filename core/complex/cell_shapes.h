@@ -35,6 +35,13 @@ const std::vector<std::vector<int>>& cell_shape_faces(CellShape s);
 std::vector<std::vector<std::uint32_t>> oriented_cell_loops(const Complex& c, std::span<const double> xyz,
                                                             std::uint32_t k);
 
+/// The face loops of every cell, oriented consistently across each cell's edges and across
+/// the faces its neighbours share (a shared face runs opposite ways in its two cells), each
+/// connected component outward by its total signed volume under `xyz`. Writers use this, so
+/// a lattice Sublift writes is consistently oriented even where some cells are inverted.
+std::vector<std::vector<std::vector<std::uint32_t>>> oriented_lattice_loops(const Complex& c,
+                                                                            std::span<const double> xyz);
+
 /// The 8 vertices of a cell given by outward loops in VTK_HEXAHEDRON order when the loops
 /// are 6 quads forming a topological cube; nullopt otherwise.
 std::optional<std::array<std::uint32_t, 8>> hexahedron_vertices(const std::vector<std::vector<std::uint32_t>>& loops);

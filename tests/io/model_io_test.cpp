@@ -926,11 +926,11 @@ TEST(GltfModel, ShortDataUriAndBadStrideNameTheirFault) {
   short_uri.buffer_uri = "data:application/octet-stream;base64," + std::string(27, 'A') + "=";
   const fs::path a = dir.path() / "short.gltf";
   spit(a, short_uri.json(44));
-  EXPECT_EQ(error_of([&] { import_model(a.string()); }), a.string() + ": buffer 0: data URI holds 20 bytes, byteLength says 44");
+  EXPECT_EQ(error_text([&] { import_model(a.string()); }), a.string() + ": buffer 0: data URI holds 20 bytes, byteLength says 44");
   MiniGltf bad = g;
   bad.buffer_uri = "data:application/octet-stream;base64,AAA@";
   spit(a, bad.json(3));
-  EXPECT_EQ(error_of([&] { import_model(a.string()); }), a.string() + ": buffer 0: data URI is not base64: '@' at character 40 of the uri");
+  EXPECT_EQ(error_text([&] { import_model(a.string()); }), a.string() + ": buffer 0: data URI is not base64: '@' at character 40 of the uri");
   // byteStride 256 is a multiple of 4: the fault is the range; 3 is neither.
   const std::string b = g.write(dir.path(), "stride");
   const std::string good = sublift::read_file_bytes(b);
@@ -938,7 +938,7 @@ TEST(GltfModel, ShortDataUriAndBadStrideNameTheirFault) {
     std::string text = good;
     text.replace(text.find("\"byteStride\":32"), 15, std::string("\"byteStride\":") + stride);
     spit(b, text);
-    EXPECT_EQ(error_of([&] { import_model(b); }),
+    EXPECT_EQ(error_text([&] { import_model(b); }),
               b + ": bufferView 0: byteStride " + stride + " is not allowed (glTF allows 4..252, a multiple of 4)");
   }
   spit(b, good);
@@ -950,14 +950,14 @@ TEST(GltfModel, UrisWithNulAndControlBytesAreQuotedWhole) {
   MiniGltf g = roof(false);
   g.buffer_uri = "../se%00cret.bin";
   const std::string a = g.write(dir.path(), "nul");
-  EXPECT_EQ(error_of([&] { import_model(a); }),
+  EXPECT_EQ(error_text([&] { import_model(a); }),
             a + ": uri '../se\\x00cret.bin' points outside the model's folder (an absolute path, '..', a URL or a symlink out): refused");
   g.buffer_uri = "mi%00ni.bin";  // a missing file: tinygltf's own message, quoted whole
   const std::string b = g.write(dir.path(), "missing");
-  EXPECT_EQ(error_of([&] { import_model(b); }), b + ": glTF: File not found : mi\\x00ni.bin");
+  EXPECT_EQ(error_text([&] { import_model(b); }), b + ": glTF: File not found : mi\\x00ni.bin");
   g.buffer_uri = "caf\xc3\xa9\\u0007.bin";  // UTF-8 kept; BEL (JSON \u0007) escaped
   const std::string c = g.write(dir.path(), "ctrl");
-  const std::string e = error_of([&] { import_model(c); });
+  const std::string e = error_text([&] { import_model(c); });
   EXPECT_EQ(e.find('\0'), std::string::npos);
   EXPECT_NE(e.find("caf\xc3\xa9\\x07"), std::string::npos) << e;
 }

@@ -1,6 +1,7 @@
 // Reading and writing shapes by extension, polylines (OBJ `l`), the tags that carry feature
 // dims through files, exact level sizes before refinement, and the connectivity check of
 // `analyze`.
+#include <algorithm>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 #include <gtest/gtest.h>
@@ -231,6 +232,44 @@ TEST(CellShapes, HexahedronOrderFromAnyFaceOrderAndOrientation) {
   for (int i = 0; i < 4; ++i) EXPECT_EQ(glm::length(p(4 + i) - p(i)), 1.0);
   const Shape w = read_shape(kAssets + "/prism_ring.lattice");
   EXPECT_FALSE(hexahedron_vertices(oriented_cell_loops(w.base, w.positions, 0)).has_value());
+}
+
+TEST(CellShapes, LatticeLoopsAgreeAcrossSharedFacesAndPointOutward) {
+  for (const char* name : {"/prism_ring.lattice", "/hex_block_4.lattice"}) {
+  SCOPED_TRACE(name);
+  const Shape s = read_shape(kAssets + name);
+  const Complex& c = s.base;
+  const std::vector<double>& xyz = s.positions;
+  // Mirrored, every cell is inside out under its own vertex order; arbitrary positions invert
+  // some cells and not others. Either way a shared face runs opposite ways in its two cells.
+  std::vector<double> mirrored = xyz;
+  for (std::size_t i = 0; i < mirrored.size(); i += 3) mirrored[i] = -mirrored[i];
+  for (const auto& positions : {xyz, mirrored, sublift::testing::awkward_positions(c.num_vertices, 7)}) {
+    const auto loops = oriented_lattice_loops(c, positions);
+    ASSERT_EQ(loops.size(), c.num_cells());
+    std::size_t shared = 0;
+    for (std::uint32_t f = 0; f < c.num_faces(); ++f) {
+      const auto users = c.face_cells.row(f);
+      if (users.size() != 2) continue;
+      auto loop_in = [&](std::uint32_t k) {
+        const auto row = c.cell_faces.row(k);
+        return loops[k][static_cast<std::size_t>(std::find(row.begin(), row.end(), f) - row.begin())];
+      };
+      auto a = loop_in(users[0]), b = loop_in(users[1]);
+      std::reverse(b.begin(), b.end());
+      std::rotate(b.begin(), std::find(b.begin(), b.end(), a[0]), b.end());
+      EXPECT_EQ(a, b) << "face " << f;
+      ++shared;
+    }
+    EXPECT_GT(shared, 0u);
+  }
+  // Where the geometry is sane (as given, or mirrored as a whole) every cell is outward.
+  for (const auto& positions : {xyz, mirrored}) {
+    const auto loops = oriented_lattice_loops(c, positions);
+    for (std::uint32_t k = 0; k < c.num_cells(); ++k)
+      EXPECT_EQ(loops[k], oriented_cell_loops(c, positions, k)) << "cell " << k;
+  }
+  }
 }
 
 TEST(ConnectivityMatch, NamesTheFirstDifference) {

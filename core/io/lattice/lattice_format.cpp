@@ -138,8 +138,9 @@ void write_lattice(const std::string& path, const Complex& c, std::span<const do
     for (std::uint32_t v = 0; v < c.num_vertices; ++v)
       out << "v " << format_double(xyz[3 * v]) << ' ' << format_double(xyz[3 * v + 1]) << ' '
           << format_double(xyz[3 * v + 2]) << '\n';
+    const auto oriented = oriented_lattice_loops(c, xyz);
     for (std::uint32_t k = 0; k < c.num_cells(); ++k) {
-      const auto loops = oriented_cell_loops(c, xyz, k);
+      const auto& loops = oriented[k];
       if (const auto h = hexahedron_vertices(loops)) {
         out << "hex";
         for (std::uint32_t v : *h) out << ' ' << v;

@@ -478,8 +478,9 @@ void write_vtk(const std::string& path, const Complex& c, std::span<const double
   };
   std::vector<std::int64_t> ids;
   if (c.dim == 3) {
+    const auto oriented = oriented_lattice_loops(c, xyz);
     for (std::uint32_t k = 0; k < c.num_cells(); ++k) {
-      const auto loops = oriented_cell_loops(c, xyz, k);
+      const auto& loops = oriented[k];
       ids.clear();
       if (const auto h = hexahedron_vertices(loops)) {
         ids.assign(h->begin(), h->end());

@@ -1,15 +1,12 @@
 # The `sublift` GUI executable; included from app/CMakeLists.txt when SUBLIFT_WITH_GUI is on.
-# sublift_modeler holds the modeler's state, controller, view and script runner so GUI tests can
-# drive the controller without a window.
+# sublift_modeler holds the modeler's controller and view so GUI tests can drive the controller
+# without a window; it builds on sublift_modeler_state (modeler_state.cmake), which is GL-free.
 add_library(sublift_modeler STATIC
-  ${CMAKE_CURRENT_LIST_DIR}/basis_view_state.cpp
   ${CMAKE_CURRENT_LIST_DIR}/modeler_controller.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/modeler_state.cpp
   ${CMAKE_CURRENT_LIST_DIR}/modeler_view.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/script_runner.cpp
 )
 target_include_directories(sublift_modeler PUBLIC ${PROJECT_SOURCE_DIR})
-target_link_libraries(sublift_modeler PUBLIC sublift_core sublift_render sublift_ui)
+target_link_libraries(sublift_modeler PUBLIC sublift_modeler_state sublift_core sublift_render sublift_ui)
 
 add_executable(sublift
   ${CMAKE_CURRENT_LIST_DIR}/sublift_main.cpp

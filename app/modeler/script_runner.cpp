@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <new>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -380,10 +381,15 @@ ScriptStep ScriptRunner::next(ModelerState& state, ModelerDisplay* display) {
       run_line(state, display, words, rest_of(line, words[0]), step);
       if (step.kind != before) return step;  // screenshot or quit
     } catch (const std::exception& e) {
+      // Errors of the input (sublift::Error, a command's ScriptError) and running out of
+      // memory are the script's; anything else is a defect of Sublift and says so.
+      const bool expected = dynamic_cast<const Error*>(&e) || dynamic_cast<const ScriptError*>(&e) ||
+                            dynamic_cast<const std::bad_alloc*>(&e);
       std::string what = e.what();
       while (!what.empty() && (what.back() == '\n' || what.back() == ' ')) what.pop_back();
       step.kind = ScriptStep::Kind::Error;
-      step.message = "script:" + std::to_string(number) + ": " + what;
+      step.internal = !expected;
+      step.message = "script:" + std::to_string(number) + ": " + (expected ? "" : "internal error (please report): ") + what;
       return step;
     }
   }

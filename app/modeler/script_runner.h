@@ -32,6 +32,7 @@ struct ScriptStep {
   Kind kind = Kind::End;
   std::string path;     // Screenshot: the PNG to write
   std::string message;  // Error: "script:LINE: message"
+  bool internal = false;  // Error: not a fault of the input (a defect; the fuzz target aborts on it)
   bool reframe = false; // an `open` ran since the last step: frame the new model
   std::string view;     // a `view` command ran: the preset name (front, right, ...)
 };

@@ -14,7 +14,7 @@
 // resident memory than the first plus a margin (outside AddressSanitizer, whose quarantine
 // holds freed memory; there LeakSanitizer checks leaks at exit instead).
 //
-// Steps: SUBLIFT_SOAK_STEPS per case (default 40; 12 under AddressSanitizer, the sanitizer pass
+// Steps: SUBLIFT_SOAK_STEPS per case (default 40; 8 under AddressSanitizer, the sanitizer pass
 // of scripts/test); the seed is SUBLIFT_SOAK_SEED (default 18) and is printed with every failure.
 #include <algorithm>
 #include <cmath>
@@ -33,6 +33,7 @@
 #include <gtest/gtest.h>
 
 #include "app/modeler/modeler_state.h"
+#include "app/modeler/script_runner.h"
 #include "core/base/errors.h"
 #include "core/multires/hierarchy.h"
 #include "core/schemes/registry.h"
@@ -292,7 +293,7 @@ bool run_episode(ModelerState& m, std::mt19937_64& rng, int steps, const std::st
 }
 
 TEST(ModelerSoak, RandomOperationsOnEverySampleAndScheme) {
-  const int steps = env_int("SUBLIFT_SOAK_STEPS", kAddressSanitizer ? 12 : 40);
+  const int steps = env_int("SUBLIFT_SOAK_STEPS", kAddressSanitizer ? 8 : 40);
   const auto seed = static_cast<std::uint64_t>(env_int("SUBLIFT_SOAK_SEED", 18));
   sublift::testing::TempDir dir("sublift_soak");
   const std::vector<std::string> files = samples();
@@ -341,6 +342,26 @@ TEST(ModelerSoak, RandomOperationsOnEverySampleAndScheme) {
   std::string refused;
   for (const auto& [op, n] : stats.refused) refused += " " + op + " " + std::to_string(n);
   std::printf("soak: %d cases, %d steps checked; refused:%s\n", cases, stats.steps, refused.empty() ? " none" : refused.c_str());
+}
+
+// The script runner's failures of the input are not marked internal (the fuzz target aborts on
+// internal ones): a missing file, a bad number, a usage error, a command without a model, a
+// refusal of the model's own.
+TEST(ScriptRunner, InputErrorsAreNotInternal) {
+  const std::string cube = kAssets + "/cube.obj";
+  for (const std::string& script : {std::string("open /no/such/file.obj"), std::string("level 1"),
+                                   "open " + cube + "\nmove 1 x 2", "open " + cube + "\nmove 1 2",
+                                   "open " + cube + "\nscheme loop", "open " + cube + "\nsubdivide 99",
+                                   "open " + cube + "\ngain 5 2", "open " + cube + "\nbogus"}) {
+    SCOPED_TRACE(script);
+    ModelerState state;
+    ScriptRunner runner("t.script", script);
+    const ScriptStep step = runner.next(state);
+    EXPECT_EQ(step.kind, ScriptStep::Kind::Error);
+    EXPECT_FALSE(step.internal);
+    EXPECT_EQ(step.message.find("internal"), std::string::npos) << step.message;
+    EXPECT_EQ(step.message.rfind("script:", 0), 0u) << step.message;
+  }
 }
 
 }  // namespace

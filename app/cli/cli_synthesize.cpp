@@ -21,9 +21,11 @@ constexpr const char* kHelp =
     "usage: sublift-cli synthesize PROJECT [--level L] [--keep FRACTION] -o OUT [--json]\n"
     "  Writes the control net of level L (default: the finest) of a .sublift project, vertices\n"
     "  in the order 'subdivide' writes (a project made by 'rebuild': the finest level in the\n"
-    "  order of the file it came from). --keep F (0..1) first keeps only the largest fraction F\n"
-    "  of the wavelet coefficients, ranked by L2-normalised magnitude; --keep 0 gives the pure\n"
-    "  subdivision of the base, --keep 1 the analysed shape. OUT by extension as in 'subdivide'.\n";
+    "  order of the file it came from), with the project's detail gains applied, as the modeler\n"
+    "  shows it. --keep F (0..1) first keeps only the largest fraction F of the wavelet\n"
+    "  coefficients, ranked by L2-normalised magnitude times the gain (as 'compress' ranks);\n"
+    "  --keep 0 gives the pure subdivision of the base, --keep 1 the shape. OUT by extension as\n"
+    "  in 'subdivide'.\n";
 
 }  // namespace
 
@@ -56,6 +58,12 @@ int run_synthesize(int argc, char** argv) {
   if (L > h.finest_level())
     throw UsageError("--level " + std::to_string(L) + " is beyond the project's finest level " +
                      std::to_string(h.finest_level()));
+  // The shape the modeler showed: the saved detail gains applied (compress ranks the same way).
+  try {
+    apply_gains(h, extras.gains);
+  } catch (const Error& e) {
+    throw Error(in + ": " + e.what());
+  }
   std::size_t kept = 0;
   if (keep) kept = keep_largest(h, *keep);
   const auto t0 = std::chrono::steady_clock::now();
@@ -70,7 +78,7 @@ int run_synthesize(int argc, char** argv) {
   for (const std::string& n : notes) std::cerr << out << ": warning: " << n << "\n";
   if (a.has("--json")) {
     nlohmann::json j = {{"input", in}, {"output", out}, {"level", L}, {"vertices", h.num_vertices(L)},
-                      {"synthesis_ms", synthesis_ms}, {"notes", notes}};
+                      {"gains", extras.gains}, {"synthesis_ms", synthesis_ms}, {"notes", notes}};
     if (keep) {
       j["keep"] = *keep;
       j["kept_wavelets"] = kept;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "core/engine/executor.h"
@@ -190,6 +191,25 @@ std::vector<double> run_synthesis(const Hierarchy& h, int level, bool checked) {
 std::vector<double> synthesize(const Hierarchy& h, int level) { return run_synthesis(h, level, false); }
 
 std::vector<double> synthesize_in_range(const Hierarchy& h, int level) { return run_synthesis(h, level, true); }
+
+void apply_gains(Hierarchy& h, std::span<const double> gains) {
+  if (gains.empty()) return;
+  const int J = h.finest_level();
+  if (gains.size() != static_cast<std::size_t>(J))
+    throw Error("there are " + std::to_string(gains.size()) + " gains for " + std::to_string(J) + " wavelet levels");
+  const auto ch = static_cast<std::size_t>(h.channels);
+  for (int l = 0; l < J; ++l) {
+    const double g = gains[static_cast<std::size_t>(l)];
+    if (!std::isfinite(g)) throw Error("the gain of level " + std::to_string(l) + " is not finite");
+    if (g == 1.0) continue;
+    if (h.integer) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.17g", g);
+      throw Error("an integer hierarchy takes no gains (level " + std::to_string(l) + " has gain " + text + ")");
+    }
+    for (std::size_t i = ch * h.num_vertices(l); i < ch * h.num_vertices(l + 1); ++i) h.coeffs[i] *= g;
+  }
+}
 
 static double norm(const double* v, int ch) {
   double s = 0;

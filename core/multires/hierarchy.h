@@ -89,6 +89,12 @@ std::vector<double> synthesize(const Hierarchy& h, int level);
 /// reader would read back.
 std::vector<double> synthesize_in_range(const Hierarchy& h, int level);
 
+/// Multiplies the wavelets of each level l < J by gains[l] (a session's detail gains, as a
+/// project saves them; empty: nothing to do), so that synthesize(h, L) is the shape the modeler
+/// shows. Throws Error when there are not J gains, a gain is not finite, or h is in integer mode
+/// and a gain is not 1.
+void apply_gains(Hierarchy& h, std::span<const double> gains);
+
 /// Per-level wavelet statistics; magnitudes are Euclidean norms of the coefficient vectors.
 struct LevelStats {
   int level = 0;               // wavelets of this level live on level+1's e/f/c vertices

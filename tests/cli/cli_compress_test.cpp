@@ -2,6 +2,7 @@
 // that reopens to the compressed coefficients, a mesh equal to its finest level), the command
 // equal to core's Compressor and to `synthesize --keep`, the gains of a project, usage and input
 // errors.
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -9,12 +10,14 @@
 
 #include "core/complex/complex_build.h"
 #include "core/analysis/compress.h"
+#include "core/edit/session.h"
 #include "core/multires/hierarchy.h"
 #include "core/io/project/project_io.h"
 #include "core/io/lattice/shape_io.h"
 #include "core/complex/shapes.h"
 #include "tests/cli_run.h"
 #include "tests/io_test_util.h"
+#include "tests/test_util.h"
 #include "tests/test_shapes.h"
 
 namespace sublift {
@@ -119,6 +122,61 @@ TEST(CliCompress, RegionRawAndGains) {
   EXPECT_EQ(out.coeffs, core.evaluate(0).coeffs);
   EXPECT_EQ(back.gains, extras.gains);  // the session state goes along
   EXPECT_EQ(back.current_level, 2);
+}
+
+// Issue 19: synthesize ignored the saved gains (gain 0 on level 0 and 3 on level 1 came out as
+// if every gain were 1) while compress applied them.
+TEST(CliCompress, SynthesizeHonoursTheSavedGains) {
+  TempDir dir("sublift_cli_synthesize_gains");
+  const Hierarchy h = project_hierarchy();
+  ProjectExtras extras;
+  extras.gains = {0.0, 3.0, 1.0};
+  write_project(dir.file("in.sublift"), h, extras);
+  const ProcessResult r = cli({"synthesize", dir.file("in.sublift"), "-o", dir.file("s.obj"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["gains"].get<std::vector<double>>(), extras.gains);
+  // What the modeler's session shows with those gains (its own synthesis path).
+  const Session session(h, extras.gains);
+  const std::vector<double> shown(session.positions(3).begin(), session.positions(3).end());
+  const std::vector<double> written = read_shape(dir.file("s.obj")).positions;
+  ASSERT_EQ(written.size(), shown.size());
+  double err = 0, from_plain = 0;
+  const std::vector<double> plain = synthesize(h, 3);
+  for (std::size_t i = 0; i < shown.size(); ++i) {
+    err = std::max(err, std::abs(written[i] - shown[i]));
+    from_plain = std::max(from_plain, std::abs(written[i] - plain[i]));
+  }
+  EXPECT_LT(err, 1e-12);
+  EXPECT_GT(from_plain, 1e-3);  // the gains matter on this project
+  // A coarser level sees only the gains below it: level 1 is level 0's net (gain 0).
+  ASSERT_EQ(cli({"synthesize", dir.file("in.sublift"), "--level", "1", "-o", dir.file("s1.obj")}).exit_code, 0);
+  const std::vector<double> one = read_shape(dir.file("s1.obj")).positions;
+  const std::vector<double> shown1(session.positions(1).begin(), session.positions(1).end());
+  ASSERT_EQ(one.size(), shown1.size());
+  for (std::size_t i = 0; i < one.size(); ++i) EXPECT_NEAR(one[i], shown1[i], 1e-12) << i;
+  // --keep ranks with the gains, as compress does: the same mesh.
+  ASSERT_EQ(cli({"synthesize", dir.file("in.sublift"), "--keep", "0.3", "-o", dir.file("k.obj")}).exit_code, 0);
+  ASSERT_EQ(cli({"compress", dir.file("in.sublift"), "--keep", "0.3", "-o", dir.file("c.obj")}).exit_code, 0);
+  EXPECT_EQ(read_shape(dir.file("k.obj")).positions, read_shape(dir.file("c.obj")).positions);
+}
+
+TEST(ApplyGains, ScalesEachLevelsWaveletsAndRefusesBadGains) {
+  Hierarchy h = project_hierarchy();
+  const Hierarchy before = h;
+  apply_gains(h, {});
+  EXPECT_EQ(h.coeffs, before.coeffs);
+  apply_gains(h, std::vector<double>{1.0, -2.0, 1.0});
+  for (std::size_t i = 0; i < h.coeffs.size(); ++i) {
+    const bool level1 = i >= 3 * std::size_t(h.num_vertices(1)) && i < 3 * std::size_t(h.num_vertices(2));
+    EXPECT_EQ(h.coeffs[i], level1 ? -2.0 * before.coeffs[i] : before.coeffs[i]) << i;
+  }
+  EXPECT_NE(sublift::testing::error_text([&] { apply_gains(h, std::vector<double>{1.0, 1.0}); }).find("2 gains for 3 wavelet levels"),
+            std::string::npos);
+  EXPECT_NE(sublift::testing::error_text([&] { apply_gains(h, std::vector<double>{1.0, NAN, 1.0}); }).find("level 1 is not finite"),
+            std::string::npos);
+  Hierarchy integer = make_hierarchy(h.levels.front(), 1, Scheme::Linear, 3, true);
+  EXPECT_NE(sublift::testing::error_text([&] { apply_gains(integer, std::vector<double>{0.5}); }).find("integer hierarchy takes no gains"),
+            std::string::npos);
 }
 
 TEST(CliCompress, UsageAndInputErrors) {

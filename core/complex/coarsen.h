@@ -11,6 +11,12 @@
 
 namespace sublift::detect {
 
+/// Vertex labels of an attempt: Coarsening's kinds (short, as the labelling code reads them),
+/// and kNone for a vertex not labelled yet.
+inline constexpr std::uint8_t kNone = 255;
+inline constexpr std::uint8_t V = Coarsening::Old, E = Coarsening::EdgePoint, F = Coarsening::FacePoint,
+                              C = Coarsening::CellPoint;
+
 /// A connected component in its own numbering (faces all of one split's shape).
 struct Mesh {
   std::uint32_t n = 0;

@@ -13,8 +13,6 @@ namespace sublift::detect {
 
 namespace {
 
-constexpr std::uint8_t kNone = 255;
-constexpr std::uint8_t V = Coarsening::Old, E = Coarsening::EdgePoint, F = Coarsening::FacePoint, C = Coarsening::CellPoint;
 
 bool in_row(std::span<const std::uint32_t> row, std::uint32_t x) { return std::find(row.begin(), row.end(), x) != row.end(); }
 

@@ -11,8 +11,6 @@ namespace sublift::detect {
 
 namespace {
 
-constexpr std::uint8_t kNone = 255;
-constexpr std::uint8_t V = Coarsening::Old, E = Coarsening::EdgePoint, F = Coarsening::FacePoint;
 
 const char* kind_word(std::uint8_t l) { return l == V ? "a vertex" : l == E ? "an edge point" : "a face point"; }
 

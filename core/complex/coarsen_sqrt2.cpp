@@ -18,8 +18,7 @@ namespace sublift::detect {
 
 namespace {
 
-constexpr std::uint8_t kNone = 255;
-constexpr std::uint8_t V = Coarsening::Old, N = Coarsening::FacePoint;
+constexpr std::uint8_t N = Coarsening::FacePoint;  // a sqrt(2) step's new point
 
 // The corner after and before v in face row q.
 std::uint32_t after(std::span<const std::uint32_t> q, std::uint32_t v) { return q[(corner_of(q, v) + 1) % q.size()]; }

@@ -11,8 +11,6 @@ namespace sublift::detect {
 
 namespace {
 
-constexpr std::uint8_t kNone = 255;
-constexpr std::uint8_t V = Coarsening::Old, E = Coarsening::EdgePoint;
 constexpr std::uint8_t kCorner = 1, kMiddle = 2;
 
 // The face other than f that holds both x and y; UINT32_MAX on a boundary edge, and

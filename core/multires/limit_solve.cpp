@@ -291,7 +291,7 @@ PatchSolution solve_structured(const Operators& o) {
   const bool sym = circulant(o, z);
   if (sym) {
     // The spectrum: frequency 0 (with the centre) and the 2 x 2 blocks of the others.
-    Eigen::Matrix3d B0;
+    Eigen::MatrixXd B0(3, 3);  // dynamic: one EigenSolver instantiation for the file (a fixed 3 x 3 one doubled its build time)
     const double n = z.n;
     double sum[2][2] = {{0, 0}, {0, 0}};
     for (int a = 0; a < 2; ++a)
@@ -299,7 +299,7 @@ PatchSolution solve_structured(const Operators& o) {
         for (const auto& [d, g] : z.G[a][b]) sum[a][b] += g;
     B0 << z.cc, n * z.c_to[0], n * z.c_to[1], z.to_c[0], sum[0][0], sum[0][1], z.to_c[1], sum[1][0], sum[1][1];
     std::vector<Cx> ev;
-    const Eigen::EigenSolver<Eigen::Matrix3d> e0(B0, false);
+    const Eigen::EigenSolver<Eigen::MatrixXd> e0(B0, false);
     for (int i = 0; i < 3; ++i) ev.push_back(e0.eigenvalues()(i));
     Cx tangent{0, 0};  // the dominant eigenvalue of frequency 1
     double others = 0;  // the largest |eigenvalue| away from frequencies 1 and n - 1, and 1 itself

@@ -13,6 +13,7 @@ add_executable(sublift-cli
   ${CMAKE_CURRENT_LIST_DIR}/cli_fit.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cli_synthesize.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cli_edit.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/cli_set.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cli_info_hierarchy.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cli_basis.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cli_basis_png.cpp

@@ -16,6 +16,8 @@ int run_rebuild(int argc, char** argv);
 int run_fit(int argc, char** argv);
 int run_synthesize(int argc, char** argv);
 int run_edit(int argc, char** argv);
+/// `set`: a project's scheme, levels, gains, frames and edit level, as the modeler's panel sets them.
+int run_set(int argc, char** argv);
 int run_basis(int argc, char** argv);
 int run_ffd(int argc, char** argv);
 int run_coefficients(int argc, char** argv);

@@ -40,6 +40,10 @@ constexpr const char* kUsage =
     "                                        or an L-infinity error bound (docs/compression.md)\n"
     "  edit PROJECT --level L --vertex I [--falloff R] --delta DX DY DZ [--local-frames] -o OUT\n"
     "                                        move control points of level L, fine detail kept\n"
+    "  set PROJECT [--scheme S] [--subdivide N] [--gain L F]... [--frames world|local] [--level L]\n"
+    "        -o OUT                          the modeler panel's session settings on a project:\n"
+    "                                        scheme (shape kept where it can be), more levels,\n"
+    "                                        gains, detail frames, edit level\n"
     "  basis IN [--scheme S] --level J (--vertex I | --wavelet I) [--dual] [--levels K] -o OUT\n"
     "        [--png PNG]                     one scaling function or wavelet (or its dual) as\n"
     "                                        values at the level J+K vertices (.ply or curve .json)\n"
@@ -78,6 +82,7 @@ int main(int argc, char** argv) {
     if (cmd == "fit") return cli::run_fit(argc, argv);
     if (cmd == "synthesize") return cli::run_synthesize(argc, argv);
     if (cmd == "edit") return cli::run_edit(argc, argv);
+    if (cmd == "set") return cli::run_set(argc, argv);
     if (cmd == "basis") return cli::run_basis(argc, argv);
     if (cmd == "ffd") return cli::run_ffd(argc, argv);
     if (cmd == "coefficients") return cli::run_coefficients(argc, argv);

@@ -7,7 +7,12 @@
 #include "app/cli/cli_commands.h"
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
+#include "app/cli/cli_hierarchy.h"
+#include "core/analysis/boundary_surface.h"
+#include "core/analysis/limit_surface.h"
+#include "core/io/lattice/shape_io.h"
 #include "core/io/mesh/mesh_import.h"
+#include "core/io/project/project_io.h"
 #ifdef SUBLIFT_HAVE_RENDER
 #include "render/headless_render.h"
 #include "render/offscreen_target.h"
@@ -15,12 +20,52 @@
 
 namespace sublift::cli {
 
+namespace {
+
+SurfaceMesh surface_of(std::span<const double> xyz, const Csr& faces) {
+  SurfaceMesh m;
+  for (std::size_t v = 0; v + 2 < xyz.size(); v += 3) m.positions.emplace_back(xyz[v], xyz[v + 1], xyz[v + 2]);
+  for (std::size_t f = 0; f < faces.rows(); ++f) m.add_face(faces.row(f));
+  return m;
+}
+
+// What the modeler shows of FILE: a project's finest limit surface (gains applied), a lattice's
+// outward boundary, a mesh as it is.
+SurfaceMesh mesh_to_render(const std::string& file) {
+  if (is_project_path(file)) {
+    ProjectExtras extras;
+    Hierarchy h = read_project(file, &extras);
+    apply_gains(h, extras.gains);
+    if (h.channels != 3) throw Error(file + ": a project of " + std::to_string(h.channels) + " channels has no shape to render");
+    const LimitSurface s = finest_limit_surface(h, synthesize_in_range(h, h.finest_level()));
+    if (s.faces.rows() == 0) throw Error(file + ": a curve has no surface to render");
+    return surface_of(s.positions, s.faces);
+  }
+  const std::string ext = file_extension(file);
+  if (ext == "lattice" || ext == "vtk") {
+    const Shape shape = read_shape(file);
+    std::cerr << shape.report.format(file);
+    if (shape.base.dim != 3) {
+      if (shape.base.dim < 2) throw Error(file + ": a curve has no surface to render");
+      return surface_of(shape.positions, shape.base.faces);
+    }
+    return surface_of(shape.positions, boundary_faces(shape.base, shape.positions));
+  }
+  const LoadedMesh loaded = import_surface_mesh(file);
+  std::cerr << loaded.report.format(file);
+  return loaded.mesh;
+}
+
+}  // namespace
+
 int run_render(int argc, char** argv) {
   const Args a = parse_args(argc, argv, 2, {"-o", "--size"}, {"--json", "--help"});
   if (a.has("--help")) {
     std::cout << "usage: sublift-cli render FILE -o PNG [--size WxH] [--json]\n"
-                 "  Renders the mesh shaded with its wireframe from the default 3/4 view, without\n"
-                 "  a display (EGL surfaceless), and writes a PNG. Default size 800x600.\n";
+                 "  Renders FILE shaded with its wireframe from the default 3/4 view, without a\n"
+                 "  display (EGL surfaceless), and writes a PNG. Default size 800x600. FILE: a mesh\n"
+                 "  (.obj .off .ply), a lattice (.lattice .vtk: its outward boundary) or a .sublift\n"
+                 "  project (its finest limit surface with the saved gains, as the modeler shows it).\n";
     return 0;
   }
   if (a.positional.size() != 1) throw UsageError("expected exactly one FILE");
@@ -29,10 +74,9 @@ int run_render(int argc, char** argv) {
   if (file_extension(*out) != "png") throw UsageError("output must be a .png file, got '" + *out + "'");
   int w = 800, h = 600;
   if (auto s = a.value("--size")) parse_size(*s, w, h);
-  const LoadedMesh loaded = import_surface_mesh(a.positional[0]);
-  std::cerr << loaded.report.format(a.positional[0]);
+  const SurfaceMesh mesh = mesh_to_render(a.positional[0]);
 #ifdef SUBLIFT_HAVE_RENDER
-  const Image img = render_mesh_headless(loaded.mesh, w, h);
+  const Image img = render_mesh_headless(mesh, w, h);
   write_png(*out, img.width, img.height, img.rgba);
   if (a.has("--json"))
     std::cout << nlohmann::json{{"input", a.positional[0]}, {"output", *out}, {"width", w}, {"height", h}}.dump(2)

@@ -1,4 +1,4 @@
-// sublift-cli synthesize PROJECT [--level L] [--keep FRACTION] -o OUT [--json]
+// sublift-cli synthesize PROJECT [--level L | --limit] [--keep FRACTION] -o OUT [--json]
 #include <charconv>
 #include <chrono>
 #include <iostream>
@@ -7,6 +7,8 @@
 #include "app/cli/cli_commands.h"
 #include "app/cli/cli_hierarchy.h"
 #include "core/analysis/compress.h"
+#include "core/analysis/limit_surface.h"
+#include "core/io/model/surface_export.h"
 #include "core/multires/hierarchy.h"
 #include "core/io/project/project_io.h"
 #include "core/io/lattice/shape_io.h"
@@ -18,19 +20,21 @@ namespace sublift::cli {
 namespace {
 
 constexpr const char* kHelp =
-    "usage: sublift-cli synthesize PROJECT [--level L] [--keep FRACTION] -o OUT [--json]\n"
+    "usage: sublift-cli synthesize PROJECT [--level L | --limit] [--keep FRACTION] -o OUT [--json]\n"
     "  Writes the control net of level L (default: the finest) of a .sublift project, vertices\n"
     "  in the order 'subdivide' writes (a project made by 'rebuild': the finest level in the\n"
     "  order of the file it came from), with the project's detail gains applied, as the modeler\n"
     "  shows it. --keep F (0..1) first keeps only the largest fraction F of the wavelet\n"
     "  coefficients, ranked by L2-normalised magnitude times the gain (as 'compress' ranks);\n"
     "  --keep 0 gives the pure subdivision of the base, --keep 1 the shape. OUT by extension as\n"
-    "  in 'subdivide'.\n";
+    "  in 'subdivide'. --limit writes the finest level's limit surface instead of its net, as the\n"
+    "  modeler draws and exports it: .obj .ply .gltf .glb with unit normals from the limit\n"
+    "  tangents (a lattice: its boundary), other formats the limit positions.\n";
 
 }  // namespace
 
 int run_synthesize(int argc, char** argv) {
-  const Args a = parse_args(argc, argv, 2, {"-o", "--level", "--keep"}, {"--json", "--help"});
+  const Args a = parse_args(argc, argv, 2, {"-o", "--level", "--keep"}, {"--json", "--help", "--limit"});
   if (a.has("--help")) {
     std::cout << kHelp;
     return 0;
@@ -53,8 +57,13 @@ int run_synthesize(int argc, char** argv) {
   const std::string& in = a.positional[0];
   ProjectExtras extras;
   Hierarchy h = read_project(in, &extras);
-  const std::string out = output_option(a, h.levels.front().dim);
+  // --limit writes surfaces with normals (glTF too); otherwise, or for a curve, the shape formats.
+  const bool surface_out = a.has("--limit") && h.levels.front().dim >= 2 && surface_export_supported(*a.value("-o"));
+  const std::string out = surface_out ? *a.value("-o") : output_option(a, h.levels.front().dim);
   const int L = level.value_or(h.finest_level());
+  const bool limit = a.has("--limit");
+  if (limit && L != h.finest_level())
+    throw UsageError("--limit evaluates the finest level (" + std::to_string(h.finest_level()) + "); leave out --level");
   if (L > h.finest_level())
     throw UsageError("--level " + std::to_string(L) + " is beyond the project's finest level " +
                      std::to_string(h.finest_level()));
@@ -74,10 +83,20 @@ int run_synthesize(int argc, char** argv) {
     throw Error(in + ": " + e.what() + "; nothing written");
   }
   const double synthesis_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  const auto notes = write_level(out, h, L, x, h.channels, extras.input_order);
+  std::vector<std::string> notes;
+  if (limit) {
+    if (h.channels != 3) throw Error(in + ": --limit needs a project of positions (3 channels), this one has " + std::to_string(h.channels));
+    const LimitSurface surface = finest_limit_surface(h, x);  // core/analysis/limit_surface.h
+    if (surface_out && surface.faces.rows() > 0)
+      write_surface_with_normals(out, surface.faces, surface.positions, surface.normals);
+    else
+      notes = write_level(out, h, L, surface.positions, 3, extras.input_order);
+  } else {
+    notes = write_level(out, h, L, x, h.channels, extras.input_order);
+  }
   for (const std::string& n : notes) std::cerr << out << ": warning: " << n << "\n";
   if (a.has("--json")) {
-    nlohmann::json j = {{"input", in}, {"output", out}, {"level", L}, {"vertices", h.num_vertices(L)},
+    nlohmann::json j = {{"input", in}, {"output", out}, {"level", L}, {"vertices", h.num_vertices(L)}, {"limit", limit},
                       {"gains", extras.gains}, {"synthesis_ms", synthesis_ms}, {"notes", notes}};
     if (keep) {
       j["keep"] = *keep;

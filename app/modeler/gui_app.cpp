@@ -373,6 +373,7 @@ int run_gui(const GuiOptions& options) {
   std::unique_ptr<ScriptRunner> script;
   try {
     if (!options.script.empty()) script = std::make_unique<ScriptRunner>(options.script);
+    if (script && options.json) script->set_json_output(&std::cout);
   } catch (const std::exception& e) {
     std::cerr << "sublift: " << e.what() << '\n';
     return 1;

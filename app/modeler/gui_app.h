@@ -13,6 +13,7 @@ struct GuiOptions {
   int height = 800;
   std::string script;      // `--script FILE`: run modeler commands, then exit (script_runner.h)
   bool headless = false;   // `--headless`: render through EGL even when a display exists
+  bool json = false;       // `--json` with --script: one JSON line per command on stdout
 };
 
 /// The mesh opened when no file is given (assets/sample.obj of the source tree).

@@ -8,4 +8,4 @@ add_library(sublift_modeler_state STATIC
   ${CMAKE_CURRENT_LIST_DIR}/script_runner.cpp
 )
 target_include_directories(sublift_modeler_state PUBLIC ${PROJECT_SOURCE_DIR})
-target_link_libraries(sublift_modeler_state PUBLIC sublift_core)
+target_link_libraries(sublift_modeler_state PUBLIC sublift_core PRIVATE nlohmann_json::nlohmann_json)

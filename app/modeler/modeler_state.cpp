@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/analysis/boundary_surface.h"
+#include "core/analysis/limit_surface.h"
 #include "core/analysis/mesh_stats.h"
 #include "core/base/bounds.h"
 #include "core/base/errors.h"
@@ -17,6 +18,7 @@
 #include "core/complex/polygon_normal.h"
 #include "core/io/model/surface_export.h"
 #include "core/complex/complex_build.h"
+#include "core/edit/scheme_switch.h"
 #include "core/multires/rebuild.h"
 #include "core/fit/fit_levels.h"
 
@@ -269,18 +271,13 @@ void ModelerState::install(std::unique_ptr<Session> session) {
 void ModelerState::rebuild_limit() {
   const Hierarchy& h = session_->hierarchy();
   const int J = h.finest_level();
-  stencils_ = build_limit_stencils(h);
+  LimitSurface surface = finest_limit_surface(h, session_->positions(J));  // core/analysis/limit_surface.h
   const std::size_t n = h.num_vertices(J);
-  limit_.assign(n * 3, 0.0);
-  normals_.assign(n * 3, 0.0);
-  eval_limit(stencils_, session_->positions(J).data(), limit_.data());
-  const Complex& finest = h.levels[static_cast<std::size_t>(J)];
-  faces_ = finest.dim >= 2 ? boundary_faces(finest, limit_) : Csr{};
+  stencils_ = std::move(surface.stencils);
+  limit_ = std::move(surface.positions);
+  normals_ = std::move(surface.normals);
+  faces_ = std::move(surface.faces);
   vertex_faces_ = transpose(faces_, n);
-  if (faces_.rows() > 0) {
-    sublift::limit_normals(stencils_, faces_, session_->positions(J).data(), limit_.data(), normals_.data());
-    orient_tangents(stencils_, faces_, session_->positions(J).data(), limit_.data());
-  }
   stamp_.assign(n, 0);
   epoch_ = 0;
 }
@@ -354,27 +351,17 @@ void ModelerState::refresh_basis() {
 void ModelerState::set_scheme(Scheme scheme) {
   ffd_check_free("changing the scheme");
   check_unlocked("changing the scheme");
-  const Hierarchy& old = session_->hierarchy();
-  if (scheme_info(scheme).surfaces_only && old.levels.front().dim != 2)
-    throw Error("the " + scheme_name(scheme) + " scheme refines surfaces only; this is a " +
-                (old.levels.front().dim == 1 ? "curve" : "volume lattice") + " (use linear or cubic)");
-  if (scheme_info(scheme).triangles_only)
-    for (std::uint32_t f = 0; f < old.levels.front().num_faces(); ++f)
-      if (old.levels.front().faces.size(f) != 3)
-        throw Error("the " + scheme_name(scheme) + " scheme needs a triangle mesh; face " + std::to_string(f) + " has " +
-                    std::to_string(old.levels.front().faces.size(f)) + " corners");
-  const auto base_positions = session_->positions(0);
-  // The same finest resolution: two sqrt(2) levels make one 1-to-4 split.
-  const int from = scheme_levels_per_split(old.scheme), to = scheme_levels_per_split(scheme);
-  const int levels = std::min((old.finest_level() * to + from - 1) / from, max_levels(scheme));
-  const int edit_level = std::min((level_ * to + from - 1) / from, levels);
-  Hierarchy h = make_hierarchy(old.levels.front(), levels, scheme, 3);
-  set_base(h, base_positions);
+  const Scheme from = session_->hierarchy().scheme;
+  SchemeSwitch next = switch_scheme(*session_, scheme);  // core/edit/scheme_switch.h: shape kept where it can be
   const bool local = session_->detail_frames() == DetailFrames::Local;
-  auto session = std::make_unique<Session>(std::move(h));
+  auto session = std::make_unique<Session>(std::move(next.hierarchy));
   if (local) session->set_detail_frames(DetailFrames::Local);
+  const int edit_level = std::min(level_under_scheme(level_, from, scheme), session->finest_level());
   install(std::move(session));
   level_ = edit_level;
+  if (!next.kept_detail)
+    warnings_.push_back("the " + scheme_name(scheme) + " scheme refines differently from " + scheme_name(from) +
+                        ": its levels start from the base, without the detail");
   update_.topology = true;
   refresh_state();
 }

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <new>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
+
+#include <nlohmann/json.hpp>
 
 #include "core/base/errors.h"
 
@@ -376,9 +379,23 @@ ScriptStep ScriptRunner::next(ModelerState& state, ModelerDisplay* display) {
     std::vector<std::string> words;
     for (std::string w; words_in >> w;) words.push_back(w);
     if (words.empty()) continue;
+    const auto t0 = std::chrono::steady_clock::now();
+    auto report = [&](bool ok, const std::string& message) {
+      if (!json_) return;
+      nlohmann::json j = {{"line", number}, {"command", words[0]}, {"ok", ok},
+                          {"ms", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()},
+                          {"message", message}};
+      if (state.has_session()) {
+        j["level"] = state.level();
+        j["finest_level"] = state.session().finest_level();
+        j["vertices"] = state.session().num_vertices(state.level());
+      }
+      *json_ << j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << '\n' << std::flush;
+    };
     try {
       ScriptStep::Kind before = step.kind;
       run_line(state, display, words, rest_of(line, words[0]), step);
+      report(true, "");
       if (step.kind != before) return step;  // screenshot or quit
     } catch (const std::exception& e) {
       // Errors of the input (sublift::Error, a command's ScriptError) and running out of
@@ -390,6 +407,7 @@ ScriptStep ScriptRunner::next(ModelerState& state, ModelerDisplay* display) {
       step.kind = ScriptStep::Kind::Error;
       step.internal = !expected;
       step.message = "script:" + std::to_string(number) + ": " + (expected ? "" : "internal error (please report): ") + what;
+      report(false, step.message);
       return step;
     }
   }

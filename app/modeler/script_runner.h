@@ -18,6 +18,7 @@
 //   until) compress apply (one undoable edit) | compress off (docs/compression.md)
 // The runner executes commands until one needs a rendered frame (screenshot) or the script
 // ends; the app draws and saves the frame, then calls next() again.
+#include <ostream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -44,6 +45,12 @@ class ScriptRunner {
   /// From text (tests).
   ScriptRunner(const std::string& name, const std::string& text);
 
+  /// `sublift --script FILE --json`: after each command, one line with a JSON object on `out`
+  /// (null: none): {"line", "command", "ok", "ms", "level", "finest_level", "vertices",
+  /// "message"} — the edit level, the finest level and the edit level's vertex count after the
+  /// command; message the error of a failed command (the last line), else "".
+  void set_json_output(std::ostream* out) { json_ = out; }
+
   /// Runs commands until a screenshot, quit, the end or the first failure.
   /// `display` receives the display commands (ignored when null).
   ScriptStep next(ModelerState& state, ModelerDisplay* display = nullptr);
@@ -51,6 +58,7 @@ class ScriptRunner {
  private:
   std::vector<std::string> lines_;
   std::size_t line_ = 0;  // next line to run (0-based)
+  std::ostream* json_ = nullptr;
 };
 
 /// The command names, from the runner's table (for `sublift --help`).

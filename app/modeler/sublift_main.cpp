@@ -14,7 +14,7 @@ namespace {
 constexpr int kExitUsage = 2;
 
 void print_usage(std::ostream& out) {
-  out << "usage: sublift [FILE] [--script FILE] [--headless] [--screenshot PATH] [--frames N]\n"
+  out << "usage: sublift [FILE] [--script FILE [--json]] [--headless] [--screenshot PATH] [--frames N]\n"
          "               [--size WxH] [--help]\n"
          "\n"
          "Opens FILE (OBJ, OFF, PLY, curve OBJ, .lattice, .vtk or a .sublift project) in the\n"
@@ -33,6 +33,8 @@ void print_usage(std::ostream& out) {
     names.append(" ").append(name);
   }
   out << names << "\n"
+         "  --json             with --script: one JSON object per command on stdout (line,\n"
+         "                     command, ok, ms, level, finest_level, vertices, message)\n"
          "  --headless         render through EGL without a window even if a display exists\n"
          "  --screenshot PATH  render the GUI, save it as a PNG and exit (default 3 frames)\n"
          "  --frames N         run N frames, then exit\n"
@@ -77,6 +79,8 @@ int main(int argc, char** argv) {
       const auto path = value();
       if (!path || path->empty()) return usage_error("--script needs a script file");
       options.script = std::string(*path);
+    } else if (arg == "--json") {
+      options.json = true;
     } else if (arg == "--headless") {
       options.headless = true;
     } else if (arg == "--screenshot") {
@@ -108,5 +112,6 @@ int main(int argc, char** argv) {
       have_file = true;
     }
   }
+  if (options.json && options.script.empty()) return usage_error("--json goes with --script");
   return sublift::run_gui(options);
 }

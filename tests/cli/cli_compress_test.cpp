@@ -3,6 +3,10 @@
 // equal to core's Compressor and to `synthesize --keep`, the gains of a project, usage and input
 // errors.
 #include <algorithm>
+#include <array>
+#include <fstream>
+#include <set>
+#include <sstream>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -177,6 +181,68 @@ TEST(ApplyGains, ScalesEachLevelsWaveletsAndRefusesBadGains) {
   Hierarchy integer = make_hierarchy(h.levels.front(), 1, Scheme::Linear, 3, true);
   EXPECT_NE(sublift::testing::error_text([&] { apply_gains(integer, std::vector<double>{0.5}); }).find("integer hierarchy takes no gains"),
             std::string::npos);
+}
+
+// synthesize --limit: the finest level's limit surface with normals (issue 19, CLI parity with
+// the modeler's export). On the torus every vertex is regular, where the cubic scheme is the
+// bicubic B-spline: limit = (16 v + 4 (edge neighbours) + (diagonal neighbours)) / 36.
+TEST(CliSynthesize, LimitSurfaceWithNormals) {
+  TempDir dir("sublift_cli_synthesize_limit");
+  const Hierarchy h = project_hierarchy();
+  write_project(dir.file("in.sublift"), h);
+  const ProcessResult r = cli({"synthesize", dir.file("in.sublift"), "--limit", "-o", dir.file("lim.obj"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["limit"], true);
+  const std::vector<double> net = synthesize(h, 3);
+  const Complex& c = h.levels[3];
+  const Shape lim = read_shape(dir.file("lim.obj"));
+  ASSERT_EQ(lim.positions.size(), net.size());
+  std::vector<std::set<std::uint32_t>> edge_nb(c.num_vertices), face_nb(c.num_vertices);
+  for (std::uint32_t f = 0; f < c.num_faces(); ++f) {
+    const auto q = c.faces.row(f);
+    ASSERT_EQ(q.size(), 4u);
+    for (std::size_t k = 0; k < 4; ++k) {
+      edge_nb[q[k]].insert(q[(k + 1) % 4]);
+      edge_nb[q[k]].insert(q[(k + 3) % 4]);
+      face_nb[q[k]].insert(q[(k + 2) % 4]);
+    }
+  }
+  double err = 0;
+  for (std::uint32_t v = 0; v < c.num_vertices; ++v) {
+    ASSERT_EQ(edge_nb[v].size(), 4u);
+    for (int k = 0; k < 3; ++k) {
+      double m = 16 * net[3 * v + k];
+      for (std::uint32_t u : edge_nb[v]) m += 4 * net[3 * u + k];
+      for (std::uint32_t u : face_nb[v]) m += net[3 * u + k];
+      err = std::max(err, std::abs(m / 36 - lim.positions[3 * v + k]));
+    }
+  }
+  EXPECT_LT(err, 1e-12);
+  // One unit normal per vertex, pointing away from the torus' core circle (radius 1 about z).
+  std::ifstream in(dir.file("lim.obj"));
+  std::vector<std::array<double, 3>> normals;
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("vn ", 0) == 0) {
+      std::istringstream w(line.substr(3));
+      std::array<double, 3> n{};
+      w >> n[0] >> n[1] >> n[2];
+      normals.push_back(n);
+    }
+  ASSERT_EQ(normals.size(), c.num_vertices);
+  for (std::uint32_t v = 0; v < c.num_vertices; ++v) {
+    const auto& n = normals[v];
+    EXPECT_NEAR(n[0] * n[0] + n[1] * n[1] + n[2] * n[2], 1.0, 1e-6);
+    const double* p = &lim.positions[3 * v];
+    const double rho = std::hypot(p[0], p[1]);
+    const double out[3] = {p[0] - p[0] / rho, p[1] - p[1] / rho, p[2]};  // from the core circle
+    EXPECT_GT(n[0] * out[0] + n[1] * out[1] + n[2] * out[2], 0.0) << "vertex " << v;
+  }
+  // glTF too; --limit with a coarser --level is refused.
+  ASSERT_EQ(cli({"synthesize", dir.file("in.sublift"), "--limit", "-o", dir.file("lim.glb")}).exit_code, 0);
+  EXPECT_GT(std::filesystem::file_size(dir.file("lim.glb")), 12 * c.num_vertices);
+  const ProcessResult bad = cli({"synthesize", dir.file("in.sublift"), "--limit", "--level", "1", "-o", dir.file("x.obj")});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--limit evaluates the finest level (3)"), std::string::npos) << bad.err;
 }
 
 TEST(CliCompress, UsageAndInputErrors) {

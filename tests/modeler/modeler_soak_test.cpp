@@ -26,11 +26,13 @@
 #include <map>
 #include <optional>
 #include <random>
+#include <sstream>
 #include <set>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "app/modeler/modeler_state.h"
 #include "app/modeler/script_runner.h"
@@ -362,6 +364,46 @@ TEST(ScriptRunner, InputErrorsAreNotInternal) {
     EXPECT_EQ(step.message.find("internal"), std::string::npos) << step.message;
     EXPECT_EQ(step.message.rfind("script:", 0), 0u) << step.message;
   }
+}
+
+// `sublift --script FILE --json`: one JSON object per command, the state after it, and the
+// failure as the last line.
+TEST(ScriptRunner, JsonLinePerCommand) {
+  const std::string cube = kAssets + "/cube.obj";
+  ModelerState state;
+  ScriptRunner runner("t.script", "# a comment\nopen " + cube + "\nsubdivide\n\nlevel 1\nselect 0\nmove 0 0 1\nbogus\nundo\n");
+  std::ostringstream out;
+  runner.set_json_output(&out);
+  const ScriptStep step = runner.next(state);
+  EXPECT_EQ(step.kind, ScriptStep::Kind::Error);
+  std::vector<nlohmann::json> lines;
+  std::istringstream in(out.str());
+  for (std::string l; std::getline(in, l);) lines.push_back(nlohmann::json::parse(l));
+  ASSERT_EQ(lines.size(), 6u) << out.str();  // comments and blank lines are no commands; undo never ran
+  const std::vector<std::pair<int, std::string>> expected = {
+      {2, "open"}, {3, "subdivide"}, {5, "level"}, {6, "select"}, {7, "move"}, {8, "bogus"}};
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(lines[i]["line"], expected[i].first);
+    EXPECT_EQ(lines[i]["command"], expected[i].second);
+    EXPECT_EQ(lines[i]["ok"], i + 1 < lines.size());
+    EXPECT_GE(lines[i]["ms"].get<double>(), 0.0);
+  }
+  EXPECT_EQ(lines[0]["finest_level"], 2);  // opened with two levels
+  EXPECT_EQ(lines[1]["finest_level"], 3);
+  EXPECT_EQ(lines[2]["level"], 1);
+  EXPECT_EQ(lines[2]["vertices"], state.session().num_vertices(1));
+  EXPECT_EQ(lines[5]["message"], "script:8: unknown command 'bogus'");
+  EXPECT_EQ(lines[5]["message"], step.message);
+  // Before a model is open there is no level to report.
+  ModelerState empty;
+  ScriptRunner none("t.script", "level 1\n");
+  std::ostringstream o2;
+  none.set_json_output(&o2);
+  none.next(empty);
+  const auto j = nlohmann::json::parse(o2.str());
+  EXPECT_FALSE(j.contains("level"));
+  EXPECT_EQ(j["ok"], false);
 }
 
 }  // namespace

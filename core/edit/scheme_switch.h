@@ -1,0 +1,35 @@
+#pragma once
+// Switching an editing session to another scheme (the modeler's Scheme menu, `scheme S` in
+// scripts, `sublift-cli set --scheme S`): one rule for all three.
+//
+// The finest resolution stays (two sqrt(2) levels make one 1-to-4 split, so the level count
+// scales by levels_per_split). Schemes with the same refinement (linear and cubic; linear-tri,
+// butterfly and loop) have the same complex at every level, so the finest net the session shows
+// (its gains applied) is analysed by the new scheme: the shape is kept exactly, to rounding, and
+// the gains become 1 (they are in the new wavelets). Between refinements (to or from sqrt2) the
+// levels are different meshes: the new hierarchy starts from the base's positions with zero
+// detail, and `kept_detail` is false so the caller can say so.
+#include <span>
+
+#include "core/edit/session.h"
+#include "core/schemes/registry.h"
+
+namespace sublift {
+
+/// Throws Error when `scheme` cannot refine `base` (a surface scheme on a curve or lattice, a
+/// triangle scheme on other polygons), naming the first offending face.
+void check_scheme_takes(Scheme scheme, const Complex& base);
+
+/// `level` of a hierarchy of `from` as the level of the same resolution under `to`, capped at
+/// `to`'s level limit.
+int level_under_scheme(int level, Scheme from, Scheme to);
+
+struct SchemeSwitch {
+  Hierarchy hierarchy;      // 3 channels, the new scheme, level_under_scheme(J) levels
+  bool kept_detail = false; // the finest shape is the session's (same refinement)
+};
+
+/// The session's shape under `to` (see above). Throws Error as check_scheme_takes does.
+SchemeSwitch switch_scheme(const Session& session, Scheme to);
+
+}  // namespace sublift

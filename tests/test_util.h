@@ -7,7 +7,26 @@
 #include "core/base/errors.h"
 #include "core/io/mesh/mesh_import.h"
 
+// SUBLIFT_ASAN: set by tests/CMakeLists.txt in sanitizer builds (whose test bodies are not
+// instrumented themselves), or detected in a test compiled with ASan.
+#if defined(SUBLIFT_ASAN)
+#elif defined(__SANITIZE_ADDRESS__)  // gcc
+#define SUBLIFT_ASAN 1
+#elif defined(__has_feature)  // clang
+#if __has_feature(address_sanitizer)
+#define SUBLIFT_ASAN 1
+#endif
+#endif
+
 namespace sublift::testing {
+
+/// This test binary runs under AddressSanitizer (its quarantine holds freed memory, so memory
+/// measurements skip; soak runs take fewer steps).
+#ifdef SUBLIFT_ASAN
+inline constexpr bool kAddressSanitizer = true;
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
 
 /// Imports `bytes` as if read from `name`.
 inline LoadedMesh load(const std::string& name, const std::string& bytes) {

@@ -13,7 +13,7 @@
 #include "core/complex/shapes.h"
 #include "tests/io_test_util.h"
 #include "tests/cli_run.h"
-#include "tests/test_shapes.h"
+#include "tests/noisy_hierarchy.h"
 
 namespace sublift {
 namespace {
@@ -26,16 +26,7 @@ using testing::TempDir;
 ProcessResult cli(const std::vector<std::string>& args) { return testing::run_cli(args); }
 
 // A torus project with detail at every level.
-Hierarchy project_hierarchy() {
-  const SurfaceMesh m = make_quad_torus(12, 8);
-  Hierarchy h = make_hierarchy(complex_from_surface_mesh(m), 3, Scheme::Cubic, 3);
-  set_base(h, flatten_positions(m));
-  std::vector<double> fine = synthesize(h, 3);
-  const std::vector<double> r = testing::random_values(fine.size(), 11, -0.01, 0.01);
-  for (std::size_t i = 0; i < fine.size(); ++i) fine[i] += r[i];
-  analyze(h, fine);
-  return h;
-}
+Hierarchy project_hierarchy() { return testing::noisy_torus(12, 8, 3, Scheme::Cubic, 11, 0.01); }
 
 TEST(CliEdit, MatchesFullResynthesisAndReportsTiming) {
   TempDir dir("sublift_cli_edit");

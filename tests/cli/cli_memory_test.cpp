@@ -14,22 +14,10 @@
 #include "tests/mesh_fixtures.h"
 #include "tests/test_util.h"
 
-#if defined(__SANITIZE_ADDRESS__)  // gcc
-#define SUBLIFT_ASAN 1
-#elif defined(__has_feature)  // clang
-#if __has_feature(address_sanitizer)
-#define SUBLIFT_ASAN 1
-#endif
-#endif
-
 namespace sublift {
 namespace {
 
-#ifdef SUBLIFT_ASAN
-constexpr bool kAddressSanitizer = true;
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
+using testing::kAddressSanitizer;
 
 using testing::run_cli;
 

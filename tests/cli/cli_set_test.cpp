@@ -15,7 +15,7 @@
 #include "core/multires/hierarchy.h"
 #include "tests/cli_run.h"
 #include "tests/io_test_util.h"
-#include "tests/test_shapes.h"
+#include "tests/noisy_hierarchy.h"
 
 namespace sublift {
 namespace {
@@ -34,13 +34,7 @@ double max_diff(std::span<const double> a, std::span<const double> b) {
 
 // A cubic torus project with detail at every level and gains 1, 0.5, 2.
 Hierarchy torus_project(const TempDir& dir, const std::string& name) {
-  const SurfaceMesh m = make_quad_torus(10, 6);
-  Hierarchy h = make_hierarchy(complex_from_surface_mesh(m), 3, Scheme::Cubic, 3);
-  set_base(h, flatten_positions(m));
-  std::vector<double> fine = synthesize(h, 3);
-  const std::vector<double> r = testing::random_values(fine.size(), 5, -0.02, 0.02);
-  for (std::size_t i = 0; i < fine.size(); ++i) fine[i] += r[i];
-  analyze(h, fine);
+  const Hierarchy h = testing::noisy_torus(10, 6, 3, Scheme::Cubic, 5, 0.02);
   ProjectExtras extras;
   extras.gains = {1.0, 0.5, 2.0};
   extras.current_level = 2;

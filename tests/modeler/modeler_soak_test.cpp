@@ -40,23 +40,12 @@
 #include "core/multires/hierarchy.h"
 #include "core/schemes/registry.h"
 #include "tests/io_test_util.h"
-
-#if defined(__SANITIZE_ADDRESS__)  // gcc
-#define SUBLIFT_ASAN 1
-#elif defined(__has_feature)  // clang
-#if __has_feature(address_sanitizer)
-#define SUBLIFT_ASAN 1
-#endif
-#endif
+#include "tests/test_util.h"
 
 namespace sublift {
 namespace {
 
-#ifdef SUBLIFT_ASAN
-constexpr bool kAddressSanitizer = true;
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
+using testing::kAddressSanitizer;
 
 const std::string kAssets = SUBLIFT_ASSETS_DIR;
 constexpr std::uint32_t kMaxFinestVertices = 2500;  // subdivide stops here: the checks stay cheap

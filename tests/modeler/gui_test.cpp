@@ -209,6 +209,29 @@ TEST(GuiTest, BadUsageExitsTwo) {
   }
 }
 
+// `sublift --script FILE --json --headless`: one JSON line per command on stdout, the exit code
+// of the script (issue 19); --json without --script is a usage error.
+TEST(GuiTest, ScriptJsonPrintsOneLinePerCommand) {
+  const fs::path script = scratch_dir() / "json.script";
+  { std::ofstream(script) << "open " << SUBLIFT_ASSETS_DIR << "/cube.obj\nsubdivide\nlevel 3\nbogus\n"; }
+  const fs::path out = scratch_dir() / "json.out";
+  const ProcessResult r = run_command(headless_prefix() + "timeout 60 " + sublift() + " --script " +
+                                      quote(script.string()) + " --json --headless --size 320x240 >" + quote(out.string()));
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  std::vector<std::string> lines;
+  std::ifstream in(out);
+  for (std::string l; std::getline(in, l);)
+    if (!l.empty()) lines.push_back(l);
+  ASSERT_EQ(lines.size(), 4u) << r.err;
+  EXPECT_EQ(lines[0].rfind("{\"command\":\"open\",\"finest_level\":2,", 0), 0u) << lines[0];
+  EXPECT_NE(lines[2].find("\"level\":3"), std::string::npos) << lines[2];
+  EXPECT_NE(lines[3].find("\"ok\":false"), std::string::npos) << lines[3];
+  EXPECT_NE(lines[3].find("unknown command 'bogus'"), std::string::npos) << lines[3];
+  const ProcessResult bad = run_command("timeout 60 " + sublift() + " --json");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--json goes with --script"), std::string::npos) << bad.err;
+}
+
 TEST(GuiTest, HelpExitsZero) {
   const ProcessResult r = run_command("timeout 60 " + sublift() + " --help >/dev/null");
   EXPECT_EQ(r.exit_code, 0) << r.err;

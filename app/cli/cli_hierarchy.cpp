@@ -4,7 +4,9 @@
 #include <charconv>
 #include <cstdio>
 
+#include "core/base/errors.h"
 #include "core/complex/complex_build.h"
+#include "core/edit/scheme_switch.h"
 #include "core/complex/level_counts.h"
 #include "core/io/project/project_io.h"
 #include "core/io/lattice/shape_io.h"
@@ -45,14 +47,11 @@ int disc_option(const Args& a, Scheme scheme) {
 }
 
 void check_refined_size(const Complex& base, int levels, Scheme scheme) {
-  if (scheme_info(scheme).surfaces_only && base.dim != 2)
-    throw UsageError("the " + scheme_name(scheme) + " scheme refines surfaces only; this input is a " +
-                     (base.dim == 1 ? "curve" : "volume lattice") + " (use --scheme linear or cubic)");
-  if (scheme_info(scheme).triangles_only)
-    for (std::uint32_t f = 0; f < base.num_faces(); ++f)
-      if (base.faces.size(f) != 3)
-        throw UsageError("the " + scheme_name(scheme) + " scheme needs a triangle mesh; face " + std::to_string(f) + " has " +
-                         std::to_string(base.faces.size(f)) + " corners (use linear, cubic or sqrt2 for polygon meshes)");
+  try {  // the one rule of which scheme takes which base (core/edit/scheme_switch.h)
+    check_scheme_takes(scheme, base);
+  } catch (const sublift::Error& e) {
+    throw UsageError(e.what());
+  }
   const double n = predicted_level_counts(base, levels, scheme).back();
   if (n > kMaxOutputVertices) {
     char buf[160];

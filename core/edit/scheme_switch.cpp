@@ -16,7 +16,7 @@ void check_scheme_takes(Scheme scheme, const Complex& base) {
     for (std::uint32_t f = 0; f < base.num_faces(); ++f)
       if (base.faces.size(f) != 3)
         throw Error("the " + scheme_name(scheme) + " scheme needs a triangle mesh; face " + std::to_string(f) + " has " +
-                    std::to_string(base.faces.size(f)) + " corners");
+                    std::to_string(base.faces.size(f)) + " corners (use linear, cubic or sqrt2 for polygon meshes)");
 }
 
 int level_under_scheme(int level, Scheme from, Scheme to) {

@@ -84,7 +84,9 @@ int run_set(int argc, char** argv) {
     if (!next.kept_detail) {
       notes.push_back("the " + scheme_name(*scheme) + " scheme refines differently from " + scheme_name(from) +
                       ": its levels start from the base, without the detail");
-      extras.input_order = {};  // the file's vertex order belongs to the old levels
+      if (!extras.input_order.empty())  // the file's vertex order belongs to the old levels
+        notes.push_back("the vertex order of the file the project was rebuilt from is not kept (its levels are gone)");
+      extras.input_order = {};
     }
     const bool was_local = session->detail_frames() == DetailFrames::Local;
     session = std::make_unique<Session>(std::move(next.hierarchy));

@@ -357,11 +357,16 @@ void ModelerState::set_scheme(Scheme scheme) {
   auto session = std::make_unique<Session>(std::move(next.hierarchy));
   if (local) session->set_detail_frames(DetailFrames::Local);
   const int edit_level = std::min(level_under_scheme(level_, from, scheme), session->finest_level());
+  InputOrder order = input_order_;  // same refinement: the same levels, so a rebuilt file's order still holds
   install(std::move(session));
   level_ = edit_level;
-  if (!next.kept_detail)
+  if (next.kept_detail) {
+    input_order_ = std::move(order);
+  } else {
     warnings_.push_back("the " + scheme_name(scheme) + " scheme refines differently from " + scheme_name(from) +
                         ": its levels start from the base, without the detail");
+    if (!order.empty()) warnings_.push_back("the vertex order of the file this mesh was rebuilt from is not kept (its levels are gone)");
+  }
   update_.topology = true;
   refresh_state();
 }

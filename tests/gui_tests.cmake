@@ -47,7 +47,8 @@ add_dependencies(modeler_gui_test sublift)
 gtest_discover_tests(modeler_gui_test DISCOVERY_MODE PRE_TEST PROPERTIES TIMEOUT 120 LABELS gui)
 
 # The modeler's mouse and keys on the controller, without a window or GL context.
-add_executable(modeler_controller_test ${CMAKE_CURRENT_LIST_DIR}/modeler/modeler_controller_test.cpp)
+add_executable(modeler_controller_test ${CMAKE_CURRENT_LIST_DIR}/modeler/modeler_controller_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/modeler/modeler_tools_test.cpp)
 target_link_libraries(modeler_controller_test PRIVATE sublift_modeler GTest::gtest_main)
 target_compile_definitions(modeler_controller_test PRIVATE SUBLIFT_ASSETS_DIR="${PROJECT_SOURCE_DIR}/assets"
   SUBLIFT_SHARED_DATA="${SUBLIFT_SHARED_DATA}")

@@ -14,48 +14,51 @@ int digit_of(Key key) {
   return static_cast<int>(key) - static_cast<int>(Key::Digit0);
 }
 
-ModelerCommand map_grab_key(Key key, const Modifiers& mods, GrabState& grab) {
+ModelerCommand map_transform_key(Key key, const Modifiers& mods, TransformState& grab) {
   if (key == Key::Escape) {
-    grab = GrabState{};
-    return command(ModelerCommandType::GrabCancel);
+    grab = TransformState{};
+    return command(ModelerCommandType::TransformCancel);
   }
   if (key == Key::Enter) {
-    grab = GrabState{};
-    return command(ModelerCommandType::GrabConfirm);
+    grab = TransformState{};
+    return command(ModelerCommandType::TransformConfirm);
   }
   if (mods.ctrl || mods.alt) return {};
   if (key == Key::X || key == Key::Y || key == Key::Z) {
     const int axis = key == Key::X ? 0 : (key == Key::Y ? 1 : 2);
-    grab.axis = grab.axis == axis ? -1 : axis;  // the same key again frees the axis
-    return command(ModelerCommandType::GrabUpdate);
+    const bool exclude = mods.shift;
+    const bool same = grab.axis == axis && grab.exclude == exclude;
+    grab.axis = same ? -1 : axis;  // the same key again frees the axis
+    grab.exclude = !same && exclude;
+    return command(ModelerCommandType::TransformUpdate);
   }
   if (const int d = digit_of(key); d >= 0) {
     grab.typed.push_back(static_cast<char>('0' + d));
-    return command(ModelerCommandType::GrabUpdate);
+    return command(ModelerCommandType::TransformUpdate);
   }
-  if (key == Key::Minus) {
+  if (key == Key::Minus || key == Key::NumpadMinus) {
     // '-' flips the sign wherever it is typed (Blender's habit).
     if (!grab.typed.empty() && grab.typed.front() == '-') {
       grab.typed.erase(grab.typed.begin());
     } else {
       grab.typed.insert(grab.typed.begin(), '-');
     }
-    return command(ModelerCommandType::GrabUpdate);
+    return command(ModelerCommandType::TransformUpdate);
   }
   if (key == Key::Period) {
     if (grab.typed.find('.') == std::string::npos) grab.typed.push_back('.');
-    return command(ModelerCommandType::GrabUpdate);
+    return command(ModelerCommandType::TransformUpdate);
   }
   if (key == Key::Backspace) {
     if (!grab.typed.empty()) grab.typed.pop_back();
-    return command(ModelerCommandType::GrabUpdate);
+    return command(ModelerCommandType::TransformUpdate);
   }
   return {};
 }
 
 }  // namespace
 
-std::optional<double> GrabState::typed_value() const {
+std::optional<double> TransformState::typed_value() const {
   if (typed.empty()) return std::nullopt;
   std::string text = typed;
   if (text.back() == '.') text.pop_back();
@@ -67,8 +70,8 @@ std::optional<double> GrabState::typed_value() const {
   return value;
 }
 
-ModelerCommand map_modeler_key(Key key, const Modifiers& mods, GrabState& grab, bool has_selection) {
-  if (grab.active) return map_grab_key(key, mods, grab);
+ModelerCommand map_modeler_key(Key key, const Modifiers& mods, TransformState& grab, bool has_selection) {
+  if (grab.active) return map_transform_key(key, mods, grab);
   const bool ctrl = mods.ctrl, shift = mods.shift, alt = mods.alt;
   switch (key) {
     case Key::A:
@@ -88,17 +91,27 @@ ModelerCommand map_modeler_key(Key key, const Modifiers& mods, GrabState& grab, 
     case Key::Y:
       return ctrl && !shift && !alt ? command(ModelerCommandType::Redo) : ModelerCommand{};
     case Key::S:
-      if (!ctrl || alt) return {};
+      if (alt) return {};
+      if (!ctrl) {
+        if (shift) return command(ModelerCommandType::CursorToSelected);
+        if (!has_selection) return {};
+        grab = TransformState{};
+        grab.active = true;
+        grab.mode = 2;
+        return command(ModelerCommandType::TransformStart);
+      }
       return command(shift ? ModelerCommandType::SaveAs : ModelerCommandType::Save);
     case Key::O:
       return ctrl && !shift && !alt ? command(ModelerCommandType::Open) : ModelerCommand{};
     case Key::E:
       return ctrl && !shift && !alt ? command(ModelerCommandType::Export) : ModelerCommand{};
     case Key::G:
+    case Key::R:
       if (ctrl || shift || alt || !has_selection) return {};
-      grab = GrabState{};
+      grab = TransformState{};
       grab.active = true;
-      return command(ModelerCommandType::GrabStart);
+      grab.mode = key == Key::G ? 0 : 1;
+      return command(ModelerCommandType::TransformStart);
     default:
       return {};
   }
@@ -147,7 +160,10 @@ const std::vector<KeyBinding>& modeler_key_bindings() {
       {"Drag selected point", "Move in view plane"},
       {"A / Alt+A", "Select all / none"},
       {"G, then X/Y/Z, digits", "Grab, axis, distance"},
-      {"Enter / Esc", "Confirm / cancel grab"},
+      {"R / S, then X/Y/Z, digits", "Rotate (degrees) / scale"},
+      {"Shift+X/Y/Z in G/R/S", "Exclude that axis"},
+      {"Enter / Esc", "Confirm / cancel transform"},
+      {"Shift+S", "3-D cursor to selection"},
       {"Ctrl+wheel", "Soft selection radius"},
       {"PgUp/PgDn, D/Shift+D", "Finer / coarser level"},
       {"Ctrl+D", "Subdivide once more"},

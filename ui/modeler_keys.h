@@ -3,6 +3,7 @@
 // tool's state machine (axis constraint, typed distance), and what a left press/release in the
 // viewport means. No GLFW, no ImGui, no GL, so the bindings are unit-tested
 // (tests/ui/modeler_keys_test.cpp); the app executes the commands on the session.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -25,31 +26,38 @@ enum class ModelerCommandType {
   SaveAs,        // Ctrl+Shift+S
   Open,          // Ctrl+O
   Export,        // Ctrl+E
-  GrabStart,     // G (with a selection)
-  GrabUpdate,    // axis or typed distance changed while grabbing
-  GrabConfirm,   // Enter, left click
-  GrabCancel,    // Esc, right click
+  TransformStart,     // G grab, R rotate, S scale (with a selection)
+  TransformUpdate,    // axis or typed value changed during a transform
+  TransformConfirm,   // Enter, left click
+  TransformCancel,    // Esc, right click
+  CursorToSelected,   // Shift+S: the 3-D cursor to the selection's median
 };
 
 struct ModelerCommand {
   ModelerCommandType type = ModelerCommandType::None;
 };
 
-/// Grab tool state: active between G and Enter/Esc; axis -1 = free (view plane), 0/1/2 = X/Y/Z;
-/// `typed` is the distance being typed (digits, '-', '.'), empty = follow the mouse.
-struct GrabState {
+/// Transform tool state (Blender's modal G/R/S): active between the key and Enter/Esc. axis -1 =
+/// free (grab: the view plane; rotate: about the view axis; scale: uniform), 0/1/2 = X/Y/Z;
+/// `exclude` (Shift+axis): grab in the plane across the axis, scale the two other axes (rotate:
+/// about the axis, as without Shift). `typed` is the value being typed (digits, '-', '.'; a
+/// distance, degrees or a factor), empty = follow the mouse.
+struct TransformState {
   bool active = false;
+  int mode = 0;  // TransformMode's value: 0 grab, 1 rotate, 2 scale
   int axis = -1;
+  bool exclude = false;
   std::string typed;
 
   /// The typed distance, if `typed` parses as a number ("-" alone or "." alone do not).
   std::optional<double> typed_value() const;
 };
 
-/// Maps a key press to a modeler command, updating `grab` (starting it only when
-/// `has_selection`). While grabbing, X/Y/Z toggle the axis, digits/'-'/'.'/Backspace edit the
-/// typed distance, Enter confirms and Esc cancels; every other key is swallowed (None).
-ModelerCommand map_modeler_key(Key key, const Modifiers& mods, GrabState& grab, bool has_selection);
+/// Maps a key press to a modeler command, updating `grab` (starting a transform only when
+/// `has_selection`). During a transform X/Y/Z toggle the axis (Shift+X/Y/Z: exclude it),
+/// digits/'-'/'.'/Backspace edit the typed value, Enter confirms and Esc cancels; every other
+/// key is swallowed (None).
+ModelerCommand map_modeler_key(Key key, const Modifiers& mods, TransformState& grab, bool has_selection);
 
 /// Ctrl+wheel: the new soft-selection radius after `notches` (positive grows it 15% a notch);
 /// from 0 a positive notch starts at `start` (e.g. 5% of the model size); shrinking below

@@ -221,6 +221,11 @@ void draw_detail_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   if (ImGui::InputFloat("Soft radius", &radius, 0.0f, 0.0f, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue)) {
     r.soft_radius = std::max(0.0f, radius);
   }
+  // The pivot of R and S (core/edit/transform.h Pivot, in its order).
+  static const char* kPivots[] = {"Median point", "Active point", "3-D cursor", "World origin"};
+  int pivot = std::clamp(d.pivot, 0, 3);
+  ImGui::SetNextItemWidth(140.0f);
+  if (ImGui::Combo("Pivot", &pivot, kPivots, 4)) r.pivot = pivot;
   ImGui::TextColored(kMuted, "%zu selected", d.selected);
 }
 

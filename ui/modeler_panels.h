@@ -113,6 +113,7 @@ struct ModelerPanelData {
   std::size_t vertices_updated = 0;
   std::size_t selected = 0;
   double soft_radius = 0.0;
+  int pivot = 0;                      // Pivot's value: median, active, cursor, origin
   int colour_level = -1;
   bool dirty = false;
   std::vector<std::string> recent;    // recently opened files, newest first
@@ -149,6 +150,7 @@ struct ModelerPanelRequests {
   std::optional<std::string> export_path;
   bool export_finest = true;
   std::optional<double> soft_radius;
+  std::optional<int> pivot;           // the pivot of rotate and scale (Pivot's value)
   std::optional<BasisSettings> basis;  // the Basis section's settings after the user changed one
   bool pin_basis = false, clear_pin = false;
   // FFD: load a model, wrap it in a box lattice (fields.box, fields.box_margin), bind (with the

@@ -197,6 +197,12 @@ Key to_key(int k) {
     case GLFW_KEY_A: return Key::A;
     case GLFW_KEY_D: return Key::D;
     case GLFW_KEY_G: return Key::G;
+    case GLFW_KEY_R: return Key::R;
+    case GLFW_KEY_L: return Key::L;
+    case GLFW_KEY_C: return Key::C;
+    case GLFW_KEY_I: return Key::I;
+    case GLFW_KEY_KP_ADD:
+    case GLFW_KEY_EQUAL: return Key::NumpadPlus;
     case GLFW_KEY_X: return Key::X;
     case GLFW_KEY_Y: return Key::Y;
     case GLFW_KEY_Z: return Key::Z;
@@ -209,8 +215,8 @@ Key to_key(int k) {
     case GLFW_KEY_ENTER:
     case GLFW_KEY_KP_ENTER: return Key::Enter;
     case GLFW_KEY_BACKSPACE: return Key::Backspace;
-    case GLFW_KEY_MINUS:
-    case GLFW_KEY_KP_SUBTRACT: return Key::Minus;
+    case GLFW_KEY_MINUS: return Key::Minus;
+    case GLFW_KEY_KP_SUBTRACT: return Key::NumpadMinus;
     case GLFW_KEY_PERIOD: return Key::Period;
     default: return Key::None;
   }

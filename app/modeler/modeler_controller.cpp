@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <numbers>
 #include <utility>
 
 #include "app/modeler/modeler_view.h"
@@ -258,25 +259,68 @@ void ModelerController::apply_camera(const CameraAction& action) {
 
 void ModelerController::update_grab() {
   if (!model.dragging()) return;
-  glm::dvec3 total(0.0);
-  if (const auto typed = grab_.typed_value()) {
-    total[grab_.axis < 0 ? 0 : grab_.axis] = *typed;
-  } else {
-    const double s = scale_;
-    total = view_plane_delta(pick_view(), grab_anchor_, (mouse_x_ - grab_x_) * s, (mouse_y_ - grab_y_) * s);
-    if (grab_.axis >= 0) {
-      const double along = total[grab_.axis];
-      total = glm::dvec3(0.0);
-      total[grab_.axis] = along;
-    }
-  }
-  const double t[3] = {total.x, total.y, total.z};
+  const auto typed = grab_.typed_value();
+  const double s = scale_;
   try {
+    if (grab_.mode != 0) return update_rotate_scale();
+    glm::dvec3 total(0.0);
+    if (typed) {
+      if (grab_.axis < 0) {
+        total.x = *typed;
+      } else if (grab_.exclude) {
+        total = glm::dvec3(*typed);
+        total[grab_.axis] = 0.0;
+      } else {
+        total[grab_.axis] = *typed;
+      }
+    } else {
+      total = view_plane_delta(pick_view(), grab_anchor_, (mouse_x_ - grab_x_) * s, (mouse_y_ - grab_y_) * s);
+      if (grab_.axis >= 0 && grab_.exclude) {
+        total[grab_.axis] = 0.0;
+      } else if (grab_.axis >= 0) {
+        const double along = total[grab_.axis];
+        total = glm::dvec3(0.0);
+        total[grab_.axis] = along;
+      }
+    }
+    const double t[3] = {total.x, total.y, total.z};
     model.drag_to(t);
   } catch (const std::exception& e) {
     fail(e, "Cannot move: ");
   }
   pick_dirty_ = true;
+}
+
+// Rotate: the mouse's turn about the pivot on screen (or typed degrees) about the constrained
+// world axis or the view axis; scale: the ratio of the mouse's distances from the pivot on
+// screen (or the typed factor). Visual clockwise on screen is a right-handed turn about the
+// view direction, so a world axis pointing at the viewer turns the other way round.
+void ModelerController::update_rotate_scale() {
+  const auto typed = grab_.typed_value();
+  const PickView view = pick_view();
+  glm::dvec2 c(0.0);
+  double depth = 0.0;
+  project_point(view, model.transform_pivot(), c, depth);
+  const double s = scale_;
+  const glm::dvec2 a = glm::dvec2((grab_x_ - view_x_) * s, (grab_y_ - view_y_) * s) - c;
+  const glm::dvec2 b = glm::dvec2((mouse_x_ - view_x_) * s, (mouse_y_ - view_y_) * s) - c;
+  if (grab_.mode == 1) {
+    const glm::dvec3 forward = camera.forward();
+    glm::dvec3 axis = forward;
+    if (grab_.axis >= 0) axis = glm::dvec3(0.0), axis[grab_.axis] = 1.0;
+    double angle = 0.0;
+    if (typed) {
+      angle = *typed * std::numbers::pi / 180.0;
+    } else {
+      angle = std::atan2(a.x * b.y - a.y * b.x, glm::dot(a, b));
+      if (glm::dot(axis, forward) < 0.0) angle = -angle;
+    }
+    model.transform_to(axis, angle, glm::dvec3(1.0));
+  } else {
+    const double la = glm::length(a);
+    const double factor = typed ? *typed : (la > 1.0 ? glm::length(b) / la : 1.0);
+    model.transform_to(glm::dvec3(0.0, 0.0, 1.0), 0.0, scale_factors(factor, grab_.axis, grab_.exclude));
+  }
 }
 
 void ModelerController::run_command(ModelerCommandType type) {
@@ -313,22 +357,27 @@ void ModelerController::run_command(ModelerCommandType type) {
           export_to(fields.export_path, fields.export_finest);
         }
         break;
-      case ModelerCommandType::GrabStart: {
+      case ModelerCommandType::TransformStart: {
         glm::dvec3 sum(0.0);
         const auto pos = model.session().positions(model.level());
         for (const unsigned v : model.selection()) sum += glm::dvec3(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
         grab_anchor_ = sum / static_cast<double>(std::max<std::size_t>(model.selection().size(), 1));
         grab_x_ = mouse_x_;
         grab_y_ = mouse_y_;
-        model.begin_drag("Grab");
+        model.begin_transform(grab_.mode == 0 ? TransformMode::Grab
+                                              : grab_.mode == 1 ? TransformMode::Rotate : TransformMode::Scale);
         break;
       }
-      case ModelerCommandType::GrabUpdate: update_grab(); break;
-      case ModelerCommandType::GrabConfirm: model.end_drag(); break;
-      case ModelerCommandType::GrabCancel: model.cancel_drag(); break;
+      case ModelerCommandType::CursorToSelected:
+        model.set_cursor(pivot_point(Pivot::Median, model.session().positions(model.level()), model.selection(), -1, model.cursor()));
+        message = "3-D cursor at the selection's median";
+        break;
+      case ModelerCommandType::TransformUpdate: update_grab(); break;
+      case ModelerCommandType::TransformConfirm: model.end_drag(); break;
+      case ModelerCommandType::TransformCancel: model.cancel_drag(); break;
     }
   } catch (const std::exception& e) {
-    if (!model.dragging()) grab_ = GrabState{};  // a refused grab (compression view) ends here
+    if (!model.dragging()) grab_ = TransformState{};  // a refused grab (compression view) ends here
     fail(e, "");
   }
   pick_dirty_ = stats_dirty_ = true;
@@ -376,8 +425,8 @@ void ModelerController::handle(const WindowEvent& ev) {
       if (ev.over_ui || !in_viewport(ev.x, ev.y)) return;
       held_[ev.button] = true;
       if (grab_.active) {
-        grab_ = GrabState{};
-        run_command(ev.button == 1 ? ModelerCommandType::GrabCancel : ModelerCommandType::GrabConfirm);
+        grab_ = TransformState{};
+        run_command(ev.button == 1 ? ModelerCommandType::TransformCancel : ModelerCommandType::TransformConfirm);
         held_[ev.button] = false;
         return;
       }
@@ -419,6 +468,7 @@ void ModelerController::handle(const WindowEvent& ev) {
       } else if (press == Press::Click && !moved_) {
         apply_click(sel, press_hit_, ev.mods.shift);
         model.set_selection(sel);
+        model.set_active(press_hit_);  // the last one clicked, Blender's active element
       } else if (press == Press::Box) {
         if (moved_) {
           const double px = (press_x_ - view_x_) * s, py = (press_y_ - view_y_) * s;
@@ -519,6 +569,7 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
     if (r.local_frames) model.set_local_frames(*r.local_frames);
     if (r.colour_level) model.set_colour_level(*r.colour_level);
     if (r.soft_radius) model.set_soft_radius(*r.soft_radius);
+    if (r.pivot) model.set_pivot(static_cast<Pivot>(*r.pivot));
     if (r.basis) {
       basis_request_ = *r.basis;  // kept even when it fails, so the panel shows what was typed
       try {
@@ -734,6 +785,7 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     d.vertices_updated = s.last_report().vertices_updated;
     d.selected = model.selection().size();
     d.soft_radius = model.soft_radius();
+    d.pivot = static_cast<int>(model.pivot());
     d.colour_level = model.colour_level();
     d.dirty = s.dirty();
     fill_basis_data(d.basis);
@@ -764,7 +816,12 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
       left += shown;
     }
     if (grab_.active) {
-      left += "   GRAB " + std::string(grab_.axis < 0 ? "free" : (grab_.axis == 0 ? "X" : grab_.axis == 1 ? "Y" : "Z"));
+      static const char* kModes[] = {"GRAB", "ROTATE", "SCALE"};
+      static const char* kAxes[] = {"X", "Y", "Z"};
+      left += std::string("   ") + kModes[grab_.mode] + " " +
+              (grab_.axis < 0 ? std::string(grab_.mode == 1 ? "view" : "free")
+                              : std::string(grab_.exclude ? "not " : "") + kAxes[grab_.axis]);
+      if (grab_.mode != 0) left += std::string(" about ") + pivot_name(model.pivot());
       if (!grab_.typed.empty()) left += " " + grab_.typed;
     }
   }
@@ -782,6 +839,25 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     const double px = model.soft_radius() / std::max(camera.world_per_pixel(), 1e-12) / std::max(scale_, 0.01f);
     overlay->AddCircle(ImVec2(static_cast<float>(mouse_x_), static_cast<float>(mouse_y_)), static_cast<float>(px),
                        IM_COL32(255, 200, 40, 200), 48, 1.5f);
+  }
+  // The pivot of R/S: the 3-D cursor as Blender draws it (a red-white ring with a cross), a
+  // small dot for the others while a rotate or scale runs.
+  if (model.has_session() && (model.pivot() == Pivot::Cursor || (grab_.active && grab_.mode != 0))) {
+    glm::dvec2 c;
+    double depth = 0.0;
+    if (project_point(pick_view(), model.transform_pivot(), c, depth)) {
+      const ImVec2 at(static_cast<float>(view_x_ + c.x / scale_), static_cast<float>(view_y_ + c.y / scale_));
+      if (model.pivot() == Pivot::Cursor) {
+        overlay->AddCircle(at, 10.5f, IM_COL32(255, 255, 255, 230), 24, 1.5f);
+        overlay->AddCircle(at, 8.0f, IM_COL32(230, 30, 30, 255), 24, 2.5f);
+        overlay->AddLine(ImVec2(at.x - 14, at.y), ImVec2(at.x + 14, at.y), IM_COL32(20, 20, 20, 200));
+        overlay->AddLine(ImVec2(at.x, at.y - 14), ImVec2(at.x, at.y + 14), IM_COL32(20, 20, 20, 200));
+      } else {
+        overlay->AddCircleFilled(at, 3.5f, IM_COL32(255, 255, 255, 220));
+      }
+      if (grab_.active && grab_.mode != 0)  // Blender's dashed line from the pivot to the mouse
+        overlay->AddLine(at, ImVec2(static_cast<float>(mouse_x_), static_cast<float>(mouse_y_)), IM_COL32(20, 20, 20, 160), 1.0f);
+    }
   }
 
   // Prompts.

@@ -123,7 +123,8 @@ class ModelerController {
   bool in_viewport(double x, double y) const;
   PickView pick_view() const;
   const PickIndex& pick_index();
-  void update_grab();
+  void update_grab();  // every transform mode
+  void update_rotate_scale();
   void fail(const std::exception& e, const std::string& context);
 
   bool interactive_;
@@ -137,7 +138,7 @@ class ModelerController {
   long long press_hit_ = -1;
   bool moved_ = false;
   glm::dvec3 drag_anchor_{0.0};
-  GrabState grab_;
+  TransformState grab_;
   double grab_x_ = 0, grab_y_ = 0;
   glm::dvec3 grab_anchor_{0.0};
   bool gain_active_ = false;

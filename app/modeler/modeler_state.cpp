@@ -109,6 +109,7 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   fit_source_ = std::move(source);
   level_ = std::clamp(level, 0, session_->finest_level());
   selection_.clear();
+  active_ = -1;
   update_.topology = true;
   refresh_state();
 }
@@ -220,6 +221,7 @@ std::string ModelerState::install_fit(PreparedFit p) {
   clear_fit_preview();
   level_ = 0;
   selection_.clear();
+  active_ = -1;
   update_.topology = true;
   refresh_state();
   return m.str();
@@ -247,6 +249,7 @@ void ModelerState::install_rebuild(PreparedRebuild p) {
   input_order_ = std::move(order);
   level_ = 0;
   selection_.clear();
+  active_ = -1;
   update_.topology = true;
   refresh_state();
 }
@@ -377,6 +380,7 @@ void ModelerState::set_level(int level) {
   level_ = level;
   refresh_compression_net();
   selection_.clear();
+  active_ = -1;
   hover_ = -1;
   update_.topology = true;  // the function keeps its own level
   refresh_state();
@@ -436,6 +440,39 @@ void ModelerState::begin_drag(const std::string& label) {
   drag_total_[0] = drag_total_[1] = drag_total_[2] = 0.0;
   session_->begin_edit(label);
   dragging_ = true;
+  transform_mode_ = TransformMode::Grab;
+}
+
+void ModelerState::begin_transform(TransformMode mode) {
+  if (mode == TransformMode::Grab) return begin_drag("Grab");
+  const glm::dvec3 pivot = transform_pivot();  // before the drag starts: it then returns the fixed one
+  begin_drag(mode == TransformMode::Rotate ? "Rotate" : "Scale");
+  transform_mode_ = mode;
+  transform_pivot_ = pivot;
+  const std::span<const double> p = session_->positions(level_);
+  transform_start_.resize(3 * drag_weights_.vertices.size());
+  for (std::size_t k = 0; k < drag_weights_.vertices.size(); ++k)
+    for (int c = 0; c < 3; ++c) transform_start_[3 * k + c] = p[3 * std::size_t(drag_weights_.vertices[k]) + c];
+}
+
+void ModelerState::transform_to(const glm::dvec3& axis, double angle, const glm::dvec3& factors) {
+  if (!dragging_ || transform_mode_ == TransformMode::Grab) return;
+  if (!std::isfinite(angle) || !std::isfinite(factors.x) || !std::isfinite(factors.y) || !std::isfinite(factors.z))
+    throw Error("the transform is not finite");
+  transform_deltas(transform_start_, session_->positions(level_), drag_weights_.vertices, drag_weights_.weights,
+                   transform_pivot_, axis, angle, factors, transform_deltas_);
+  session_->move_each(level_, drag_weights_.vertices, transform_deltas_);
+  after_operation();
+}
+
+void ModelerState::set_active(long long vertex) {
+  if (vertex >= 0 && std::binary_search(selection_.begin(), selection_.end(), static_cast<unsigned>(vertex))) active_ = vertex;
+}
+
+glm::dvec3 ModelerState::transform_pivot() const {
+  if (dragging_ && transform_mode_ != TransformMode::Grab) return transform_pivot_;
+  if (!session_) return glm::dvec3(0.0);
+  return pivot_point(pivot_, session_->positions(level_), selection_, active_, cursor_);
 }
 
 void ModelerState::drag_to(const double total[3]) {
@@ -468,6 +505,8 @@ void ModelerState::set_selection(std::vector<unsigned> selection) {
   selection.erase(std::unique(selection.begin(), selection.end()), selection.end());
   selection_ = std::move(selection);
   clamp_selection();
+  if (selection_.size() == 1) active_ = selection_.front();
+  if (active_ >= 0 && !std::binary_search(selection_.begin(), selection_.end(), static_cast<unsigned>(active_))) active_ = -1;
   refresh_state();
   if (selection_.size() == 1) follow_selection();
 }
@@ -775,6 +814,7 @@ void ModelerState::wrap_model_in_box(int nx, int ny, int nz, double margin) {
   warnings_.clear();
   level_ = 0;
   selection_.clear();
+  active_ = -1;
   update_.topology = true;
   refresh_state();
   bind_model(ffd_->outside);

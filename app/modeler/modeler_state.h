@@ -28,6 +28,7 @@
 #include "core/multires/hierarchy.h"
 #include "core/multires/limit.h"
 #include "core/edit/session.h"
+#include "core/edit/transform.h"
 #include "core/io/project/project_io.h"
 #include "core/fit/fit_levels.h"
 #include "core/multires/rebuild.h"
@@ -160,6 +161,24 @@ class ModelerState {
   bool dragging() const { return dragging_; }
   /// Translation applied by the current drag so far.
   const double* drag_total() const { return drag_total_; }
+
+  // Rotate and scale of the selection (R, S; core/edit/transform.h): begun like a drag (the
+  // soft selection fixed at the start, one history entry, end_drag / cancel_drag end it).
+  // transform_to sets the whole transform so far, relative to the positions at the start: a
+  // rotation by `angle` radians about `axis` through the pivot, then per-axis `factors`.
+  void begin_transform(TransformMode mode);
+  void transform_to(const glm::dvec3& axis, double angle, const glm::dvec3& factors);
+  TransformMode transform_mode() const { return transform_mode_; }
+  /// The pivot of the transform in progress (or the one the next would use).
+  glm::dvec3 transform_pivot() const;
+  Pivot pivot() const { return pivot_; }
+  void set_pivot(Pivot p) { pivot_ = p; }
+  const glm::dvec3& cursor() const { return cursor_; }
+  void set_cursor(const glm::dvec3& c) { cursor_ = c; }
+  /// The active control point (the last one clicked or selected alone; -1: none).
+  long long active() const { return active_; }
+  /// Makes a selected point the active one (ignored when it is not selected).
+  void set_active(long long vertex);
 
   // ---- selection ----------------------------------------------------------------------------
   const std::vector<unsigned>& selection() const { return selection_; }
@@ -302,6 +321,11 @@ class ModelerState {
 
   bool dragging_ = false;
   double drag_total_[3] = {0, 0, 0};
+  TransformMode transform_mode_ = TransformMode::Grab;
+  Pivot pivot_ = Pivot::Median;
+  glm::dvec3 cursor_{0.0}, transform_pivot_{0.0};
+  long long active_ = -1;
+  std::vector<double> transform_start_, transform_deltas_;
   SoftWeights drag_weights_;
   std::size_t drag_undo_position_ = 0;
   std::uint64_t seen_topology_ = 0;

@@ -6,10 +6,12 @@
 #include <cmath>
 #include <fstream>
 #include <new>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
 
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "core/base/errors.h"
@@ -176,6 +178,20 @@ void basis(const Call& c) {
   state.set_basis(b);
 }
 
+// rotate and scale: one transform of the selection, one history entry (cancelled on failure).
+void transform(const Call& c, TransformMode mode, const glm::dvec3& axis, double angle, const glm::dvec3& factors) {
+  if (c.state.selection().empty())
+    throw ScriptError(std::string(mode == TransformMode::Rotate ? "rotate" : "scale") + " needs a selection (use 'select INDEX...')");
+  c.state.begin_transform(mode);
+  try {
+    c.state.transform_to(axis, angle, factors);
+  } catch (...) {
+    c.state.cancel_drag();
+    throw;
+  }
+  c.state.end_drag();
+}
+
 Scheme script_scheme(const std::string& name) {
   try {
     return parse_scheme(name);
@@ -267,6 +283,42 @@ constexpr Command kCommands[] = {
         throw;
       }
       c.state.end_drag();
+    }},
+    {"rotate", 2, 4, "rotate x|y|z DEGREES | rotate AX AY AZ DEGREES", [](const Call& c) {
+      glm::dvec3 axis(0.0);
+      if (c.w.size() == 3) {
+        if (c.w[1] != "x" && c.w[1] != "y" && c.w[1] != "z") throw ScriptError("rotate axis must be x, y, z or three numbers");
+        axis[c.w[1][0] - 'x'] = 1.0;
+      } else if (c.w.size() == 5) {
+        axis = {number(c.w[1], "AX"), number(c.w[2], "AY"), number(c.w[3], "AZ")};
+        if (glm::length(axis) == 0.0) throw ScriptError("the rotation axis must not be zero");
+      } else {
+        c.usage_error();
+      }
+      const double deg = number(c.w.back(), "DEGREES");
+      transform(c, TransformMode::Rotate, axis, deg * std::numbers::pi / 180.0, glm::dvec3(1.0));
+    }},
+    {"scale", 1, 3, "scale S | scale SX SY SZ", [](const Call& c) {
+      if (c.w.size() == 3) c.usage_error();
+      const glm::dvec3 f = c.w.size() == 2 ? glm::dvec3(number(c.w[1], "S"))
+                                            : glm::dvec3(number(c.w[1], "SX"), number(c.w[2], "SY"), number(c.w[3], "SZ"));
+      transform(c, TransformMode::Scale, glm::dvec3(0.0, 0.0, 1.0), 0.0, f);
+    }},
+    {"pivot", 1, 1, "pivot median|active|cursor|origin", [](const Call& c) {
+      try {
+        c.state.set_pivot(parse_pivot(c.w[1]));
+      } catch (const Error& e) {
+        throw ScriptError(e.what());
+      }
+    }},
+    {"cursor", 3, 3, "cursor X Y Z", [](const Call& c) {
+      c.state.set_cursor({number(c.w[1], "X"), number(c.w[2], "Y"), number(c.w[3], "Z")});
+    }},
+    {"active", 1, 1, "active INDEX", [](const Call& c) {
+      const long long v = integer(c.w[1], "INDEX");
+      if (v < 0 || !std::binary_search(c.state.selection().begin(), c.state.selection().end(), static_cast<unsigned>(v)))
+        throw ScriptError("active " + c.w[1] + ": the active point must be selected");
+      c.state.set_active(v);
     }},
     {"gain", 2, 2, "gain LEVEL FACTOR", [](const Call& c) {
       const long long l = integer(c.w[1], "LEVEL");

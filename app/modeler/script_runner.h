@@ -4,7 +4,8 @@
 // the selection with the current soft radius). Blank lines and `#` comments are skipped; paths
 // are relative to the current directory. Commands:
 //   open PATH | scheme linear|cubic | subdivide [N] | level L | select [INDEX...] | soft RADIUS
-//   move DX DY DZ | gain LEVEL FACTOR | frames world|local | undo | redo | save PATH
+//   move DX DY DZ | rotate x|y|z DEGREES | rotate AX AY AZ DEGREES | scale S | scale SX SY SZ
+//   pivot median|active|cursor|origin | cursor X Y Z | active INDEX | gain LEVEL FACTOR | frames world|local | undo | redo | save PATH
 //   export PATH | screenshot PATH | quit
 //   colour LEVEL|off | display smooth|wireframe|net|xray|depth_cue|clip|ortho on|off
 //   clip X|Y|Z OFFSET01 | view front|back|right|left|top|bottom  (display and camera only)

@@ -197,12 +197,17 @@ void Session::ensure_touched() {
 
 OpReport Session::move(int level, std::span<const std::uint32_t> vertices, std::span<const double> weights,
                        const double delta[3]) {
-  return move_impl(level, vertices, weights, delta, false);
+  return move_impl(level, vertices, weights, {delta, 3}, false);
+}
+
+OpReport Session::move_each(int level, std::span<const std::uint32_t> vertices, std::span<const double> deltas) {
+  if (deltas.size() != 3 * vertices.size()) throw Error("three delta values per vertex are needed");
+  return move_impl(level, vertices, {}, deltas, false);
 }
 
 OpReport Session::move_full(int level, std::span<const std::uint32_t> vertices, std::span<const double> weights,
                             const double delta[3]) {
-  return move_impl(level, vertices, weights, delta, true);
+  return move_impl(level, vertices, weights, {delta, 3}, true);
 }
 
 void Session::update_local(int l, std::span<const std::uint32_t> changed_pos, std::span<const std::uint32_t> changed_coeffs,
@@ -248,7 +253,7 @@ void Session::update_local(int l, std::span<const std::uint32_t> changed_pos, st
 }
 
 OpReport Session::move_impl(int level, std::span<const std::uint32_t> vertices, std::span<const double> weights,
-                            const double delta[3], bool full) {
+                            std::span<const double> deltas, bool full) {
   const int J = finest_level();
   if (level < 0 || level > J) throw Error("level " + std::to_string(level) + " is outside 0.." + std::to_string(J));
   if (!weights.empty() && weights.size() != vertices.size()) throw Error("one weight per vertex is needed");
@@ -256,8 +261,10 @@ OpReport Session::move_impl(int level, std::span<const std::uint32_t> vertices, 
     if (v >= num_vertices(level))
       throw Error("vertex " + std::to_string(v) + " is not on level " + std::to_string(level) + " (it has " +
                   std::to_string(num_vertices(level)) + ")");
-  for (int c = 0; c < 3; ++c)
-    if (!std::isfinite(delta[c])) throw Error("the move is not finite");
+  for (const double d : deltas)
+    if (!std::isfinite(d)) throw Error("the move is not finite");
+  // One delta for every vertex (3 values) or one per vertex (move_each).
+  const bool per_vertex = deltas.size() != 3 || vertices.size() == 1;
   check_gain_below(level);
   const bool own_entry = !open_;
   if (own_entry) begin_edit("Move");
@@ -271,6 +278,7 @@ OpReport Session::move_impl(int level, std::span<const std::uint32_t> vertices, 
   D.reset(num_vertices(level));
   for (std::size_t k = 0; k < vertices.size(); ++k) {
     const double w = weights.empty() ? 1.0 : weights[k];
+    const double* delta = &deltas[per_vertex ? 3 * k : 0];
     double* d = D.at(vertices[k]);
     for (int c = 0; c < 3; ++c) d[c] += w * delta[c];
   }

@@ -90,6 +90,9 @@ class Session {
   /// would have to put detail into a muted band).
   OpReport move(int level, std::span<const std::uint32_t> vertices, std::span<const double> weights,
                 const double delta[3]);
+  /// The same with a delta of its own for each vertex (3 values per entry of `vertices`): what
+  /// rotate, scale and the brushes apply.
+  OpReport move_each(int level, std::span<const std::uint32_t> vertices, std::span<const double> deltas);
   /// The same, with every level from `level` up recomputed in full: the reference the tests and
   /// benchmarks compare local resynthesis with.
   OpReport move_full(int level, std::span<const std::uint32_t> vertices, std::span<const double> weights,
@@ -143,7 +146,7 @@ class Session {
 
  private:
   OpReport move_impl(int level, std::span<const std::uint32_t> vertices, std::span<const double> weights,
-                     const double delta[3], bool full);
+                     std::span<const double> deltas, bool full);
   void resynthesize_from(int level);        // dense synthesis of every level above `level`
   void resynthesize_one(int level);         // level + 1 from level and its wavelets
   void resynthesize_levels_below(int level);

@@ -84,6 +84,60 @@ TEST(CliEdit, FalloffMovesANeighbourhood) {
   EXPECT_LT(j["moved"].get<int>(), 96);
 }
 
+// --rotate and --scale (issue 19): the result equals moving each point to where the transform
+// takes it, computed here by hand, with the full resynthesis.
+TEST(CliEdit, RotateAndScaleAboutAPivot) {
+  TempDir dir("sublift_cli_edit_rotate");
+  const Hierarchy h = project_hierarchy();
+  write_project(dir.file("in.sublift"), h);
+  const std::uint32_t vs[2] = {7, 50};
+  auto expect_like = [&](const std::vector<std::string>& args, auto target) {
+    const ProcessResult r = cli(args);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    Session ref(h);
+    for (const std::uint32_t v : vs) {
+      const auto p = ref.positions(1);
+      const glm::dvec3 from(p[3 * v], p[3 * v + 1], p[3 * v + 2]);
+      const glm::dvec3 to = target(from, v);
+      const double d[3] = {to.x - from.x, to.y - from.y, to.z - from.z};
+      ref.move_full(1, std::span<const std::uint32_t>(&v, 1), {}, d);
+    }
+    const Hierarchy out = read_project(dir.file("out.sublift"));
+    EXPECT_LT(max_abs_diff(out.coeffs, ref.hierarchy().coeffs), 1e-12);
+  };
+  // A quarter turn about +Z through (0.5, 0, 2): (x, y) -> (0.5 - y, x - 0.5).
+  expect_like({"edit", dir.file("in.sublift"), "--level", "1", "--vertex", "7", "--vertex", "50", "--rotate", "z", "90",
+               "--pivot", "0.5,0,2", "-o", dir.file("out.sublift")},
+              [](glm::dvec3 p, std::uint32_t) { return glm::dvec3(0.5 - p.y, p.x - 0.5, p.z); });
+  // Scale (2, 1, 0.5) about the active point (the last --vertex, 50), which stays put.
+  Session probe(h);
+  const auto p = probe.positions(1);
+  const glm::dvec3 a(p[150], p[151], p[152]);
+  expect_like({"edit", dir.file("in.sublift"), "--level", "1", "--vertex", "7", "--vertex", "50", "--scale", "2,1,0.5",
+               "--pivot", "active", "-o", dir.file("out.sublift")},
+              [&](glm::dvec3 q, std::uint32_t) { return a + (q - a) * glm::dvec3(2, 1, 0.5); });
+  // The JSON says what ran and about which point.
+  const ProcessResult r = cli({"edit", dir.file("in.sublift"), "--level", "1", "--vertex", "7", "--scale", "3",
+                               "-o", dir.file("out.sublift"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["transform"], "scale");
+  EXPECT_EQ(j["pivot"][0].get<double>(), p[21]);  // median of one point: the point
+  // Refusals: two transforms, a pivot for a move, a bad axis or factor.
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"edit", dir.file("in.sublift"), "--level", "0", "--vertex", "1", "--scale", "2", "--delta", "1", "0", "0", "-o", dir.file("o.sublift")},
+           {"edit", dir.file("in.sublift"), "--level", "0", "--vertex", "1", "--delta", "1", "0", "0", "--pivot", "origin", "-o", dir.file("o.sublift")},
+           {"edit", dir.file("in.sublift"), "--level", "0", "--vertex", "1", "--rotate", "0,0,0", "5", "-o", dir.file("o.sublift")},
+           {"edit", dir.file("in.sublift"), "--level", "0", "--vertex", "1", "--rotate", "w", "5", "-o", dir.file("o.sublift")},
+           {"edit", dir.file("in.sublift"), "--level", "0", "--vertex", "1", "--scale", "2,2", "-o", dir.file("o.sublift")},
+           {"edit", dir.file("in.sublift"), "--level", "0", "--vertex", "1", "--scale", "2", "--pivot", "centre", "-o", dir.file("o.sublift")},
+       }) {
+    const ProcessResult bad = cli(args);
+    EXPECT_EQ(bad.exit_code, 2) << bad.err;
+    EXPECT_FALSE(bad.err.empty());
+  }
+}
+
 TEST(CliEdit, Errors) {
   TempDir dir("sublift_cli_edit_errors");
   write_project(dir.file("in.sublift"), project_hierarchy());

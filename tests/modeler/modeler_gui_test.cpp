@@ -378,3 +378,30 @@ TEST(ModelerGuiTest, HeadlessFitPreviewDrawsTheBaseAndTheFitKeepsTheShape) {
 }
 
 }  // namespace
+
+namespace {
+
+// Rotate and scale (issue 19), headless: each changes the picture, the 3-D cursor (the pivot) is
+// drawn as a red ring, and undoing both restores the first frame.
+TEST(ModelerGuiTest, HeadlessRotateAndScaleAboutTheCursorAndUndo) {
+  const fs::path dir = out_dir("headless");
+  for (const char* f : {"xf_a.png", "xf_b.png", "xf_c.png", "xf_d.png"}) fs::remove(dir / f);
+  const std::string script = "open " + torus() + "\nlevel 0\nselect 0 1 2 3 4 5 6 7\nsoft 0.6\npivot cursor\n"
+                             "cursor 1.0 0 0\nscreenshot xf_a.png\nrotate y 40\nscreenshot xf_b.png\nscale 1.6\n"
+                             "screenshot xf_c.png\nundo\nundo\nscreenshot xf_d.png\n";
+  const ProcessResult r = run_script("headless", "transform", script);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Png a = load_png(dir / "xf_a.png"), b = load_png(dir / "xf_b.png"), c = load_png(dir / "xf_c.png"),
+            d = load_png(dir / "xf_d.png");
+  ASSERT_EQ(a.width, kWidth);
+  EXPECT_GT(changed_pixels(a, b, 40).count, 500) << "the rotation changed nothing on screen";
+  EXPECT_GT(changed_pixels(b, c, 40).count, 500) << "the scale changed nothing on screen";
+  EXPECT_LT(changed_pixels(a, d, 24).count, 20) << "undo did not restore the picture";
+  long red = 0;  // the cursor's ring
+  for (int y = 0; y < kHeight - kStatusHeight; ++y)
+    for (int x = kPanelWidth; x < kWidth; ++x)
+      if (a.channel(x, y, 0) > 200 && a.channel(x, y, 1) < 90 && a.channel(x, y, 2) < 90) ++red;
+  EXPECT_GT(red, 20) << "the 3-D cursor is not drawn";
+}
+
+}  // namespace

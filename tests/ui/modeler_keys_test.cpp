@@ -9,7 +9,7 @@ namespace {
 using T = ModelerCommandType;
 
 T key(Key k, Modifiers m = {}, bool has_selection = true) {
-  GrabState grab;
+  TransformState grab;
   return map_modeler_key(k, m, grab, has_selection).type;
 }
 
@@ -46,18 +46,18 @@ TEST(ModelerKeysTest, HistoryAndFileKeys) {
 }
 
 TEST(ModelerKeysTest, GrabNeedsASelection) {
-  GrabState grab;
+  TransformState grab;
   EXPECT_EQ(map_modeler_key(Key::G, {}, grab, false).type, T::None);
   EXPECT_FALSE(grab.active);
-  EXPECT_EQ(map_modeler_key(Key::G, {}, grab, true).type, T::GrabStart);
+  EXPECT_EQ(map_modeler_key(Key::G, {}, grab, true).type, T::TransformStart);
   EXPECT_TRUE(grab.active);
   EXPECT_EQ(grab.axis, -1);
 }
 
 TEST(ModelerKeysTest, GrabAxisAndTypedDistance) {
-  GrabState grab;
+  TransformState grab;
   map_modeler_key(Key::G, {}, grab, true);
-  EXPECT_EQ(map_modeler_key(Key::Z, {}, grab, true).type, T::GrabUpdate);
+  EXPECT_EQ(map_modeler_key(Key::Z, {}, grab, true).type, T::TransformUpdate);
   EXPECT_EQ(grab.axis, 2);
   map_modeler_key(Key::X, {}, grab, true);
   EXPECT_EQ(grab.axis, 0);
@@ -65,7 +65,7 @@ TEST(ModelerKeysTest, GrabAxisAndTypedDistance) {
   EXPECT_EQ(grab.axis, -1);
   map_modeler_key(Key::Y, {}, grab, true);
   for (Key k : {Key::Digit1, Key::Period, Key::Digit2, Key::Digit5, Key::Minus}) {
-    EXPECT_EQ(map_modeler_key(k, {}, grab, true).type, T::GrabUpdate);
+    EXPECT_EQ(map_modeler_key(k, {}, grab, true).type, T::TransformUpdate);
   }
   EXPECT_EQ(grab.typed, "-1.25");
   ASSERT_TRUE(grab.typed_value());
@@ -77,21 +77,21 @@ TEST(ModelerKeysTest, GrabAxisAndTypedDistance) {
   // Other keys are swallowed while grabbing: no undo in the middle of a grab.
   EXPECT_EQ(map_modeler_key(Key::Z, ctrl(), grab, true).type, T::None);
   EXPECT_EQ(map_modeler_key(Key::A, {}, grab, true).type, T::None);
-  EXPECT_EQ(map_modeler_key(Key::Enter, {}, grab, true).type, T::GrabConfirm);
+  EXPECT_EQ(map_modeler_key(Key::Enter, {}, grab, true).type, T::TransformConfirm);
   EXPECT_FALSE(grab.active);
   EXPECT_TRUE(grab.typed.empty());
 }
 
-TEST(ModelerKeysTest, GrabCancel) {
-  GrabState grab;
+TEST(ModelerKeysTest, TransformCancel) {
+  TransformState grab;
   map_modeler_key(Key::G, {}, grab, true);
   map_modeler_key(Key::Digit3, {}, grab, true);
-  EXPECT_EQ(map_modeler_key(Key::Escape, {}, grab, true).type, T::GrabCancel);
+  EXPECT_EQ(map_modeler_key(Key::Escape, {}, grab, true).type, T::TransformCancel);
   EXPECT_FALSE(grab.active);
 }
 
 TEST(ModelerKeysTest, TypedValueParsing) {
-  GrabState g;
+  TransformState g;
   EXPECT_FALSE(g.typed_value());
   g.typed = "-";
   EXPECT_FALSE(g.typed_value());
@@ -146,6 +146,39 @@ TEST(ModelerKeysTest, HelpTableListsTheModelerKeys) {
   bool grab = false;
   for (const KeyBinding& b : modeler_key_bindings()) grab |= b.action.find("Grab") != std::string_view::npos;
   EXPECT_TRUE(grab);
+}
+
+TEST(ModelerKeysTest, RotateScaleAndExcludedAxes) {
+  TransformState t;
+  EXPECT_EQ(map_modeler_key(Key::R, {}, t, false).type, T::None);
+  EXPECT_EQ(map_modeler_key(Key::S, {}, t, false).type, T::None);
+  EXPECT_EQ(map_modeler_key(Key::R, {}, t, true).type, T::TransformStart);
+  EXPECT_EQ(t.mode, 1);
+  t = {};
+  EXPECT_EQ(map_modeler_key(Key::S, {}, t, true).type, T::TransformStart);
+  EXPECT_EQ(t.mode, 2);
+  // Shift+Z excludes Z; Z then constrains to it; Z again frees; Shift+Z twice frees too.
+  EXPECT_EQ(map_modeler_key(Key::Z, shift(), t, true).type, T::TransformUpdate);
+  EXPECT_EQ(t.axis, 2);
+  EXPECT_TRUE(t.exclude);
+  map_modeler_key(Key::Z, {}, t, true);
+  EXPECT_EQ(t.axis, 2);
+  EXPECT_FALSE(t.exclude);
+  map_modeler_key(Key::Z, {}, t, true);
+  EXPECT_EQ(t.axis, -1);
+  map_modeler_key(Key::X, shift(), t, true);
+  map_modeler_key(Key::X, shift(), t, true);
+  EXPECT_EQ(t.axis, -1);
+  EXPECT_FALSE(t.exclude);
+  // Keys that mean something else outside a transform are swallowed inside one.
+  EXPECT_EQ(map_modeler_key(Key::A, {}, t, true).type, T::None);
+  EXPECT_EQ(map_modeler_key(Key::Escape, {}, t, true).type, T::TransformCancel);
+  EXPECT_FALSE(t.active);
+  // Outside: Shift+S is the cursor, Ctrl+S still saves, Alt+S nothing.
+  EXPECT_EQ(key(Key::S, shift()), T::CursorToSelected);
+  EXPECT_EQ(key(Key::S, ctrl()), T::Save);
+  EXPECT_EQ(key(Key::S, alt()), T::None);
+  EXPECT_EQ(key(Key::R, ctrl()), T::None);
 }
 
 }  // namespace

@@ -77,6 +77,17 @@ ModelerCommand map_modeler_key(Key key, const Modifiers& mods, TransformState& g
     case Key::A:
       if (ctrl || shift) return {};
       return command(alt ? ModelerCommandType::SelectNone : ModelerCommandType::SelectAll);
+    case Key::I:
+      return ctrl && !shift && !alt ? command(ModelerCommandType::SelectInvert) : ModelerCommand{};
+    case Key::NumpadPlus:
+      return ctrl && !shift && !alt ? command(ModelerCommandType::SelectMore) : ModelerCommand{};
+    case Key::NumpadMinus:
+      return ctrl && !shift && !alt ? command(ModelerCommandType::SelectLess) : ModelerCommand{};
+    case Key::L:
+      if (alt || (ctrl && shift)) return {};
+      return command(ctrl ? ModelerCommandType::SelectLinked : ModelerCommandType::PickLinked);
+    case Key::C:
+      return ctrl || shift || alt ? ModelerCommand{} : command(ModelerCommandType::CircleSelect);
     case Key::D:
       if (alt) return {};
       if (ctrl) return shift ? ModelerCommand{} : command(ModelerCommandType::Subdivide);
@@ -158,7 +169,11 @@ const std::vector<KeyBinding>& modeler_key_bindings() {
       {"Click / Shift+click", "Select / toggle point"},
       {"Drag empty space", "Box select (Shift adds)"},
       {"Drag selected point", "Move in view plane"},
-      {"A / Alt+A", "Select all / none"},
+      {"A / Alt+A / Ctrl+I", "Select all / none / invert"},
+      {"Alt+click / Ctrl+Alt+click", "Edge loop / ring (Shift adds)"},
+      {"L / Shift+L / Ctrl+L", "Linked under mouse / deselect / to selection"},
+      {"Ctrl+numpad + / -", "Grow / shrink selection"},
+      {"C", "Circle select (Shift paints off)"},
       {"G, then X/Y/Z, digits", "Grab, axis, distance"},
       {"R / S, then X/Y/Z, digits", "Rotate (degrees) / scale"},
       {"Shift+X/Y/Z in G/R/S", "Exclude that axis"},

@@ -17,6 +17,12 @@ enum class ModelerCommandType {
   None,
   SelectAll,     // A
   SelectNone,    // Alt+A
+  SelectInvert,  // Ctrl+I
+  SelectMore,    // Ctrl+numpad +
+  SelectLess,    // Ctrl+numpad -
+  SelectLinked,  // Ctrl+L: everything joined to the selection
+  PickLinked,    // L: everything joined to the point under the mouse (Shift+L: deselect it)
+  CircleSelect,  // C: paint the selection with a circle until Esc, Enter or right click
   LevelUp,       // Page Up, D (finer)
   LevelDown,     // Page Down, Shift+D (coarser)
   Subdivide,     // Ctrl+D

@@ -73,6 +73,8 @@ void draw_file_section(const ModelerPanelData& d, FileFields& f, ModelerPanelReq
     r.export_finest = f.export_finest;
   }
   ImGui::Checkbox("Export the finest limit (off: current level's net)", &f.export_finest);
+  if (ImGui::Button("Export every level") && !f.export_path.empty()) r.export_levels = true;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Each level's control net: name_L0.obj .. name_LJ.obj beside the export path");
 }
 
 // Fit base mesh... (docs/fit.md): a coarse base and fitted levels for an opened dense mesh.
@@ -131,6 +133,19 @@ void draw_levels_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   if (ImGui::SliderInt("Edit level", &level, 0, std::max(d.finest, 0)) && level != d.level) r.level = level;
   ImGui::SameLine();
   if (ImGui::Button("Subdivide")) r.subdivide = true;
+  ImGui::BeginDisabled(d.level >= d.finest);
+  if (ImGui::Button("Delete higher")) r.delete_higher = true;
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("Remove the levels finer than the edit level");
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::BeginDisabled(d.level == 0);
+  if (ImGui::Button("Delete lower")) r.delete_lower = true;
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("Make the edit level the base: the coarser levels go, the shape stays");
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (ImGui::Button("Apply base")) r.apply_base = true;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("For Blender users: level 0 already is the coarse shape of the detail");
   if (d.rebuild_levels > 0) {
     ImGui::TextColored(kAccent, "This mesh was subdivided %d time%s elsewhere.", d.rebuild_levels, d.rebuild_levels == 1 ? "" : "s");
     char label[64];
@@ -226,6 +241,14 @@ void draw_detail_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   int pivot = std::clamp(d.pivot, 0, 3);
   ImGui::SetNextItemWidth(140.0f);
   if (ImGui::Combo("Pivot", &pivot, kPivots, 4)) r.pivot = pivot;
+  ImGui::TextUnformatted("Mirror");
+  for (int a = 0; a < 3; ++a) {
+    ImGui::SameLine();
+    bool on = d.symmetry[a];
+    const char* names[] = {"X##mirror", "Y##mirror", "Z##mirror"};
+    if (ImGui::Checkbox(names[a], &on)) r.symmetry_axis = a, r.symmetry_on = on;
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Mirror editing across the world planes x = 0, y = 0, z = 0");
   ImGui::TextColored(kMuted, "%zu selected", d.selected);
 }
 

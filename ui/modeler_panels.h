@@ -114,6 +114,7 @@ struct ModelerPanelData {
   std::size_t selected = 0;
   double soft_radius = 0.0;
   int pivot = 0;                      // Pivot's value: median, active, cursor, origin
+  bool symmetry[3] = {false, false, false};  // mirror editing across x = 0, y = 0, z = 0
   int colour_level = -1;
   bool dirty = false;
   std::vector<std::string> recent;    // recently opened files, newest first
@@ -141,6 +142,8 @@ struct ModelerPanelRequests {
   double gain_value = 1.0;
   bool gain_begin = false, gain_end = false;  // the slider drag started / ended
   bool subdivide = false, undo = false, redo = false;
+  bool delete_higher = false, delete_lower = false, apply_base = false;  // Blender's Multires buttons
+  bool export_levels = false;         // every level's net: the export path's name + _L0 .. _LJ
   bool rebuild = false;               // rebuild the opened mesh's levels (docs/rebuild.md)
   bool rebuild_show_stop = false;     // select the vertex where detection stopped
   std::optional<FitRequest> fit_preview, fit;  // preview the base / fit (docs/fit.md)
@@ -151,6 +154,8 @@ struct ModelerPanelRequests {
   bool export_finest = true;
   std::optional<double> soft_radius;
   std::optional<int> pivot;           // the pivot of rotate and scale (Pivot's value)
+  int symmetry_axis = -1;             // a mirror checkbox changed: its axis and new state
+  bool symmetry_on = false;
   std::optional<BasisSettings> basis;  // the Basis section's settings after the user changed one
   bool pin_basis = false, clear_pin = false;
   // FFD: load a model, wrap it in a box lattice (fields.box, fields.box_margin), bind (with the

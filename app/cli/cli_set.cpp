@@ -1,5 +1,5 @@
-// sublift-cli set PROJECT [--scheme S] [--subdivide N] [--gain L F]... [--frames world|local]
-//                 [--level L] -o OUT [--json]
+// sublift-cli set PROJECT [--scheme S] [--subdivide N] [--delete-higher L] [--delete-lower L]
+//                 [--gain L F]... [--frames world|local] [--level L] -o OUT [--json]
 // The session state the modeler's panel sets, on a project: what the Scheme menu, Subdivide
 // (Ctrl+D), the level gains, World/Local and the edit level do, in that order.
 #include <iostream>
@@ -10,6 +10,7 @@
 #include "app/cli/cli_json.h"
 #include "core/base/errors.h"
 #include "core/base/text_lines.h"
+#include "core/edit/level_ops.h"
 #include "core/edit/scheme_switch.h"
 #include "core/edit/session.h"
 #include "core/io/project/project_io.h"
@@ -19,8 +20,8 @@ namespace sublift::cli {
 namespace {
 
 constexpr const char* kHelp =
-    "usage: sublift-cli set PROJECT [--scheme S] [--subdivide N] [--gain L F]... [--frames world|local]\n"
-    "                   [--level L] -o OUT [--json]\n"
+    "usage: sublift-cli set PROJECT [--scheme S] [--subdivide N] [--delete-higher L] [--delete-lower L]\n"
+    "                   [--gain L F]... [--frames world|local] [--level L] -o OUT [--json]\n"
     "  Changes a project's session as the modeler's panel does, in this order:\n"
     "  --scheme S        linear, cubic, sqrt2, linear-tri, butterfly or loop. Between schemes of\n"
     "                    the same refinement (linear/cubic; the three triangle schemes) the shape\n"
@@ -28,6 +29,9 @@ constexpr const char* kHelp =
     "                    (gains become 1). To or from sqrt2 the levels start from the base\n"
     "                    without the detail (a note says so). The same finest resolution.\n"
     "  --subdivide N     adds N levels with zero detail (the shape kept, one level finer)\n"
+    "  --delete-higher L keeps levels 0..L (level L becomes the finest, unchanged)\n"
+    "  --delete-lower L  makes level L the base: the coarser levels go, every finer level stays as\n"
+    "                    it was (levels renumbered from 0; gains of the levels below L go)\n"
     "  --gain L F        the detail gain of level L's wavelets (repeatable; 0 mutes, 1 as analysed)\n"
     "  --frames F        world or local detail frames (local: surfaces only)\n"
     "  --level L         the edit level the modeler opens at\n"
@@ -46,8 +50,9 @@ int count(const std::string& s, const char* what, long lo, long hi) {
 }  // namespace
 
 int run_set(int argc, char** argv) {
-  const Args a = parse_args(argc, argv, 2, {"-o", "--scheme", "--subdivide", "--frames", "--level"}, {"--json", "--help"},
-                            {{"--gain", 2}});
+  const Args a = parse_args(argc, argv, 2,
+                            {"-o", "--scheme", "--subdivide", "--frames", "--level", "--delete-higher", "--delete-lower"},
+                            {"--json", "--help"}, {{"--gain", 2}});
   if (a.has("--help")) {
     std::cout << kHelp;
     return 0;
@@ -94,6 +99,39 @@ int run_set(int argc, char** argv) {
     level = level_under_scheme(level, from, *scheme);
   }
   for (int i = 0; i < subdivide; ++i) session->subdivide();
+  // Level deletions (core/edit/level_ops.h), as the modeler's Delete higher / Delete lower.
+  auto replace = [&](Hierarchy next, std::vector<double> gains) {
+    const bool was_local = session->detail_frames() == DetailFrames::Local;
+    session = std::make_unique<Session>(std::move(next), std::move(gains));
+    if (was_local) session->set_detail_frames(DetailFrames::Local);
+  };
+  if (const auto v = a.value("--delete-higher")) {
+    const int L = count(*v, "--delete-higher", 0, session->finest_level());
+    if (extras.input_order.level > L && !extras.input_order.empty()) {
+      notes.push_back("the vertex order of the file the project was rebuilt from belonged to a deleted level and is not kept");
+      extras.input_order = {};
+    }
+    replace(delete_higher(session->hierarchy(), L), std::vector<double>(session->gains().begin(), session->gains().begin() + L));
+    level = std::min(level, L);
+  }
+  if (const auto v = a.value("--delete-lower")) {
+    const int L = count(*v, "--delete-lower", 0, session->finest_level());
+    if (!extras.input_order.empty()) {
+      if (extras.input_order.level >= L) {
+        extras.input_order.level -= L;
+      } else {
+        notes.push_back("the vertex order of the file the project was rebuilt from belonged to a deleted level and is not kept");
+        extras.input_order = {};
+      }
+    }
+    if (L > 0 && !extras.fit_source.empty()) {
+      notes.push_back("the fit's map from the old base to the mesh it was fitted to is not kept");
+      extras.fit_source = {};
+    }
+    replace(delete_lower(session->hierarchy(), L, session->positions(L)),
+            std::vector<double>(session->gains().begin() + L, session->gains().end()));
+    level = std::max(level - L, 0);
+  }
   if (const auto it = a.lists.find("--gain"); it != a.lists.end()) {
     for (std::size_t k = 0; k + 1 < it->second.size(); k += 2) {
       const int l = count(it->second[k], "--gain L", 0, session->finest_level() - 1);

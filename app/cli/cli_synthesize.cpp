@@ -1,6 +1,7 @@
-// sublift-cli synthesize PROJECT [--level L | --limit] [--keep FRACTION] -o OUT [--json]
+// sublift-cli synthesize PROJECT [--level L | --limit | --every-level] [--keep FRACTION] -o OUT [--json]
 #include <charconv>
 #include <chrono>
+#include <filesystem>
 #include <iostream>
 
 #include "app/cli/cli_args.h"
@@ -20,7 +21,8 @@ namespace sublift::cli {
 namespace {
 
 constexpr const char* kHelp =
-    "usage: sublift-cli synthesize PROJECT [--level L | --limit] [--keep FRACTION] -o OUT [--json]\n"
+    "usage: sublift-cli synthesize PROJECT [--level L | --limit | --every-level] [--keep FRACTION] -o OUT\n"
+    "                   [--json]\n"
     "  Writes the control net of level L (default: the finest) of a .sublift project, vertices\n"
     "  in the order 'subdivide' writes (a project made by 'rebuild': the finest level in the\n"
     "  order of the file it came from), with the project's detail gains applied, as the modeler\n"
@@ -29,12 +31,13 @@ constexpr const char* kHelp =
     "  --keep 0 gives the pure subdivision of the base, --keep 1 the shape. OUT by extension as\n"
     "  in 'subdivide'. --limit writes the finest level's limit surface instead of its net, as the\n"
     "  modeler draws and exports it: .obj .ply .gltf .glb with unit normals from the limit\n"
-    "  tangents (a lattice: its boundary), other formats the limit positions.\n";
+    "  tangents (a lattice: its boundary), other formats the limit positions. --every-level\n"
+    "  writes the net of every level at once, OUT's name + _L0 .. _LJ (name_L0.obj ...).\n";
 
 }  // namespace
 
 int run_synthesize(int argc, char** argv) {
-  const Args a = parse_args(argc, argv, 2, {"-o", "--level", "--keep"}, {"--json", "--help", "--limit"});
+  const Args a = parse_args(argc, argv, 2, {"-o", "--level", "--keep"}, {"--json", "--help", "--limit", "--every-level"});
   if (a.has("--help")) {
     std::cout << kHelp;
     return 0;
@@ -62,6 +65,8 @@ int run_synthesize(int argc, char** argv) {
   const std::string out = surface_out ? *a.value("-o") : output_option(a, h.levels.front().dim);
   const int L = level.value_or(h.finest_level());
   const bool limit = a.has("--limit");
+  const bool every = a.has("--every-level");
+  if (every && (limit || level)) throw UsageError("--every-level writes every level's net; leave out --level and --limit");
   if (limit && L != h.finest_level())
     throw UsageError("--limit evaluates the finest level (" + std::to_string(h.finest_level()) + "); leave out --level");
   if (L > h.finest_level())
@@ -83,7 +88,7 @@ int run_synthesize(int argc, char** argv) {
     throw Error(in + ": " + e.what() + "; nothing written");
   }
   const double synthesis_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  std::vector<std::string> notes;
+  std::vector<std::string> notes, written;
   if (limit) {
     if (h.channels != 3) throw Error(in + ": --limit needs a project of positions (3 channels), this one has " + std::to_string(h.channels));
     const LimitSurface surface = finest_limit_surface(h, x);  // core/analysis/limit_surface.h
@@ -91,6 +96,16 @@ int run_synthesize(int argc, char** argv) {
       write_surface_with_normals(out, surface.faces, surface.positions, surface.normals);
     else
       notes = write_level(out, h, L, surface.positions, 3, extras.input_order);
+  } else if (every) {
+    // Each level's net: the finest one is synthesised already, the coarser ones are its prefix
+    // levels' syntheses (the same gains and kept wavelets).
+    const std::filesystem::path p(out);
+    for (int l = 0; l <= h.finest_level(); ++l) {
+      const std::string file = (p.parent_path() / (p.stem().string() + "_L" + std::to_string(l) + p.extension().string())).string();
+      const std::vector<double> xl = l == L ? x : synthesize_in_range(h, l);
+      for (const std::string& n : write_level(file, h, l, xl, h.channels, extras.input_order)) notes.push_back(file + ": " + n);
+      written.push_back(file);
+    }
   } else {
     notes = write_level(out, h, L, x, h.channels, extras.input_order);
   }
@@ -98,6 +113,7 @@ int run_synthesize(int argc, char** argv) {
   if (a.has("--json")) {
     nlohmann::json j = {{"input", in}, {"output", out}, {"level", L}, {"vertices", h.num_vertices(L)}, {"limit", limit},
                       {"gains", extras.gains}, {"synthesis_ms", synthesis_ms}, {"notes", notes}};
+    if (every) j["files"] = written;
     if (keep) {
       j["keep"] = *keep;
       j["kept_wavelets"] = kept;

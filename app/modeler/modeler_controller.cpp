@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "app/modeler/modeler_view.h"
+#include "core/edit/selection.h"
 #include "core/base/errors.h"
 
 namespace sublift {
@@ -323,6 +324,36 @@ void ModelerController::update_rotate_scale() {
   }
 }
 
+void ModelerController::circle_paint(double vx, double vy) {
+  const std::vector<std::uint32_t> inside = pick_index().in_circle(vx, vy, circle_radius_px_ * scale_, display.xray);
+  if (inside.empty()) return;
+  std::vector<unsigned> sel = model.selection();
+  if (circle_erase_) {
+    std::vector<unsigned> kept;
+    std::set_difference(sel.begin(), sel.end(), inside.begin(), inside.end(), std::back_inserter(kept));
+    if (kept.size() == sel.size()) return;
+    sel = std::move(kept);
+  } else {
+    const std::size_t before = sel.size();
+    sel.insert(sel.end(), inside.begin(), inside.end());
+    std::sort(sel.begin(), sel.end());
+    sel.erase(std::unique(sel.begin(), sel.end()), sel.end());
+    if (sel.size() == before) return;
+  }
+  model.set_selection(std::move(sel));
+}
+
+void ModelerController::select_loop_at(double vx, double vy, bool ring, bool extend) {
+  const std::int64_t e = pick_edge(pick_index(), pick_view(), model.net_positions(), model.level_complex(), vx, vy,
+                                   kPickRadiusPx, display.xray);
+  if (e < 0) return;
+  try {
+    model.select_loop(static_cast<std::uint32_t>(e), ring, extend);
+  } catch (const std::exception& ex) {
+    fail(ex, "");
+  }
+}
+
 void ModelerController::run_command(ModelerCommandType type) {
   if (!model.has_session()) return;
   try {
@@ -330,6 +361,33 @@ void ModelerController::run_command(ModelerCommandType type) {
       case ModelerCommandType::None: break;
       case ModelerCommandType::SelectAll: model.select_all(); break;
       case ModelerCommandType::SelectNone: model.set_selection({}); break;
+      case ModelerCommandType::SelectInvert: model.select_op(ModelerState::SelectOp::Invert); break;
+      case ModelerCommandType::SelectMore: model.select_op(ModelerState::SelectOp::More); break;
+      case ModelerCommandType::SelectLess: model.select_op(ModelerState::SelectOp::Less); break;
+      case ModelerCommandType::SelectLinked: model.select_op(ModelerState::SelectOp::Linked); break;
+      case ModelerCommandType::PickLinked: {
+        // Blender's L: what is joined to the point under the mouse joins the selection (Shift+L
+        // takes it away).
+        const double s = scale_;
+        const std::int64_t hit = pick_index().nearest((mouse_x_ - view_x_) * s, (mouse_y_ - view_y_) * s, kPickRadiusPx, display.xray);
+        if (hit < 0) break;
+        const unsigned one[1] = {static_cast<unsigned>(hit)};
+        const std::vector<unsigned> linked = select_linked(model.level_complex(), one);
+        std::vector<unsigned> sel = model.selection();
+        if (mods_.shift) {
+          std::vector<unsigned> kept;
+          std::set_difference(sel.begin(), sel.end(), linked.begin(), linked.end(), std::back_inserter(kept));
+          sel = std::move(kept);
+        } else {
+          sel.insert(sel.end(), linked.begin(), linked.end());
+        }
+        model.set_selection(std::move(sel));
+        break;
+      }
+      case ModelerCommandType::CircleSelect:
+        circle_active_ = !circle_active_;
+        circle_painting_ = false;
+        break;
       case ModelerCommandType::LevelUp: model.set_level(model.level() + 1); break;
       case ModelerCommandType::LevelDown: model.set_level(model.level() - 1); break;
       case ModelerCommandType::Subdivide: model.subdivide(); break;
@@ -390,12 +448,16 @@ void ModelerController::handle(const WindowEvent& ev) {
     mouse_y_ = ev.y;
   }
   mods_ = ev.mods;
-  if (!model.has_session() || unsaved_prompt_ || recovery_prompt_ || scheme_prompt_ || job_) return;
+  if (!model.has_session() || unsaved_prompt_ || recovery_prompt_ || confirm_ || job_) return;
   const double s = scale_;
   const double vx = (ev.x - view_x_) * s, vy = (ev.y - view_y_) * s;  // viewport pixels
   switch (ev.type) {
     case WindowEvent::Type::Key: {
       if (ev.over_ui) return;
+      if (circle_active_ && (ev.key == Key::Escape || ev.key == Key::Enter || ev.key == Key::C)) {
+        circle_active_ = circle_painting_ = false;
+        return;
+      }
       const ModelerCommand c = map_modeler_key(ev.key, ev.mods, grab_, !model.selection().empty());
       if (c.type != ModelerCommandType::None || grab_.active) {
         run_command(c.type);
@@ -410,6 +472,10 @@ void ModelerController::handle(const WindowEvent& ev) {
     }
     case WindowEvent::Type::Wheel: {
       if (ev.over_ui || !in_viewport(ev.x, ev.y)) return;
+      if (circle_active_) {
+        circle_radius_px_ = std::clamp(circle_radius_px_ * std::pow(1.15, ev.wheel), 4.0, 1000.0);
+        return;
+      }
       if (ev.mods.ctrl) {
         model.set_soft_radius(soft_radius_after_wheel(model.soft_radius(), ev.wheel, model.default_soft_radius()));
       } else {
@@ -429,6 +495,22 @@ void ModelerController::handle(const WindowEvent& ev) {
         run_command(ev.button == 1 ? ModelerCommandType::TransformCancel : ModelerCommandType::TransformConfirm);
         held_[ev.button] = false;
         return;
+      }
+      if (circle_active_) {
+        if (ev.button == 1) {  // right click leaves circle select, as Esc
+          circle_active_ = circle_painting_ = false;
+          held_[1] = false;
+        } else if (ev.button == 0 && display.net) {
+          circle_painting_ = true;
+          circle_erase_ = ev.mods.shift;
+          circle_paint(vx, vy);
+        }
+        return;
+      }
+      if (ev.button == 0 && ev.mods.alt && display.net) {  // a loop on release, unless it becomes a Maya orbit
+        alt_click_ = true;
+        press_x_ = ev.x;
+        press_y_ = ev.y;
       }
       if (ev.button != 0 || ev.mods.alt || !display.net) return;
       press_x_ = ev.x;
@@ -454,6 +536,11 @@ void ModelerController::handle(const WindowEvent& ev) {
     case WindowEvent::Type::Release: {
       const bool was_held = held_[ev.button];
       held_[ev.button] = false;
+      if (ev.button == 0) circle_painting_ = false;
+      if (ev.button == 0 && std::exchange(alt_click_, false) && was_held) {
+        select_loop_at(vx, vy, ev.mods.ctrl, ev.mods.shift);
+        return;
+      }
       if (ev.button != 0 || !was_held) return;
       const Press press = std::exchange(press_, Press::None);
       std::vector<unsigned> sel = model.selection();
@@ -483,6 +570,11 @@ void ModelerController::handle(const WindowEvent& ev) {
       return;
     }
     case WindowEvent::Type::Move: {
+      if (alt_click_ && std::hypot(ev.x - press_x_, ev.y - press_y_) * s > kDragThresholdPx) alt_click_ = false;
+      if (circle_active_) {
+        if (circle_painting_) circle_paint(vx, vy);
+        return;
+      }
       if (grab_.active) {
         if (!grab_.typed_value()) update_grab();
         return;
@@ -525,14 +617,40 @@ void ModelerController::handle(const WindowEvent& ev) {
   }
 }
 
+void ModelerController::run_confirmed(const Confirm& c) {
+  switch (c.kind) {
+    case Confirm::Kind::Scheme: {
+      const Scheme s = static_cast<Scheme>(c.scheme);
+      model.set_scheme(s);
+      message = "Rebuilt with the " + scheme_name(s) + " scheme (history cleared)";
+      break;
+    }
+    case Confirm::Kind::DeleteHigher: message = model.delete_higher_levels(); break;
+    case Confirm::Kind::DeleteLower: message = model.delete_lower_levels(); break;
+  }
+  pick_dirty_ = stats_dirty_ = true;
+}
+
 void ModelerController::apply_requests(const ModelerPanelRequests& r) {
   try {
-    if (r.scheme && !model.session().history().empty()) {
-      scheme_prompt_ = *r.scheme;  // edits would be lost: ask first
-    } else if (r.scheme) {
-      const Scheme s = static_cast<Scheme>(*r.scheme);  // the combo lists the enum in order
-      model.set_scheme(s);
-      message = "Rebuilt with the " + scheme_name(s) + " scheme (detail and history cleared)";
+    // Edits would leave the history: ask first.
+    const bool edited = model.has_session() && !model.session().history().empty();
+    if (r.scheme) {
+      const Confirm c{Confirm::Kind::Scheme, *r.scheme};  // the combo lists the enum in order
+      edited ? void(confirm_ = c) : run_confirmed(c);
+    }
+    if (r.delete_higher || r.delete_lower) {
+      const Confirm c{r.delete_higher ? Confirm::Kind::DeleteHigher : Confirm::Kind::DeleteLower};
+      edited ? void(confirm_ = c) : run_confirmed(c);
+    }
+    if (r.apply_base) message = std::string("Apply base: ") + ModelerState::apply_base_note();
+    if (r.export_levels) {
+      if (fields.export_path.empty()) {
+        error = "Type an export path in Files (name.obj writes name_L0.obj ...), then Export every level.";
+      } else {
+        const std::vector<std::string> files = model.export_levels(fields.export_path);
+        message = "Exported " + std::to_string(files.size()) + " levels: " + files.front() + " .. " + files.back();
+      }
     }
     if (r.level) model.set_level(*r.level);
     if (r.subdivide) model.subdivide();
@@ -570,6 +688,10 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
     if (r.colour_level) model.set_colour_level(*r.colour_level);
     if (r.soft_radius) model.set_soft_radius(*r.soft_radius);
     if (r.pivot) model.set_pivot(static_cast<Pivot>(*r.pivot));
+    if (r.symmetry_axis >= 0) {
+      const std::string problem = model.set_symmetry(r.symmetry_axis, r.symmetry_on);
+      if (!problem.empty()) error = problem + ": those points are edited without a mirror image.";
+    }
     if (r.basis) {
       basis_request_ = *r.basis;  // kept even when it fails, so the panel shows what was typed
       try {
@@ -786,6 +908,7 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     d.selected = model.selection().size();
     d.soft_radius = model.soft_radius();
     d.pivot = static_cast<int>(model.pivot());
+    for (int a = 0; a < 3; ++a) d.symmetry[a] = model.symmetry(a);
     d.colour_level = model.colour_level();
     d.dirty = s.dirty();
     fill_basis_data(d.basis);
@@ -815,6 +938,7 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
       std::snprintf(shown, sizeof shown, "   COMPRESSED %.3g%%", 100.0 * model.compression().fraction);
       left += shown;
     }
+    if (circle_active_) left += "   CIRCLE SELECT (Shift: deselect, wheel: size, Esc: done)";
     if (grab_.active) {
       static const char* kModes[] = {"GRAB", "ROTATE", "SCALE"};
       static const char* kAxes[] = {"X", "Y", "Z"};
@@ -840,6 +964,9 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     overlay->AddCircle(ImVec2(static_cast<float>(mouse_x_), static_cast<float>(mouse_y_)), static_cast<float>(px),
                        IM_COL32(255, 200, 40, 200), 48, 1.5f);
   }
+  if (circle_active_ && in_viewport(mouse_x_, mouse_y_))
+    overlay->AddCircle(ImVec2(static_cast<float>(mouse_x_), static_cast<float>(mouse_y_)), static_cast<float>(circle_radius_px_),
+                       IM_COL32(255, 255, 255, 220), 48, 1.5f);
   // The pivot of R/S: the 3-D cursor as Blender draws it (a red-white ring with a cross), a
   // small dot for the others while a rotate or scale runs.
   if (model.has_session() && (model.pivot() == Pivot::Cursor || (grab_.active && grab_.mode != 0))) {
@@ -872,20 +999,20 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
       proceed(p);
     }
   }
-  const PromptChoice confirm = draw_confirm_prompt(
-      scheme_prompt_.has_value(), "Changing the scheme rebuilds the hierarchy from level 0:\nall detail and the undo history are lost.");
+  const char* confirm_text = !confirm_ ? ""
+                             : confirm_->kind == Confirm::Kind::Scheme
+                                 ? "Changing the scheme rebuilds the hierarchy:\nthe undo history is lost (and, to or from sqrt2, the detail)."
+                                 : "Deleting levels cannot be undone:\nthe undo history is lost.";
+  const PromptChoice confirm = draw_confirm_prompt(confirm_.has_value(), confirm_text);
   if (confirm != PromptChoice::None) {
     if (confirm == PromptChoice::Discard) {
       try {
-        const Scheme s = static_cast<Scheme>(*scheme_prompt_);
-        model.set_scheme(s);
-        message = "Rebuilt with the " + scheme_name(s) + " scheme (detail and history cleared)";
-        pick_dirty_ = true;
+        run_confirmed(*confirm_);
       } catch (const std::exception& e) {
         fail(e, "");
       }
     }
-    scheme_prompt_.reset();
+    confirm_.reset();
   }
   if (job_) {
     if (draw_progress_prompt(true, job_->title.c_str(), job_->stage.load(), static_cast<float>(job_->permille.load()) / 1000.0f))

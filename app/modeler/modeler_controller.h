@@ -85,6 +85,7 @@ class ModelerController {
     view_x_ = x, view_y_ = y, view_w_ = width, view_h_ = height, scale_ = scale;
   }
   bool grabbing() const { return grab_.active; }
+  bool circle_selecting() const { return circle_active_; }
 
   /// Where picking gets the surface's depth so that points behind it are not picked without
   /// x-ray (the app passes ModelerView::surface_depth; tests may leave it unset).
@@ -125,6 +126,8 @@ class ModelerController {
   const PickIndex& pick_index();
   void update_grab();  // every transform mode
   void update_rotate_scale();
+  void circle_paint(double vx, double vy);  // viewport pixels
+  void select_loop_at(double vx, double vy, bool ring, bool extend);
   void fail(const std::exception& e, const std::string& context);
 
   bool interactive_;
@@ -139,6 +142,9 @@ class ModelerController {
   bool moved_ = false;
   glm::dvec3 drag_anchor_{0.0};
   TransformState grab_;
+  bool alt_click_ = false;  // Alt+left pressed and not moved: an edge loop on release
+  bool circle_active_ = false, circle_painting_ = false, circle_erase_ = false;
+  double circle_radius_px_ = 40.0;
   double grab_x_ = 0, grab_y_ = 0;
   glm::dvec3 grab_anchor_{0.0};
   bool gain_active_ = false;
@@ -166,7 +172,14 @@ class ModelerController {
   void start_job(std::string title, Work work);
   std::unique_ptr<Job> job_;
   bool background_jobs_;
-  std::optional<int> scheme_prompt_;  // a scheme change waiting for confirmation
+  // An operation that clears the undo history, waiting for confirmation: a scheme change
+  // (its Scheme value) or a level deletion.
+  struct Confirm {
+    enum class Kind { Scheme, DeleteHigher, DeleteLower } kind = Kind::Scheme;
+    int scheme = 0;
+  };
+  std::optional<Confirm> confirm_;
+  void run_confirmed(const Confirm& c);
   bool quit_confirmed_ = false;
   double last_autosave_ = -1.0;
   bool stats_dirty_ = true;

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include "core/edit/level_ops.h"
+#include "core/edit/selection.h"
 #include "core/analysis/boundary_surface.h"
 #include "core/analysis/limit_surface.h"
 #include "core/analysis/mesh_stats.h"
@@ -359,6 +361,7 @@ void ModelerState::set_scheme(Scheme scheme) {
   const bool local = session_->detail_frames() == DetailFrames::Local;
   auto session = std::make_unique<Session>(std::move(next.hierarchy));
   if (local) session->set_detail_frames(DetailFrames::Local);
+  session->mark_unsaved();
   const int edit_level = std::min(level_under_scheme(level_, from, scheme), session->finest_level());
   InputOrder order = input_order_;  // same refinement: the same levels, so a rebuilt file's order still holds
   install(std::move(session));
@@ -372,6 +375,80 @@ void ModelerState::set_scheme(Scheme scheme) {
   }
   update_.topology = true;
   refresh_state();
+}
+
+std::string ModelerState::delete_higher_levels() {
+  ffd_check_free("deleting levels");
+  check_unlocked("deleting levels");
+  if (dragging_) end_drag();
+  const int J = session_->finest_level();
+  if (level_ == J) throw Error("there are no levels above level " + std::to_string(level_));
+  std::vector<double> gains(session_->gains().begin(), session_->gains().begin() + level_);
+  auto session = std::make_unique<Session>(delete_higher(session_->hierarchy(), level_), std::move(gains));
+  if (session_->detail_frames() == DetailFrames::Local) session->set_detail_frames(DetailFrames::Local);
+  session->mark_unsaved();
+  InputOrder order = input_order_;
+  FitSource fit = fit_source_;
+  const int level = level_;
+  std::vector<unsigned> selection = selection_;
+  install(std::move(session));
+  level_ = level;
+  selection_ = std::move(selection);
+  fit_source_ = std::move(fit);  // level 0 is unchanged
+  std::string note = "deleted levels " + std::to_string(level + 1) + ".." + std::to_string(J) + "; level " +
+                     std::to_string(level) + " is the finest (history cleared)";
+  if (order.level <= level) {
+    input_order_ = std::move(order);
+  } else if (!order.empty()) {
+    note += "; the vertex order of the file this mesh was rebuilt from belonged to a deleted level and is not kept";
+  }
+  update_.topology = true;
+  refresh_state();
+  return note;
+}
+
+std::string ModelerState::delete_lower_levels() {
+  ffd_check_free("deleting levels");
+  check_unlocked("deleting levels");
+  if (dragging_) end_drag();
+  if (level_ == 0) throw Error("level 0 is already the base: there are no levels below it");
+  const int L = level_;
+  const std::span<const double> net = session_->positions(L);
+  std::vector<double> gains(session_->gains().begin() + L, session_->gains().end());
+  auto session = std::make_unique<Session>(delete_lower(session_->hierarchy(), L, net), std::move(gains));
+  if (session_->detail_frames() == DetailFrames::Local) session->set_detail_frames(DetailFrames::Local);
+  session->mark_unsaved();
+  InputOrder order = input_order_;
+  const bool had_fit = !fit_source_.empty();
+  std::vector<unsigned> selection = selection_;  // old level L's vertices are the new level 0's
+  install(std::move(session));
+  level_ = 0;
+  selection_ = std::move(selection);
+  std::string note = "level " + std::to_string(L) + " is the new base; levels 0.." + std::to_string(L - 1) +
+                     " are deleted (history cleared)";
+  if (order.level >= L) {
+    order.level -= L;
+    input_order_ = std::move(order);
+  } else if (!order.empty()) {
+    note += "; the vertex order of the file this mesh was rebuilt from belonged to a deleted level and is not kept";
+  }
+  if (had_fit) note += "; the fit's map from the old base to the mesh it was fitted to is not kept";
+  update_.topology = true;
+  refresh_state();
+  return note;
+}
+
+const char* ModelerState::apply_base_note() { return kApplyBaseNote; }
+
+std::vector<std::string> ModelerState::export_levels(const std::string& path) {
+  const std::filesystem::path p(path);
+  std::vector<std::string> written;
+  for (int l = 0; l <= session_->finest_level(); ++l) {
+    const std::string file = (p.parent_path() / (p.stem().string() + "_L" + std::to_string(l) + p.extension().string())).string();
+    for (const std::string& note : export_level(file, l)) warnings_.push_back(file + ": " + note);
+    written.push_back(file);
+  }
+  return written;
 }
 
 void ModelerState::set_level(int level) {
@@ -461,8 +538,33 @@ void ModelerState::transform_to(const glm::dvec3& axis, double angle, const glm:
     throw Error("the transform is not finite");
   transform_deltas(transform_start_, session_->positions(level_), drag_weights_.vertices, drag_weights_.weights,
                    transform_pivot_, axis, angle, factors, transform_deltas_);
-  session_->move_each(level_, drag_weights_.vertices, transform_deltas_);
+  move_mirrored(drag_weights_.vertices, transform_deltas_);
   after_operation();
+}
+
+void ModelerState::move_mirrored(std::vector<std::uint32_t> vertices, std::vector<double> deltas) {
+  std::vector<const MirrorMap*> maps;
+  for (int a = 0; a < 3; ++a)
+    if (symmetry_[static_cast<std::size_t>(a)]) maps.push_back(&mirror_map(a));
+  if (!maps.empty()) mirror_deltas(maps, vertices, deltas);
+  session_->move_each(level_, vertices, deltas);
+}
+
+std::string ModelerState::set_symmetry(int axis, bool on) {
+  if (axis < 0 || axis > 2) throw Error("the mirror axis must be x, y or z");
+  symmetry_[static_cast<std::size_t>(axis)] = on;
+  return on && session_ ? mirror_map(axis).problem() : std::string();
+}
+
+const MirrorMap& ModelerState::mirror_map(int axis) {
+  MirrorCache& c = mirror_cache_[static_cast<std::size_t>(axis)];
+  if (c.level != level_ || c.serial != serial_ || c.topology != session_->topology_version()) {
+    c.map = find_mirror(level_complex(), session_->positions(level_), axis);
+    c.level = level_;
+    c.serial = serial_;
+    c.topology = session_->topology_version();
+  }
+  return c.map;
 }
 
 void ModelerState::set_active(long long vertex) {
@@ -479,7 +581,14 @@ void ModelerState::drag_to(const double total[3]) {
   if (!dragging_) return;
   const double delta[3] = {total[0] - drag_total_[0], total[1] - drag_total_[1], total[2] - drag_total_[2]};
   if (delta[0] == 0.0 && delta[1] == 0.0 && delta[2] == 0.0) return;
-  session_->move(level_, drag_weights_.vertices, drag_weights_.weights, delta);
+  if (symmetry_[0] || symmetry_[1] || symmetry_[2]) {
+    std::vector<double> deltas(3 * drag_weights_.vertices.size());
+    for (std::size_t k = 0; k < drag_weights_.vertices.size(); ++k)
+      for (int c = 0; c < 3; ++c) deltas[3 * k + c] = drag_weights_.weights[k] * delta[c];
+    move_mirrored(drag_weights_.vertices, std::move(deltas));
+  } else {
+    session_->move(level_, drag_weights_.vertices, drag_weights_.weights, delta);
+  }
   for (int c = 0; c < 3; ++c) drag_total_[c] = total[c];
   after_operation();
 }
@@ -516,6 +625,29 @@ void ModelerState::select_all() {
   for (unsigned i = 0; i < all.size(); ++i) all[i] = i;
   selection_ = std::move(all);
   refresh_state();
+}
+
+void ModelerState::select_op(SelectOp op) {
+  const Complex& c = level_complex();
+  switch (op) {
+    case SelectOp::Linked: selection_ = select_linked(c, selection_); break;
+    case SelectOp::More: selection_ = grow_selection(c, selection_); break;
+    case SelectOp::Less: selection_ = shrink_selection(c, selection_); break;
+    case SelectOp::Invert: selection_ = invert_selection(c.num_vertices, selection_); break;
+  }
+  if (active_ >= 0 && !std::binary_search(selection_.begin(), selection_.end(), static_cast<unsigned>(active_))) active_ = -1;
+  refresh_state();
+}
+
+void ModelerState::select_loop(std::uint32_t edge, bool ring, bool extend) {
+  const Complex& c = level_complex();
+  if (edge >= c.num_edges())
+    throw Error("edge " + std::to_string(edge) + " is not on level " + std::to_string(level_) + " (it has " +
+                std::to_string(c.num_edges()) + ")");
+  if (ring && c.dim != 2) throw Error("edge rings are for surfaces; use a loop on curves and lattices");
+  std::vector<unsigned> picked = edge_vertices(c, ring ? edge_ring(c, edge) : edge_loop(c, edge));
+  if (extend) picked.insert(picked.end(), selection_.begin(), selection_.end());
+  set_selection(std::move(picked));
 }
 
 void ModelerState::set_hover(long long vertex) {
@@ -632,8 +764,14 @@ void ModelerState::save_project(const std::string& path) {
 void ModelerState::write_recovery(const std::string& path) const { write_project(path, session_->hierarchy(), project_extras()); }
 
 std::vector<std::string> ModelerState::export_shape(const std::string& path, bool finest) {
+  return export_level(path, finest ? -1 : level_);
+}
+
+std::vector<std::string> ModelerState::export_level(const std::string& path, int net_level) {
   const Hierarchy& h = session_->hierarchy();
-  const int level = finest ? h.finest_level() : level_;
+  if (net_level > h.finest_level()) throw Error("level " + std::to_string(net_level) + " is outside 0.." + std::to_string(h.finest_level()));
+  const bool finest = net_level < 0;
+  const int level = finest ? h.finest_level() : net_level;
   const Complex& c = h.levels[static_cast<std::size_t>(level)];
   if (surface_export_supported(path) && c.dim >= 2) {
     if (finest) {

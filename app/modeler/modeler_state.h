@@ -14,6 +14,7 @@
 // carry no level-l wavelet), the values are carried to the finest level by linear refinement
 // (an edge/face/cell child takes the mean of its parent's corners) and divided by the largest
 // |w| of the level, so 0..1 maps onto viridis.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -28,6 +29,7 @@
 #include "core/multires/hierarchy.h"
 #include "core/multires/limit.h"
 #include "core/edit/session.h"
+#include "core/edit/symmetry.h"
 #include "core/edit/transform.h"
 #include "core/io/project/project_io.h"
 #include "core/fit/fit_levels.h"
@@ -143,6 +145,15 @@ class ModelerState {
   const FitSource& fit_source() const { return fit_source_; }
   void set_level(int level);
   void subdivide();
+  /// Blender's Multires "Delete Higher" / "Delete Lower" (core/edit/level_ops.h): the levels
+  /// above the edit level go / the edit level becomes the base (the edit level becomes 0); the
+  /// shape stays, the history is cleared and the session is unsaved. Return what to tell the
+  /// user; throw Error when there is nothing to delete, while a model is bound or while the
+  /// compression view is on.
+  std::string delete_higher_levels();
+  std::string delete_lower_levels();
+  /// Blender's "Apply Base": nothing to do in Sublift; what to tell the user (kApplyBaseNote).
+  static const char* apply_base_note();
   bool undo();
   bool redo();
   /// Jumps in the history so that entries [0, position) are applied.
@@ -180,11 +191,30 @@ class ModelerState {
   /// Makes a selected point the active one (ignored when it is not selected).
   void set_active(long long vertex);
 
+  // ---- symmetry (core/edit/symmetry.h) -------------------------------------------------------
+  /// Mirror editing across the world plane across `axis` (0..2; Blender's X/Y/Z mirror): moves,
+  /// rotates, scales and brush strokes also move the mirror images of what they move. The
+  /// mirror map of the edit level is found when needed (by position, then by topology); returns
+  /// what has no mirror image ("" when everything mirrors).
+  std::string set_symmetry(int axis, bool on);
+  bool symmetry(int axis) const { return symmetry_[static_cast<std::size_t>(axis)]; }
+  /// The edit level's mirror map across `axis` (found on first use after a topology or level
+  /// change).
+  const MirrorMap& mirror_map(int axis);
+
   // ---- selection ----------------------------------------------------------------------------
   const std::vector<unsigned>& selection() const { return selection_; }
   /// Replaces the selection (indices of the current level; sorted and deduplicated here).
   void set_selection(std::vector<unsigned> selection);
   void select_all();
+  /// Topological selection (core/edit/selection.h) on the edit level's net.
+  enum class SelectOp { Linked, More, Less, Invert };
+  void select_op(SelectOp op);
+  /// Selects the loop (or ring, surfaces only) through edge `edge` of the edit level; `extend`
+  /// adds it to the selection. Throws Error on a bad edge index.
+  void select_loop(std::uint32_t edge, bool ring, bool extend);
+  /// The edit level's complex (the net's topology).
+  const Complex& level_complex() const { return session_->hierarchy().levels[static_cast<std::size_t>(level_)]; }
   void set_hover(long long vertex);
   long long hover() const { return hover_; }
   double soft_radius() const { return soft_radius_; }
@@ -199,6 +229,11 @@ class ModelerState {
   /// .gltf/.glb with normals (the limit surface for the finest level; lattices: their boundary),
   /// .lattice/.vtk (and .off) through write_shape. Returns notes on what the format dropped.
   std::vector<std::string> export_shape(const std::string& path, bool finest);
+  /// The same for the control net of `level` (-1: the finest limit surface).
+  std::vector<std::string> export_level(const std::string& path, int level);
+  /// Every level's control net at once: PATH's stem + "_L0" .. "_LJ" + its extension, in PATH's
+  /// folder. Returns the files written.
+  std::vector<std::string> export_levels(const std::string& path);
   /// Writes a recovery project without touching the saved state.
   void write_recovery(const std::string& path) const;
 
@@ -326,6 +361,16 @@ class ModelerState {
   glm::dvec3 cursor_{0.0}, transform_pivot_{0.0};
   long long active_ = -1;
   std::vector<double> transform_start_, transform_deltas_;
+  std::array<bool, 3> symmetry_{false, false, false};
+  struct MirrorCache {
+    MirrorMap map;
+    int level = -1;
+    std::uint64_t serial = 0, topology = 0;
+  };
+  std::array<MirrorCache, 3> mirror_cache_;
+  /// Moves `vertices` of the edit level by `deltas` (3 each), with their mirror images when
+  /// symmetry is on.
+  void move_mirrored(std::vector<std::uint32_t> vertices, std::vector<double> deltas);
   SoftWeights drag_weights_;
   std::size_t drag_undo_position_ = 0;
   std::uint64_t seen_topology_ = 0;

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base/errors.h"
+#include "core/edit/selection.h"
 
 namespace sublift {
 namespace {
@@ -254,7 +255,27 @@ constexpr Command kCommands[] = {
       if (l < 0 || l > finest) throw ScriptError("level " + c.w[1] + " is outside 0.." + std::to_string(finest));
       c.state.set_level(static_cast<int>(l));
     }},
-    {"select", 0, kMany, "select [INDEX...]", [](const Call& c) {
+    {"select", 0, kMany, "select [INDEX...] | select all|none|invert|more|less|linked | select loop|ring A B [add]", [](const Call& c) {
+      using Op = ModelerState::SelectOp;
+      static constexpr std::pair<const char*, Op> kOps[] = {
+          {"invert", Op::Invert}, {"more", Op::More}, {"less", Op::Less}, {"linked", Op::Linked}};
+      if (c.w.size() == 2) {
+        if (c.w[1] == "all") return c.state.select_all();
+        if (c.w[1] == "none") return c.state.set_selection({});
+        for (const auto& [name, op] : kOps)
+          if (c.w[1] == name) return c.state.select_op(op);
+      }
+      if (c.w.size() >= 2 && (c.w[1] == "loop" || c.w[1] == "ring")) {
+        if (c.w.size() != 4 && !(c.w.size() == 5 && c.w[4] == "add")) c.usage_error();
+        const long long n = c.state.session().num_vertices(c.state.level());
+        const long long a = integer(c.w[2], "A"), b = integer(c.w[3], "B");
+        if (a < 0 || a >= n || b < 0 || b >= n)
+          throw ScriptError("select " + c.w[1] + ": vertices must be in 0.." + std::to_string(n - 1) + " of level " +
+                            std::to_string(c.state.level()));
+        const std::int64_t e = find_edge(c.state.level_complex(), static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b));
+        if (e < 0) throw ScriptError("select " + c.w[1] + ": vertices " + c.w[2] + " and " + c.w[3] + " share no edge");
+        return c.state.select_loop(static_cast<std::uint32_t>(e), c.w[1] == "ring", c.w.size() == 5);
+      }
       std::vector<unsigned> sel;
       const long long n = c.state.session().num_vertices(c.state.level());
       for (std::size_t i = 1; i < c.w.size(); ++i) {
@@ -304,6 +325,12 @@ constexpr Command kCommands[] = {
                                             : glm::dvec3(number(c.w[1], "SX"), number(c.w[2], "SY"), number(c.w[3], "SZ"));
       transform(c, TransformMode::Scale, glm::dvec3(0.0, 0.0, 1.0), 0.0, f);
     }},
+    {"symmetry", 2, 2, "symmetry x|y|z on|off", [](const Call& c) {
+      if (c.w[1] != "x" && c.w[1] != "y" && c.w[1] != "z") throw ScriptError("symmetry axis must be x, y or z");
+      if (c.w[2] != "on" && c.w[2] != "off") throw ScriptError("symmetry takes 'on' or 'off', got '" + c.w[2] + "'");
+      const std::string problem = c.state.set_symmetry(c.w[1][0] - 'x', c.w[2] == "on");
+      if (!problem.empty()) throw ScriptError(problem + " (the mesh is not symmetric there; symmetry stays on for the rest)");
+    }},
     {"pivot", 1, 1, "pivot median|active|cursor|origin", [](const Call& c) {
       try {
         c.state.set_pivot(parse_pivot(c.w[1]));
@@ -340,6 +367,13 @@ constexpr Command kCommands[] = {
       c.state.save_project(c.raw);
     }},
     {"export", kPath, 0, "export PATH", [](const Call& c) { c.state.export_shape(c.raw, true); }},
+    {"export-levels", kPath, 0, "export-levels PATH", [](const Call& c) { c.state.export_levels(c.raw); }},
+    {"delete", 1, 1, "delete higher|lower", [](const Call& c) {
+      if (c.w[1] == "higher") return void(c.state.delete_higher_levels());
+      if (c.w[1] == "lower") return void(c.state.delete_lower_levels());
+      c.usage_error();
+    }},
+    {"apply-base", 0, 0, "apply-base", [](const Call&) {}},  // nothing to do in Sublift (ModelerState::apply_base_note)
     {"screenshot", kPath, 0, "screenshot PATH",
      [](const Call& c) { c.step.kind = ScriptStep::Kind::Screenshot; c.step.path = c.raw; }},
     {"colour", 1, 1, "colour LEVEL|off", colour},

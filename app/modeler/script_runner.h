@@ -4,9 +4,13 @@
 // the selection with the current soft radius). Blank lines and `#` comments are skipped; paths
 // are relative to the current directory. Commands:
 //   open PATH | scheme linear|cubic | subdivide [N] | level L | select [INDEX...] | soft RADIUS
+//   select all|none|invert|more|less|linked | select loop|ring A B [add] (through edge A-B)
 //   move DX DY DZ | rotate x|y|z DEGREES | rotate AX AY AZ DEGREES | scale S | scale SX SY SZ
-//   pivot median|active|cursor|origin | cursor X Y Z | active INDEX | gain LEVEL FACTOR | frames world|local | undo | redo | save PATH
-//   export PATH | screenshot PATH | quit
+//   pivot median|active|cursor|origin | cursor X Y Z | active INDEX | gain LEVEL FACTOR
+//   symmetry x|y|z on|off (mirror editing; fails, staying on, naming what has no mirror image) | frames world|local | undo | redo | save PATH
+//   export PATH | export-levels PATH (every level's net: PATH's name + _L0.._LJ) | screenshot PATH
+//   delete higher|lower (the levels above the edit level / below it: it becomes the base)
+//   apply-base (accepted for Blender users; nothing to do) | quit
 //   colour LEVEL|off | display smooth|wireframe|net|xray|depth_cue|clip|ortho on|off
 //   clip X|Y|Z OFFSET01 | view front|back|right|left|top|bottom  (display and camera only)
 //   basis scaling|wavelet INDEX [dual] | basis height SCALE|off | basis off  (issue 5: the

@@ -88,6 +88,10 @@ class PickIndex {
   /// included, corners in any order); with !xray hidden points are left out.
   std::vector<std::uint32_t> in_rect(double x0, double y0, double x1, double y1, bool xray) const;
 
+  /// Indices (ascending) of the points within `radius` pixels of (cx, cy) (circle select); with
+  /// !xray hidden points are left out.
+  std::vector<std::uint32_t> in_circle(double cx, double cy, double radius, bool xray) const;
+
   /// Number of points in the index (projected into the viewport and visible).
   std::size_t size() const { return entries_.size(); }
   /// Number of indexed points marked hidden by the occlusion depth.

@@ -133,6 +133,9 @@ class Session {
   /// Counts edits since the last mark_saved(); the GUI's "unsaved changes".
   bool dirty() const { return undo_pos_ != saved_pos_ || saved_invalid_; }
   void mark_saved() { saved_pos_ = undo_pos_, saved_invalid_ = false; }
+  /// Dirty until the next save: a session that replaces an edited one (scheme switch, level
+  /// deletion) holds changes no saved file has.
+  void mark_unsaved() { saved_invalid_ = true; }
   /// Oldest entries are dropped when the history holds more than this many bytes.
   void set_history_limit(std::size_t bytes) { history_limit_ = bytes; }
 

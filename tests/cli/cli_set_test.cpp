@@ -138,5 +138,54 @@ TEST(CliSet, UsageAndInputErrors) {
   EXPECT_FALSE(std::filesystem::exists(out));  // nothing written by a refused command
 }
 
+// --delete-higher / --delete-lower and synthesize --every-level (issue 19): each remaining
+// level's net, as the project's own synthesis with its gains gave it before.
+TEST(CliSet, DeleteHigherAndLowerKeepTheRemainingLevels) {
+  TempDir dir("sublift_cli_set_delete");
+  torus_project(dir, "in.sublift");
+  ProjectExtras extras;
+  Hierarchy shown = read_project(dir.file("in.sublift"), &extras);
+  apply_gains(shown, extras.gains);
+  std::vector<std::vector<double>> before;
+  for (int l = 0; l <= 3; ++l) before.push_back(synthesize(shown, l));
+
+  ProcessResult r = cli({"set", dir.file("in.sublift"), "--delete-higher", "2", "-o", dir.file("high.sublift"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ProjectExtras he;
+  Hierarchy high = read_project(dir.file("high.sublift"), &he);
+  EXPECT_EQ(high.finest_level(), 2);
+  EXPECT_EQ(he.gains, (std::vector<double>{1.0, 0.5}));
+  apply_gains(high, he.gains);
+  for (int l = 0; l <= 2; ++l) EXPECT_EQ(synthesize(high, l), before[static_cast<std::size_t>(l)]) << l;
+
+  r = cli({"set", dir.file("in.sublift"), "--delete-lower", "1", "-o", dir.file("low.sublift")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ProjectExtras le;
+  Hierarchy low = read_project(dir.file("low.sublift"), &le);
+  EXPECT_EQ(low.finest_level(), 2);
+  EXPECT_EQ(low.num_vertices(0), shown.num_vertices(1));
+  EXPECT_EQ(le.gains, (std::vector<double>{0.5, 2.0}));
+  EXPECT_EQ(le.current_level, 1);  // the edit level 2 is now level 1
+  apply_gains(low, le.gains);
+  for (int k = 0; k <= 2; ++k) EXPECT_LT(max_diff(synthesize(low, k), before[static_cast<std::size_t>(k) + 1]), 1e-12) << k;
+
+  // Every level at once: name_L0.obj .. name_L3.obj, each the net of its level.
+  r = cli({"synthesize", dir.file("in.sublift"), "--every-level", "-o", dir.file("net.obj"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["files"].size(), 4u);
+  for (int l = 0; l <= 3; ++l) {
+    const Shape s = read_shape(dir.file("net_L" + std::to_string(l) + ".obj"));
+    EXPECT_LT(max_diff(s.positions, before[static_cast<std::size_t>(l)]), 1e-15) << l;
+  }
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"set", dir.file("in.sublift"), "--delete-higher", "4", "-o", dir.file("x.sublift")},
+           {"set", dir.file("in.sublift"), "--delete-lower", "-1", "-o", dir.file("x.sublift")},
+           {"synthesize", dir.file("in.sublift"), "--every-level", "--level", "1", "-o", dir.file("x.obj")},
+       }) {
+    const ProcessResult bad = cli(args);
+    EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  }
+}
+
 }  // namespace
 }  // namespace sublift

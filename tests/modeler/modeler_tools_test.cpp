@@ -9,7 +9,11 @@
 #include <vector>
 
 #include "app/modeler/script_runner.h"
+#include "core/edit/selection.h"
 #include "tests/modeler/controller_fixture.h"
+#include "core/base/errors.h"
+#include "core/io/lattice/shape_io.h"
+#include "tests/io_test_util.h"
 #include "tests/test_shapes.h"
 
 namespace sublift {
@@ -27,10 +31,13 @@ std::vector<std::vector<double>> all_levels(const ModelerState& m) {
   return out;
 }
 
-// Every level is the synthesis of the session's coefficients (what a fresh open would show).
+// Every level is the synthesis of the session's coefficients with its gains (what a fresh open
+// of the saved project would show).
 void expect_fresh(const ModelerState& m) {
+  Hierarchy shown = m.session().hierarchy();
+  apply_gains(shown, m.session().gains());
   for (int l = 0; l <= m.session().finest_level(); ++l)
-    EXPECT_LT(testing::max_abs_diff(synthesize(m.session().hierarchy(), l), m.session().positions(l)), 1e-11) << "level " << l;
+    EXPECT_LT(testing::max_abs_diff(synthesize(shown, l), m.session().positions(l)), 1e-11) << "level " << l;
 }
 
 glm::dvec3 point(const ModelerState& m, unsigned v) {
@@ -195,6 +202,289 @@ TEST(ModelerTransform, ScriptRefusalsSayWhy) {
   EXPECT_EQ(error_of("pivot centre"), "script:1: unknown pivot 'centre' (median, active, cursor or origin)");
   EXPECT_EQ(error_of("select 0\nactive 5"), "script:2: active 5: the active point must be selected");
   EXPECT_TRUE(m.session().history().empty());
+}
+
+}  // namespace
+}  // namespace sublift
+
+namespace sublift {
+namespace {
+
+std::vector<std::vector<double>> levels_of(const ModelerState& m) {
+  std::vector<std::vector<double>> out;
+  for (int l = 0; l <= m.session().finest_level(); ++l) out.emplace_back(m.session().positions(l).begin(), m.session().positions(l).end());
+  return out;
+}
+
+// A torus with an edit at every level and gains that are not 1, so that every level's shape
+// depends on all the coefficients below it.
+ModelerState edited_torus(const std::string& scheme) {
+  ModelerState m;
+  m.open(std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj");
+  ScriptRunner run("levels.txt", "scheme " + scheme + "\nsubdivide\nlevel 0\nselect 3\nmove 0 0 0.2\nlevel 1\nselect 20 21\n"
+                                 "move 0.05 0 0\nlevel 2\nselect 100\nmove 0 0.03 0\ngain 1 0.5\nlevel 3\nselect 700\nmove 0 0 -0.02\n");
+  const ScriptStep s = run.next(m);
+  EXPECT_EQ(s.kind, ScriptStep::Kind::End) << s.message;
+  return m;
+}
+
+TEST(ModelerLevels, DeleteHigherKeepsTheLowerLevels) {
+  for (const std::string scheme : {"cubic", "linear", "sqrt2"}) {
+    SCOPED_TRACE(scheme);
+    ModelerState m = edited_torus(scheme);
+    const auto before = levels_of(m);
+    const std::vector<double> gains(m.session().gains().begin(), m.session().gains().end());
+    m.set_level(2);
+    const std::string note = m.delete_higher_levels();
+    EXPECT_NE(note.find("deleted levels 3.."), std::string::npos) << note;
+    ASSERT_EQ(m.session().finest_level(), 2);
+    EXPECT_EQ(m.level(), 2);
+    // Unchanged up to rounding: the old session kept its levels by local resynthesis, the new
+    // one synthesises them afresh from the same coefficients.
+    for (int l = 0; l <= 2; ++l) EXPECT_LT(testing::max_abs_diff(levels_of(m)[l], before[l]), 1e-12) << "level " << l;
+    EXPECT_EQ(std::vector<double>(m.session().gains().begin(), m.session().gains().end()),
+              std::vector<double>(gains.begin(), gains.begin() + 2));
+    EXPECT_TRUE(m.session().history().empty());
+    EXPECT_TRUE(m.session().dirty());  // a save is needed to keep this
+    expect_fresh(m);
+    EXPECT_THROW(m.delete_higher_levels(), Error);  // nothing above the finest
+  }
+}
+
+TEST(ModelerLevels, DeleteLowerMakesTheEditLevelTheBaseAndKeepsEveryFinerLevel) {
+  for (const std::string scheme : {"cubic", "linear", "sqrt2"}) {
+    SCOPED_TRACE(scheme);
+    ModelerState m = edited_torus(scheme);
+    const auto before = levels_of(m);
+    const int J = m.session().finest_level();
+    m.set_level(1);
+    m.set_selection({5, 9});
+    const std::string note = m.delete_lower_levels();
+    EXPECT_NE(note.find("level 1 is the new base"), std::string::npos) << note;
+    ASSERT_EQ(m.session().finest_level(), J - 1);
+    EXPECT_EQ(m.level(), 0);
+    EXPECT_EQ(m.selection(), (std::vector<unsigned>{5, 9}));  // the same points, now of level 0
+    for (int k = 0; k <= J - 1; ++k)
+      EXPECT_LT(testing::max_abs_diff(levels_of(m)[k], before[static_cast<std::size_t>(k) + 1]), 1e-12) << "level " << k;
+    EXPECT_EQ(m.session().gain(0), 0.5);  // old level 1's gain
+    expect_fresh(m);
+    EXPECT_TRUE(m.session().dirty());
+    // The new base edits like any base: a move at level 0 resynthesises the finer levels.
+    m.begin_drag("Move");
+    const double d[3] = {0.0, 0.1, 0.0};
+    m.drag_to(d);
+    m.end_drag();
+    expect_fresh(m);
+    EXPECT_THROW(m.delete_lower_levels(), Error);  // level 0 already is the base
+  }
+}
+
+TEST(ModelerLevels, ExportEveryLevelAndScriptCommands) {
+  const testing::TempDir dir("sublift_export_levels");
+  ModelerState m = edited_torus("cubic");
+  ScriptRunner run("levels.txt", "export-levels " + dir.file("shape.obj") + "\napply-base\nlevel 2\ndelete higher\n"
+                                 "delete lower\n");
+  const ScriptStep s = run.next(m);
+  ASSERT_EQ(s.kind, ScriptStep::Kind::End) << s.message;
+  EXPECT_EQ(m.session().finest_level(), 0);  // 2 became the finest, then the base
+  for (int l = 0; l <= 3; ++l) {
+    const Shape shape = read_shape(dir.file("shape_L" + std::to_string(l) + ".obj"));
+    EXPECT_EQ(shape.base.num_vertices, edited_torus("cubic").session().num_vertices(l)) << l;
+  }
+  ScriptRunner bad("bad.txt", "delete middle\n");
+  EXPECT_EQ(bad.next(m).message, "script:1: usage: delete higher|lower");
+  EXPECT_NE(std::string(ModelerState::apply_base_note()).find("nothing to apply"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sublift
+
+namespace sublift {
+namespace {
+
+using testing::Fixture;
+
+constexpr Modifiers kCtrl{false, true, false}, kShift{true, false, false}, kAlt{false, false, true},
+    kCtrlAlt{false, true, true};
+
+TEST(ModelerSelection, InvertGrowShrinkAndLinkedKeys) {
+  Fixture f;
+  const std::uint32_t n = f.app.model.session().num_vertices(f.app.model.level());
+  f.app.model.set_selection({5});
+  f.key(Key::NumpadPlus, kCtrl);
+  const std::vector<unsigned> grown = grow_selection(f.app.model.level_complex(), std::vector<unsigned>{5});
+  EXPECT_EQ(f.app.model.selection(), grown);
+  EXPECT_EQ(grown.size(), 5u);  // a regular quad vertex and its four neighbours
+  f.key(Key::NumpadMinus, kCtrl);
+  EXPECT_EQ(f.app.model.selection(), (std::vector<unsigned>{5}));
+  f.key(Key::I, kCtrl);
+  EXPECT_EQ(f.app.model.selection().size(), n - 1);
+  f.app.model.set_selection({5});
+  f.key(Key::L, kCtrl);  // a torus is one piece
+  EXPECT_EQ(f.app.model.selection().size(), n);
+  // L under the mouse adds what is joined to the point there; Shift+L takes it away.
+  f.app.model.set_selection({});
+  const unsigned v = f.visible_point();
+  double x = 0, y = 0;
+  ASSERT_TRUE(f.window_position(v, x, y));
+  f.send(WindowEvent::Type::Move, x, y);
+  f.key(Key::L);
+  EXPECT_EQ(f.app.model.selection().size(), n);
+  f.key(Key::L, kShift);
+  EXPECT_TRUE(f.app.model.selection().empty());
+}
+
+// The net edge under the mouse: the one nearest to the middle of the projected segment of an
+// edge of the front-most point.
+bool edge_middle(Fixture& f, std::uint32_t& edge, double& x, double& y) {
+  const unsigned v = f.visible_point();
+  const Complex& c = f.app.model.level_complex();
+  for (const std::uint32_t e : c.vertex_edges.row(v)) {
+    double ax, ay, bx, by;
+    if (!f.window_position(c.edge_verts[2 * e], ax, ay) || !f.window_position(c.edge_verts[2 * e + 1], bx, by)) continue;
+    if (std::hypot(bx - ax, by - ay) < 30) continue;  // too short on screen to aim at its middle
+    edge = e, x = 0.5 * (ax + bx), y = 0.5 * (ay + by);
+    return true;
+  }
+  return false;
+}
+
+TEST(ModelerSelection, AltClickSelectsTheEdgeLoopAndAltDragStillOrbits) {
+  Fixture f;
+  std::uint32_t e = 0;
+  double x = 0, y = 0;
+  ASSERT_TRUE(edge_middle(f, e, x, y));
+  f.click(x, y, kAlt);
+  const Complex& c = f.app.model.level_complex();
+  const std::vector<unsigned> loop = f.app.model.selection();
+  EXPECT_TRUE(std::binary_search(loop.begin(), loop.end(), c.edge_verts[2 * e]));
+  EXPECT_TRUE(std::binary_search(loop.begin(), loop.end(), c.edge_verts[2 * e + 1]));
+  // The torus (12 x 8 quads) closes every loop round one of its two circles.
+  EXPECT_TRUE(loop.size() == 12 || loop.size() == 8) << loop.size();
+  // Ctrl+Alt: the ring, the other way round; Shift adds.
+  f.click(x, y, kCtrlAlt);
+  const std::vector<unsigned> ring = f.app.model.selection();
+  EXPECT_EQ(ring.size(), 2 * (20 - loop.size()));
+  f.click(x, y, Modifiers{true, false, true});  // Shift+Alt: the loop joins the ring
+  EXPECT_EQ(f.app.model.selection().size(), ring.size() + loop.size() - 2);
+  // An Alt+drag is a Maya orbit: the camera turns and the selection stays.
+  const glm::dvec3 eye = f.app.camera.eye();
+  f.app.model.set_selection({});
+  f.send(WindowEvent::Type::Move, x, y, 0, kAlt);
+  f.send(WindowEvent::Type::Press, x, y, 0, kAlt);
+  f.send(WindowEvent::Type::Move, x + 60, y + 20, 0, kAlt);
+  f.send(WindowEvent::Type::Release, x + 60, y + 20, 0, kAlt);
+  EXPECT_TRUE(f.app.model.selection().empty());
+  EXPECT_GT(glm::length(f.app.camera.eye() - eye), 1e-6);
+}
+
+TEST(ModelerSelection, CircleSelectPaintsAndShiftErases) {
+  Fixture f;
+  const unsigned v = f.visible_point();
+  double x = 0, y = 0;
+  ASSERT_TRUE(f.window_position(v, x, y));
+  f.key(Key::C);
+  ASSERT_TRUE(f.app.circle_selecting());
+  f.send(WindowEvent::Type::Move, x, y);
+  f.send(WindowEvent::Type::Press, x, y);
+  f.send(WindowEvent::Type::Release, x, y);
+  const std::vector<unsigned> first = f.app.model.selection();
+  EXPECT_TRUE(std::binary_search(first.begin(), first.end(), v));
+  // What the circle covers, by the picking index's own rule (40 pixels, front points only).
+  PickIndex index;
+  index.build(f.view(), f.app.model.session().positions(f.app.model.level()));
+  const std::vector<std::uint32_t> inside = index.in_circle(x - testing::kViewX, y, 40.0, true);
+  for (const unsigned u : first) EXPECT_TRUE(std::binary_search(inside.begin(), inside.end(), u)) << u;
+  // A stroke adds where it passes: down at v, up at a front point far from it.
+  unsigned far = v;
+  double fx = 0, fy = 0;
+  for (unsigned u = 0; u < f.app.model.session().num_vertices(f.app.model.level()) && far == v; ++u)
+    if (f.window_position(u, fx, fy) && std::hypot(fx - x, fy - y) > 100 && index.nearest(fx - testing::kViewX, fy, 10.0, false) == u)
+      far = u;
+  ASSERT_NE(far, v);
+  f.send(WindowEvent::Type::Press, x, y);
+  f.send(WindowEvent::Type::Move, fx, fy);
+  f.send(WindowEvent::Type::Release, fx, fy);
+  EXPECT_GT(f.app.model.selection().size(), first.size());
+  EXPECT_TRUE(std::binary_search(f.app.model.selection().begin(), f.app.model.selection().end(), far));
+  f.send(WindowEvent::Type::Press, x, y, 0, kShift);
+  f.send(WindowEvent::Type::Release, x, y, 0, kShift);
+  EXPECT_FALSE(std::binary_search(f.app.model.selection().begin(), f.app.model.selection().end(), v));
+  f.key(Key::Escape);
+  EXPECT_FALSE(f.app.circle_selecting());
+  EXPECT_TRUE(f.app.model.session().history().empty());  // selection is no edit
+}
+
+TEST(ModelerSelection, ScriptSelectWords) {
+  ModelerState m;
+  m.open(std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj");
+  const std::int64_t e = find_edge(m.level_complex(), 0, 1);
+  ASSERT_GE(e, 0);
+  ScriptRunner run("sel.txt", "select loop 0 1\n");
+  ASSERT_EQ(run.next(m).kind, ScriptStep::Kind::End);
+  EXPECT_EQ(m.selection(), edge_vertices(m.level_complex(), edge_loop(m.level_complex(), static_cast<std::uint32_t>(e))));
+  ScriptRunner more("sel.txt", "select 0\nselect more\nselect more\nselect less\nselect invert\nselect invert\n");
+  ASSERT_EQ(more.next(m).kind, ScriptStep::Kind::End);
+  EXPECT_EQ(m.selection(), grow_selection(m.level_complex(), std::vector<unsigned>{0}));
+  ScriptRunner bad("bad.txt", "select loop 0 50\n");
+  EXPECT_EQ(bad.next(m).message, "script:1: select loop: vertices 0 and 50 share no edge");
+}
+
+// Mirror editing on the torus, symmetric across x = 0: a move, a rotation and a scale of
+// points on one side move their images on the other by the mirrored amounts; undo restores both.
+TEST(ModelerSymmetry, MirroredMovesRotationsAndScalesOnASymmetricMesh) {
+  ModelerState m;
+  m.open(std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj");
+  EXPECT_EQ(m.set_symmetry(0, true), "");
+  const MirrorMap& map = m.mirror_map(0);
+  EXPECT_EQ(map.unmatched, 0u);
+  EXPECT_EQ(map.by_topology, 0u);  // exact positions: all found by position
+  const auto start = all_levels(m);
+  const auto p0 = m.session().positions(0);
+  unsigned v = 0;
+  while (p0[3 * v] < 0.3) ++v;  // a point well off the plane
+  const unsigned w = static_cast<unsigned>(map.mirror[v]);
+  ASSERT_NE(v, w);
+  EXPECT_NEAR(p0[3 * w], -p0[3 * v], 1e-12);
+  ScriptRunner run("sym.txt", "select " + std::to_string(v) + "\nmove 0.1 0.05 -0.02\npivot origin\nrotate z 30\nscale 1.5\n");
+  ASSERT_EQ(run.next(m).kind, ScriptStep::Kind::End);
+  const auto p = m.session().positions(0);
+  EXPECT_NEAR(p[3 * w], -p[3 * v], 1e-12);  // the images stay mirrored through every step
+  EXPECT_NEAR(p[3 * w + 1], p[3 * v + 1], 1e-12);
+  EXPECT_NEAR(p[3 * w + 2], p[3 * v + 2], 1e-12);
+  EXPECT_NE(p[3 * v], start[0][3 * v]);
+  expect_fresh(m);
+  EXPECT_EQ(m.session().history().size(), 3u);
+  for (int i = 0; i < 3; ++i) ASSERT_TRUE(m.undo());
+  for (std::size_t l = 0; l < start.size(); ++l) EXPECT_TRUE(same_bits(all_levels(m)[l], start[l])) << l;
+  // A point on the plane keeps x = 0 (its own image).
+  unsigned on = 0;
+  while (map.mirror[on] != on) ++on;
+  ScriptRunner plane("sym.txt", "select " + std::to_string(on) + "\nmove 0.3 0.1 0\n");
+  ASSERT_EQ(plane.next(m).kind, ScriptStep::Kind::End);
+  EXPECT_EQ(m.session().positions(0)[3 * on], start[0][3 * on]);
+  EXPECT_NEAR(m.session().positions(0)[3 * on + 1], start[0][3 * on + 1] + 0.1, 1e-12);
+}
+
+TEST(ModelerSymmetry, AsymmetricMeshIsNamedAndNearlySymmetricOneMatchesByTopology) {
+  // The torus with one point moved off its mirror position: found by topology all the same.
+  ModelerState exact, m;
+  exact.open(std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj");
+  m.open(std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj");
+  ScriptRunner nudge("sym.txt", "select 30 31\nmove 0.01 0.004 0\n");
+  ASSERT_EQ(nudge.next(m).kind, ScriptStep::Kind::End);
+  EXPECT_EQ(m.set_symmetry(0, true), "");
+  EXPECT_GE(m.mirror_map(0).by_topology, 2u);  // the moved points (and their images)
+  EXPECT_EQ(m.mirror_map(0).mirror, exact.mirror_map(0).mirror);
+  // A mesh that is not symmetric: named, with the first points that have no image.
+  ModelerState a;
+  a.open(std::string(SUBLIFT_ASSETS_DIR) + "/mixed_polygons.obj");
+  ScriptRunner run("sym.txt", "symmetry x on\n");
+  const ScriptStep s = run.next(a);
+  ASSERT_EQ(s.kind, ScriptStep::Kind::Error);
+  EXPECT_NE(s.message.find("X mirror: "), std::string::npos) << s.message;
+  EXPECT_NE(s.message.find("have no mirror image (first: "), std::string::npos) << s.message;
+  EXPECT_TRUE(a.symmetry(0));
 }
 
 }  // namespace

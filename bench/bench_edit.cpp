@@ -9,6 +9,8 @@
 // basis function spans 4 coarse cells in each direction, 33^3 = 35,937 finest vertices at
 // level 3: a 250,000-vertex lattice could not be 20x faster to update in part than in full.
 // The local cost does not depend on the model's size, the full one grows with it.
+// Sculpt brushes (issue 19): one inflate dab (core/edit/brush.h brush_dab + Session::move_each)
+// at level 0 and at the finest level of the same surface, versus the same full synthesis.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -25,6 +27,7 @@
 #include "core/base/csr.h"
 #include "core/multires/hierarchy.h"
 #include "core/multires/limit.h"
+#include "core/edit/brush.h"
 #include "core/edit/session.h"
 #include "core/complex/shapes.h"
 
@@ -148,6 +151,46 @@ void full(benchmark::State& state, Fixture& f, const std::string& name) {
   }
 }
 
+// One dab at `level`: the brush scan and the move with its local resynthesis (and, at level 0,
+// the fold-back is nothing; at the finest level the fold-back analyses the change down).
+void dab(benchmark::State& state, int level, double radius, const std::string& name) {
+  Fixture& f = surface_fixture();
+  Session& s = *f.session;
+  Complex c = s.hierarchy().levels[static_cast<std::size_t>(level)];
+  build_adjacency(c);
+  const auto p0 = s.positions(level);
+  BrushSettings b;
+  b.kind = BrushKind::Inflate;
+  b.radius = radius;
+  b.strength = 0.3;
+  b.front_faces_only = false;
+  const std::size_t v = 3 * std::size_t(f.vertex);
+  Dab d;
+  d.center = {p0[v], p0[v + 1], p0[v + 2]};
+  std::vector<std::uint32_t> vs;
+  std::vector<double> deltas;
+  std::size_t moved = 0, updated = 0;
+  s.begin_edit("Brush");
+  int k = 0;
+  for (auto _ : state) {
+    b.invert = k++ % 2 != 0;  // in and out: the shape stays put over the iterations
+    const auto t0 = Clock::now();
+    brush_dab(b, d, c, s.positions(level), vs, deltas);
+    note(name + ": brush scan", since_ms(t0));
+    const OpReport r = s.move_each(level, vs, deltas);
+    note(name, since_ms(t0));
+    moved = vs.size(), updated = r.vertices_updated;
+  }
+  s.end_edit();
+  state.counters["points_dabbed"] = double(moved);
+  state.counters["vertices_updated"] = double(updated);
+}
+
+void BM_SurfaceDabLevel0(benchmark::State& s) { dab(s, 0, 0.35, "surface dab at level 0"); }
+void BM_SurfaceDabFinest(benchmark::State& s) { dab(s, 5, 0.05, "surface dab at level 5"); }
+BENCHMARK(BM_SurfaceDabLevel0)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK(BM_SurfaceDabFinest)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+
 void BM_SurfaceDragLocal(benchmark::State& s) { drag(s, surface_fixture(), "surface drag (local + limit)"); }
 void BM_SurfaceFullSynthesis(benchmark::State& s) { full(s, surface_fixture(), "surface full synthesis"); }
 void BM_LatticeDragLocal(benchmark::State& s) { drag(s, lattice_fixture(), "lattice drag (local)"); }
@@ -179,6 +222,10 @@ void print_summary() {
     if (sr > 0) std::printf("surface: local resynthesis alone %.3f ms vs full synthesis %.1f ms: %.1fx\n", sr, sf, sf / sr);
   }
   if (ll > 0 && lf > 0) std::printf("lattice 12^3: drag %.3f ms, full synthesis %.1f ms: %.1fx\n", ll, lf, lf / ll);
+  for (const char* k : {"surface dab at level 0", "surface dab at level 5"})
+    if (get(k) > 0 && sf > 0)
+      std::printf("%s: %.3f ms (brush scan %.3f ms), full synthesis %.1f ms: %.1fx\n", k, get(k),
+                  get(std::string(k) + ": brush scan"), sf, sf / get(k));
   const double Ll = get("lattice 16^3 drag (local)"), Lf = get("lattice 16^3 full synthesis");
   if (Ll > 0 && Lf > 0) std::printf("lattice 16^3: drag %.3f ms, full synthesis %.1f ms: %.1fx\n", Ll, Lf, Lf / Ll);
 }

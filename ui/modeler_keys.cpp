@@ -88,6 +88,8 @@ ModelerCommand map_modeler_key(Key key, const Modifiers& mods, TransformState& g
       return command(ctrl ? ModelerCommandType::SelectLinked : ModelerCommandType::PickLinked);
     case Key::C:
       return ctrl || shift || alt ? ModelerCommand{} : command(ModelerCommandType::CircleSelect);
+    case Key::Tab:
+      return ctrl && !shift && !alt ? command(ModelerCommandType::ToggleSculpt) : ModelerCommand{};
     case Key::D:
       if (alt) return {};
       if (ctrl) return shift ? ModelerCommand{} : command(ModelerCommandType::Subdivide);
@@ -125,6 +127,23 @@ ModelerCommand map_modeler_key(Key key, const Modifiers& mods, TransformState& g
       return command(ModelerCommandType::TransformStart);
     default:
       return {};
+  }
+}
+
+SculptKey map_sculpt_key(Key key, const Modifiers& mods) {
+  using A = SculptKey::Action;
+  if (mods.ctrl || mods.alt) return {};
+  auto brush = [](int b) { return SculptKey{A::Brush, b}; };
+  switch (key) {
+    case Key::X: return mods.shift ? SculptKey{} : brush(0);
+    case Key::I: return mods.shift ? SculptKey{} : brush(1);
+    case Key::S: return mods.shift ? SculptKey{} : brush(2);
+    case Key::G:
+    case Key::K: return mods.shift ? SculptKey{} : brush(3);
+    case Key::T: return mods.shift ? brush(4) : SculptKey{};
+    case Key::P: return mods.shift ? SculptKey{} : brush(5);
+    case Key::F: return SculptKey{mods.shift ? A::Strength : A::Radius, 0};
+    default: return {};
   }
 }
 
@@ -179,6 +198,10 @@ const std::vector<KeyBinding>& modeler_key_bindings() {
       {"Shift+X/Y/Z in G/R/S", "Exclude that axis"},
       {"Enter / Esc", "Confirm / cancel transform"},
       {"Shift+S", "3-D cursor to selection"},
+      {"Ctrl+Tab", "Sculpt mode on / off"},
+      {"Sculpt: X I S G P, Shift+T", "Draw, inflate, smooth, grab, pinch, flatten"},
+      {"Sculpt: F / Shift+F", "Brush radius / strength"},
+      {"Sculpt: drag (Ctrl inverts, Shift smooths)", "Stroke at the edit level"},
       {"Ctrl+wheel", "Soft selection radius"},
       {"PgUp/PgDn, D/Shift+D", "Finer / coarser level"},
       {"Ctrl+D", "Subdivide once more"},

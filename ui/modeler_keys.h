@@ -23,6 +23,7 @@ enum class ModelerCommandType {
   SelectLinked,  // Ctrl+L: everything joined to the selection
   PickLinked,    // L: everything joined to the point under the mouse (Shift+L: deselect it)
   CircleSelect,  // C: paint the selection with a circle until Esc, Enter or right click
+  ToggleSculpt,  // Ctrl+Tab: sculpt mode on / off (Blender's mode switch)
   LevelUp,       // Page Up, D (finer)
   LevelDown,     // Page Down, Shift+D (coarser)
   Subdivide,     // Ctrl+D
@@ -64,6 +65,15 @@ struct TransformState {
 /// digits/'-'/'.'/Backspace edit the typed value, Enter confirms and Esc cancels; every other
 /// key is swallowed (None).
 ModelerCommand map_modeler_key(Key key, const Modifiers& mods, TransformState& grab, bool has_selection);
+
+/// Sculpt mode's keys (Blender's): X draw, I inflate, S smooth, G or K grab (snake hook),
+/// Shift+T flatten, P pinch; F / Shift+F adjust radius / strength with the mouse. Other keys
+/// (None) go on to map_modeler_key, except the transform keys, which sculpt mode takes.
+struct SculptKey {
+  enum class Action { None, Brush, Radius, Strength } action = Action::None;
+  int brush = 0;  // BrushKind's value (core/edit/brush.h): draw, inflate, smooth, grab, flatten, pinch
+};
+SculptKey map_sculpt_key(Key key, const Modifiers& mods);
 
 /// Ctrl+wheel: the new soft-selection radius after `notches` (positive grows it 15% a notch);
 /// from 0 a positive notch starts at `start` (e.g. 5% of the model size); shrinking below

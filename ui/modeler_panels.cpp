@@ -598,6 +598,33 @@ void draw_keys_section() {
   }
 }
 
+// Sculpt mode and the brush (core/edit/brush.h): Blender's brushes at the edit level.
+void draw_sculpt_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
+  if (!section("Sculpt", d.sculpt)) return;
+  bool on = d.sculpt;
+  if (ImGui::Checkbox("Sculpt mode (Ctrl+Tab)", &on)) r.sculpt = on;
+  BrushSettings b = d.brush;
+  bool changed = false;
+  static const char* kKinds[] = {"Draw (X)", "Inflate (I)", "Smooth (S)", "Grab (G)", "Flatten (Shift+T)", "Pinch (P)"};
+  int kind = static_cast<int>(b.kind);
+  ImGui::SetNextItemWidth(140.0f);
+  if (ImGui::Combo("Brush", &kind, kKinds, 6)) b.kind = static_cast<BrushKind>(kind), changed = true;
+  float radius = static_cast<float>(b.radius);
+  ImGui::SetNextItemWidth(140.0f);
+  if (ImGui::InputFloat("Radius (F)", &radius, 0.0f, 0.0f, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue) && radius > 0.0f)
+    b.radius = radius, changed = true;
+  float strength = static_cast<float>(b.strength);
+  ImGui::SetNextItemWidth(140.0f);
+  if (ImGui::SliderFloat("Strength (Shift+F)", &strength, 0.0f, 1.0f, "%.2f")) b.strength = strength, changed = true;
+  static const char* kFalloffs[] = {"Smooth", "Linear", "Sharp", "Constant"};
+  int falloff = static_cast<int>(b.falloff);
+  ImGui::SetNextItemWidth(140.0f);
+  if (ImGui::Combo("Falloff", &falloff, kFalloffs, 4)) b.falloff = static_cast<Falloff>(falloff), changed = true;
+  if (ImGui::Checkbox("Front faces only", &b.front_faces_only)) changed = true;
+  if (changed) r.brush = b;
+  ImGui::TextColored(kMuted, "Strokes move level %d's control points; finer detail rides along.", d.level);
+}
+
 }  // namespace
 
 ModelerPanelRequests draw_modeler_panel(const ModelerPanelData& d, ModelerDisplay& display, FileFields& fields,
@@ -617,6 +644,7 @@ ModelerPanelRequests draw_modeler_panel(const ModelerPanelData& d, ModelerDispla
     draw_levels_section(d, r);
     draw_fit_section(d, fields, r);
     draw_detail_section(d, r);
+    draw_sculpt_section(d, r);
     draw_ffd_section(d, fields, r);
     draw_basis_section(d, r);
     draw_compression_section(d.compression, r);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/edit/brush.h"
 #include "core/fit/fit_levels.h"
 #include "core/multires/hierarchy.h"
 #include "ui/basis_settings.h"
@@ -115,6 +116,8 @@ struct ModelerPanelData {
   double soft_radius = 0.0;
   int pivot = 0;                      // Pivot's value: median, active, cursor, origin
   bool symmetry[3] = {false, false, false};  // mirror editing across x = 0, y = 0, z = 0
+  bool sculpt = false;                // sculpt mode: left drags are brush strokes
+  BrushSettings brush;
   int colour_level = -1;
   bool dirty = false;
   std::vector<std::string> recent;    // recently opened files, newest first
@@ -154,6 +157,8 @@ struct ModelerPanelRequests {
   bool export_finest = true;
   std::optional<double> soft_radius;
   std::optional<int> pivot;           // the pivot of rotate and scale (Pivot's value)
+  std::optional<bool> sculpt;         // sculpt mode switched
+  std::optional<BrushSettings> brush; // a brush setting changed
   int symmetry_axis = -1;             // a mirror checkbox changed: its axis and new state
   bool symmetry_on = false;
   std::optional<BasisSettings> basis;  // the Basis section's settings after the user changed one

@@ -201,6 +201,10 @@ Key to_key(int k) {
     case GLFW_KEY_L: return Key::L;
     case GLFW_KEY_C: return Key::C;
     case GLFW_KEY_I: return Key::I;
+    case GLFW_KEY_K: return Key::K;
+    case GLFW_KEY_T: return Key::T;
+    case GLFW_KEY_P: return Key::P;
+    case GLFW_KEY_TAB: return Key::Tab;
     case GLFW_KEY_KP_ADD:
     case GLFW_KEY_EQUAL: return Key::NumpadPlus;
     case GLFW_KEY_X: return Key::X;

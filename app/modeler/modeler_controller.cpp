@@ -324,6 +324,83 @@ void ModelerController::update_rotate_scale() {
   }
 }
 
+bool ModelerController::sculpt_key(const WindowEvent& ev) {
+  if (ev.key == Key::Escape && adjust_) {
+    BrushSettings b = model.brush();
+    (adjust_ == 1 ? b.radius : b.strength) = adjust_from_;
+    model.set_brush(b);
+    adjust_ = 0;
+    return true;
+  }
+  if (ev.key == Key::Enter && adjust_) return adjust_ = 0, true;
+  const SculptKey k = map_sculpt_key(ev.key, ev.mods);
+  switch (k.action) {
+    case SculptKey::Action::None: return ev.key == Key::R && !ev.mods.ctrl;  // no rotate in sculpt mode
+    case SculptKey::Action::Brush: {
+      BrushSettings b = model.brush();
+      b.kind = static_cast<BrushKind>(k.brush);
+      model.set_brush(b);
+      message = std::string("Brush: ") + brush_name(b.kind);
+      return true;
+    }
+    case SculptKey::Action::Radius:
+    case SculptKey::Action::Strength:
+      adjust_ = k.action == SculptKey::Action::Radius ? 1 : 2;
+      adjust_x_ = mouse_x_;
+      adjust_from_ = adjust_ == 1 ? model.brush().radius : model.brush().strength;
+      return true;
+  }
+  return false;
+}
+
+void ModelerController::stroke_press(double vx, double vy, const Modifiers& mods) {
+  glm::dvec3 origin, dir, hit;
+  pixel_ray(pick_view(), vx, vy, origin, dir);
+  if (!model.surface_hit(origin, dir, hit)) return;  // a press off the surface strokes nothing
+  stroke_brush_ = model.brush();
+  BrushSettings b = stroke_brush_;
+  if (mods.shift) b.kind = BrushKind::Smooth;  // Blender: Shift smooths while held
+  if (mods.ctrl) b.invert = !b.invert;         // Ctrl inverts
+  try {
+    model.set_brush(b);
+    model.begin_stroke();
+    stroke_ = true;
+    stroke_center_ = hit;
+    if (b.kind != BrushKind::Grab) model.dab(Dab{hit, dir, glm::dvec3(0.0)});
+  } catch (const std::exception& e) {
+    model.set_brush(stroke_brush_);
+    stroke_ = false;
+    fail(e, "Cannot sculpt: ");
+  }
+  pick_dirty_ = stats_dirty_ = true;
+}
+
+void ModelerController::stroke_move(double vx, double vy, double dx, double dy) {
+  try {
+    if (model.brush().kind == BrushKind::Grab) {
+      // Snake hook: the brush follows the mouse in the view plane through its centre and pulls
+      // what it holds along.
+      const glm::dvec3 motion = view_plane_delta(pick_view(), stroke_center_, dx, dy);
+      model.dab(Dab{stroke_center_, camera.forward(), motion});
+      stroke_center_ += motion;
+    } else {
+      glm::dvec3 origin, dir, hit;
+      pixel_ray(pick_view(), vx, vy, origin, dir);
+      if (model.surface_hit(origin, dir, hit)) model.dab(Dab{hit, dir, glm::dvec3(0.0)});
+    }
+  } catch (const std::exception& e) {
+    fail(e, "Cannot sculpt: ");
+  }
+  pick_dirty_ = true;
+}
+
+void ModelerController::stroke_end() {
+  stroke_ = false;
+  model.end_drag();
+  model.set_brush(stroke_brush_);
+  stats_dirty_ = pick_dirty_ = true;
+}
+
 void ModelerController::circle_paint(double vx, double vy) {
   const std::vector<std::uint32_t> inside = pick_index().in_circle(vx, vy, circle_radius_px_ * scale_, display.xray);
   if (inside.empty()) return;
@@ -388,6 +465,12 @@ void ModelerController::run_command(ModelerCommandType type) {
         circle_active_ = !circle_active_;
         circle_painting_ = false;
         break;
+      case ModelerCommandType::ToggleSculpt:
+        if (stroke_) stroke_end();
+        sculpt_ = !sculpt_;
+        message = sculpt_ ? std::string("Sculpt mode: ") + brush_name(model.brush().kind) + " at level " + std::to_string(model.level())
+                          : "Edit mode";
+        break;
       case ModelerCommandType::LevelUp: model.set_level(model.level() + 1); break;
       case ModelerCommandType::LevelDown: model.set_level(model.level() - 1); break;
       case ModelerCommandType::Subdivide: model.subdivide(); break;
@@ -416,6 +499,10 @@ void ModelerController::run_command(ModelerCommandType type) {
         }
         break;
       case ModelerCommandType::TransformStart: {
+        if (sculpt_) {  // sculpt mode's G, S are brushes; R does nothing there
+          grab_ = TransformState{};
+          break;
+        }
         glm::dvec3 sum(0.0);
         const auto pos = model.session().positions(model.level());
         for (const unsigned v : model.selection()) sum += glm::dvec3(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
@@ -458,6 +545,7 @@ void ModelerController::handle(const WindowEvent& ev) {
         circle_active_ = circle_painting_ = false;
         return;
       }
+      if (sculpt_ && sculpt_key(ev)) return;
       const ModelerCommand c = map_modeler_key(ev.key, ev.mods, grab_, !model.selection().empty());
       if (c.type != ModelerCommandType::None || grab_.active) {
         run_command(c.type);
@@ -507,6 +595,20 @@ void ModelerController::handle(const WindowEvent& ev) {
         }
         return;
       }
+      if (adjust_) {  // F / Shift+F: a left click keeps the value, a right click restores it
+        if (ev.button == 1) {
+          BrushSettings b = model.brush();
+          (adjust_ == 1 ? b.radius : b.strength) = adjust_from_;
+          model.set_brush(b);
+        }
+        adjust_ = 0;
+        held_[ev.button] = false;
+        return;
+      }
+      if (sculpt_ && ev.button == 0 && !ev.mods.alt) {
+        stroke_press(vx, vy, ev.mods);
+        return;
+      }
       if (ev.button == 0 && ev.mods.alt && display.net) {  // a loop on release, unless it becomes a Maya orbit
         alt_click_ = true;
         press_x_ = ev.x;
@@ -537,6 +639,10 @@ void ModelerController::handle(const WindowEvent& ev) {
       const bool was_held = held_[ev.button];
       held_[ev.button] = false;
       if (ev.button == 0) circle_painting_ = false;
+      if (ev.button == 0 && stroke_) {
+        stroke_end();
+        return;
+      }
       if (ev.button == 0 && std::exchange(alt_click_, false) && was_held) {
         select_loop_at(vx, vy, ev.mods.ctrl, ev.mods.shift);
         return;
@@ -573,6 +679,18 @@ void ModelerController::handle(const WindowEvent& ev) {
       if (alt_click_ && std::hypot(ev.x - press_x_, ev.y - press_y_) * s > kDragThresholdPx) alt_click_ = false;
       if (circle_active_) {
         if (circle_painting_) circle_paint(vx, vy);
+        return;
+      }
+      if (adjust_) {
+        BrushSettings b = model.brush();
+        const double dxs = (ev.x - adjust_x_) * s;
+        if (adjust_ == 1) b.radius = adjust_from_ * std::exp(dxs / 150.0);
+        else b.strength = std::clamp(adjust_from_ + dxs / 300.0, 0.0, 1.0);
+        model.set_brush(b);
+        return;
+      }
+      if (stroke_) {
+        stroke_move(vx, vy, dx * s, dy * s);
         return;
       }
       if (grab_.active) {
@@ -688,6 +806,8 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
     if (r.colour_level) model.set_colour_level(*r.colour_level);
     if (r.soft_radius) model.set_soft_radius(*r.soft_radius);
     if (r.pivot) model.set_pivot(static_cast<Pivot>(*r.pivot));
+    if (r.sculpt) sculpt_ = *r.sculpt;
+    if (r.brush) model.set_brush(*r.brush);
     if (r.symmetry_axis >= 0) {
       const std::string problem = model.set_symmetry(r.symmetry_axis, r.symmetry_on);
       if (!problem.empty()) error = problem + ": those points are edited without a mirror image.";
@@ -909,6 +1029,8 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     d.soft_radius = model.soft_radius();
     d.pivot = static_cast<int>(model.pivot());
     for (int a = 0; a < 3; ++a) d.symmetry[a] = model.symmetry(a);
+    d.sculpt = sculpt_;
+    d.brush = model.brush();
     d.colour_level = model.colour_level();
     d.dirty = s.dirty();
     fill_basis_data(d.basis);
@@ -939,6 +1061,12 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
       left += shown;
     }
     if (circle_active_) left += "   CIRCLE SELECT (Shift: deselect, wheel: size, Esc: done)";
+    if (sculpt_) {
+      char b[160];
+      std::snprintf(b, sizeof b, "   SCULPT %s  radius %.3g  strength %.2f%s", brush_name(model.brush().kind), model.brush().radius,
+                    model.brush().strength, adjust_ ? (adjust_ == 1 ? "  (move: radius)" : "  (move: strength)") : "");
+      left += b;
+    }
     if (grab_.active) {
       static const char* kModes[] = {"GRAB", "ROTATE", "SCALE"};
       static const char* kAxes[] = {"X", "Y", "Z"};
@@ -963,6 +1091,12 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     const double px = model.soft_radius() / std::max(camera.world_per_pixel(), 1e-12) / std::max(scale_, 0.01f);
     overlay->AddCircle(ImVec2(static_cast<float>(mouse_x_), static_cast<float>(mouse_y_)), static_cast<float>(px),
                        IM_COL32(255, 200, 40, 200), 48, 1.5f);
+  }
+  if (sculpt_ && model.has_session() && in_viewport(mouse_x_, mouse_y_)) {
+    const double px = model.brush().radius / std::max(camera.world_per_pixel(), 1e-12) / std::max(scale_, 0.01f);
+    const ImVec2 at(static_cast<float>(adjust_ ? adjust_x_ : mouse_x_), static_cast<float>(mouse_y_));
+    overlay->AddCircle(at, static_cast<float>(px), IM_COL32(255, 255, 255, 230), 64, 1.5f);
+    overlay->AddCircle(at, static_cast<float>(px * model.brush().strength), IM_COL32(255, 255, 255, 90), 48, 1.0f);
   }
   if (circle_active_ && in_viewport(mouse_x_, mouse_y_))
     overlay->AddCircle(ImVec2(static_cast<float>(mouse_x_), static_cast<float>(mouse_y_)), static_cast<float>(circle_radius_px_),

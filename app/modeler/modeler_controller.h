@@ -86,6 +86,10 @@ class ModelerController {
   }
   bool grabbing() const { return grab_.active; }
   bool circle_selecting() const { return circle_active_; }
+  /// Sculpt mode (Ctrl+Tab): left drags are brush strokes at the edit level (core/edit/brush.h).
+  bool sculpting() const { return sculpt_; }
+  void set_sculpt(bool on) { sculpt_ = on; }
+  bool stroking() const { return stroke_; }
 
   /// Where picking gets the surface's depth so that points behind it are not picked without
   /// x-ray (the app passes ModelerView::surface_depth; tests may leave it unset).
@@ -145,6 +149,15 @@ class ModelerController {
   bool alt_click_ = false;  // Alt+left pressed and not moved: an edge loop on release
   bool circle_active_ = false, circle_painting_ = false, circle_erase_ = false;
   double circle_radius_px_ = 40.0;
+  bool sculpt_ = false, stroke_ = false;
+  BrushSettings stroke_brush_;   // the brush before Ctrl (invert) or Shift (smooth) changed it
+  glm::dvec3 stroke_center_{0.0};
+  int adjust_ = 0;               // F: 1 radius, Shift+F: 2 strength, while the mouse adjusts it
+  double adjust_x_ = 0.0, adjust_from_ = 0.0;
+  bool sculpt_key(const WindowEvent& ev);  // true when sculpt mode took the key
+  void stroke_press(double vx, double vy, const Modifiers& mods);
+  void stroke_move(double vx, double vy, double dx, double dy);
+  void stroke_end();
   double grab_x_ = 0, grab_y_ = 0;
   glm::dvec3 grab_anchor_{0.0};
   bool gain_active_ = false;

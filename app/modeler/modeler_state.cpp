@@ -269,6 +269,7 @@ void ModelerState::install(std::unique_ptr<Session> session) {
   if (ffd_) ffd_->bound = false;  // bound to the old session's lattice
   rebuild_limit();
   model_size_ = model_size_of(limit_);
+  brush_.radius = 0.08 * model_size_;  // a brush that suits the model (Blender's is in pixels)
   if (colour_level_ >= session_->finest_level()) colour_level_ = -1;
   refresh_colour();
 }
@@ -548,6 +549,47 @@ void ModelerState::move_mirrored(std::vector<std::uint32_t> vertices, std::vecto
     if (symmetry_[static_cast<std::size_t>(a)]) maps.push_back(&mirror_map(a));
   if (!maps.empty()) mirror_deltas(maps, vertices, deltas);
   session_->move_each(level_, vertices, deltas);
+}
+
+void ModelerState::set_brush(const BrushSettings& b) {
+  if (!(b.radius > 0.0) || !std::isfinite(b.radius)) throw Error("the brush radius must be a positive distance");
+  if (!(b.strength >= 0.0 && b.strength <= 1.0)) throw Error("the brush strength must be in 0..1");
+  brush_ = b;
+}
+
+void ModelerState::begin_stroke() {
+  begin_drag(std::string("Brush ") + brush_name(brush_.kind));
+  if (brush_needs_normals(brush_.kind) && dim() != 2) {
+    cancel_drag();
+    throw Error(std::string("the ") + brush_name(brush_.kind) + " brush moves along the surface normal and needs a surface");
+  }
+}
+
+const Complex& ModelerState::brush_complex() {
+  if (level_ < session_->finest_level()) return level_complex();
+  BrushComplex& b = brush_complex_;
+  if (!b.valid || b.serial != serial_ || b.topology != session_->topology_version()) {
+    b.complex = level_complex();
+    build_adjacency(b.complex);
+    b.serial = serial_;
+    b.topology = session_->topology_version();
+    b.valid = true;
+  }
+  return b.complex;
+}
+
+std::size_t ModelerState::dab(const Dab& d) {
+  if (!dragging_) return 0;
+  brush_dab(brush_, d, brush_complex(), session_->positions(level_), dab_vertices_, dab_deltas_);
+  if (dab_vertices_.empty()) return 0;
+  const std::size_t n = dab_vertices_.size();
+  move_mirrored(dab_vertices_, dab_deltas_);
+  after_operation();
+  return n;
+}
+
+bool ModelerState::surface_hit(const glm::dvec3& origin, const glm::dvec3& dir, glm::dvec3& hit) const {
+  return ray_hit(limit_positions(), faces_, origin, dir, hit);
 }
 
 std::string ModelerState::set_symmetry(int axis, bool on) {

@@ -28,6 +28,7 @@
 #include "core/base/csr.h"
 #include "core/multires/hierarchy.h"
 #include "core/multires/limit.h"
+#include "core/edit/brush.h"
 #include "core/edit/session.h"
 #include "core/edit/symmetry.h"
 #include "core/edit/transform.h"
@@ -190,6 +191,18 @@ class ModelerState {
   long long active() const { return active_; }
   /// Makes a selected point the active one (ignored when it is not selected).
   void set_active(long long vertex);
+
+  // ---- sculpt brushes (core/edit/brush.h) ----------------------------------------------------
+  const BrushSettings& brush() const { return brush_; }
+  /// Throws Error on a radius that is not positive or a strength outside 0..1.
+  void set_brush(const BrushSettings& b);
+  /// A stroke is one history entry (begun and ended like a drag: end_drag / cancel_drag).
+  void begin_stroke();
+  /// One dab on the edit level's net (with the mirror images under symmetry); returns how many
+  /// control points it moved (0: none in reach).
+  std::size_t dab(const Dab& d);
+  /// The first point of the shown limit surface on the ray (origin, unit dir); false on a miss.
+  bool surface_hit(const glm::dvec3& origin, const glm::dvec3& dir, glm::dvec3& hit) const;
 
   // ---- symmetry (core/edit/symmetry.h) -------------------------------------------------------
   /// Mirror editing across the world plane across `axis` (0..2; Blender's X/Y/Z mirror): moves,
@@ -362,6 +375,15 @@ class ModelerState {
   long long active_ = -1;
   std::vector<double> transform_start_, transform_deltas_;
   std::array<bool, 3> symmetry_{false, false, false};
+  BrushSettings brush_;
+  std::vector<std::uint32_t> dab_vertices_;
+  std::vector<double> dab_deltas_;
+  struct BrushComplex {  // the finest level with its upward rows, which the hierarchy leaves out
+    Complex complex;
+    std::uint64_t serial = 0, topology = 0;
+    bool valid = false;
+  } brush_complex_;
+  const Complex& brush_complex();
   struct MirrorCache {
     MirrorMap map;
     int level = -1;

@@ -325,6 +325,49 @@ constexpr Command kCommands[] = {
                                             : glm::dvec3(number(c.w[1], "SX"), number(c.w[2], "SY"), number(c.w[3], "SZ"));
       transform(c, TransformMode::Scale, glm::dvec3(0.0, 0.0, 1.0), 0.0, f);
     }},
+    {"brush", 1, 3, "brush draw|inflate|smooth|grab|flatten|pinch [RADIUS [STRENGTH]] | brush falloff smooth|linear|sharp|constant | brush front|invert on|off", [](const Call& c) {
+      BrushSettings b = c.state.brush();
+      try {
+        if (c.w[1] == "falloff" && c.w.size() == 3) {
+          b.falloff = parse_falloff(c.w[2]);
+        } else if ((c.w[1] == "front" || c.w[1] == "invert") && c.w.size() == 3) {
+          if (c.w[2] != "on" && c.w[2] != "off") throw ScriptError("brush " + c.w[1] + " takes 'on' or 'off'");
+          (c.w[1] == "front" ? b.front_faces_only : b.invert) = c.w[2] == "on";
+        } else {
+          b.kind = parse_brush(c.w[1]);
+          if (c.w.size() >= 3) b.radius = number(c.w[2], "RADIUS");
+          if (c.w.size() == 4) b.strength = number(c.w[3], "STRENGTH");
+        }
+        c.state.set_brush(b);
+      } catch (const Error& e) {
+        throw ScriptError(e.what());
+      }
+    }},
+    {"stroke", 3, kMany, "stroke X Y Z [X Y Z ...]", [](const Call& c) {
+      // Dabs at the given world points, one history entry; the grab brush moves by the motion
+      // from each point to the next. No view: every point in reach counts as front-facing.
+      if ((c.w.size() - 1) % 3 != 0) c.usage_error();
+      std::vector<glm::dvec3> points;
+      for (std::size_t i = 1; i + 2 < c.w.size(); i += 3)
+        points.emplace_back(number(c.w[i], "X"), number(c.w[i + 1], "Y"), number(c.w[i + 2], "Z"));
+      c.state.begin_stroke();
+      try {
+        for (std::size_t i = 0; i < points.size(); ++i) {
+          Dab d;
+          d.center = points[i];
+          d.view_dir = glm::dvec3(0.0);
+          if (c.state.brush().kind == BrushKind::Grab) {
+            if (i + 1 == points.size()) break;
+            d.motion = points[i + 1] - points[i];
+          }
+          c.state.dab(d);
+        }
+      } catch (...) {
+        c.state.cancel_drag();
+        throw;
+      }
+      c.state.end_drag();
+    }},
     {"symmetry", 2, 2, "symmetry x|y|z on|off", [](const Call& c) {
       if (c.w[1] != "x" && c.w[1] != "y" && c.w[1] != "z") throw ScriptError("symmetry axis must be x, y or z");
       if (c.w[2] != "on" && c.w[2] != "off") throw ScriptError("symmetry takes 'on' or 'off', got '" + c.w[2] + "'");

@@ -405,3 +405,32 @@ TEST(ModelerGuiTest, HeadlessRotateAndScaleAboutTheCursorAndUndo) {
 }
 
 }  // namespace
+
+namespace {
+
+// Selection, mirror and sculpt tools (issue 19), headless: an edge loop shows as a ring of
+// selected points; a symmetric inflate stroke changes the picture on both sides of x = 0;
+// undo restores it.
+TEST(ModelerGuiTest, HeadlessLoopSelectionAndSymmetricSculptStroke) {
+  const fs::path dir = out_dir("headless");
+  for (const char* f : {"tools_a.png", "tools_b.png", "tools_c.png", "tools_d.png"}) fs::remove(dir / f);
+  const std::string script = "open " + torus() + "\nview front\nscreenshot tools_a.png\nselect loop 0 1\nscreenshot tools_b.png\n"
+                             "select none\nsymmetry x on\nbrush inflate 0.35 1\nstroke 1.4 0 0 1.3 0.2 0\n"
+                             "screenshot tools_c.png\nundo\nscreenshot tools_d.png\n";
+  const ProcessResult r = run_script("headless", "tools", script);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Png a = load_png(dir / "tools_a.png"), b = load_png(dir / "tools_b.png"), c = load_png(dir / "tools_c.png"),
+            d = load_png(dir / "tools_d.png");
+  ASSERT_EQ(a.width, kWidth);
+  EXPECT_TRUE(selection_pixels(a).empty());
+  const Box loop = selection_pixels(b);
+  EXPECT_GT(loop.count, 40) << "the loop's points are not drawn selected";
+  // The stroke at x = 1.4 and its mirror at x = -1.4 change both halves of the viewport.
+  const Box changed = changed_pixels(a, c, 40);
+  const int middle = kPanelWidth + (kWidth - kPanelWidth) / 2;
+  EXPECT_LT(changed.x0, middle - 40) << "nothing changed on the mirrored side";
+  EXPECT_GT(changed.x1, middle + 40) << "nothing changed on the stroked side";
+  EXPECT_LT(changed_pixels(a, d, 24).count, 20) << "undo did not restore the picture";
+}
+
+}  // namespace

@@ -489,3 +489,138 @@ TEST(ModelerSymmetry, AsymmetricMeshIsNamedAndNearlySymmetricOneMatchesByTopolog
 
 }  // namespace
 }  // namespace sublift
+
+namespace sublift {
+namespace {
+
+// The mean change of the distance of level `l`'s moved points from the torus's centre circle
+// (radius 1 in the xz plane; torus_quad.obj's tube circles lie across it), relative to `before`.
+double mean_radial_change(const ModelerState& m, const std::vector<double>& before, int l) {
+  const auto p = m.session().positions(l);
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t v = 0; 3 * v < p.size(); ++v) {
+    auto tube = [&](const double* x) { return std::hypot(std::hypot(x[0], x[2]) - 1.0, x[1]); };
+    const double d = tube(&p[3 * v]) - tube(&before[3 * v]);
+    if (d != 0.0) sum += d, ++n;
+  }
+  return n ? sum / static_cast<double>(n) : 0.0;
+}
+
+// The window position of the limit surface point facing the viewer most squarely.
+void facing_point(const Fixture& f, double& x, double& y) {
+  const auto& lim = f.app.model.limit_positions();
+  const auto& nor = f.app.model.limit_normals();
+  const glm::dvec3 k = f.app.camera.forward();
+  double best = 0.0;
+  for (std::size_t v = 0; 3 * v < lim.size(); ++v) {
+    const double facing = -(nor[3 * v] * k.x + nor[3 * v + 1] * k.y + nor[3 * v + 2] * k.z);
+    glm::dvec2 s;
+    double depth = 0;
+    if (facing > best && project_point(f.view(), glm::dvec3(lim[3 * v], lim[3 * v + 1], lim[3 * v + 2]), s, depth))
+      best = facing, x = s.x + testing::kViewX, y = s.y;
+  }
+}
+
+TEST(ModelerSculpt, StrokesAreOneUndoStepAndCtrlInverts) {
+  Fixture f;
+  f.app.model.set_level(1);
+  f.key(Key::Tab, kCtrl);
+  ASSERT_TRUE(f.app.sculpting());
+  f.key(Key::I);  // inflate
+  EXPECT_EQ(f.app.model.brush().kind, BrushKind::Inflate);
+  const auto before = all_levels(f.app.model);
+  double x = 0, y = 0;
+  facing_point(f, x, y);
+  // A stroke across the surface from the point facing the viewer.
+  f.send(WindowEvent::Type::Move, x, y + 4);
+  f.send(WindowEvent::Type::Press, x, y + 4);
+  ASSERT_TRUE(f.app.stroking()) << f.app.error;
+  f.send(WindowEvent::Type::Move, x + 15, y + 6);
+  f.send(WindowEvent::Type::Move, x + 30, y + 8);
+  f.send(WindowEvent::Type::Release, x + 30, y + 8);
+  EXPECT_FALSE(f.app.stroking());
+  ASSERT_EQ(f.app.model.session().history().size(), 1u);
+  EXPECT_EQ(f.app.model.session().history()[0].label, "Brush inflate");
+  EXPECT_GT(mean_radial_change(f.app.model, before[1], 1), 0.0);  // inflate pushes the tube out
+  expect_fresh(f.app.model);
+  testing::expect_shown_equals_fresh(f);
+  // Ctrl: the same stroke deflates; the brush is back to inflate afterwards.
+  const auto mid = all_levels(f.app.model);
+  f.send(WindowEvent::Type::Move, x, y + 4, 0, kCtrl);
+  f.send(WindowEvent::Type::Press, x, y + 4, 0, kCtrl);
+  f.send(WindowEvent::Type::Move, x + 30, y + 8, 0, kCtrl);
+  f.send(WindowEvent::Type::Release, x + 30, y + 8, 0, kCtrl);
+  EXPECT_LT(mean_radial_change(f.app.model, mid[1], 1), 0.0);
+  EXPECT_FALSE(f.app.model.brush().invert);
+  // Undo twice: bit for bit where it started.
+  f.key(Key::Z, kCtrl);
+  f.key(Key::Z, kCtrl);
+  for (std::size_t l = 0; l < before.size(); ++l) EXPECT_TRUE(same_bits(all_levels(f.app.model)[l], before[l])) << l;
+  // A press off the surface strokes nothing; R does not rotate in sculpt mode.
+  f.send(WindowEvent::Type::Press, testing::kViewX + 5, 5);
+  f.send(WindowEvent::Type::Release, testing::kViewX + 5, 5);
+  f.app.model.set_selection({0});
+  f.key(Key::R);
+  EXPECT_FALSE(f.app.grabbing());
+  EXPECT_EQ(f.app.model.session().undo_position(), 0u);
+  f.key(Key::Tab, kCtrl);
+  EXPECT_FALSE(f.app.sculpting());
+}
+
+TEST(ModelerSculpt, BrushKeysAndRadiusAdjustWithTheMouse) {
+  Fixture f;
+  f.key(Key::Tab, kCtrl);
+  const std::pair<Key, BrushKind> keys[] = {{Key::X, BrushKind::Draw}, {Key::S, BrushKind::Smooth}, {Key::G, BrushKind::Grab},
+                                            {Key::P, BrushKind::Pinch}, {Key::I, BrushKind::Inflate}};
+  for (const auto& [k, kind] : keys) {
+    f.key(k);
+    EXPECT_EQ(f.app.model.brush().kind, kind);
+  }
+  f.key(Key::T, kShift);
+  EXPECT_EQ(f.app.model.brush().kind, BrushKind::Flatten);
+  const double r0 = f.app.model.brush().radius;
+  f.send(WindowEvent::Type::Move, 600, 300);
+  f.key(Key::F);
+  f.send(WindowEvent::Type::Move, 750, 300);  // 150 px to the right: e times the radius
+  EXPECT_NEAR(f.app.model.brush().radius, r0 * std::exp(1.0), 1e-12 * r0);
+  f.key(Key::Escape);  // back to where it was
+  EXPECT_EQ(f.app.model.brush().radius, r0);
+  f.send(WindowEvent::Type::Move, 600, 300);
+  f.key(Key::F, kShift);
+  f.send(WindowEvent::Type::Move, 660, 300);
+  f.send(WindowEvent::Type::Press, 660, 300);  // a click keeps it
+  f.send(WindowEvent::Type::Release, 660, 300);
+  EXPECT_NEAR(f.app.model.brush().strength, 0.5 + 60.0 / 300.0, 1e-12);
+}
+
+TEST(ModelerSculpt, ScriptStrokesWithSymmetryAndGrab) {
+  ModelerState m;
+  m.open(std::string(SUBLIFT_ASSETS_DIR) + "/torus_quad.obj");
+  const auto start = all_levels(m);
+  const std::vector<double> p = start[0];
+  // A draw stroke at vertex 0 (x = 1.4, y = 0, z = 0) with x symmetry: the image across x = 0
+  // moves the mirrored way.
+  ScriptRunner run("sculpt.txt", "symmetry x on\nbrush draw 0.5 0.6\nstroke 1.4 0 0\n");
+  ASSERT_EQ(run.next(m).kind, ScriptStep::Kind::End);
+  const MirrorMap& map = m.mirror_map(0);
+  const unsigned w = static_cast<unsigned>(map.mirror[0]);
+  const auto q = m.session().positions(0);
+  EXPECT_NE(q[0], p[0]);
+  EXPECT_NEAR(q[3 * w] - p[3 * w], -(q[0] - p[0]), 1e-12);
+  EXPECT_NEAR(q[3 * w + 1] - p[3 * w + 1], q[1] - p[1], 1e-12);
+  expect_fresh(m);
+  EXPECT_EQ(m.session().history().back().label, "Brush draw");
+  // Grab: the points near the first centre follow the motion to the second (weight 1 at 0).
+  ScriptRunner grab("sculpt.txt", "undo\nsymmetry x off\nbrush grab 0.3 1\nbrush falloff constant\nstroke 1.4 0 0 1.4 0 0.2\n");
+  ASSERT_EQ(grab.next(m).kind, ScriptStep::Kind::End);
+  EXPECT_NEAR(m.session().positions(0)[2], start[0][2] + 0.2, 1e-12);
+  EXPECT_EQ(m.session().positions(0)[3 * w + 2], start[0][3 * w + 2]);  // no symmetry now
+  ScriptRunner bad("bad.txt", "brush clay\n");
+  EXPECT_EQ(bad.next(m).message, "script:1: unknown brush 'clay' (draw, inflate, smooth, grab, flatten or pinch)");
+  ScriptRunner lattice("lat.txt", "open " + std::string(SUBLIFT_ASSETS_DIR) + "/hex_block_4.lattice\nbrush draw 0.5\nstroke 0 0 0\n");
+  EXPECT_NE(lattice.next(m).message.find("needs a surface"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sublift

@@ -181,5 +181,26 @@ TEST(ModelerKeysTest, RotateScaleAndExcludedAxes) {
   EXPECT_EQ(key(Key::R, ctrl()), T::None);
 }
 
+TEST(ModelerKeysTest, SculptKeys) {
+  using A = SculptKey::Action;
+  EXPECT_EQ(key(Key::Tab, ctrl()), T::ToggleSculpt);
+  EXPECT_EQ(key(Key::Tab), T::None);
+  EXPECT_EQ(map_sculpt_key(Key::X, {}).action, A::Brush);
+  EXPECT_EQ(map_sculpt_key(Key::X, {}).brush, 0);
+  EXPECT_EQ(map_sculpt_key(Key::S, {}).brush, 2);
+  EXPECT_EQ(map_sculpt_key(Key::K, {}).brush, 3);
+  EXPECT_EQ(map_sculpt_key(Key::T, shift()).brush, 4);
+  EXPECT_EQ(map_sculpt_key(Key::T, {}).action, A::None);
+  EXPECT_EQ(map_sculpt_key(Key::F, {}).action, A::Radius);
+  EXPECT_EQ(map_sculpt_key(Key::F, shift()).action, A::Strength);
+  EXPECT_EQ(map_sculpt_key(Key::S, ctrl()).action, A::None);  // Ctrl+S still saves
+  EXPECT_EQ(key(Key::C), T::CircleSelect);
+  EXPECT_EQ(key(Key::I, ctrl()), T::SelectInvert);
+  EXPECT_EQ(key(Key::NumpadPlus, ctrl()), T::SelectMore);
+  EXPECT_EQ(key(Key::NumpadMinus, ctrl()), T::SelectLess);
+  EXPECT_EQ(key(Key::L, ctrl()), T::SelectLinked);
+  EXPECT_EQ(key(Key::L), T::PickLinked);
+}
+
 }  // namespace
 }  // namespace sublift

@@ -117,7 +117,9 @@ ModelerCommand map_modeler_key(Key key, const Modifiers& mods, TransformState& g
     case Key::O:
       return ctrl && !shift && !alt ? command(ModelerCommandType::Open) : ModelerCommand{};
     case Key::E:
-      return ctrl && !shift && !alt ? command(ModelerCommandType::Export) : ModelerCommand{};
+      if (alt) return {};
+      if (shift) return command(ctrl ? ModelerCommandType::ToggleCorner : ModelerCommandType::ToggleCrease);
+      return ctrl ? command(ModelerCommandType::Export) : ModelerCommand{};
     case Key::G:
     case Key::R:
       if (ctrl || shift || alt || !has_selection) return {};
@@ -199,6 +201,7 @@ const std::vector<KeyBinding>& modeler_key_bindings() {
       {"Enter / Esc", "Confirm / cancel transform"},
       {"Shift+S", "3-D cursor to selection"},
       {"Ctrl+Tab", "Sculpt mode on / off"},
+      {"Shift+E / Ctrl+Shift+E (level 0)", "Crease edges / corners of the selection"},
       {"Sculpt: X I S G P, Shift+T", "Draw, inflate, smooth, grab, pinch, flatten"},
       {"Sculpt: F / Shift+F", "Brush radius / strength"},
       {"Sculpt: drag (Ctrl inverts, Shift smooths)", "Stroke at the edit level"},

@@ -24,6 +24,8 @@ enum class ModelerCommandType {
   PickLinked,    // L: everything joined to the point under the mouse (Shift+L: deselect it)
   CircleSelect,  // C: paint the selection with a circle until Esc, Enter or right click
   ToggleSculpt,  // Ctrl+Tab: sculpt mode on / off (Blender's mode switch)
+  ToggleCrease,  // Shift+E: crease / uncrease the base edges between selected points
+  ToggleCorner,  // Ctrl+Shift+E: corners at / off the selected base points
   LevelUp,       // Page Up, D (finer)
   LevelDown,     // Page Down, Shift+D (coarser)
   Subdivide,     // Ctrl+D

@@ -695,10 +695,6 @@ PromptChoice draw_unsaved_prompt(bool open, const std::string& what) {
   return prompt(open, "Unsaved changes", "The model has unsaved changes.\nSave them before " + what + "?", false);
 }
 
-PromptChoice draw_confirm_prompt(bool open, const std::string& text) {
-  return prompt(open, "Confirm", text, false, true);
-}
-
 bool draw_progress_prompt(bool open, const std::string& title, const std::string& stage, float fraction) {
   const std::string id = title + "##progress";
   if (open && !ImGui::IsPopupOpen(id.c_str())) ImGui::OpenPopup(id.c_str());

@@ -186,9 +186,6 @@ PromptChoice draw_unsaved_prompt(bool open, const std::string& what);
 /// The recovery prompt (Recover / Discard) while `open` is true.
 PromptChoice draw_recovery_prompt(bool open, const std::string& path);
 
-/// A yes/no confirmation (Continue / Cancel) while `open` is true; Continue answers Discard.
-PromptChoice draw_confirm_prompt(bool open, const std::string& text);
-
 /// A modal progress window for long work while `open` is true: `stage` and a bar at `fraction`
 /// (0..1). True when Cancel (or Esc) was pressed.
 bool draw_progress_prompt(bool open, const std::string& title, const std::string& stage, float fraction);

@@ -465,6 +465,8 @@ void ModelerController::run_command(ModelerCommandType type) {
         circle_active_ = !circle_active_;
         circle_painting_ = false;
         break;
+      case ModelerCommandType::ToggleCrease: message = model.toggle_creases(); break;
+      case ModelerCommandType::ToggleCorner: message = model.toggle_corners(); break;
       case ModelerCommandType::ToggleSculpt:
         if (stroke_) stroke_end();
         sculpt_ = !sculpt_;
@@ -535,7 +537,7 @@ void ModelerController::handle(const WindowEvent& ev) {
     mouse_y_ = ev.y;
   }
   mods_ = ev.mods;
-  if (!model.has_session() || unsaved_prompt_ || recovery_prompt_ || confirm_ || job_) return;
+  if (!model.has_session() || unsaved_prompt_ || recovery_prompt_ || job_) return;
   const double s = scale_;
   const double vx = (ev.x - view_x_) * s, vy = (ev.y - view_y_) * s;  // viewport pixels
   switch (ev.type) {
@@ -735,32 +737,26 @@ void ModelerController::handle(const WindowEvent& ev) {
   }
 }
 
-void ModelerController::run_confirmed(const Confirm& c) {
+void ModelerController::run_replacing(const Replacing& c) {
   switch (c.kind) {
-    case Confirm::Kind::Scheme: {
+    case Replacing::Kind::Scheme: {
       const Scheme s = static_cast<Scheme>(c.scheme);
       model.set_scheme(s);
-      message = "Rebuilt with the " + scheme_name(s) + " scheme (history cleared)";
+      message = "Rebuilt with the " + scheme_name(s) + " scheme (Ctrl+Z undoes)";
       break;
     }
-    case Confirm::Kind::DeleteHigher: message = model.delete_higher_levels(); break;
-    case Confirm::Kind::DeleteLower: message = model.delete_lower_levels(); break;
+    case Replacing::Kind::DeleteHigher: message = model.delete_higher_levels(); break;
+    case Replacing::Kind::DeleteLower: message = model.delete_lower_levels(); break;
   }
   pick_dirty_ = stats_dirty_ = true;
 }
 
 void ModelerController::apply_requests(const ModelerPanelRequests& r) {
   try {
-    // Edits would leave the history: ask first.
-    const bool edited = model.has_session() && !model.session().history().empty();
-    if (r.scheme) {
-      const Confirm c{Confirm::Kind::Scheme, *r.scheme};  // the combo lists the enum in order
-      edited ? void(confirm_ = c) : run_confirmed(c);
-    }
-    if (r.delete_higher || r.delete_lower) {
-      const Confirm c{r.delete_higher ? Confirm::Kind::DeleteHigher : Confirm::Kind::DeleteLower};
-      edited ? void(confirm_ = c) : run_confirmed(c);
-    }
+    // These replace the session; Ctrl+Z brings the old one back (ModelerState::replace_session).
+    if (r.scheme) run_replacing(Replacing{Replacing::Kind::Scheme, *r.scheme});  // the combo lists the enum in order
+    if (r.delete_higher || r.delete_lower)
+      run_replacing(Replacing{r.delete_higher ? Replacing::Kind::DeleteHigher : Replacing::Kind::DeleteLower});
     if (r.apply_base) message = std::string("Apply base: ") + ModelerState::apply_base_note();
     if (r.export_levels) {
       if (fields.export_path.empty()) {
@@ -1132,21 +1128,6 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     } else if (choice == PromptChoice::Discard) {
       proceed(p);
     }
-  }
-  const char* confirm_text = !confirm_ ? ""
-                             : confirm_->kind == Confirm::Kind::Scheme
-                                 ? "Changing the scheme rebuilds the hierarchy:\nthe undo history is lost (and, to or from sqrt2, the detail)."
-                                 : "Deleting levels cannot be undone:\nthe undo history is lost.";
-  const PromptChoice confirm = draw_confirm_prompt(confirm_.has_value(), confirm_text);
-  if (confirm != PromptChoice::None) {
-    if (confirm == PromptChoice::Discard) {
-      try {
-        run_confirmed(*confirm_);
-      } catch (const std::exception& e) {
-        fail(e, "");
-      }
-    }
-    confirm_.reset();
   }
   if (job_) {
     if (draw_progress_prompt(true, job_->title.c_str(), job_->stage.load(), static_cast<float>(job_->permille.load()) / 1000.0f))

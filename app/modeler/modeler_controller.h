@@ -185,14 +185,13 @@ class ModelerController {
   void start_job(std::string title, Work work);
   std::unique_ptr<Job> job_;
   bool background_jobs_;
-  // An operation that clears the undo history, waiting for confirmation: a scheme change
-  // (its Scheme value) or a level deletion.
-  struct Confirm {
+  // A panel action that replaces the session: a scheme change (its Scheme value) or a level
+  // deletion (undone by Ctrl+Z like any edit).
+  struct Replacing {
     enum class Kind { Scheme, DeleteHigher, DeleteLower } kind = Kind::Scheme;
     int scheme = 0;
   };
-  std::optional<Confirm> confirm_;
-  void run_confirmed(const Confirm& c);
+  void run_replacing(const Replacing& c);
   bool quit_confirmed_ = false;
   double last_autosave_ = -1.0;
   bool stats_dirty_ = true;

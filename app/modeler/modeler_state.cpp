@@ -7,6 +7,9 @@
 #include <filesystem>
 #include <sstream>
 
+#include "core/base/file_io.h"
+#include "core/complex/feature_tags.h"
+#include "core/edit/features.h"
 #include "core/edit/level_ops.h"
 #include "core/edit/selection.h"
 #include "core/analysis/boundary_surface.h"
@@ -105,6 +108,8 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   project_path_ = project ? path : std::string();
   warnings_ = std::move(warnings);
   clear_pin();  // a new model: the comparison belonged to the old one
+  structure_undo_.clear();  // undo does not go back to another file
+  structure_redo_.clear();
   install(std::move(session));
   rebuild_offer_ = std::move(offer);
   input_order_ = std::move(order);
@@ -217,6 +222,8 @@ std::string ModelerState::install_fit(PreparedFit p) {
                         " corner tags (the fitted creases come from the feature angle)");
   if (const std::uint32_t folded = limit ? f.limit_folded : f.levels.empty() ? 0 : f.levels.back().folded; folded > 0)
     warnings_.push_back(std::to_string(folded) + " folded faces in the fitted surface (docs/fit.md)");
+  structure_undo_.clear();
+  structure_redo_.clear();
   install(std::make_unique<Session>(std::move(p.fitted.hierarchy)));
   fit_source_ = std::move(p.source);
   rebuild_offer_ = {};
@@ -246,6 +253,8 @@ void ModelerState::install_rebuild(PreparedRebuild p) {
   order.level = r.hierarchy.finest_level();
   order.engine_vertex = std::move(r.engine_vertex);
   order.faces = std::move(p.faces);
+  structure_undo_.clear();
+  structure_redo_.clear();
   install(std::make_unique<Session>(std::move(r.hierarchy)));
   rebuild_offer_ = {};
   input_order_ = std::move(order);
@@ -364,15 +373,15 @@ void ModelerState::set_scheme(Scheme scheme) {
   if (local) session->set_detail_frames(DetailFrames::Local);
   session->mark_unsaved();
   const int edit_level = std::min(level_under_scheme(level_, from, scheme), session->finest_level());
-  InputOrder order = input_order_;  // same refinement: the same levels, so a rebuilt file's order still holds
-  install(std::move(session));
+  replace_session(std::move(session));  // same refinement: the same levels, so a rebuilt file's order still holds
   level_ = edit_level;
-  if (next.kept_detail) {
-    input_order_ = std::move(order);
-  } else {
+  clamp_selection();
+  if (!next.kept_detail) {
+    const bool had_order = !input_order_.empty();
+    input_order_ = {};
     warnings_.push_back("the " + scheme_name(scheme) + " scheme refines differently from " + scheme_name(from) +
                         ": its levels start from the base, without the detail");
-    if (!order.empty()) warnings_.push_back("the vertex order of the file this mesh was rebuilt from is not kept (its levels are gone)");
+    if (had_order) warnings_.push_back("the vertex order of the file this mesh was rebuilt from is not kept (its levels are gone)");
   }
   update_.topology = true;
   refresh_state();
@@ -388,19 +397,12 @@ std::string ModelerState::delete_higher_levels() {
   auto session = std::make_unique<Session>(delete_higher(session_->hierarchy(), level_), std::move(gains));
   if (session_->detail_frames() == DetailFrames::Local) session->set_detail_frames(DetailFrames::Local);
   session->mark_unsaved();
-  InputOrder order = input_order_;
-  FitSource fit = fit_source_;
   const int level = level_;
-  std::vector<unsigned> selection = selection_;
-  install(std::move(session));
-  level_ = level;
-  selection_ = std::move(selection);
-  fit_source_ = std::move(fit);  // level 0 is unchanged
+  replace_session(std::move(session));  // level 0 is unchanged: the fit's base map still holds
   std::string note = "deleted levels " + std::to_string(level + 1) + ".." + std::to_string(J) + "; level " +
-                     std::to_string(level) + " is the finest (history cleared)";
-  if (order.level <= level) {
-    input_order_ = std::move(order);
-  } else if (!order.empty()) {
+                     std::to_string(level) + " is the finest (Ctrl+Z undoes)";
+  if (input_order_.level > level && !input_order_.empty()) {
+    input_order_ = {};
     note += "; the vertex order of the file this mesh was rebuilt from belonged to a deleted level and is not kept";
   }
   update_.topology = true;
@@ -419,21 +421,23 @@ std::string ModelerState::delete_lower_levels() {
   auto session = std::make_unique<Session>(delete_lower(session_->hierarchy(), L, net), std::move(gains));
   if (session_->detail_frames() == DetailFrames::Local) session->set_detail_frames(DetailFrames::Local);
   session->mark_unsaved();
-  InputOrder order = input_order_;
-  const bool had_fit = !fit_source_.empty();
-  std::vector<unsigned> selection = selection_;  // old level L's vertices are the new level 0's
-  install(std::move(session));
+  replace_session(std::move(session));  // the selection: old level L's vertices are the new level 0's
   level_ = 0;
-  selection_ = std::move(selection);
+  clamp_selection();
   std::string note = "level " + std::to_string(L) + " is the new base; levels 0.." + std::to_string(L - 1) +
-                     " are deleted (history cleared)";
-  if (order.level >= L) {
-    order.level -= L;
-    input_order_ = std::move(order);
-  } else if (!order.empty()) {
-    note += "; the vertex order of the file this mesh was rebuilt from belonged to a deleted level and is not kept";
+                     " are deleted (Ctrl+Z undoes)";
+  if (!input_order_.empty()) {
+    if (input_order_.level >= L) {
+      input_order_.level -= L;
+    } else {
+      input_order_ = {};
+      note += "; the vertex order of the file this mesh was rebuilt from belonged to a deleted level and is not kept";
+    }
   }
-  if (had_fit) note += "; the fit's map from the old base to the mesh it was fitted to is not kept";
+  if (!fit_source_.empty()) {
+    fit_source_ = {};
+    note += "; the fit's map from the old base to the mesh it was fitted to is not kept";
+  }
   update_.topology = true;
   refresh_state();
   return note;
@@ -474,6 +478,16 @@ void ModelerState::subdivide() {
 bool ModelerState::undo() {
   if (dragging_) return false;
   check_unlocked("undo");
+  if (!session_->can_undo() && !structure_undo_.empty()) {
+    ffd_check_free("undoing a change of the hierarchy");
+    Snapshot back = std::move(structure_undo_.back());
+    structure_undo_.pop_back();
+    structure_redo_.push_back(take_snapshot());
+    restore(std::move(back));
+    structure_redo_.back().resume_position = session_->undo_position();
+    structure_redo_.back().resume_history = session_->history().size();
+    return true;
+  }
   const bool done = session_->undo();
   if (done) after_operation();
   return done;
@@ -482,9 +496,103 @@ bool ModelerState::undo() {
 bool ModelerState::redo() {
   if (dragging_) return false;
   check_unlocked("redo");
+  if (!session_->can_redo() && !structure_redo_.empty()) {
+    // Only from where the undo left this session: an edit since then made a new future.
+    const Snapshot& top = structure_redo_.back();
+    if (top.resume_position != session_->undo_position() || top.resume_history != session_->history().size()) {
+      structure_redo_.clear();
+      return false;
+    }
+    ffd_check_free("redoing a change of the hierarchy");
+    Snapshot next = std::move(structure_redo_.back());
+    structure_redo_.pop_back();
+    structure_undo_.push_back(take_snapshot());
+    restore(std::move(next));
+    return true;
+  }
   const bool done = session_->redo();
   if (done) after_operation();
   return done;
+}
+
+ModelerState::Snapshot ModelerState::take_snapshot() {
+  Snapshot s;
+  s.session = std::move(session_);
+  s.input_order = input_order_;
+  s.fit_source = fit_source_;
+  s.level = level_;
+  s.selection = selection_;
+  return s;
+}
+
+void ModelerState::restore(Snapshot s) {
+  install(std::move(s.session));
+  input_order_ = std::move(s.input_order);
+  fit_source_ = std::move(s.fit_source);
+  level_ = std::clamp(s.level, 0, session_->finest_level());
+  selection_ = std::move(s.selection);
+  clamp_selection();
+  active_ = -1;
+  update_.topology = true;
+  refresh_state();
+}
+
+void ModelerState::replace_session(std::unique_ptr<Session> next) {
+  const InputOrder order = input_order_;
+  const FitSource fit = fit_source_;
+  const int level = level_;
+  std::vector<unsigned> selection = selection_;
+  structure_undo_.push_back(take_snapshot());
+  if (structure_undo_.size() > kStructureUndo) structure_undo_.erase(structure_undo_.begin());
+  structure_redo_.clear();
+  install(std::move(next));
+  input_order_ = order;  // callers change what no longer holds
+  fit_source_ = fit;
+  level_ = std::clamp(level, 0, session_->finest_level());
+  selection_ = std::move(selection);
+  clamp_selection();
+}
+
+std::string ModelerState::toggle_creases(std::optional<bool> on) {
+  ffd_check_free("marking creases");
+  check_unlocked("marking creases");
+  if (level_ != 0) throw Error("creases are a property of the base: mark them on level 0 (Shift+D goes coarser)");
+  const Complex& c = level_complex();
+  if (c.dim != 2) throw Error("creases are marked on surfaces (a lattice's features come from its file's tags)");
+  const std::vector<std::uint32_t> edges = edges_within(c, selection_);
+  if (edges.empty()) throw Error("select two or more joined points of level 0 to crease the edges between them");
+  bool all = true;
+  for (const std::uint32_t e : edges) all = all && c.edge_dim[e] <= 1;
+  if (on) all = !*on;
+  const FeatureTags tags = with_creases(c, derive_feature_tags(c), edges, !all);
+  auto next = std::make_unique<Session>(with_base_features(*session_, tags));
+  if (session_->detail_frames() == DetailFrames::Local) next->set_detail_frames(DetailFrames::Local);
+  next->mark_unsaved();
+  replace_session(std::move(next));
+  update_.topology = true;
+  refresh_state();
+  return std::string(all ? "cleared " : "creased ") + std::to_string(edges.size()) + " edge" + (edges.size() == 1 ? "" : "s") +
+         " of the base; the shape and its detail are kept (Ctrl+Z undoes)";
+}
+
+std::string ModelerState::toggle_corners(std::optional<bool> on) {
+  ffd_check_free("marking corners");
+  check_unlocked("marking corners");
+  if (level_ != 0) throw Error("corners are a property of the base: mark them on level 0 (Shift+D goes coarser)");
+  if (selection_.empty()) throw Error("select the points of level 0 to make corners");
+  const Complex& c = level_complex();
+  bool all = true;
+  for (const unsigned v : selection_) all = all && c.vertex_dim[v] == 0;
+  if (on) all = !*on;
+  const FeatureTags tags = with_corners(derive_feature_tags(c), selection_, !all);
+  auto next = std::make_unique<Session>(with_base_features(*session_, tags));
+  if (session_->detail_frames() == DetailFrames::Local) next->set_detail_frames(DetailFrames::Local);
+  next->mark_unsaved();
+  replace_session(std::move(next));
+  update_.topology = true;
+  refresh_state();
+  return std::string(all ? "cleared " : "made ") + std::to_string(selection_.size()) + " corner" +
+         (selection_.size() == 1 ? "" : "s") + " of the base; the shape and its detail are kept (Ctrl+Z undoes)";
 }
 
 void ModelerState::jump_to(std::size_t position) {
@@ -825,9 +933,17 @@ std::vector<std::string> ModelerState::export_level(const std::string& path, int
     const bool file_order = level == input_order_.level && input_order_.faces.rows() > 0;
     const std::vector<double> xyz = file_order ? in_input_order(input_order_, session_->positions(level), 3)
                                                : std::vector<double>(session_->positions(level).begin(), session_->positions(level).end());
+    // OBJ keeps a net's feature tags (write_shape: no normals); the other formats cannot.
+    const FeatureTags tags = c.dim == 2 ? derive_feature_tags(c) : FeatureTags{};
+    const bool tagged = !tags.crease_edges.empty() || !tags.corner_vertices.empty();
+    if (tagged && file_extension(path) == "obj" && !file_order) return write_shape(path, c, session_->positions(level));
     const Csr faces = file_order ? input_order_.faces : boundary_faces(c, xyz);
     const std::vector<double> normals = area_weighted_normals(faces, xyz);
     write_surface_with_normals(path, faces, xyz, normals);
+    if (tagged)
+      return {"feature tags not written: " + std::to_string(tags.crease_edges.size()) + " crease edges and " +
+              std::to_string(tags.corner_vertices.size()) + " corners (." + file_extension(path) +
+              (file_order ? " in the file's vertex order" : "") + " cannot hold them; export the net as .obj)"};
     return {};
   }
   if (const std::string problem = shape_output_problem(path, c.dim); !problem.empty()) {
@@ -986,6 +1102,8 @@ void ModelerState::wrap_model_in_box(int nx, int ny, int nz, double margin) {
   const Scheme scheme = scheme_info(current).surfaces_only ? Scheme::Cubic : current;
   Hierarchy h = make_hierarchy(box.base, kDefaultLevels, scheme, 3);
   set_base(h, box.positions);
+  structure_undo_.clear();
+  structure_redo_.clear();
   install(std::make_unique<Session>(std::move(h)));
   char name[64];
   std::snprintf(name, sizeof name, "box lattice %dx%dx%d", nx, ny, nz);

@@ -155,6 +155,21 @@ class ModelerState {
   std::string delete_lower_levels();
   /// Blender's "Apply Base": nothing to do in Sublift; what to tell the user (kApplyBaseNote).
   static const char* apply_base_note();
+  /// Shift+E / Ctrl+Shift+E (core/edit/features.h): marks the base edges joining two selected
+  /// points as creases (clears them when they all are creases already) / the selected points
+  /// as corners, at level 0 only; the hierarchy is rebuilt on the new features with the shape
+  /// and its detail kept. Returns what changed; throws Error away from level 0, with nothing
+  /// selected, or while a model is bound or the compression view is on.
+  /// `on` given: mark (true) or clear (false) instead of toggling.
+  std::string toggle_creases(std::optional<bool> on = std::nullopt);
+  std::string toggle_corners(std::optional<bool> on = std::nullopt);
+
+  // Operations that replace the session (a scheme change, level deletion, a feature edit) keep
+  // the session they replace: undo with an empty history goes back to it, with its own history,
+  // and redo forwards again (up to kStructureUndo of them).
+  static constexpr std::size_t kStructureUndo = 8;
+  bool can_undo() const { return session_->can_undo() || !structure_undo_.empty(); }
+  bool can_redo() const { return session_->can_redo() || !structure_redo_.empty(); }
   bool undo();
   bool redo();
   /// Jumps in the history so that entries [0, position) are applied.
@@ -345,6 +360,22 @@ class ModelerState {
 
  private:
   void install(std::unique_ptr<Session> session);  // fresh topology
+  // A replaced session and what belongs to it, for undo across replacements.
+  struct Snapshot {
+    std::unique_ptr<Session> session;
+    InputOrder input_order;
+    FitSource fit_source;
+    int level = 0;
+    std::vector<unsigned> selection;
+    // Redo entries: the history of the session that the undo brought back, as it was then; redo
+    // goes forward only from there (an edit since then made a new future).
+    std::size_t resume_position = 0, resume_history = 0;
+  };
+  std::vector<Snapshot> structure_undo_, structure_redo_;
+  Snapshot take_snapshot();
+  void restore(Snapshot s);
+  /// Installs `next` in place of the current session, which goes on the structural undo stack.
+  void replace_session(std::unique_ptr<Session> next);
   ProjectExtras project_extras() const;             // what a save keeps beside the hierarchy
   void after_operation();                           // pull changed() into limit and update
   void rebuild_limit();

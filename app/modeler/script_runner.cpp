@@ -368,6 +368,14 @@ constexpr Command kCommands[] = {
       }
       c.state.end_drag();
     }},
+    {"crease", 1, 1, "crease mark|clear|toggle", [](const Call& c) {
+      if (c.w[1] != "mark" && c.w[1] != "clear" && c.w[1] != "toggle") c.usage_error();
+      c.state.toggle_creases(c.w[1] == "toggle" ? std::nullopt : std::optional<bool>(c.w[1] == "mark"));
+    }},
+    {"corner", 1, 1, "corner mark|clear|toggle", [](const Call& c) {
+      if (c.w[1] != "mark" && c.w[1] != "clear" && c.w[1] != "toggle") c.usage_error();
+      c.state.toggle_corners(c.w[1] == "toggle" ? std::nullopt : std::optional<bool>(c.w[1] == "mark"));
+    }},
     {"symmetry", 2, 2, "symmetry x|y|z on|off", [](const Call& c) {
       if (c.w[1] != "x" && c.w[1] != "y" && c.w[1] != "z") throw ScriptError("symmetry axis must be x, y or z");
       if (c.w[2] != "on" && c.w[2] != "off") throw ScriptError("symmetry takes 'on' or 'off', got '" + c.w[2] + "'");

@@ -9,7 +9,8 @@
 //   pivot median|active|cursor|origin | cursor X Y Z | active INDEX | gain LEVEL FACTOR
 //   symmetry x|y|z on|off (mirror editing; fails, staying on, naming what has no mirror image)
 //   brush draw|inflate|smooth|grab|flatten|pinch [RADIUS [STRENGTH]] | brush falloff NAME
-//   brush front|invert on|off | stroke X Y Z [X Y Z ...] (dabs at world points, one undo step) | frames world|local | undo | redo | save PATH
+//   brush front|invert on|off | stroke X Y Z [X Y Z ...] (dabs at world points, one undo step)
+//   crease mark|clear|toggle (base edges between selected points) | corner mark|clear|toggle | frames world|local | undo | redo | save PATH
 //   export PATH | export-levels PATH (every level's net: PATH's name + _L0.._LJ) | screenshot PATH
 //   delete higher|lower (the levels above the edit level / below it: it becomes the base)
 //   apply-base (accepted for Blender users; nothing to do) | quit

@@ -549,10 +549,14 @@ TEST(ModelerControllerTest, Sqrt2SchemeFromTheMenu) {
   // Back to cubic: the resolution comes back too.
   ModelerPanelRequests back;
   back.scheme = 1;
-  f.app.apply_panel_requests(back);  // with history: asks first
-  EXPECT_EQ(m.session().hierarchy().scheme, Scheme::Sqrt2);
-  m.set_scheme(Scheme::Cubic);
+  f.app.apply_panel_requests(back);  // at once: undo brings the sqrt2 session back
+  EXPECT_EQ(m.session().hierarchy().scheme, Scheme::Cubic);
   EXPECT_EQ(m.session().finest_level(), cubic_levels);
+  ASSERT_TRUE(m.undo());
+  EXPECT_EQ(m.session().hierarchy().scheme, Scheme::Sqrt2);
+  EXPECT_EQ(m.session().history().size(), 2u);  // the two drags, undoable as before
+  ASSERT_TRUE(m.redo());
+  EXPECT_EQ(m.session().hierarchy().scheme, Scheme::Cubic);
 
   Fixture lattice("cube_cell.lattice");
   EXPECT_THROW(lattice.app.model.set_scheme(Scheme::Sqrt2), Error);

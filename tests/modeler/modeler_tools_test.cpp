@@ -624,3 +624,102 @@ TEST(ModelerSculpt, ScriptStrokesWithSymmetryAndGrab) {
 
 }  // namespace
 }  // namespace sublift
+
+namespace sublift {
+namespace {
+
+TEST(ModelerFeatures, CreaseOnTheBaseKeepsTheShapeAndUndoBringsTheOldHierarchyBack) {
+  const testing::TempDir dir("sublift_modeler_crease");
+  ModelerState m = edited_torus("cubic");
+  m.set_level(0);
+  const auto before = levels_of(m);
+  const int J = m.session().finest_level();
+  const std::int64_t e = find_edge(m.level_complex(), 0, 1);
+  ASSERT_GE(e, 0);
+  ASSERT_EQ(m.level_complex().edge_dim[static_cast<std::size_t>(e)], 2);
+  m.set_selection({0, 1});
+  const std::string note = m.toggle_creases();
+  EXPECT_NE(note.find("creased 1 edge"), std::string::npos) << note;
+  EXPECT_EQ(m.level_complex().edge_dim[static_cast<std::size_t>(e)], 1);
+  // The finest shape as shown stays; the detail is re-expressed under the crease rules.
+  EXPECT_LT(testing::max_abs_diff(levels_of(m)[static_cast<std::size_t>(J)], before[static_cast<std::size_t>(J)]), 1e-12);
+  expect_fresh(m);
+  EXPECT_TRUE(m.session().dirty());
+  EXPECT_TRUE(m.session().history().empty());
+  ASSERT_TRUE(m.can_undo());
+  // Saved in the project, and as an OBJ tag of the base.
+  m.save_project(dir.file("c.sublift"));
+  ModelerState back;
+  back.open(dir.file("c.sublift"));
+  EXPECT_EQ(back.level_complex().edge_dim[static_cast<std::size_t>(e)], 1);
+  m.export_level(dir.file("base.obj"), 0);
+  EXPECT_EQ(read_shape(dir.file("base.obj")).base.edge_dim[static_cast<std::size_t>(e)], 1);
+  // The crease changes what a base move does.
+  ModelerState plain = edited_torus("cubic");
+  ScriptRunner move("m.txt", "level 0\nselect 0\nmove 0 0.2 0\n");
+  ScriptRunner move2("m.txt", "level 0\nselect 0\nmove 0 0.2 0\n");
+  ASSERT_EQ(move.next(m).kind, ScriptStep::Kind::End);
+  ASSERT_EQ(move2.next(plain).kind, ScriptStep::Kind::End);
+  EXPECT_GT(testing::max_abs_diff(levels_of(m)[static_cast<std::size_t>(J)], levels_of(plain)[static_cast<std::size_t>(J)]), 1e-4);
+  // Undo the move, then the crease: the old session with its own history, bit for bit.
+  ASSERT_TRUE(m.undo());
+  ASSERT_TRUE(m.undo());
+  EXPECT_EQ(m.level_complex().edge_dim[static_cast<std::size_t>(e)], 2);
+  for (std::size_t l = 0; l < before.size(); ++l) EXPECT_TRUE(same_bits(levels_of(m)[l], before[l])) << l;
+  EXPECT_FALSE(m.session().history().empty());  // edited_torus's edits are there again
+  ASSERT_TRUE(m.redo());
+  EXPECT_EQ(m.level_complex().edge_dim[static_cast<std::size_t>(e)], 1);
+  // Clearing it again; corners likewise.
+  m.set_selection({0, 1});
+  EXPECT_NE(m.toggle_creases().find("cleared 1 edge"), std::string::npos);
+  EXPECT_EQ(m.level_complex().edge_dim[static_cast<std::size_t>(e)], 2);
+  m.set_selection({7});
+  m.toggle_corners();
+  EXPECT_EQ(m.level_complex().vertex_dim[7], 0);
+  EXPECT_LT(testing::max_abs_diff(levels_of(m)[static_cast<std::size_t>(J)], before[static_cast<std::size_t>(J)]), 1e-12);
+}
+
+TEST(ModelerFeatures, RefusalsAndKeys) {
+  Fixture f;
+  f.app.model.set_level(1);
+  f.app.model.set_selection({0, 1});
+  EXPECT_THROW(f.app.model.toggle_creases(), Error);
+  f.app.model.set_level(0);
+  f.app.model.set_selection({});
+  EXPECT_THROW(f.app.model.toggle_creases(), Error);
+  EXPECT_THROW(f.app.model.toggle_corners(), Error);
+  f.app.model.set_selection({0, 1});
+  f.key(Key::E, kShift);
+  EXPECT_EQ(f.app.model.level_complex().edge_dim[static_cast<std::size_t>(find_edge(f.app.model.level_complex(), 0, 1))], 1);
+  f.key(Key::E, Modifiers{true, true, false});
+  EXPECT_EQ(f.app.model.level_complex().vertex_dim[0], 0);
+  f.key(Key::Z, kCtrl);
+  f.key(Key::Z, kCtrl);
+  EXPECT_EQ(f.app.model.level_complex().vertex_dim[0], 2);
+  ScriptRunner bad("bad.txt", "crease maybe\n");
+  EXPECT_EQ(bad.next(f.app.model).message, "script:1: usage: crease mark|clear|toggle");
+}
+
+TEST(ModelerFeatures, LevelDeletionsAndSchemeChangesUndoToo) {
+  ModelerState m = edited_torus("cubic");
+  const auto before = levels_of(m);
+  m.set_level(1);
+  m.delete_lower_levels();
+  m.set_level(1);
+  m.delete_higher_levels();
+  m.set_scheme(Scheme::Linear);
+  ASSERT_TRUE(m.undo());  // linear -> cubic
+  EXPECT_EQ(m.session().hierarchy().scheme, Scheme::Cubic);
+  ASSERT_TRUE(m.undo());  // delete higher
+  ASSERT_TRUE(m.undo());  // delete lower
+  ASSERT_EQ(levels_of(m).size(), before.size());
+  for (std::size_t l = 0; l < before.size(); ++l) EXPECT_TRUE(same_bits(levels_of(m)[l], before[l])) << l;
+  // A new edit after an undo makes a new future: the replaced sessions are not redone over it.
+  ScriptRunner edit("e.txt", "level 0\nselect 2\nmove 0.1 0 0\n");
+  ASSERT_EQ(edit.next(m).kind, ScriptStep::Kind::End);
+  EXPECT_FALSE(m.redo());
+  EXPECT_EQ(levels_of(m).size(), before.size());
+}
+
+}  // namespace
+}  // namespace sublift

@@ -2,7 +2,11 @@
 
 #include <string>
 
+#include <epoxy/gl.h>
+
+#include "render/background.h"
 #include "render/headless_context.h"
+#include "render/limit_surface_renderer.h"
 #include "render/offscreen_target.h"
 #include "render/render_errors.h"
 #include "render/viewport_renderer.h"
@@ -39,6 +43,38 @@ Image render_mesh_headless(const SurfaceMesh& mesh, int width, int height,
   const OrbitCamera camera = headless_camera(mesh, width, height, settings);
   target.bind();
   viewport.draw(camera, ViewportRect{0, 0, width, height}, settings.display);
+  return Image{width, height, target.read_rgba()};
+}
+
+Image render_coloured_surface_headless(std::span<const double> xyz, std::span<const double> normals, const Csr& faces,
+                                       std::span<const float> scalar01, int width, int height,
+                                       const HeadlessRenderSettings& settings) {
+  constexpr int kMaxSide = 16384;
+  if (width < 1 || height < 1 || width > kMaxSide || height > kMaxSide)
+    throw RenderError("render size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1x1.." +
+                      std::to_string(kMaxSide) + "x" + std::to_string(kMaxSide));
+  HeadlessContext context;
+  OffscreenTarget target(width, height, settings.samples);
+  BackgroundRenderer background;
+  LimitSurfaceRenderer surface;
+  surface.set_topology(faces.offsets, faces.items, xyz.size() / 3);
+  surface.set_positions_normals(xyz, normals);
+  surface.set_scalar(scalar01);
+  OrbitCamera camera;
+  camera.set_viewport(width, height);
+  camera.set_view(settings.view);
+  camera.orthographic = settings.orthographic;
+  camera.up_axis = settings.up_axis;
+  frame_bounds(camera, surface.bounds());
+  target.bind();
+  glViewport(0, 0, width, height);
+  glDepthMask(GL_TRUE);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  background.draw();
+  SurfaceStyle style;
+  style.color_map = true;
+  style.wireframe = settings.display.wireframe;
+  surface.draw(camera, style);
   return Image{width, height, target.read_rgba()};
 }
 

@@ -2,8 +2,10 @@
 // One-call offscreen rendering of a mesh to pixels, without any window system
 // (what `sublift-cli render` uses).
 #include <cstdint>
+#include <span>
 #include <vector>
 
+#include "core/base/csr.h"
 #include "core/base/surface_mesh.h"
 #include "render/camera.h"
 #include "render/mesh_renderer.h"
@@ -33,6 +35,13 @@ Image render_mesh_headless(const SurfaceMesh& mesh, int width, int height);
 /// The same with a chosen view, projection and display options.
 Image render_mesh_headless(const SurfaceMesh& mesh, int width, int height,
                            const HeadlessRenderSettings& settings);
+
+/// A limit surface (3 doubles per vertex of positions and normals, CSR faces) coloured through
+/// viridis by `scalar01` (one value per vertex in 0..1), from the same default view: what
+/// `sublift-cli render --colour L` draws (the modeler's "Colour by |w| of level").
+Image render_coloured_surface_headless(std::span<const double> xyz, std::span<const double> normals, const Csr& faces,
+                                       std::span<const float> scalar01, int width, int height,
+                                       const HeadlessRenderSettings& settings = {});
 
 /// The camera render_mesh_headless uses for these arguments (no GL needed).
 OrbitCamera headless_camera(const SurfaceMesh& mesh, int width, int height,

@@ -1,6 +1,7 @@
 // sublift-cli edit PROJECT --level L --vertex I [--vertex I ...] [--falloff R]
 //             --delta DX DY DZ | --rotate AXIS DEGREES | --scale S  [--pivot P]
-//             [--local-frames] -o OUT [--json]
+//             | --brush KIND --at X Y Z [--radius R] [--strength S] [--falloff-curve F]
+//             [--mirror x|y|z]... [--local-frames] -o OUT [--json]
 #include <charconv>
 #include <chrono>
 #include <iostream>
@@ -12,7 +13,11 @@
 #include "app/cli/cli_hierarchy.h"
 #include "core/io/project/project_io.h"
 #include "core/edit/session.h"
+#include "core/base/errors.h"
+#include "core/edit/brush.h"
+#include "core/edit/symmetry.h"
 #include "core/edit/transform.h"
+#include "core/complex/complex.h"
 #include "core/io/lattice/shape_io.h"
 #include "core/base/text_lines.h"
 
@@ -22,7 +27,9 @@ namespace {
 constexpr const char* kHelp =
     "usage: sublift-cli edit PROJECT --level L --vertex I [--vertex I ...] [--falloff R]\n"
     "                   --delta DX DY DZ | --rotate AXIS DEGREES | --scale S [--pivot P]\n"
-    "                   [--local-frames] -o OUT [--json]\n"
+    "                   [--mirror x|y|z]... [--local-frames] -o OUT [--json]\n"
+    "       sublift-cli edit PROJECT --level L --brush KIND --at X Y Z [--radius R] [--strength S]\n"
+    "                   [--falloff-curve F] [--mirror x|y|z]... [--local-frames] -o OUT [--json]\n"
     "  Moves control points I of level L (indices in the engine's order of that level; level 0 is\n"
     "  the base file's order) by (DX, DY, DZ), or rotates or scales them about a pivot, as the\n"
     "  modeler's G, R and S do: finer levels are resynthesised locally from the stored wavelets,\n"
@@ -31,6 +38,12 @@ constexpr const char* kHelp =
     "  --scale S    a factor, or SX,SY,SZ per axis (a negative one mirrors)\n"
     "  --pivot P    median (of the --vertex points; the default), active (the last --vertex),\n"
     "               origin, or a point X,Y,Z\n"
+    "  --brush KIND one sculpt dab (draw, inflate, smooth, grab, flatten, pinch; docs/modeler.md)\n"
+    "               centred at --at X Y Z on level L's net: --radius R (world units, default 0.1),\n"
+    "               --strength S (0..1, default 0.5), --falloff-curve smooth|linear|sharp|constant;\n"
+    "               grab moves by --delta DX DY DZ times the falloff\n"
+    "  --mirror A   mirror editing across the world plane A = 0 (repeatable): the mirror images of\n"
+    "               what moves move the mirrored way (found by position, then topology)\n"
     "  --falloff R  soft selection: points within distance R of a selected one move by\n"
     "               1 - smoothstep(d / R) of the delta (rotate by that part of the angle, scale\n"
     "               by that part of the factor)\n"
@@ -69,8 +82,10 @@ glm::dvec3 triple(const std::string& s, const char* option, bool one_is_all) {
 }  // namespace
 
 int run_edit(int argc, char** argv) {
-  const Args a = parse_args(argc, argv, 2, {"-o", "--level", "--falloff", "--scale", "--pivot"},
-                            {"--json", "--help", "--local-frames"}, {{"--vertex", 1}, {"--delta", 3}, {"--rotate", 2}});
+  const Args a = parse_args(argc, argv, 2,
+                            {"-o", "--level", "--falloff", "--scale", "--pivot", "--brush", "--radius", "--strength", "--falloff-curve"},
+                            {"--json", "--help", "--local-frames"},
+                            {{"--vertex", 1}, {"--delta", 3}, {"--rotate", 2}, {"--at", 3}, {"--mirror", 1}});
   if (a.has("--help")) {
     std::cout << kHelp;
     return 0;
@@ -81,12 +96,52 @@ int run_edit(int argc, char** argv) {
   const auto lv = parse_int(*a.value("--level"));
   if (!lv || *lv < 0) throw UsageError("--level must be a non-negative integer, got '" + *a.value("--level") + "'");
   const auto vit = a.lists.find("--vertex");
-  if (vit == a.lists.end()) throw UsageError("missing --vertex I");
+  const auto brush_kind = a.value("--brush");
+  if (vit == a.lists.end() && !brush_kind) throw UsageError("missing --vertex I (or --brush KIND --at X Y Z)");
+  if (vit != a.lists.end() && brush_kind) throw UsageError("--brush dabs where --at says; leave out --vertex");
   const auto dit = a.lists.find("--delta");
   const auto rit = a.lists.find("--rotate");
   const int kinds = (dit != a.lists.end()) + (rit != a.lists.end()) + (a.value("--scale").has_value());
-  if (kinds == 0) throw UsageError("missing --delta DX DY DZ, --rotate AXIS DEGREES or --scale S");
-  if (kinds > 1) throw UsageError("give one of --delta, --rotate and --scale");
+  BrushSettings brush;
+  Dab dab;
+  dab.view_dir = glm::dvec3(0.0);  // no view: nothing is culled as back-facing
+  if (brush_kind) {
+    try {
+      brush.kind = parse_brush(*brush_kind);
+      if (const auto f = a.value("--falloff-curve")) brush.falloff = parse_falloff(*f);
+    } catch (const Error& e) {
+      throw UsageError(std::string("--brush: ") + e.what());
+    }
+    const auto at = a.lists.find("--at");
+    if (at == a.lists.end() || at->second.size() != 3) throw UsageError("--brush needs --at X Y Z once");
+    for (int c = 0; c < 3; ++c) {
+      const auto d = parse_double(at->second[static_cast<std::size_t>(c)]);
+      if (!d) throw UsageError("--at needs three finite numbers");
+      dab.center[c] = *d;
+    }
+    if (const auto r = a.value("--radius")) {
+      const auto v = parse_double(*r);
+      if (!v || *v <= 0) throw UsageError("--radius must be a positive distance, got '" + *r + "'");
+      brush.radius = *v;
+    }
+    if (const auto st = a.value("--strength")) {
+      const auto v = parse_double(*st);
+      if (!v || *v < 0 || *v > 1) throw UsageError("--strength must be in 0..1, got '" + *st + "'");
+      brush.strength = *v;
+    }
+    if (rit != a.lists.end() || a.value("--scale")) throw UsageError("--brush takes no --rotate or --scale");
+    if (brush.kind != BrushKind::Grab && dit != a.lists.end()) throw UsageError("--delta goes with --brush grab only");
+    if (brush.kind == BrushKind::Grab && dit == a.lists.end()) throw UsageError("--brush grab needs --delta DX DY DZ");
+  } else {
+    if (kinds == 0) throw UsageError("missing --delta DX DY DZ, --rotate AXIS DEGREES or --scale S");
+    if (kinds > 1) throw UsageError("give one of --delta, --rotate and --scale");
+  }
+  std::vector<int> mirror_axes;
+  if (const auto it = a.lists.find("--mirror"); it != a.lists.end())
+    for (const std::string& m : it->second) {
+      if (m != "x" && m != "y" && m != "z") throw UsageError("--mirror takes x, y or z, got '" + m + "'");
+      mirror_axes.push_back(m[0] - 'x');
+    }
   double delta[3] = {0, 0, 0};
   if (dit != a.lists.end()) {
     if (dit->second.size() != 3) throw UsageError("--delta is given once, with three numbers");
@@ -121,7 +176,8 @@ int run_edit(int argc, char** argv) {
     falloff = *r;
   }
   std::vector<std::uint32_t> selected;
-  for (const std::string& s : vit->second) selected.push_back(index_value(s));
+  if (vit != a.lists.end())
+    for (const std::string& s : vit->second) selected.push_back(index_value(s));
 
   const std::string& in = a.positional[0];
   ProjectExtras extras;
@@ -141,24 +197,45 @@ int run_edit(int argc, char** argv) {
   Session session(std::move(h), extras.gains);
   if (a.has("--local-frames") || extras.local_frames) session.set_detail_frames(DetailFrames::Local);
   const SoftWeights w = soft_selection(session.positions(level), selected, falloff);
-  OpReport r;
   glm::dvec3 pivot(0.0);
-  if (dit != a.lists.end()) {
-    r = session.move(level, w.vertices, w.weights, delta);
+  // Every kind of edit as per-point moves, mirrored when asked, then one move_each.
+  std::vector<std::uint32_t> moved;
+  std::vector<double> deltas;
+  const auto pos = session.positions(level);
+  if (brush_kind) {
+    Complex c = session.hierarchy().levels[static_cast<std::size_t>(level)];
+    build_adjacency(c);  // the finest level is stored without its upward rows
+    dab.motion = glm::dvec3(delta[0], delta[1], delta[2]);
+    brush_dab(brush, dab, c, pos, moved, deltas);
+  } else if (dit != a.lists.end()) {
+    moved = w.vertices;
+    for (std::size_t k = 0; k < w.vertices.size(); ++k)
+      for (int c = 0; c < 3; ++c) deltas.push_back(w.weights[k] * delta[c]);
   } else {
     const std::string p = a.value("--pivot").value_or("median");
     const std::vector<unsigned> sel(selected.begin(), selected.end());
     if (p == "median" || p == "active" || p == "origin") {
-      pivot = pivot_point(parse_pivot(p), session.positions(level), sel, selected.back(), glm::dvec3(0.0));
+      pivot = pivot_point(parse_pivot(p), pos, sel, selected.back(), glm::dvec3(0.0));
     } else {
       pivot = triple(p, "--pivot", false);
     }
-    const auto pos = session.positions(level);
-    std::vector<double> start, deltas;
+    std::vector<double> start;
     for (const std::uint32_t v : w.vertices) start.insert(start.end(), pos.begin() + 3 * v, pos.begin() + 3 * v + 3);
+    moved = w.vertices;
     transform_deltas(start, pos, w.vertices, w.weights, pivot, axis, angle, factors, deltas);
-    r = session.move_each(level, w.vertices, deltas);
   }
+  std::vector<MirrorMap> maps;
+  std::vector<std::string> mirror_problems;
+  for (const int axis_index : mirror_axes) {
+    maps.push_back(find_mirror(session.hierarchy().levels[static_cast<std::size_t>(level)], pos, axis_index));
+    if (!maps.back().problem().empty()) mirror_problems.push_back(maps.back().problem());
+  }
+  for (const std::string& p : mirror_problems) std::cerr << in << ": warning: " << p << "\n";
+  std::vector<const MirrorMap*> map_ptrs;
+  for (const MirrorMap& m : maps) map_ptrs.push_back(&m);
+  const std::size_t own = moved.size();
+  if (!map_ptrs.empty()) mirror_deltas(map_ptrs, moved, deltas);
+  const OpReport r = session.move_each(level, moved, deltas);
 
   std::vector<std::string> notes;
   if (is_project_path(out)) {
@@ -176,8 +253,12 @@ int run_edit(int argc, char** argv) {
                               {"output", out},
                               {"level", level},
                               {"selected", selected.size()},
-                              {"moved", w.vertices.size()},
-                              {"transform", dit != a.lists.end() ? "move" : rit != a.lists.end() ? "rotate" : "scale"},
+                              {"moved", own},
+                              {"mirrored", moved.size() - own},
+                              {"mirror_problems", mirror_problems},
+                              {"transform", brush_kind ? std::string("brush ") + brush_name(brush.kind)
+                                            : dit != a.lists.end() ? std::string("move")
+                                            : rit != a.lists.end() ? std::string("rotate") : std::string("scale")},
                               {"pivot", {pivot.x, pivot.y, pivot.z}},
                               {"detail_frames", session.detail_frames() == DetailFrames::Local ? "local" : "world"},
                               {"resynthesis_ms", r.resynthesis_ms},

@@ -1,4 +1,4 @@
-// sublift-cli render FILE -o PNG [--size WxH] [--json]
+// sublift-cli render FILE -o PNG [--size WxH] [--colour L] [--json]
 #include <iostream>
 
 #include <nlohmann/json.hpp>
@@ -10,6 +10,8 @@
 #include "app/cli/cli_hierarchy.h"
 #include "core/analysis/boundary_surface.h"
 #include "core/analysis/limit_surface.h"
+#include "core/analysis/wavelet_colour.h"
+#include "core/base/text_lines.h"
 #include "core/io/lattice/shape_io.h"
 #include "core/io/mesh/mesh_import.h"
 #include "core/io/project/project_io.h"
@@ -59,13 +61,15 @@ SurfaceMesh mesh_to_render(const std::string& file) {
 }  // namespace
 
 int run_render(int argc, char** argv) {
-  const Args a = parse_args(argc, argv, 2, {"-o", "--size"}, {"--json", "--help"});
+  const Args a = parse_args(argc, argv, 2, {"-o", "--size", "--colour", "--color"}, {"--json", "--help"});
   if (a.has("--help")) {
-    std::cout << "usage: sublift-cli render FILE -o PNG [--size WxH] [--json]\n"
+    std::cout << "usage: sublift-cli render FILE -o PNG [--size WxH] [--colour L] [--json]\n"
                  "  Renders FILE shaded with its wireframe from the default 3/4 view, without a\n"
                  "  display (EGL surfaceless), and writes a PNG. Default size 800x600. FILE: a mesh\n"
                  "  (.obj .off .ply), a lattice (.lattice .vtk: its outward boundary) or a .sublift\n"
-                 "  project (its finest limit surface with the saved gains, as the modeler shows it).\n";
+                 "  project (its finest limit surface with the saved gains, as the modeler shows it).\n"
+                 "  --colour L  a project's surface coloured by the magnitude of level L's wavelets\n"
+                 "              (viridis, as the modeler's Colour by |w| of level)\n";
     return 0;
   }
   if (a.positional.size() != 1) throw UsageError("expected exactly one FILE");
@@ -74,12 +78,32 @@ int run_render(int argc, char** argv) {
   if (file_extension(*out) != "png") throw UsageError("output must be a .png file, got '" + *out + "'");
   int w = 800, h = 600;
   if (auto s = a.value("--size")) parse_size(*s, w, h);
-  const SurfaceMesh mesh = mesh_to_render(a.positional[0]);
+  std::optional<std::string> colour = a.value("--colour");
+  if (!colour) colour = a.value("--color");
 #ifdef SUBLIFT_HAVE_RENDER
-  const Image img = render_mesh_headless(mesh, w, h);
+  Image img;
+  if (colour) {
+    const std::string& in = a.positional[0];
+    if (!is_project_path(in)) throw UsageError("--colour needs a .sublift project (its wavelets), got '" + in + "'");
+    const auto l = parse_int(*colour);
+    if (!l) throw UsageError("--colour must be a level number, got '" + *colour + "'");
+    ProjectExtras extras;
+    Hierarchy hier = read_project(in, &extras);
+    if (*l < 0 || *l >= hier.finest_level())
+      throw UsageError("--colour " + *colour + " is outside the project's wavelet levels 0.." + std::to_string(hier.finest_level() - 1));
+    const std::vector<float> field = wavelet_magnitude_field(hier, extras.gains, static_cast<int>(*l));
+    apply_gains(hier, extras.gains);
+    const LimitSurface s = finest_limit_surface(hier, synthesize_in_range(hier, hier.finest_level()));
+    if (s.faces.rows() == 0) throw Error(in + ": a curve has no surface to render");
+    img = render_coloured_surface_headless(s.positions, s.normals, s.faces, field, w, h);  // one value per finest vertex
+  } else {
+    img = render_mesh_headless(mesh_to_render(a.positional[0]), w, h);
+  }
   write_png(*out, img.width, img.height, img.rgba);
   if (a.has("--json"))
-    std::cout << nlohmann::json{{"input", a.positional[0]}, {"output", *out}, {"width", w}, {"height", h}}.dump(2)
+    std::cout << nlohmann::json{{"input", a.positional[0]}, {"output", *out}, {"width", w}, {"height", h},
+                                {"colour_level", colour ? nlohmann::json(std::stoi(*colour)) : nlohmann::json(nullptr)}}
+                     .dump(2)
               << "\n";
   return 0;
 #else

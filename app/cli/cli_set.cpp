@@ -1,5 +1,5 @@
 // sublift-cli set PROJECT [--scheme S] [--subdivide N] [--delete-higher L] [--delete-lower L]
-//                 [--gain L F]... [--frames world|local] [--level L] -o OUT [--json]
+//                 [--crease A B]... [--uncrease A B]... [--corner V]... [--uncorner V]... [--gain L F]... [--frames world|local] [--level L] -o OUT [--json]
 // The session state the modeler's panel sets, on a project: what the Scheme menu, Subdivide
 // (Ctrl+D), the level gains, World/Local and the edit level do, in that order.
 #include <iostream>
@@ -10,7 +10,10 @@
 #include "app/cli/cli_json.h"
 #include "core/base/errors.h"
 #include "core/base/text_lines.h"
+#include "core/complex/feature_tags.h"
+#include "core/edit/features.h"
 #include "core/edit/level_ops.h"
+#include "core/edit/selection.h"
 #include "core/edit/scheme_switch.h"
 #include "core/edit/session.h"
 #include "core/io/project/project_io.h"
@@ -21,7 +24,7 @@ namespace {
 
 constexpr const char* kHelp =
     "usage: sublift-cli set PROJECT [--scheme S] [--subdivide N] [--delete-higher L] [--delete-lower L]\n"
-    "                   [--gain L F]... [--frames world|local] [--level L] -o OUT [--json]\n"
+    "                   [--crease A B]... [--uncrease A B]... [--corner V]... [--uncorner V]... [--gain L F]... [--frames world|local] [--level L] -o OUT [--json]\n"
     "  Changes a project's session as the modeler's panel does, in this order:\n"
     "  --scheme S        linear, cubic, sqrt2, linear-tri, butterfly or loop. Between schemes of\n"
     "                    the same refinement (linear/cubic; the three triangle schemes) the shape\n"
@@ -32,6 +35,10 @@ constexpr const char* kHelp =
     "  --delete-higher L keeps levels 0..L (level L becomes the finest, unchanged)\n"
     "  --delete-lower L  makes level L the base: the coarser levels go, every finer level stays as\n"
     "                    it was (levels renumbered from 0; gains of the levels below L go)\n"
+    "  --crease A B      crease the base edge A-B (repeatable; --uncrease A B clears one);\n"
+    "  --corner V        make base vertex V a corner (repeatable; --uncorner V clears one): the\n"
+    "                    hierarchy is rebuilt on the base's new features and the finest level as\n"
+    "                    shown is analysed by the new rules (shape and detail kept, gains 1)\n"
     "  --gain L F        the detail gain of level L's wavelets (repeatable; 0 mutes, 1 as analysed)\n"
     "  --frames F        world or local detail frames (local: surfaces only)\n"
     "  --level L         the edit level the modeler opens at\n"
@@ -52,7 +59,8 @@ int count(const std::string& s, const char* what, long lo, long hi) {
 int run_set(int argc, char** argv) {
   const Args a = parse_args(argc, argv, 2,
                             {"-o", "--scheme", "--subdivide", "--frames", "--level", "--delete-higher", "--delete-lower"},
-                            {"--json", "--help"}, {{"--gain", 2}});
+                            {"--json", "--help"},
+                            {{"--gain", 2}, {"--crease", 2}, {"--uncrease", 2}, {"--corner", 1}, {"--uncorner", 1}});
   if (a.has("--help")) {
     std::cout << kHelp;
     return 0;
@@ -131,6 +139,43 @@ int run_set(int argc, char** argv) {
     replace(delete_lower(session->hierarchy(), L, session->positions(L)),
             std::vector<double>(session->gains().begin() + L, session->gains().end()));
     level = std::max(level - L, 0);
+  }
+  // Features of the base (core/edit/features.h), as the modeler's Shift+E / Ctrl+Shift+E.
+  {
+    const Complex& base = session->hierarchy().levels.front();
+    auto vertex = [&](const std::string& s, const char* what) {
+      return static_cast<std::uint32_t>(count(s, what, 0, static_cast<long>(base.num_vertices) - 1));
+    };
+    auto edges_of = [&](const char* option) {
+      std::vector<std::uint32_t> edges;
+      if (const auto it = a.lists.find(option); it != a.lists.end())
+        for (std::size_t k = 0; k + 1 < it->second.size(); k += 2) {
+          const std::uint32_t u = vertex(it->second[k], option), v = vertex(it->second[k + 1], option);
+          const std::int64_t e = find_edge(base, u, v);
+          if (e < 0) throw UsageError(std::string(option) + " " + it->second[k] + " " + it->second[k + 1] + ": no base edge joins them");
+          edges.push_back(static_cast<std::uint32_t>(e));
+        }
+      return edges;
+    };
+    auto vertices_of = [&](const char* option) {
+      std::vector<unsigned> vs;
+      if (const auto it = a.lists.find(option); it != a.lists.end())
+        for (const std::string& s : it->second) vs.push_back(vertex(s, option));
+      return vs;
+    };
+    const auto crease = edges_of("--crease"), uncrease = edges_of("--uncrease");
+    const auto corner = vertices_of("--corner"), uncorner = vertices_of("--uncorner");
+    if (!crease.empty() || !uncrease.empty() || !corner.empty() || !uncorner.empty()) {
+      if (base.dim != 2 && (!crease.empty() || !uncrease.empty()))
+        throw UsageError("--crease and --uncrease are for surfaces (a lattice's features come from its file's tags)");
+      FeatureTags tags = derive_feature_tags(base);
+      tags = with_creases(base, std::move(tags), uncrease, false);
+      tags = with_creases(base, std::move(tags), crease, true);
+      tags = with_corners(std::move(tags), uncorner, false);
+      tags = with_corners(std::move(tags), corner, true);
+      replace(with_base_features(*session, tags), {});
+      notes.push_back("features changed: the finest level as shown is analysed on the new base (gains are now 1)");
+    }
   }
   if (const auto it = a.lists.find("--gain"); it != a.lists.end()) {
     for (std::size_t k = 0; k + 1 < it->second.size(); k += 2) {

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "core/analysis/wavelet_colour.h"
 #include "core/base/file_io.h"
 #include "core/complex/feature_tags.h"
 #include "core/edit/features.h"
@@ -856,42 +857,7 @@ void ModelerState::refresh_colour() {
   update_.scalar = true;
   colour_.clear();
   if (colour_level_ < 0) return;
-  const Hierarchy& h = session_->hierarchy();
-  const int l = colour_level_;
-  const std::uint32_t lo = h.num_vertices(l), hi = h.num_vertices(l + 1);
-  const std::size_t n = h.num_vertices(h.finest_level());
-  colour_.assign(n, 0.0f);
-  float largest = 0.0f;
-  for (std::uint32_t v = lo; v < hi; ++v) {
-    const double* w = &h.coeffs[std::size_t(v) * 3];
-    const auto m = static_cast<float>(std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]) * session_->gain(l));
-    colour_[v] = m;
-    largest = std::max(largest, m);
-  }
-  // Carry the values to the finest level by linear refinement (children numbered [v|e|f|c]).
-  for (int k = l + 1; k < h.finest_level(); ++k) {
-    const Complex& c = h.levels[static_cast<std::size_t>(k)];
-    const std::uint32_t nv = c.num_vertices, ne = c.num_edges(), nf = c.num_faces();
-    for (std::uint32_t e = 0; e < ne; ++e) {
-      colour_[nv + e] = 0.5f * (colour_[c.edge_verts[2 * e]] + colour_[c.edge_verts[2 * e + 1]]);
-    }
-    for (std::uint32_t f = 0; f < nf; ++f) {
-      float sum = 0.0f;
-      for (const std::uint32_t v : c.faces.row(f)) sum += colour_[v];
-      colour_[nv + ne + f] = c.faces.size(f) > 0 ? sum / static_cast<float>(c.faces.size(f)) : 0.0f;
-    }
-    if (c.cell_verts.rows() == c.num_cells()) {
-      for (std::uint32_t cell = 0; cell < c.num_cells(); ++cell) {
-        float sum = 0.0f;
-        for (const std::uint32_t v : c.cell_verts.row(cell)) sum += colour_[v];
-        const auto count = c.cell_verts.size(cell);
-        colour_[nv + ne + nf + cell] = count > 0 ? sum / static_cast<float>(count) : 0.0f;
-      }
-    }
-  }
-  if (largest > 0.0f) {
-    for (float& v : colour_) v /= largest;
-  }
+  colour_ = wavelet_magnitude_field(session_->hierarchy(), session_->gains(), colour_level_);  // core/analysis/wavelet_colour.h
 }
 
 ProjectExtras ModelerState::project_extras() const {

@@ -9,11 +9,7 @@
 // boundary faces of the finest complex (boundary_surface.h); a curve none (its limit polyline
 // is drawn from the finest edges instead).
 //
-// Wavelet colouring (colour_by_level >= 0): the level-l wavelets live on the e/f/c vertices of
-// level l+1; each level-(l+1) vertex gets |w| (Euclidean norm; 0 on the v-class vertices, which
-// carry no level-l wavelet), the values are carried to the finest level by linear refinement
-// (an edge/face/cell child takes the mean of its parent's corners) and divided by the largest
-// |w| of the level, so 0..1 maps onto viridis.
+// Wavelet colouring (colour_by_level >= 0): core/analysis/wavelet_colour.h.
 #include <array>
 #include <cstdint>
 #include <memory>

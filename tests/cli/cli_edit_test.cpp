@@ -8,7 +8,9 @@
 #include "core/complex/complex_build.h"
 #include "core/multires/hierarchy.h"
 #include "core/io/project/project_io.h"
+#include "core/edit/brush.h"
 #include "core/edit/session.h"
+#include "core/edit/symmetry.h"
 #include "core/io/lattice/shape_io.h"
 #include "core/complex/shapes.h"
 #include "tests/io_test_util.h"
@@ -135,6 +137,77 @@ TEST(CliEdit, RotateAndScaleAboutAPivot) {
     const ProcessResult bad = cli(args);
     EXPECT_EQ(bad.exit_code, 2) << bad.err;
     EXPECT_FALSE(bad.err.empty());
+  }
+}
+
+// --brush and --mirror (issue 19): a dab equals brush_dab + move_each on the same net; with
+// --mirror x the images across x = 0 move the mirrored way.
+TEST(CliEdit, BrushDabAndMirror) {
+  TempDir dir("sublift_cli_edit_brush");
+  const Hierarchy h = project_hierarchy();
+  write_project(dir.file("in.sublift"), h);
+  Session probe(h);
+  const auto p = probe.positions(1);
+  std::uint32_t v = 0;
+  while (p[3 * v] < 0.5) ++v;  // a point well off the plane x = 0
+  const std::string at[3] = {std::to_string(p[3 * v]), std::to_string(p[3 * v + 1]), std::to_string(p[3 * v + 2])};
+  ProcessResult r = cli({"edit", dir.file("in.sublift"), "--level", "1", "--brush", "inflate", "--at", at[0], at[1], at[2],
+                         "--radius", "0.3", "--strength", "0.7", "-o", dir.file("b.sublift"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["transform"], "brush inflate");
+  EXPECT_GT(j["moved"].get<int>(), 1);
+  EXPECT_EQ(j["mirrored"], 0);
+  // The same dab here: what the command wrote.
+  Session ref(h);
+  Complex c = ref.hierarchy().levels[1];
+  build_adjacency(c);
+  BrushSettings b;
+  b.kind = BrushKind::Inflate;
+  b.radius = 0.3;
+  b.strength = 0.7;
+  Dab d;
+  d.center = {std::stod(at[0]), std::stod(at[1]), std::stod(at[2])};
+  d.view_dir = glm::dvec3(0.0);
+  std::vector<std::uint32_t> vs;
+  std::vector<double> deltas;
+  brush_dab(b, d, c, ref.positions(1), vs, deltas);
+  ref.move_each(1, vs, deltas);
+  EXPECT_LT(max_abs_diff(read_project(dir.file("b.sublift")).coeffs, ref.hierarchy().coeffs), 1e-12);
+  // The noisy torus's base is not symmetric: the JSON and stderr say which points have no image.
+  r = cli({"edit", dir.file("in.sublift"), "--level", "0", "--vertex", "0", "--delta", "0.1", "0", "0", "--mirror", "x",
+           "-o", dir.file("m.sublift"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(nlohmann::json::parse(r.out)["mirror_problems"][0].get<std::string>().find("have no mirror image"),
+            std::string::npos) << r.out;
+  // An exactly symmetric one: the image of the moved point moves the mirrored way.
+  const SurfaceMesh sm = make_quad_torus(12, 8);
+  Hierarchy sym = make_hierarchy(complex_from_surface_mesh(sm), 2, Scheme::Cubic, 3);
+  set_base(sym, flatten_positions(sm));
+  write_project(dir.file("sym.sublift"), sym);
+  r = cli({"edit", dir.file("sym.sublift"), "--level", "0", "--vertex", "0", "--delta", "0.1", "0", "0", "--mirror", "x",
+           "-o", dir.file("m.sublift"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto jm = nlohmann::json::parse(r.out);
+  EXPECT_EQ(jm["moved"], 1);
+  EXPECT_EQ(jm["mirrored"], 1);
+  EXPECT_TRUE(jm["mirror_problems"].empty());
+  Session before(sym);
+  const Hierarchy m = read_project(dir.file("m.sublift"));
+  Session after(m);
+  const MirrorMap map = find_mirror(before.hierarchy().levels[0], before.positions(0), 0);
+  const std::int64_t w = map.mirror[0];
+  ASSERT_GE(w, 0);
+  EXPECT_NEAR(after.positions(0)[3 * w] - before.positions(0)[3 * w], -0.1, 1e-12);
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"edit", dir.file("in.sublift"), "--level", "0", "--brush", "clay", "--at", "0", "0", "0", "-o", dir.file("x.sublift")},
+           {"edit", dir.file("in.sublift"), "--level", "0", "--brush", "draw", "-o", dir.file("x.sublift")},
+           {"edit", dir.file("in.sublift"), "--level", "0", "--brush", "grab", "--at", "0", "0", "0", "-o", dir.file("x.sublift")},
+           {"edit", dir.file("in.sublift"), "--level", "0", "--vertex", "1", "--brush", "draw", "--at", "0", "0", "0", "-o", dir.file("x.sublift")},
+           {"edit", dir.file("in.sublift"), "--level", "0", "--vertex", "1", "--delta", "1", "0", "0", "--mirror", "w", "-o", dir.file("x.sublift")},
+       }) {
+    const ProcessResult bad = cli(args);
+    EXPECT_EQ(bad.exit_code, 2) << bad.err;
   }
 }
 

@@ -9,6 +9,7 @@
 
 #include "core/complex/complex_build.h"
 #include "core/complex/shapes.h"
+#include "core/edit/selection.h"
 #include "core/edit/session.h"
 #include "core/io/lattice/shape_io.h"
 #include "core/io/project/project_io.h"
@@ -185,6 +186,32 @@ TEST(CliSet, DeleteHigherAndLowerKeepTheRemainingLevels) {
     const ProcessResult bad = cli(args);
     EXPECT_EQ(bad.exit_code, 2) << bad.err;
   }
+}
+
+// --crease / --corner (issue 19): the base edge becomes a crease, the finest level as shown
+// stays, and --uncrease takes it away again.
+TEST(CliSet, CreaseAndCornerOnTheBase) {
+  TempDir dir("sublift_cli_set_crease");
+  const Hierarchy h = torus_project(dir, "in.sublift");
+  const Session shown(h, {1.0, 0.5, 2.0});
+  const std::int64_t e = find_edge(h.levels[0], 0, 1);
+  ASSERT_GE(e, 0);
+  ProcessResult r = cli({"set", dir.file("in.sublift"), "--crease", "0", "1", "--corner", "5", "-o", dir.file("c.sublift"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ProjectExtras ce;
+  const Hierarchy c = read_project(dir.file("c.sublift"), &ce);
+  EXPECT_EQ(c.levels[0].edge_dim[static_cast<std::size_t>(e)], 1);
+  EXPECT_EQ(c.levels[0].vertex_dim[5], 0);
+  EXPECT_EQ(ce.gains, (std::vector<double>{1.0, 1.0, 1.0}));
+  EXPECT_LT(max_diff(synthesize(c, 3), shown.positions(3)), 1e-12);
+  r = cli({"set", dir.file("c.sublift"), "--uncrease", "0", "1", "--uncorner", "5", "-o", dir.file("u.sublift")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Hierarchy u = read_project(dir.file("u.sublift"));
+  EXPECT_EQ(u.levels[0].edge_dim[static_cast<std::size_t>(e)], 2);
+  EXPECT_EQ(u.levels[0].vertex_dim[5], 2);
+  r = cli({"set", dir.file("in.sublift"), "--crease", "0", "30", "-o", dir.file("x.sublift")});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no base edge joins them"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -6,6 +6,8 @@
 
 #include <stb_image.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -82,6 +84,52 @@ TEST(CliRender, MeshLatticeAndProject) {
     images.push_back(p.rgba);
   }
   EXPECT_NE(images[3], images[4]);  // the gains are honoured
+}
+
+// --colour L: a project's surface through viridis by the magnitude of level L's wavelets. Viridis
+// is saturated (blue-purple to yellow-green) where clay and the grey background are not, and
+// detail on one half only colours that half.
+TEST(CliRender, ColourByWaveletMagnitude) {
+  testing::TempDir dir("sublift_cli_render_colour");
+  const SurfaceMesh m = make_quad_torus(12, 8);
+  Hierarchy t = make_hierarchy(complex_from_surface_mesh(m), 2, Scheme::Cubic, 3);
+  set_base(t, flatten_positions(m));
+  std::vector<double> fine = synthesize(t, 2);
+  for (std::size_t v = 0; 3 * v < fine.size(); ++v)
+    if (fine[3 * v] > 0.0) fine[3 * v + 1] += 0.02 * std::sin(7.0 * fine[3 * v + 2]);  // detail where x > 0
+  analyze(t, fine);
+  write_project(dir.file("t.sublift"), t);
+  auto saturated = [](const Png& p) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i + 3 < p.rgba.size(); i += 4) {
+      const int r = p.rgba[i], g = p.rgba[i + 1], b = p.rgba[i + 2];
+      if (std::max({r, g, b}) - std::min({r, g, b}) > 60) ++n;
+    }
+    return double(n) / (double(p.w) * p.h);
+  };
+  const testing::ProcessResult plain = testing::run_cli({"render", dir.file("t.sublift"), "-o", dir.file("plain.png")});
+  const testing::ProcessResult coloured =
+      testing::run_cli({"render", dir.file("t.sublift"), "--colour", "1", "-o", dir.file("c.png"), "--json"});
+  if (plain.exit_code != 0 && plain.err.find("EGL") != std::string::npos) GTEST_SKIP() << "no headless GL: " << plain.err;
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  ASSERT_EQ(coloured.exit_code, 0) << coloured.err;
+  EXPECT_NE(coloured.out.find("\"colour_level\": 1"), std::string::npos) << coloured.out;
+  const Png a = load(dir.file("plain.png")), c = load(dir.file("c.png"));
+  ASSERT_EQ(c.w, 800);
+  EXPECT_LT(saturated(a), 0.01);
+  EXPECT_GT(saturated(c), 0.08) << "the surface is not coloured";  // it covers about an eighth of the image
+  // The large wavelets (along the step of the detail at x = 0) in viridis' green and yellow.
+  std::size_t high = 0;
+  for (std::size_t i = 0; i + 3 < c.rgba.size(); i += 4)
+    if (c.rgba[i + 1] > 140 && c.rgba[i + 1] > c.rgba[i + 2] + 20) ++high;
+  EXPECT_GT(high, 100u);
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"render", dir.file("t.sublift"), "--colour", "2", "-o", dir.file("x.png")},  // the finest has no wavelets
+           {"render", dir.file("t.sublift"), "--colour", "x", "-o", dir.file("x.png")},
+       }) {
+    const testing::ProcessResult bad = testing::run_cli(args);
+    EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  }
 }
 
 }  // namespace

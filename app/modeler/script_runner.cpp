@@ -419,6 +419,15 @@ constexpr Command kCommands[] = {
     }},
     {"export", kPath, 0, "export PATH", [](const Call& c) { c.state.export_shape(c.raw, true); }},
     {"export-levels", kPath, 0, "export-levels PATH", [](const Call& c) { c.state.export_levels(c.raw); }},
+    {"export-net", 2, kMany, "export-net LEVEL PATH", [](const Call& c) {
+      const long long l = integer(c.w[1], "LEVEL");
+      const int finest = c.state.session().finest_level();
+      if (l < 0 || l > finest) throw ScriptError("export-net level " + c.w[1] + " is outside 0.." + std::to_string(finest));
+      const std::string path = rest_of(c.raw, c.w[1]);
+      if (path.empty()) c.usage_error();
+      c.state.export_level(path, static_cast<int>(l));
+    }},
+
     {"delete", 1, 1, "delete higher|lower", [](const Call& c) {
       if (c.w[1] == "higher") return void(c.state.delete_higher_levels());
       if (c.w[1] == "lower") return void(c.state.delete_lower_levels());

@@ -11,7 +11,7 @@
 //   brush draw|inflate|smooth|grab|flatten|pinch [RADIUS [STRENGTH]] | brush falloff NAME
 //   brush front|invert on|off | stroke X Y Z [X Y Z ...] (dabs at world points, one undo step)
 //   crease mark|clear|toggle (base edges between selected points) | corner mark|clear|toggle | frames world|local | undo | redo | save PATH
-//   export PATH | export-levels PATH (every level's net: PATH's name + _L0.._LJ) | screenshot PATH
+//   export PATH | export-net LEVEL PATH (that level's control net) | export-levels PATH (every level's net: PATH's name + _L0.._LJ) | screenshot PATH
 //   delete higher|lower (the levels above the edit level / below it: it becomes the base)
 //   apply-base (accepted for Blender users; nothing to do) | quit
 //   colour LEVEL|off | display smooth|wireframe|net|xray|depth_cue|clip|ortho on|off

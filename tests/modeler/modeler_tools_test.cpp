@@ -291,6 +291,9 @@ TEST(ModelerLevels, ExportEveryLevelAndScriptCommands) {
     const Shape shape = read_shape(dir.file("shape_L" + std::to_string(l) + ".obj"));
     EXPECT_EQ(shape.base.num_vertices, edited_torus("cubic").session().num_vertices(l)) << l;
   }
+  ScriptRunner net("levels.txt", "export-net 0 " + dir.file("net 0.obj") + "\n");
+  ASSERT_EQ(net.next(m).kind, ScriptStep::Kind::End);
+  EXPECT_EQ(read_shape(dir.file("net 0.obj")).base.num_vertices, m.session().num_vertices(0));
   ScriptRunner bad("bad.txt", "delete middle\n");
   EXPECT_EQ(bad.next(m).message, "script:1: usage: delete higher|lower");
   EXPECT_NE(std::string(ModelerState::apply_base_note()).find("nothing to apply"), std::string::npos);

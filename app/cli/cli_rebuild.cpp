@@ -7,6 +7,7 @@
 #include "app/cli/cli_commands.h"
 #include "app/cli/cli_hierarchy.h"
 #include "app/cli/cli_json.h"
+#include "core/complex/feature_tags.h"
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
 #include "core/complex/complex_build.h"
@@ -76,7 +77,7 @@ int run_rebuild(int argc, char** argv) {
 
   Rebuilt r = lattice ? rebuild_volume_hierarchy(fine.base, fine.positions, scheme, levels, integer)
                       : rebuild_hierarchy(fine.base.num_vertices, fine.base.faces, fine.positions, scheme, levels, integer, disc,
-                                          feature_tags_of(fine.base));
+                                          derive_feature_tags(fine.base));
   for (const std::string& why : r.features.dropped) std::cerr << fine_path << ": warning: feature tag dropped: " << why << "\n";
   // What the project does not keep, so synthesize cannot write back.
   std::vector<std::string> not_kept;

@@ -143,7 +143,7 @@ ModelerState::PreparedRebuild ModelerState::prepare_rebuild(const std::string& f
     return {rebuild_volume_hierarchy(shape.base, shape.positions, offer.levels > 0 ? offer.scheme : Scheme::Cubic, levels, false, progress), Csr{}};
   const Scheme scheme = offer.levels > 0 ? offer.scheme : rebuild_auto_scheme(shape.base.faces);
   return {rebuild_hierarchy(shape.base.num_vertices, shape.base.faces, shape.positions, scheme, levels, false, 2,
-                            feature_tags_of(shape.base), progress),
+                            derive_feature_tags(shape.base), progress),
           std::move(shape.base.faces)};
 }
 
@@ -203,7 +203,7 @@ ModelerState::PreparedFit ModelerState::prepare_fit(const std::string& file, con
   fo.scheme = settings.scheme;
   fo.levels = settings.levels > 0 ? settings.levels : default_fit_levels(shape.base.num_vertices, base.num_vertices, settings.scheme);
   fo.progress = progress;
-  return {fit_levels(base, shape.base.faces, shape.positions, fo), base.num_vertices, feature_tags_of(shape.base),
+  return {fit_levels(base, shape.base.faces, shape.positions, fo), base.num_vertices, derive_feature_tags(shape.base),
           FitSource{std::filesystem::absolute(file).lexically_normal().string(), shape.base.num_vertices, base.input_vertex}};
 }
 
@@ -565,15 +565,18 @@ std::string ModelerState::toggle_creases(std::optional<bool> on) {
   bool all = true;
   for (const std::uint32_t e : edges) all = all && c.edge_dim[e] <= 1;
   if (on) all = !*on;
-  const FeatureTags tags = with_creases(c, derive_feature_tags(c), edges, !all);
-  auto next = std::make_unique<Session>(with_base_features(*session_, tags));
+  install_features(with_creases(c, derive_feature_tags(c), edges, !all));
+  return std::string(all ? "cleared " : "creased ") + std::to_string(edges.size()) + " edge" + (edges.size() == 1 ? "" : "s") +
+         " of the base; the shape and its detail are kept (Ctrl+Z undoes)";
+}
+
+void ModelerState::install_features(const FeatureTags& tags) {
+  auto next = std::make_unique<Session>(with_base_features(*session_, tags));  // core/edit/features.h
   if (session_->detail_frames() == DetailFrames::Local) next->set_detail_frames(DetailFrames::Local);
   next->mark_unsaved();
   replace_session(std::move(next));
   update_.topology = true;
   refresh_state();
-  return std::string(all ? "cleared " : "creased ") + std::to_string(edges.size()) + " edge" + (edges.size() == 1 ? "" : "s") +
-         " of the base; the shape and its detail are kept (Ctrl+Z undoes)";
 }
 
 std::string ModelerState::toggle_corners(std::optional<bool> on) {
@@ -585,13 +588,7 @@ std::string ModelerState::toggle_corners(std::optional<bool> on) {
   bool all = true;
   for (const unsigned v : selection_) all = all && c.vertex_dim[v] == 0;
   if (on) all = !*on;
-  const FeatureTags tags = with_corners(derive_feature_tags(c), selection_, !all);
-  auto next = std::make_unique<Session>(with_base_features(*session_, tags));
-  if (session_->detail_frames() == DetailFrames::Local) next->set_detail_frames(DetailFrames::Local);
-  next->mark_unsaved();
-  replace_session(std::move(next));
-  update_.topology = true;
-  refresh_state();
+  install_features(with_corners(derive_feature_tags(c), selection_, !all));
   return std::string(all ? "cleared " : "made ") + std::to_string(selection_.size()) + " corner" +
          (selection_.size() == 1 ? "" : "s") + " of the base; the shape and its detail are kept (Ctrl+Z undoes)";
 }

@@ -372,6 +372,7 @@ class ModelerState {
   void restore(Snapshot s);
   /// Installs `next` in place of the current session, which goes on the structural undo stack.
   void replace_session(std::unique_ptr<Session> next);
+  void install_features(const FeatureTags& tags);  // the base with these tags, shape kept (undoable)
   ProjectExtras project_extras() const;             // what a save keeps beside the hierarchy
   void after_operation();                           // pull changed() into limit and update
   void rebuild_limit();

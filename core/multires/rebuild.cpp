@@ -38,15 +38,6 @@ SplitKind rebuild_split(Scheme s) {
   throw Error("rebuilding levels of the " + scheme_name(s) + " scheme's refinement is not supported (docs/rebuild.md)");
 }
 
-FeatureTags feature_tags_of(const Complex& c) {
-  FeatureTags t;
-  for (std::uint32_t e = 0; e < c.num_edges(); ++e)
-    if (c.edge_dim[e] == 1 && untagged_edge_dim(c, e) != 1) t.crease_edges.emplace_back(c.edge_verts[2 * e], c.edge_verts[2 * e + 1]);
-  for (std::uint32_t v = 0; v < c.num_vertices; ++v)
-    if (c.vertex_dim[v] == 0 && untagged_vertex_dim(c, v) != 0) t.corner_vertices.push_back(v);
-  return t;
-}
-
 CarriedFeatures carry_features_down(const DetectedLevels& d, const FeatureTags& fine) {
   CarriedFeatures out;
   out.creases = fine.crease_edges.size();

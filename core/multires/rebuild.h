@@ -22,10 +22,6 @@ Scheme rebuild_auto_scheme(const Csr& faces);
 /// refinement is not detected (sqrt(2)).
 SplitKind rebuild_split(Scheme s);
 
-/// The crease and corner tags that `c` carries beyond what its topology implies (interior
-/// edges of dim 1, vertices of dim 0 that their edges would not make cusps).
-FeatureTags feature_tags_of(const Complex& c);
-
 /// Fine tags carried down the levels of `d` to its base: a crease on both halves of a coarse
 /// edge creases that edge, a corner on an old vertex stays. What cannot be carried (a crease
 /// inside a coarse face, half a coarse edge, a corner on an edge or face point) is dropped and

@@ -408,16 +408,16 @@ TEST(ModelerGuiTest, HeadlessRotateAndScaleAboutTheCursorAndUndo) {
 
 namespace {
 
-// Selection, mirror and sculpt tools (issue 19), headless: an edge loop shows as a ring of
-// selected points; a symmetric inflate stroke changes the picture on both sides of x = 0;
-// undo restores it.
-TEST(ModelerGuiTest, HeadlessLoopSelectionAndSymmetricSculptStroke) {
-  const fs::path dir = out_dir("headless");
+// Selection, mirror and sculpt tools (issue 19), in a window under Xvfb and headless: an edge
+// loop shows as a ring of selected points; a symmetric inflate stroke changes the picture on
+// both sides of x = 0; undo restores it.
+void check_tools_run(const std::string& mode) {
+  const fs::path dir = out_dir(mode);
   for (const char* f : {"tools_a.png", "tools_b.png", "tools_c.png", "tools_d.png"}) fs::remove(dir / f);
   const std::string script = "open " + torus() + "\nview front\nscreenshot tools_a.png\nselect loop 0 1\nscreenshot tools_b.png\n"
                              "select none\nsymmetry x on\nbrush inflate 0.35 1\nstroke 1.4 0 0 1.3 0.2 0\n"
                              "screenshot tools_c.png\nundo\nscreenshot tools_d.png\n";
-  const ProcessResult r = run_script("headless", "tools", script);
+  const ProcessResult r = run_script(mode, "tools", script);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Png a = load_png(dir / "tools_a.png"), b = load_png(dir / "tools_b.png"), c = load_png(dir / "tools_c.png"),
             d = load_png(dir / "tools_d.png");
@@ -431,6 +431,36 @@ TEST(ModelerGuiTest, HeadlessLoopSelectionAndSymmetricSculptStroke) {
   EXPECT_LT(changed.x0, middle - 40) << "nothing changed on the mirrored side";
   EXPECT_GT(changed.x1, middle + 40) << "nothing changed on the stroked side";
   EXPECT_LT(changed_pixels(a, d, 24).count, 20) << "undo did not restore the picture";
+}
+
+TEST(ModelerGuiTest, HeadlessLoopSelectionAndSymmetricSculptStroke) { check_tools_run("headless"); }
+TEST(ModelerGuiTest, XvfbLoopSelectionAndSymmetricSculptStroke) { check_tools_run("xvfb"); }
+
+// Features and levels (issue 19), headless: creasing a base edge draws it in the crease blue
+// and keeps the surface; Delete lower keeps the picture of the finer levels; undo brings both
+// back.
+TEST(ModelerGuiTest, HeadlessCreaseAndDeleteLowerKeepTheShape) {
+  const fs::path dir = out_dir("headless");
+  for (const char* f : {"lv_a.png", "lv_b.png", "lv_b2.png", "lv_c.png", "lv_d.png"}) fs::remove(dir / f);
+  const std::string script = "open " + torus() + "\nlevel 0\nselect 0 1 2 3 4 5 6 7\nscreenshot lv_a.png\ncrease mark\n"
+                             "select none\nscreenshot lv_b.png\ndisplay net off\nscreenshot lv_b2.png\nlevel 1\n"
+                             "delete lower\nscreenshot lv_c.png\ndisplay net on\nundo\nundo\n"
+                             "level 0\nselect 0 1 2 3 4 5 6 7\nscreenshot lv_d.png\n";
+  const ProcessResult r = run_script("headless", "levels", script);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Png a = load_png(dir / "lv_a.png"), b = load_png(dir / "lv_b.png"), b2 = load_png(dir / "lv_b2.png"),
+            c = load_png(dir / "lv_c.png"), d = load_png(dir / "lv_d.png");
+  ASSERT_EQ(a.width, kWidth);
+  auto crease_blue = [](const Png& p) {
+    long n = 0;
+    for (int y = 0; y < kHeight - kStatusHeight; ++y)
+      for (int x = kPanelWidth; x < kWidth; ++x)
+        if (p.channel(x, y, 2) > 180 && p.channel(x, y, 0) < 60 && p.channel(x, y, 1) > 70 && p.channel(x, y, 1) < 150) ++n;
+    return n;
+  };
+  EXPECT_GT(crease_blue(b), crease_blue(a) + 30) << "the creased ring is not drawn in the crease colour";
+  EXPECT_LT(changed_pixels(a, d, 24).count, 20) << "undo did not restore the picture";
+  EXPECT_LT(changed_pixels(b2, c, 24).count, 20) << "Delete lower changed the surface";
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Rebuilding a hierarchy from a mesh subdivided elsewhere (core/multires/rebuild.h): the
 // analysis reproduces the input, bilinear data has zero linear wavelets, a coarse edit carries
 // the detail as on a project made in engine order, and the project keeps the input order.
+#include "core/complex/feature_tags.h"
 #include "core/multires/rebuild.h"
 
 #include <gtest/gtest.h>
@@ -199,7 +200,7 @@ TEST(Rebuild, CreasesAndCornersAreCarriedToTheBase) {
   const std::vector<double> x = synthesize(h, 2);
   Complex fine = h.levels.back();
   build_adjacency(fine);
-  const FeatureTags fine_tags = feature_tags_of(fine);
+  const FeatureTags fine_tags = derive_feature_tags(fine);
   EXPECT_EQ(fine_tags.crease_edges.size(), 8u);  // each crease halved twice
   EXPECT_EQ(fine_tags.corner_vertices.size(), 1u);
   Rebuilt r = rebuild_hierarchy(fine.num_vertices, fine.faces, x, Scheme::Cubic, 2, false, 2, fine_tags);
@@ -209,7 +210,7 @@ TEST(Rebuild, CreasesAndCornersAreCarriedToTheBase) {
   // The rebuilt levels have the input's features: its finest edges of dim 1 are the input's.
   Complex again = r.hierarchy.levels.back();
   build_adjacency(again);
-  EXPECT_EQ(feature_tags_of(again).crease_edges.size(), 8u);
+  EXPECT_EQ(derive_feature_tags(again).crease_edges.size(), 8u);
   // A crease across a coarse face (from a face point to an edge point) cannot come down.
   FeatureTags odd = fine_tags;
   // Level-2 face 0 is (v, e, f, e') of level-1 face 0 (refine.h): corners 1 and 2 are an edge

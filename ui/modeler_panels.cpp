@@ -133,6 +133,11 @@ void draw_levels_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   if (ImGui::SliderInt("Edit level", &level, 0, std::max(d.finest, 0)) && level != d.level) r.level = level;
   ImGui::SameLine();
   if (ImGui::Button("Subdivide")) r.subdivide = true;
+  // Blender's viewport level: a coarser limit draws faster; edits and exports keep every level.
+  int view = d.view_level < 0 ? d.finest : std::min(d.view_level, d.finest);
+  ImGui::SetNextItemWidth(120.0f);
+  if (ImGui::SliderInt("Viewport level", &view, 0, std::max(d.finest, 0)) && view != (d.view_level < 0 ? d.finest : d.view_level))
+    r.view_level = view == d.finest ? -1 : view;
   ImGui::BeginDisabled(d.level >= d.finest);
   if (ImGui::Button("Delete higher")) r.delete_higher = true;
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("Remove the levels finer than the edit level");

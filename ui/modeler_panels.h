@@ -98,6 +98,7 @@ struct ModelerPanelData {
   int dim = 2;
   int scheme = 1;                     // Scheme's value: 0 linear, 1 cubic, 2 sqrt2
   int level = 0, finest = 0;
+  int view_level = -1;                // the level whose limit is drawn (-1: the finest)
   int rebuild_levels = 0;             // the opened mesh was subdivided this many times elsewhere
   std::string rebuild_scheme;         // the scheme a rebuild would use
   std::string rebuild_stop;           // why it holds no more levels (empty: not checked)
@@ -138,7 +139,7 @@ struct FileFields {
 
 /// What the user asked for this frame.
 struct ModelerPanelRequests {
-  std::optional<int> scheme, level, colour_level;
+  std::optional<int> scheme, level, colour_level, view_level;
   std::optional<std::size_t> history_jump;
   std::optional<bool> local_frames;
   int gain_level = -1;                // a gain slider moved: level and value

@@ -767,6 +767,7 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
       }
     }
     if (r.level) model.set_level(*r.level);
+    if (r.view_level) model.set_view_level(*r.view_level);
     if (r.subdivide) model.subdivide();
     if (r.rebuild && !job_) {
       model.check_rebuild();
@@ -1024,6 +1025,7 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     d.selected = model.selection().size();
     d.soft_radius = model.soft_radius();
     d.pivot = static_cast<int>(model.pivot());
+    d.view_level = model.view_level();
     for (int a = 0; a < 3; ++a) d.symmetry[a] = model.symmetry(a);
     d.sculpt = sculpt_;
     d.brush = model.brush();

@@ -111,6 +111,7 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   clear_pin();  // a new model: the comparison belonged to the old one
   structure_undo_.clear();  // undo does not go back to another file
   structure_redo_.clear();
+  view_level_ = -1;
   install(std::move(session));
   rebuild_offer_ = std::move(offer);
   input_order_ = std::move(order);
@@ -284,9 +285,33 @@ void ModelerState::install(std::unique_ptr<Session> session) {
   refresh_colour();
 }
 
+int ModelerState::shown_level() const {
+  const int J = session_->finest_level();
+  return view_level_ < 0 ? J : std::min(view_level_, J);
+}
+
+void ModelerState::set_view_level(int level) {
+  if (level < -1 || level > session_->finest_level())
+    throw Error("viewport level " + std::to_string(level) + " is outside 0.." + std::to_string(session_->finest_level()) +
+                " (or -1: the finest)");
+  if (compress_) throw Error("the compression view shows the finest level: turn it off to change the viewport level");
+  if (basis_) throw Error("the basis mode shows the finest level: turn it off to change the viewport level");
+  if (level == view_level_) return;
+  view_level_ = level;
+  rebuild_limit();
+  refresh_colour();
+  update_.topology = true;
+  refresh_state();
+}
+
 void ModelerState::rebuild_limit() {
-  const Hierarchy& h = session_->hierarchy();
-  const int J = h.finest_level();
+  const Hierarchy& full = session_->hierarchy();
+  const int V = shown_level();
+  // A coarser viewport level: the limit of the hierarchy cut at V (its stencils are V's).
+  std::optional<Hierarchy> cut;
+  if (V < full.finest_level()) cut = delete_higher(full, V);
+  const Hierarchy& h = cut ? *cut : full;
+  const int J = V;
   LimitSurface surface = finest_limit_surface(h, session_->positions(J));  // core/analysis/limit_surface.h
   const std::size_t n = h.num_vertices(J);
   stencils_ = std::move(surface.stencils);
@@ -316,7 +341,7 @@ void ModelerState::after_operation() {
     refresh_colour();
     return;
   }
-  const int J = s.finest_level();
+  const int J = shown_level();  // the level whose limit is drawn
   const auto changed_fine = s.changed(J);
   if (!changed_fine.empty()) {
     std::vector<std::uint32_t> moved;
@@ -855,6 +880,7 @@ void ModelerState::refresh_colour() {
   colour_.clear();
   if (colour_level_ < 0) return;
   colour_ = wavelet_magnitude_field(session_->hierarchy(), session_->gains(), colour_level_);  // core/analysis/wavelet_colour.h
+  colour_.resize(session_->num_vertices(shown_level()));  // level V's vertices come first at every finer level
 }
 
 ProjectExtras ModelerState::project_extras() const {
@@ -888,7 +914,12 @@ std::vector<std::string> ModelerState::export_level(const std::string& path, int
   const Complex& c = h.levels[static_cast<std::size_t>(level)];
   if (surface_export_supported(path) && c.dim >= 2) {
     if (finest) {
-      write_surface_with_normals(path, faces_, limit_, normals_);
+      if (shown_level() == h.finest_level()) {
+        write_surface_with_normals(path, faces_, limit_, normals_);
+      } else {  // the viewport shows a coarser level: the export is still the finest limit
+        const LimitSurface s = finest_limit_surface(h, session_->positions(h.finest_level()));
+        write_surface_with_normals(path, s.faces, s.positions, s.normals);
+      }
       return {};
     }
     // The control net of the current level, with area-weighted face normals; a rebuilt mesh's
@@ -912,7 +943,10 @@ std::vector<std::string> ModelerState::export_level(const std::string& path, int
   if (const std::string problem = shape_output_problem(path, c.dim); !problem.empty()) {
     throw Error(path + ": " + problem);
   }
-  if (finest) return write_shape(path, c, limit_);
+  if (finest) {
+    if (shown_level() == h.finest_level()) return write_shape(path, c, limit_);
+    return write_shape(path, c, finest_limit_surface(h, session_->positions(h.finest_level())).positions);
+  }
   if (level == input_order_.level)  // a rebuilt mesh's level: in the order of its file
     return write_shape(path, in_input_order(input_order_, c), in_input_order(input_order_, session_->positions(level), 3));
   return write_shape(path, c, session_->positions(level));
@@ -962,6 +996,8 @@ void ModelerState::set_basis(const BasisSettings& settings_in) {
     basis_off();
     return;
   }
+  if (shown_level() != session_->finest_level())
+    throw Error("the basis mode shows the finest level: set the viewport level to the finest first");
   BasisSettings settings = settings_in;
   if (compress_) compression_off();  // both replace the surface: the newer request wins
   int& j = settings.request.level;
@@ -1132,6 +1168,8 @@ void ModelerState::refresh_compression_net() {
 }
 
 void ModelerState::set_compression(double fraction) {
+  if (session_ && shown_level() != session_->finest_level())
+    throw Error("the compression view shows the finest level: set the viewport level to the finest first");
   if (!session_) throw Error("compression: no model is open");
   if (!(fraction >= 0.0 && fraction <= 1.0)) throw Error("compression: the kept fraction must be in 0..1");
   if (dragging_) throw Error("compression: finish the drag first");

@@ -141,6 +141,15 @@ class ModelerState {
   /// The mesh a fitted model was fitted to (empty otherwise); saved with the project.
   const FitSource& fit_source() const { return fit_source_; }
   void set_level(int level);
+  /// Blender's separate viewport level: the surface drawn (and brushed, and picked) is the limit
+  /// of level `level` (-1: the finest, the default, which follows subdivide); edits, the history,
+  /// saves and "finest limit" exports still use every level. Coarser is faster on big models.
+  /// Throws Error outside -1..J or while the compression view or the basis mode is on (they draw
+  /// the finest surface).
+  void set_view_level(int level);
+  int view_level() const { return view_level_; }
+  /// The level whose limit is shown: view_level() clamped to the finest.
+  int shown_level() const;
   void subdivide();
   /// Blender's Multires "Delete Higher" / "Delete Lower" (core/edit/level_ops.h): the levels
   /// above the edit level go / the edit level becomes the base (the edit level becomes 0); the
@@ -277,7 +286,9 @@ class ModelerState {
   std::vector<LevelStats> level_rows() const;
 
   const Csr& surface_faces() const { return faces_; }
-  /// The finest limit surface shown (the compressed one while the compression view is on).
+  /// The shown level's complex (the finest unless set_view_level chose another).
+  const Complex& shown_complex() const { return session_->hierarchy().levels[static_cast<std::size_t>(shown_level())]; }
+  /// The limit surface shown (of shown_level(); the compressed one while the compression view is on) (the compressed one while the compression view is on).
   const std::vector<double>& limit_positions() const { return compress_ ? compress_->limit : limit_; }
   const std::vector<double>& limit_normals() const { return compress_ ? compress_->normals : normals_; }
   /// Edges of the current level as vertex pairs, with feature classes for the net renderer.
@@ -390,6 +401,7 @@ class ModelerState {
   std::string file_path_, project_path_;
   std::vector<std::string> warnings_;
   int level_ = 0;
+  int view_level_ = -1;  // set_view_level
   std::vector<unsigned> selection_;
   long long hover_ = -1;
   double soft_radius_ = 0.0;

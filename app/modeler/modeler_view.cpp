@@ -49,8 +49,8 @@ void ModelerView::sync(ModelerState& state) {
       surface_.set_topology(faces.offsets, faces.items, n);
       surface_.set_positions_normals(state.limit_positions(), state.limit_normals());
     } else {
-      const Complex& finest = state.session().hierarchy().levels.back();
-      curve_.set_topology(finest.edge_verts, {}, {}, n);
+      const Complex& shown = state.shown_complex();  // the finest unless a viewport level is set
+      curve_.set_topology(shown.edge_verts, {}, {}, n);
       curve_.set_positions(state.limit_positions());
     }
     net_.set_topology(state.net_edges(), state.net_edge_features(), state.net_vertex_features(),

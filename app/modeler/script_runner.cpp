@@ -255,6 +255,13 @@ constexpr Command kCommands[] = {
       if (l < 0 || l > finest) throw ScriptError("level " + c.w[1] + " is outside 0.." + std::to_string(finest));
       c.state.set_level(static_cast<int>(l));
     }},
+    {"view-level", 1, 1, "view-level L|finest", [](const Call& c) {
+      if (c.w[1] == "finest") return c.state.set_view_level(-1);
+      const long long l = integer(c.w[1], "L");
+      const int finest = c.state.session().finest_level();
+      if (l < 0 || l > finest) throw ScriptError("view-level " + c.w[1] + " is outside 0.." + std::to_string(finest) + " (or finest)");
+      c.state.set_view_level(static_cast<int>(l));
+    }},
     {"select", 0, kMany, "select [INDEX...] | select all|none|invert|more|less|linked | select loop|ring A B [add]", [](const Call& c) {
       using Op = ModelerState::SelectOp;
       static constexpr std::pair<const char*, Op> kOps[] = {

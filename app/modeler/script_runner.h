@@ -4,6 +4,7 @@
 // the selection with the current soft radius). Blank lines and `#` comments are skipped; paths
 // are relative to the current directory. Commands:
 //   open PATH | scheme linear|cubic | subdivide [N] | level L | select [INDEX...] | soft RADIUS
+//   view-level L|finest (the level whose limit surface is drawn; edits and exports unaffected)
 //   select all|none|invert|more|less|linked | select loop|ring A B [add] (through edge A-B)
 //   move DX DY DZ | rotate x|y|z DEGREES | rotate AX AY AZ DEGREES | scale S | scale SX SY SZ
 //   pivot median|active|cursor|origin | cursor X Y Z | active INDEX | gain LEVEL FACTOR

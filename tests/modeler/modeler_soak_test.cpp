@@ -1,6 +1,7 @@
 // The modeler soak test (issue 18): a seeded random sequence of the operations a user runs —
-// open, scheme, subdivide, level, select, soft radius, move (drags, some cancelled), gain,
-// detail frames, compress (view, apply, off), undo, redo, save and reopen — on every bundled
+// open, scheme, subdivide, level, select, soft radius, move (drags, some cancelled), rotate and
+// scale about random pivots, brush strokes of every kind, mirror editing on and off (issue 19),
+// gain, detail frames, compress (view, apply, off), undo, redo, save and reopen — on every bundled
 // sample with every scheme that takes it, through ModelerState (the calls the mouse, the keys
 // and `sublift --script` make). After every step:
 //   - every level's control net equals a fresh dense synthesis of the session's coefficients
@@ -158,8 +159,9 @@ bool run_episode(ModelerState& m, std::mt19937_64& rng, int steps, const std::st
   auto pick = [&](int n) { return static_cast<int>(rng() % static_cast<std::uint64_t>(std::max(n, 1))); };
   auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
   static const char* kOps[] = {"level", "subdivide", "select", "soft", "move", "move-cancel", "gain",
-                               "frames", "compress-apply", "compress-view", "undo", "redo"};
-  static const int kWeights[] = {2, 1, 3, 1, 6, 1, 2, 1, 1, 1, 3, 2};
+                               "frames", "compress-apply", "compress-view", "undo", "redo",
+                               "rotate", "scale", "stroke", "mirror"};
+  static const int kWeights[] = {2, 1, 3, 1, 6, 1, 2, 1, 1, 1, 3, 2, 2, 1, 3, 1};
   std::discrete_distribution<int> choose(std::begin(kWeights), std::end(kWeights));
   std::string log;  // the episode's operations, for the failure messages
   for (int step = 0; step < steps; ++step) {
@@ -203,6 +205,51 @@ bool run_episode(ModelerState& m, std::mt19937_64& rng, int steps, const std::st
         } else {
           m.end_drag();
         }
+      } else if (op == "rotate" || op == "scale") {
+        // Issue 19's transforms about a random pivot, with the symmetry the episode has on.
+        if (m.selection().empty()) m.set_selection({0});
+        m.set_pivot(static_cast<Pivot>(pick(4)));
+        m.set_cursor({uniform(-1, 1) * extent(m), uniform(-1, 1) * extent(m), 0.0});
+        m.begin_transform(op == "rotate" ? TransformMode::Rotate : TransformMode::Scale);
+        try {
+          for (int k = 1 + pick(2); k > 0; --k) {
+            const glm::dvec3 axis(uniform(-1, 1), uniform(-1, 1), uniform(0.1, 1));
+            if (op == "rotate") m.transform_to(axis, uniform(-1.5, 1.5), glm::dvec3(1.0));
+            else m.transform_to(axis, 0.0, glm::dvec3(uniform(0.6, 1.4), uniform(0.6, 1.4), uniform(0.6, 1.4)));
+          }
+        } catch (const Error&) {
+          m.cancel_drag();
+          throw;
+        }
+        m.end_drag();
+      } else if (op == "stroke") {
+        // A brush stroke of a few dabs at control points of the edit level.
+        BrushSettings b;
+        b.kind = static_cast<BrushKind>(pick(6));
+        b.radius = uniform(0.5, 3.0) * m.default_soft_radius();
+        b.strength = uniform(0.1, 1.0);
+        b.falloff = static_cast<Falloff>(pick(4));
+        b.invert = pick(2) != 0;
+        m.set_brush(b);
+        m.begin_stroke();  // refuses (and changes nothing) for normal brushes off surfaces
+        try {
+          const auto n = static_cast<int>(m.session().num_vertices(m.level()));
+          for (int k = 1 + pick(3); k > 0; --k) {
+            const auto p = m.session().positions(m.level());
+            const std::size_t v = 3 * static_cast<std::size_t>(pick(n));
+            Dab d;
+            d.center = {p[v], p[v + 1], p[v + 2]};
+            d.view_dir = glm::dvec3(0.0);
+            d.motion = {uniform(-0.05, 0.05) * extent(m), uniform(-0.05, 0.05) * extent(m), 0.0};
+            m.dab(d);
+          }
+        } catch (const Error&) {
+          m.cancel_drag();
+          throw;
+        }
+        m.end_drag();
+      } else if (op == "mirror") {
+        m.set_symmetry(pick(3), pick(2) != 0);  // a partial map on an asymmetric sample is fine
       } else if (op == "gain") {
         if (J == 0) continue;
         const int l = pick(J);

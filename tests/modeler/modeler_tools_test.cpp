@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "app/modeler/script_runner.h"
+#include "core/analysis/limit_surface.h"
+#include "core/edit/level_ops.h"
 #include "core/edit/selection.h"
 #include "tests/modeler/controller_fixture.h"
 #include "core/base/errors.h"
@@ -722,6 +724,47 @@ TEST(ModelerFeatures, LevelDeletionsAndSchemeChangesUndoToo) {
   ASSERT_EQ(edit.next(m).kind, ScriptStep::Kind::End);
   EXPECT_FALSE(m.redo());
   EXPECT_EQ(levels_of(m).size(), before.size());
+}
+
+}  // namespace
+}  // namespace sublift
+
+namespace sublift {
+namespace {
+
+// The limit surface of level `v` of the session, evaluated afresh (the hierarchy cut at v).
+std::vector<double> fresh_limit(const ModelerState& m, int v) {
+  const Hierarchy cut = delete_higher(m.session().hierarchy(), v);
+  return finest_limit_surface(cut, m.session().positions(v)).positions;
+}
+
+TEST(ModelerViewLevel, ACoarserViewportLevelDrawsThatLevelsLimitAndExportsStayFinest) {
+  const testing::TempDir dir("sublift_view_level");
+  ModelerState m = edited_torus("cubic");
+  const int J = m.session().finest_level();
+  ASSERT_EQ(J, 3);
+  m.set_view_level(1);
+  EXPECT_EQ(m.shown_level(), 1);
+  EXPECT_EQ(m.limit_positions().size(), 3 * std::size_t(m.session().num_vertices(1)));
+  EXPECT_LT(testing::max_abs_diff(m.limit_positions(), fresh_limit(m, 1)), 1e-12);
+  // Edits at any level update the shown limit incrementally, as a fresh evaluation would.
+  ScriptRunner run("v.txt", "level 0\nselect 3\nmove 0 0.1 0\nlevel 2\nselect 40\nmove 0.05 0 0\nundo\n");
+  ASSERT_EQ(run.next(m).kind, ScriptStep::Kind::End);
+  EXPECT_LT(testing::max_abs_diff(m.limit_positions(), fresh_limit(m, 1)), 1e-12);
+  // "Finest limit" exports are the finest level's, whatever the viewport shows.
+  m.export_shape(dir.file("f.obj"), true);
+  EXPECT_EQ(read_shape(dir.file("f.obj")).base.num_vertices, m.session().num_vertices(J));
+  // The compression view and the basis mode draw the finest level: refused while coarser.
+  EXPECT_THROW(m.set_compression(0.5), Error);
+  // Subdivide keeps the chosen level; finest follows the new finest.
+  m.subdivide();
+  EXPECT_EQ(m.shown_level(), 1);
+  ScriptRunner back("v.txt", "view-level finest\n");
+  ASSERT_EQ(back.next(m).kind, ScriptStep::Kind::End);
+  EXPECT_EQ(m.shown_level(), 4);
+  EXPECT_EQ(m.limit_positions().size(), 3 * std::size_t(m.session().num_vertices(4)));
+  ScriptRunner bad("bad.txt", "view-level 9\n");
+  EXPECT_EQ(bad.next(m).message, "script:1: view-level 9 is outside 0..4 (or finest)");
 }
 
 }  // namespace

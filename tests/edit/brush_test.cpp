@@ -11,6 +11,7 @@
 #include "core/complex/shapes.h"
 #include "core/edit/brush.h"
 #include "core/edit/session.h"
+#include "tests/edit_grid.h"
 #include "tests/noisy_hierarchy.h"
 #include "tests/test_shapes.h"
 
@@ -18,19 +19,7 @@ namespace sublift {
 namespace {
 
 // An n x n grid of unit quads in z = 0 centred on the origin, with its upward rows.
-Complex flat_grid(int n, std::vector<double>& p) {
-  Csr faces;
-  auto v = [&](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      for (const std::uint32_t c : {v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)}) faces.items.push_back(c);
-      faces.offsets.push_back(static_cast<std::uint32_t>(faces.items.size()));
-    }
-  p.clear();
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) p.insert(p.end(), {i - n / 2.0, j - n / 2.0, 0.0});
-  return complex_from_polygons(static_cast<std::uint32_t>((n + 1) * (n + 1)), faces);
-}
+Complex flat_grid(int n, std::vector<double>& p) { return testing::quad_grid(n, n, p, -n / 2.0); }
 
 TEST(Brush, FalloffCurves) {
   EXPECT_EQ(falloff_weight(Falloff::Smooth, 0.0), 1.0);

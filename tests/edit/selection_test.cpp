@@ -9,6 +9,7 @@
 #include "core/edit/selection.h"
 #include "core/edit/symmetry.h"
 #include "core/io/lattice/shape_io.h"
+#include "tests/edit_grid.h"
 
 namespace sublift {
 namespace {
@@ -17,17 +18,10 @@ using V = std::vector<unsigned>;
 
 // An nx x ny grid of unit quads in z = 0; vertex (i, j) is j * (nx + 1) + i at (i, j, 0).
 Complex grid(int nx, int ny, std::vector<double>* positions = nullptr) {
-  Csr faces;
-  auto v = [&](int i, int j) { return static_cast<std::uint32_t>(j * (nx + 1) + i); };
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      for (const std::uint32_t c : {v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)}) faces.items.push_back(c);
-      faces.offsets.push_back(static_cast<std::uint32_t>(faces.items.size()));
-    }
-  if (positions)
-    for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i) positions->insert(positions->end(), {double(i), double(j), 0.0});
-  return complex_from_polygons(static_cast<std::uint32_t>((nx + 1) * (ny + 1)), faces);
+  std::vector<double> p;
+  Complex c = testing::quad_grid(nx, ny, p);
+  if (positions) *positions = std::move(p);
+  return c;
 }
 
 std::uint32_t edge(const Complex& c, std::uint32_t a, std::uint32_t b) {

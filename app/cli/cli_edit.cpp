@@ -2,6 +2,7 @@
 //             --delta DX DY DZ | --rotate AXIS DEGREES | --scale S  [--pivot P]
 //             | --brush KIND --at X Y Z [--radius R] [--strength S] [--falloff-curve F]
 //             [--mirror x|y|z]... [--local-frames] -o OUT [--json]
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <iostream>
@@ -15,6 +16,7 @@
 #include "core/edit/session.h"
 #include "core/base/errors.h"
 #include "core/edit/brush.h"
+#include "core/edit/selection.h"
 #include "core/edit/symmetry.h"
 #include "core/edit/transform.h"
 #include "core/complex/complex.h"
@@ -42,6 +44,9 @@ constexpr const char* kHelp =
     "               centred at --at X Y Z on level L's net: --radius R (world units, default 0.1),\n"
     "               --strength S (0..1, default 0.5), --falloff-curve smooth|linear|sharp|constant;\n"
     "               grab moves by --delta DX DY DZ times the falloff\n"
+    "  --loop A B, --ring A B, --linked V, --grow N  select as the modeler's Alt+click, Ctrl+Alt+click,\n"
+    "               L and Ctrl+numpad + do (repeatable; added to the --vertex points): the edge loop\n"
+    "               or ring through the edge A-B, everything joined to V, N more rings of neighbours\n"
     "  --mirror A   mirror editing across the world plane A = 0 (repeatable): the mirror images of\n"
     "               what moves move the mirrored way (found by position, then topology)\n"
     "  --falloff R  soft selection: points within distance R of a selected one move by\n"
@@ -83,9 +88,10 @@ glm::dvec3 triple(const std::string& s, const char* option, bool one_is_all) {
 
 int run_edit(int argc, char** argv) {
   const Args a = parse_args(argc, argv, 2,
-                            {"-o", "--level", "--falloff", "--scale", "--pivot", "--brush", "--radius", "--strength", "--falloff-curve"},
+                            {"-o", "--level", "--falloff", "--scale", "--pivot", "--brush", "--radius", "--strength", "--falloff-curve", "--grow"},
                             {"--json", "--help", "--local-frames"},
-                            {{"--vertex", 1}, {"--delta", 3}, {"--rotate", 2}, {"--at", 3}, {"--mirror", 1}});
+                            {{"--vertex", 1}, {"--delta", 3}, {"--rotate", 2}, {"--at", 3}, {"--mirror", 1},
+                             {"--loop", 2}, {"--ring", 2}, {"--linked", 1}});
   if (a.has("--help")) {
     std::cout << kHelp;
     return 0;
@@ -97,8 +103,10 @@ int run_edit(int argc, char** argv) {
   if (!lv || *lv < 0) throw UsageError("--level must be a non-negative integer, got '" + *a.value("--level") + "'");
   const auto vit = a.lists.find("--vertex");
   const auto brush_kind = a.value("--brush");
-  if (vit == a.lists.end() && !brush_kind) throw UsageError("missing --vertex I (or --brush KIND --at X Y Z)");
-  if (vit != a.lists.end() && brush_kind) throw UsageError("--brush dabs where --at says; leave out --vertex");
+  // The selection: --vertex points, plus the modeler's selection tools (core/edit/selection.h).
+  const bool selects = vit != a.lists.end() || a.lists.count("--loop") || a.lists.count("--ring") || a.lists.count("--linked");
+  if (!selects && !brush_kind) throw UsageError("missing --vertex I (or --loop A B, --ring A B, --linked V, or --brush KIND --at X Y Z)");
+  if (selects && brush_kind) throw UsageError("--brush dabs where --at says; leave out the selection");
   const auto dit = a.lists.find("--delta");
   const auto rit = a.lists.find("--rotate");
   const int kinds = (dit != a.lists.end()) + (rit != a.lists.end()) + (a.value("--scale").has_value());
@@ -178,6 +186,7 @@ int run_edit(int argc, char** argv) {
   std::vector<std::uint32_t> selected;
   if (vit != a.lists.end())
     for (const std::string& s : vit->second) selected.push_back(index_value(s));
+  const long long active = selected.empty() ? -1 : static_cast<long long>(selected.back());  // the last --vertex
 
   const std::string& in = a.positional[0];
   ProjectExtras extras;
@@ -194,6 +203,40 @@ int run_edit(int argc, char** argv) {
     if (v >= h.num_vertices(level))
       throw UsageError("--vertex " + std::to_string(v) + ": level " + std::to_string(level) + " has " +
                        std::to_string(h.num_vertices(level)) + " vertices");
+  {
+    const Complex& c = h.levels[static_cast<std::size_t>(level)];
+    Complex adj;  // the finest level is stored without its upward rows
+    const Complex& cc = c.vertex_edges.rows() == c.num_vertices ? c : (adj = c, build_adjacency(adj), adj);
+    auto vertex = [&](const std::string& s, const char* option) {
+      const std::uint32_t v = index_value(s);
+      if (v >= cc.num_vertices)
+        throw UsageError(std::string(option) + " " + s + ": level " + std::to_string(level) + " has " + std::to_string(cc.num_vertices) + " vertices");
+      return v;
+    };
+    for (const char* option : {"--loop", "--ring"})
+      if (const auto it = a.lists.find(option); it != a.lists.end())
+        for (std::size_t k = 0; k + 1 < it->second.size(); k += 2) {
+          const std::int64_t e = find_edge(cc, vertex(it->second[k], option), vertex(it->second[k + 1], option));
+          if (e < 0) throw UsageError(std::string(option) + " " + it->second[k] + " " + it->second[k + 1] + ": they share no edge");
+          if (option[2] == 'r' && cc.dim != 2) throw UsageError("--ring is for surfaces");
+          const auto edges = option[2] == 'l' ? edge_loop(cc, static_cast<std::uint32_t>(e)) : edge_ring(cc, static_cast<std::uint32_t>(e));
+          for (const unsigned v : edge_vertices(cc, edges)) selected.push_back(v);
+        }
+    if (const auto it = a.lists.find("--linked"); it != a.lists.end())
+      for (const std::string& s : it->second) {
+        const unsigned one[1] = {vertex(s, "--linked")};
+        for (const unsigned v : select_linked(cc, one)) selected.push_back(v);
+      }
+    if (const auto g = a.value("--grow")) {
+      const auto n = parse_int(*g);
+      if (!n || *n < 0 || *n > 1000) throw UsageError("--grow must be a number of rings 0..1000, got '" + *g + "'");
+      std::vector<unsigned> sel(selected.begin(), selected.end());
+      for (long i = 0; i < *n; ++i) sel = grow_selection(cc, sel);
+      selected.assign(sel.begin(), sel.end());
+    }
+    std::sort(selected.begin(), selected.end());
+    selected.erase(std::unique(selected.begin(), selected.end()), selected.end());
+  }
   Session session(std::move(h), extras.gains);
   if (a.has("--local-frames") || extras.local_frames) session.set_detail_frames(DetailFrames::Local);
   const SoftWeights w = soft_selection(session.positions(level), selected, falloff);
@@ -215,7 +258,7 @@ int run_edit(int argc, char** argv) {
     const std::string p = a.value("--pivot").value_or("median");
     const std::vector<unsigned> sel(selected.begin(), selected.end());
     if (p == "median" || p == "active" || p == "origin") {
-      pivot = pivot_point(parse_pivot(p), pos, sel, selected.back(), glm::dvec3(0.0));
+      pivot = pivot_point(parse_pivot(p), pos, sel, active, glm::dvec3(0.0));
     } else {
       pivot = triple(p, "--pivot", false);
     }

@@ -11,6 +11,7 @@
 #include "core/analysis/boundary_surface.h"
 #include "core/analysis/limit_surface.h"
 #include "core/analysis/wavelet_colour.h"
+#include "core/edit/level_ops.h"
 #include "core/base/text_lines.h"
 #include "core/io/lattice/shape_io.h"
 #include "core/io/mesh/mesh_import.h"
@@ -33,13 +34,21 @@ SurfaceMesh surface_of(std::span<const double> xyz, const Csr& faces) {
 
 // What the modeler shows of FILE: a project's finest limit surface (gains applied), a lattice's
 // outward boundary, a mesh as it is.
-SurfaceMesh mesh_to_render(const std::string& file) {
+// A project's limit surface of `level` (-1: the finest), gains applied: the hierarchy cut there.
+LimitSurface project_limit(const std::string& file, Hierarchy h, const ProjectExtras& extras, int level) {
+  apply_gains(h, extras.gains);
+  if (h.channels != 3) throw Error(file + ": a project of " + std::to_string(h.channels) + " channels has no shape to render");
+  if (level > h.finest_level())
+    throw UsageError("--level " + std::to_string(level) + " is beyond the project's finest level " + std::to_string(h.finest_level()));
+  if (level >= 0 && level < h.finest_level()) h = delete_higher(h, level);
+  return finest_limit_surface(h, synthesize_in_range(h, h.finest_level()));
+}
+
+SurfaceMesh mesh_to_render(const std::string& file, int level) {
   if (is_project_path(file)) {
     ProjectExtras extras;
     Hierarchy h = read_project(file, &extras);
-    apply_gains(h, extras.gains);
-    if (h.channels != 3) throw Error(file + ": a project of " + std::to_string(h.channels) + " channels has no shape to render");
-    const LimitSurface s = finest_limit_surface(h, synthesize_in_range(h, h.finest_level()));
+    const LimitSurface s = project_limit(file, std::move(h), extras, level);
     if (s.faces.rows() == 0) throw Error(file + ": a curve has no surface to render");
     return surface_of(s.positions, s.faces);
   }
@@ -61,13 +70,15 @@ SurfaceMesh mesh_to_render(const std::string& file) {
 }  // namespace
 
 int run_render(int argc, char** argv) {
-  const Args a = parse_args(argc, argv, 2, {"-o", "--size", "--colour", "--color"}, {"--json", "--help"});
+  const Args a = parse_args(argc, argv, 2, {"-o", "--size", "--colour", "--color", "--level"}, {"--json", "--help"});
   if (a.has("--help")) {
-    std::cout << "usage: sublift-cli render FILE -o PNG [--size WxH] [--colour L] [--json]\n"
+    std::cout << "usage: sublift-cli render FILE -o PNG [--size WxH] [--level L] [--colour L] [--json]\n"
                  "  Renders FILE shaded with its wireframe from the default 3/4 view, without a\n"
                  "  display (EGL surfaceless), and writes a PNG. Default size 800x600. FILE: a mesh\n"
                  "  (.obj .off .ply), a lattice (.lattice .vtk: its outward boundary) or a .sublift\n"
                  "  project (its finest limit surface with the saved gains, as the modeler shows it).\n"
+                 "  --level L   a project's limit surface of level L instead of the finest (the modeler's\n"
+                 "              viewport level)\n"
                  "  --colour L  a project's surface coloured by the magnitude of level L's wavelets\n"
                  "              (viridis, as the modeler's Colour by |w| of level)\n";
     return 0;
@@ -78,6 +89,13 @@ int run_render(int argc, char** argv) {
   if (file_extension(*out) != "png") throw UsageError("output must be a .png file, got '" + *out + "'");
   int w = 800, h = 600;
   if (auto s = a.value("--size")) parse_size(*s, w, h);
+  int view_level = -1;
+  if (const auto l = a.value("--level")) {
+    const auto v = parse_int(*l);
+    if (!v || *v < 0) throw UsageError("--level must be a non-negative level number, got '" + *l + "'");
+    if (!is_project_path(a.positional[0])) throw UsageError("--level needs a .sublift project, got '" + a.positional[0] + "'");
+    view_level = static_cast<int>(*v);
+  }
   std::optional<std::string> colour = a.value("--colour");
   if (!colour) colour = a.value("--color");
 #ifdef SUBLIFT_HAVE_RENDER
@@ -91,13 +109,13 @@ int run_render(int argc, char** argv) {
     Hierarchy hier = read_project(in, &extras);
     if (*l < 0 || *l >= hier.finest_level())
       throw UsageError("--colour " + *colour + " is outside the project's wavelet levels 0.." + std::to_string(hier.finest_level() - 1));
-    const std::vector<float> field = wavelet_magnitude_field(hier, extras.gains, static_cast<int>(*l));
-    apply_gains(hier, extras.gains);
-    const LimitSurface s = finest_limit_surface(hier, synthesize_in_range(hier, hier.finest_level()));
+    std::vector<float> field = wavelet_magnitude_field(hier, extras.gains, static_cast<int>(*l));
+    const LimitSurface s = project_limit(in, std::move(hier), extras, view_level);
     if (s.faces.rows() == 0) throw Error(in + ": a curve has no surface to render");
+    field.resize(s.positions.size() / 3);  // a coarser level's vertices come first
     img = render_coloured_surface_headless(s.positions, s.normals, s.faces, field, w, h);  // one value per finest vertex
   } else {
-    img = render_mesh_headless(mesh_to_render(a.positional[0]), w, h);
+    img = render_mesh_headless(mesh_to_render(a.positional[0], view_level), w, h);
   }
   write_png(*out, img.width, img.height, img.rgba);
   if (a.has("--json"))

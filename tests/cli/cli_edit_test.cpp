@@ -9,6 +9,7 @@
 #include "core/multires/hierarchy.h"
 #include "core/io/project/project_io.h"
 #include "core/edit/brush.h"
+#include "core/edit/selection.h"
 #include "core/edit/session.h"
 #include "core/edit/symmetry.h"
 #include "core/io/lattice/shape_io.h"
@@ -209,6 +210,35 @@ TEST(CliEdit, BrushDabAndMirror) {
     const ProcessResult bad = cli(args);
     EXPECT_EQ(bad.exit_code, 2) << bad.err;
   }
+}
+
+// --loop / --ring / --linked / --grow (issue 19): the modeler's selection tools pick the moved
+// points; the JSON counts them as the core functions do.
+TEST(CliEdit, SelectionToolsPickThePoints) {
+  TempDir dir("sublift_cli_edit_select");
+  const Hierarchy h = project_hierarchy();
+  write_project(dir.file("in.sublift"), h);
+  const Complex& c = h.levels[0];
+  const std::int64_t e = find_edge(c, 0, 1);
+  ASSERT_GE(e, 0);
+  const std::size_t loop = edge_vertices(c, edge_loop(c, static_cast<std::uint32_t>(e))).size();
+  const std::size_t ring = edge_vertices(c, edge_ring(c, static_cast<std::uint32_t>(e))).size();
+  auto moved = [&](std::vector<std::string> select) {
+    std::vector<std::string> args = {"edit", dir.file("in.sublift"), "--level", "0"};
+    args.insert(args.end(), select.begin(), select.end());
+    for (const char* x : {"--delta", "0", "0.1", "0", "-o"}) args.push_back(x);
+    args.push_back(dir.file("o.sublift"));
+    args.push_back("--json");
+    const ProcessResult r = cli(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r.exit_code == 0 ? nlohmann::json::parse(r.out)["moved"].get<std::size_t>() : std::size_t(0);
+  };
+  EXPECT_EQ(moved({"--loop", "0", "1"}), loop);
+  EXPECT_EQ(moved({"--ring", "0", "1"}), ring);
+  EXPECT_EQ(moved({"--linked", "5"}), std::size_t(c.num_vertices));  // a torus is one piece
+  EXPECT_EQ(moved({"--vertex", "5", "--grow", "1"}), grow_selection(c, std::vector<unsigned>{5}).size());
+  EXPECT_EQ(cli({"edit", dir.file("in.sublift"), "--level", "0", "--loop", "0", "50", "--delta", "0", "0", "0", "-o",
+                 dir.file("o.sublift")}).exit_code, 2);
 }
 
 TEST(CliEdit, Errors) {

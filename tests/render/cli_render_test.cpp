@@ -123,7 +123,15 @@ TEST(CliRender, ColourByWaveletMagnitude) {
   for (std::size_t i = 0; i + 3 < c.rgba.size(); i += 4)
     if (c.rgba[i + 1] > 140 && c.rgba[i + 1] > c.rgba[i + 2] + 20) ++high;
   EXPECT_GT(high, 100u);
+  // --level 0: the base's limit surface (the modeler's viewport level): smoother, so another picture.
+  const testing::ProcessResult coarse =
+      testing::run_cli({"render", dir.file("t.sublift"), "--level", "0", "--colour", "0", "-o", dir.file("l0.png")});
+  ASSERT_EQ(coarse.exit_code, 0) << coarse.err;
+  const Png l0 = load(dir.file("l0.png"));
+  ASSERT_EQ(l0.w, 800);
+  EXPECT_GT(saturated(l0), 0.08);
   for (const auto& args : std::vector<std::vector<std::string>>{
+           {"render", dir.file("t.sublift"), "--level", "5", "-o", dir.file("x.png")},
            {"render", dir.file("t.sublift"), "--colour", "2", "-o", dir.file("x.png")},  // the finest has no wavelets
            {"render", dir.file("t.sublift"), "--colour", "x", "-o", dir.file("x.png")},
        }) {

@@ -186,6 +186,23 @@ void dab(benchmark::State& state, int level, double radius, const std::string& n
   state.counters["vertices_updated"] = double(updated);
 }
 
+// Where a sculpt dab lands: the mouse ray's hit on the limit surface, brute force over its faces
+// (core/edit/brush.h ray_hit), what the modeler does per mouse move in sculpt mode.
+void BM_SurfaceRayHit(benchmark::State& state) {
+  Fixture& f = surface_fixture();
+  const std::size_t v = 3 * std::size_t(f.vertex);
+  const glm::dvec3 target(f.limit[v], f.limit[v + 1], f.limit[v + 2]);
+  const glm::dvec3 origin = target + glm::dvec3(0.0, 0.0, 5.0);
+  glm::dvec3 hit;
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    benchmark::DoNotOptimize(ray_hit(f.limit, f.faces, origin, glm::dvec3(0.0, 0.0, -1.0), hit));
+    note("surface ray hit (brute force)", since_ms(t0));
+  }
+  state.counters["faces"] = double(f.faces.rows());
+}
+BENCHMARK(BM_SurfaceRayHit)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+
 void BM_SurfaceDabLevel0(benchmark::State& s) { dab(s, 0, 0.35, "surface dab at level 0"); }
 void BM_SurfaceDabFinest(benchmark::State& s) { dab(s, 5, 0.05, "surface dab at level 5"); }
 BENCHMARK(BM_SurfaceDabLevel0)->Unit(benchmark::kMillisecond)->MinTime(1.0);

@@ -384,9 +384,14 @@ void ModelerController::stroke_move(double vx, double vy, double dx, double dy) 
       model.dab(Dab{stroke_center_, camera.forward(), motion});
       stroke_center_ += motion;
     } else {
+      // Dabs evenly spaced along the way from the last one, whatever the mouse's speed.
       glm::dvec3 origin, dir, hit;
       pixel_ray(pick_view(), vx, vy, origin, dir);
-      if (model.surface_hit(origin, dir, hit)) model.dab(Dab{hit, dir, glm::dvec3(0.0)});
+      if (model.surface_hit(origin, dir, hit))
+        for (const glm::dvec3& c : dab_centres_along(stroke_center_, hit, kDabSpacing * model.brush().radius)) {
+          model.dab(Dab{c, dir, glm::dvec3(0.0)});
+          stroke_center_ = c;
+        }
     }
   } catch (const std::exception& e) {
     fail(e, "Cannot sculpt: ");

@@ -61,6 +61,15 @@ struct Dab {
 void brush_dab(const BrushSettings& b, const Dab& dab, const Complex& c, std::span<const double> positions,
                std::vector<std::uint32_t>& vertices, std::vector<double>& deltas);
 
+/// Dab spacing along a stroke, as a fraction of the radius (Blender's default spacing is 10 % of
+/// the diameter): a fast mouse move leaves dabs this far apart, not one per mouse event.
+inline constexpr double kDabSpacing = 0.2;
+
+/// The dab centres a stroke from the last dab at `from` to the brush now at `to` adds: evenly
+/// spaced `spacing` apart from `from` (not including it), none while |to - from| < spacing, at
+/// most `most` (the last ones dropped when the mouse jumped far).
+std::vector<glm::dvec3> dab_centres_along(const glm::dvec3& from, const glm::dvec3& to, double spacing, std::size_t most = 64);
+
 /// The nearest hit of the ray (origin, unit dir) with the polygons `faces` (fans of triangles)
 /// of `positions`; false when it misses. Brute force over the faces.
 bool ray_hit(std::span<const double> positions, const Csr& faces, const glm::dvec3& origin, const glm::dvec3& dir,

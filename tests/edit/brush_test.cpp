@@ -104,6 +104,16 @@ TEST(Brush, EachKindOnAFlatGrid) {
   EXPECT_THROW(brush_dab(b, dab, c, p, vs, d), Error);
 }
 
+TEST(Brush, DabsAreSpacedAlongTheStroke) {
+  const auto c = dab_centres_along({0, 0, 0}, {1, 0, 0}, 0.3);
+  ASSERT_EQ(c.size(), 3u);  // at 0.3, 0.6, 0.9; the rest waits for the next move
+  EXPECT_NEAR(c[0].x, 0.3, 1e-15);
+  EXPECT_NEAR(c[2].x, 0.9, 1e-15);
+  EXPECT_TRUE(dab_centres_along({0, 0, 0}, {0.2, 0, 0}, 0.3).empty());
+  EXPECT_EQ(dab_centres_along({0, 0, 0}, {100, 0, 0}, 0.01, 64).size(), 64u);
+  EXPECT_TRUE(dab_centres_along({0, 0, 0}, {1, 0, 0}, 0.0).empty());
+}
+
 TEST(Brush, RayHitFindsTheNearestFace) {
   std::vector<double> p;
   const Complex c = flat_grid(4, p);

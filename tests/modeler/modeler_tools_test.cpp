@@ -769,3 +769,44 @@ TEST(ModelerViewLevel, ACoarserViewportLevelDrawsThatLevelsLimitAndExportsStayFi
 
 }  // namespace
 }  // namespace sublift
+
+namespace sublift {
+namespace {
+
+// One fast mouse move leaves dabs all along its way (kDabSpacing), not only where it ends.
+TEST(ModelerSculpt, AFastMoveDabsAllAlongTheStroke) {
+  Fixture f;
+  ModelerState& m = f.app.model;
+  m.set_level(m.session().finest_level());  // points close to the surface
+  f.key(Key::Tab, kCtrl);
+  BrushSettings b = m.brush();
+  b.kind = BrushKind::Draw;
+  b.radius = 0.03 * (m.default_soft_radius() / 0.05);  // 3 % of the diagonal
+  m.set_brush(b);
+  double x = 0, y = 0;
+  facing_point(f, x, y);
+  glm::dvec3 o, d, start, end;
+  const PickView view = f.view();
+  pixel_ray(view, x - testing::kViewX, y, o, d);
+  ASSERT_TRUE(m.surface_hit(o, d, start));
+  pixel_ray(view, x - testing::kViewX + 60, y, o, d);
+  ASSERT_TRUE(m.surface_hit(o, d, end));
+  ASSERT_GT(glm::length(end - start), 4 * b.radius);
+  const std::vector<double> before(m.session().positions(m.level()).begin(), m.session().positions(m.level()).end());
+  f.send(WindowEvent::Type::Move, x, y);
+  f.send(WindowEvent::Type::Press, x, y);
+  f.send(WindowEvent::Type::Move, x + 60, y);  // one event
+  f.send(WindowEvent::Type::Release, x + 60, y);
+  const auto p = m.session().positions(m.level());
+  std::size_t middle = 0;
+  for (std::size_t v = 0; 3 * v < p.size(); ++v) {
+    if (p[3 * v] == before[3 * v] && p[3 * v + 1] == before[3 * v + 1] && p[3 * v + 2] == before[3 * v + 2]) continue;
+    const glm::dvec3 q(before[3 * v], before[3 * v + 1], before[3 * v + 2]);
+    if (glm::length(q - start) > 1.5 * b.radius && glm::length(q - end) > 1.5 * b.radius) ++middle;
+  }
+  EXPECT_GT(middle, 0u) << "no dab between the ends of the stroke";
+  EXPECT_EQ(m.session().history().size(), 1u);
+}
+
+}  // namespace
+}  // namespace sublift

@@ -107,10 +107,8 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   project_path_ = project ? path : std::string();
   warnings_ = std::move(warnings);
   clear_pin();  // a new model: the comparison belonged to the old one
-  structure_undo_.clear();  // undo does not go back to another file
-  structure_redo_.clear();
   view_level_ = -1;
-  install(std::move(session));
+  install_new_model(std::move(session));
   rebuild_offer_ = std::move(offer);
   input_order_ = std::move(order);
   fit_source_ = std::move(source);
@@ -222,9 +220,7 @@ std::string ModelerState::install_fit(PreparedFit p) {
                         " corner tags (the fitted creases come from the feature angle)");
   if (const std::uint32_t folded = limit ? f.limit_folded : f.levels.empty() ? 0 : f.levels.back().folded; folded > 0)
     warnings_.push_back(std::to_string(folded) + " folded faces in the fitted surface (docs/fit.md)");
-  structure_undo_.clear();
-  structure_redo_.clear();
-  install(std::make_unique<Session>(std::move(p.fitted.hierarchy)));
+  install_new_model(std::make_unique<Session>(std::move(p.fitted.hierarchy)));
   fit_source_ = std::move(p.source);
   rebuild_offer_ = {};
   clear_fit_preview();
@@ -253,9 +249,7 @@ void ModelerState::install_rebuild(PreparedRebuild p) {
   order.level = r.hierarchy.finest_level();
   order.engine_vertex = std::move(r.engine_vertex);
   order.faces = std::move(p.faces);
-  structure_undo_.clear();
-  structure_redo_.clear();
-  install(std::make_unique<Session>(std::move(r.hierarchy)));
+  install_new_model(std::make_unique<Session>(std::move(r.hierarchy)));
   rebuild_offer_ = {};
   input_order_ = std::move(order);
   level_ = 0;
@@ -278,9 +272,15 @@ void ModelerState::install(std::unique_ptr<Session> session) {
   if (ffd_) ffd_->bound = false;  // bound to the old session's lattice
   rebuild_limit();
   model_size_ = model_size_of(limit_);
-  brush_.radius = 0.08 * model_size_;  // a brush that suits the model (Blender's is in pixels)
   if (colour_level_ >= session_->finest_level()) colour_level_ = -1;
   refresh_colour();
+}
+
+void ModelerState::install_new_model(std::unique_ptr<Session> session) {
+  structure_undo_.clear();  // undo does not go back to another model
+  structure_redo_.clear();
+  install(std::move(session));
+  brush_.radius = 0.08 * model_size_;  // a brush that suits the model (Blender's is in pixels)
 }
 
 int ModelerState::shown_level() const {
@@ -391,6 +391,7 @@ void ModelerState::set_scheme(Scheme scheme) {
   ffd_check_free("changing the scheme");
   check_unlocked("changing the scheme");
   const Scheme from = session_->hierarchy().scheme;
+  if (scheme == from) return;  // as `sublift-cli set --scheme`: nothing to rebuild, nothing to undo
   SchemeSwitch next = switch_scheme(*session_, scheme);  // core/edit/scheme_switch.h: shape kept where it can be
   const bool local = session_->detail_frames() == DetailFrames::Local;
   auto session = std::make_unique<Session>(std::move(next.hierarchy));
@@ -832,9 +833,7 @@ void ModelerState::wrap_model_in_box(int nx, int ny, int nz, double margin) {
   const Scheme scheme = scheme_info(current).surfaces_only ? Scheme::Cubic : current;
   Hierarchy h = make_hierarchy(box.base, kDefaultLevels, scheme, 3);
   set_base(h, box.positions);
-  structure_undo_.clear();
-  structure_redo_.clear();
-  install(std::make_unique<Session>(std::move(h)));
+  install_new_model(std::make_unique<Session>(std::move(h)));
   char name[64];
   std::snprintf(name, sizeof name, "box lattice %dx%dx%d", nx, ny, nz);
   file_path_ = name;
@@ -899,9 +898,9 @@ void ModelerState::refresh_compression_net() {
 }
 
 void ModelerState::set_compression(double fraction) {
-  if (session_ && shown_level() != session_->finest_level())
-    throw Error("the compression view shows the finest level: set the viewport level to the finest first");
   if (!session_) throw Error("compression: no model is open");
+  if (shown_level() != session_->finest_level())
+    throw Error("the compression view shows the finest level: set the viewport level to the finest first");
   if (!(fraction >= 0.0 && fraction <= 1.0)) throw Error("compression: the kept fraction must be in 0..1");
   if (dragging_) throw Error("compression: finish the drag first");
   const auto t0 = std::chrono::steady_clock::now();

@@ -367,6 +367,9 @@ class ModelerState {
 
  private:
   void install(std::unique_ptr<Session> session);  // fresh topology
+  /// install() for another model (a file, a fit, a rebuild, a box lattice): nothing to undo back
+  /// to, and a brush sized to it.
+  void install_new_model(std::unique_ptr<Session> session);
   // A replaced session and what belongs to it, for undo across replacements.
   struct Snapshot {
     std::unique_ptr<Session> session;

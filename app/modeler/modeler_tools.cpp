@@ -113,7 +113,11 @@ void ModelerState::replace_session(std::unique_ptr<Session> next) {
   const int level = level_;
   std::vector<unsigned> selection = selection_;
   structure_undo_.push_back(take_snapshot());
-  if (structure_undo_.size() > kStructureUndo) structure_undo_.erase(structure_undo_.begin());
+  if (structure_undo_.size() > kStructureUndo) {  // said, not dropped silently
+    structure_undo_.erase(structure_undo_.begin());
+    warnings_.push_back("undo keeps the last " + std::to_string(kStructureUndo) +
+                        " hierarchy changes (scheme, levels, features): the oldest one can no longer be undone");
+  }
   structure_redo_.clear();
   install(std::move(next));
   input_order_ = order;  // callers change what no longer holds

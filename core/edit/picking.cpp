@@ -188,8 +188,8 @@ std::int64_t PickIndex::nearest(double mx, double my, double radius_px, bool xra
   return best->index;
 }
 
-std::vector<std::uint32_t> PickIndex::in_rect(double x0, double y0, double x1, double y1,
-                                              bool xray) const {
+template <class Keep>
+std::vector<std::uint32_t> PickIndex::in_box(double x0, double y0, double x1, double y1, bool xray, Keep keep) const {
   std::vector<std::uint32_t> out;
   if (entries_.empty()) return out;
   if (x0 > x1) std::swap(x0, x1);
@@ -204,7 +204,7 @@ std::vector<std::uint32_t> PickIndex::in_rect(double x0, double y0, double x1, d
       for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
         const Entry& e = entries_[k];
         if (!xray && (e.code & kHiddenBit) != 0) continue;
-        if (e.x >= x0 && e.x <= x1 && e.y >= y0 && e.y <= y1) out.push_back(e.code & ~kHiddenBit);
+        if (e.x >= x0 && e.x <= x1 && e.y >= y0 && e.y <= y1 && keep(e)) out.push_back(e.code & ~kHiddenBit);
       }
     }
   }
@@ -212,27 +212,17 @@ std::vector<std::uint32_t> PickIndex::in_rect(double x0, double y0, double x1, d
   return out;
 }
 
+std::vector<std::uint32_t> PickIndex::in_rect(double x0, double y0, double x1, double y1, bool xray) const {
+  return in_box(x0, y0, x1, y1, xray, [](const Entry&) { return true; });
+}
+
 std::vector<std::uint32_t> PickIndex::in_circle(double cx, double cy, double radius, bool xray) const {
-  std::vector<std::uint32_t> out;
-  if (entries_.empty() || !(radius >= 0.0)) return out;
-  const int gx0 = std::max(static_cast<int>(std::floor((cx - radius) / kCellPixels)), 0);
-  const int gy0 = std::max(static_cast<int>(std::floor((cy - radius) / kCellPixels)), 0);
-  const int gx1 = std::min(static_cast<int>(std::floor((cx + radius) / kCellPixels)), grid_w_ - 1);
-  const int gy1 = std::min(static_cast<int>(std::floor((cy + radius) / kCellPixels)), grid_h_ - 1);
+  if (!(radius >= 0.0)) return {};
   const double r2 = radius * radius;
-  for (int gy = gy0; gy <= gy1; ++gy) {
-    for (int gx = gx0; gx <= gx1; ++gx) {
-      const std::size_t cell = static_cast<std::size_t>(gy) * grid_w_ + gx;
-      for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-        const Entry& e = entries_[k];
-        if (!xray && (e.code & kHiddenBit) != 0) continue;
-        const double dx = e.x - cx, dy = e.y - cy;
-        if (dx * dx + dy * dy <= r2) out.push_back(e.code & ~kHiddenBit);
-      }
-    }
-  }
-  std::sort(out.begin(), out.end());
-  return out;
+  return in_box(cx - radius, cy - radius, cx + radius, cy + radius, xray, [&](const Entry& e) {
+    const double dx = e.x - cx, dy = e.y - cy;
+    return dx * dx + dy * dy <= r2;
+  });
 }
 
 bool PickIndex::screen_position(std::uint32_t i, glm::dvec2& screen) const {

@@ -108,6 +108,9 @@ class PickIndex {
   static constexpr std::uint32_t kHiddenBit = 0x80000000u;
 
   double world_per_pixel(double depth) const { return wpp0_ + wpp_slope_ * depth; }
+  // The points in the rectangle (hidden ones only with xray) for which keep(entry) holds, ascending.
+  template <class Keep>
+  std::vector<std::uint32_t> in_box(double x0, double y0, double x1, double y1, bool xray, Keep keep) const;
 
   PickView view_;
   int grid_w_ = 0, grid_h_ = 0;

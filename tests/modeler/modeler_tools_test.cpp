@@ -810,3 +810,52 @@ TEST(ModelerSculpt, AFastMoveDabsAllAlongTheStroke) {
 
 }  // namespace
 }  // namespace sublift
+
+namespace sublift {
+namespace {
+
+// The brush is the user's: replacing the session (a crease, a level deletion, their undo) keeps
+// it; only another model resizes it.
+TEST(ModelerSculpt, TheBrushSurvivesSessionReplacements) {
+  ModelerState m = edited_torus("cubic");
+  BrushSettings b = m.brush();
+  b.radius = 0.123;
+  m.set_brush(b);
+  m.set_level(0);
+  m.set_selection({0, 1});
+  m.toggle_creases();
+  EXPECT_EQ(m.brush().radius, 0.123);
+  ASSERT_TRUE(m.undo());
+  EXPECT_EQ(m.brush().radius, 0.123);
+  m.set_level(1);
+  m.delete_lower_levels();
+  EXPECT_EQ(m.brush().radius, 0.123);
+  m.open(std::string(SUBLIFT_ASSETS_DIR) + "/cube.obj");
+  EXPECT_NE(m.brush().radius, 0.123);
+}
+
+}  // namespace
+}  // namespace sublift
+
+namespace sublift {
+namespace {
+
+TEST(ModelerFeatures, UndoSaysWhenItStopsKeepingOldHierarchies) {
+  ModelerState m = edited_torus("cubic");
+  for (std::size_t i = 0; i < ModelerState::kStructureUndo; ++i) m.set_scheme(i % 2 ? Scheme::Cubic : Scheme::Linear);
+  auto said = [&] {
+    for (const std::string& w : m.import_warnings())
+      if (w.find("the oldest one can no longer be undone") != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_FALSE(said());
+  m.set_scheme(Scheme::Linear);
+  EXPECT_TRUE(said());
+  std::size_t undone = 0;
+  while (m.undo()) ++undone;
+  // Eight scheme changes back; the first session, with edited_torus's own edits, was dropped.
+  EXPECT_EQ(undone, ModelerState::kStructureUndo);
+}
+
+}  // namespace
+}  // namespace sublift

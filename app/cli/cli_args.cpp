@@ -1,5 +1,7 @@
 #include "app/cli/cli_args.h"
 
+#include "core/base/text_lines.h"
+
 #include <charconv>
 
 namespace sublift::cli {
@@ -59,6 +61,20 @@ void parse_size(const std::string& s, int& width, int& height) {
   if (x == std::string::npos || !num(std::string_view(s).substr(0, x), width) ||
       !num(std::string_view(s).substr(x + 1), height))
     throw UsageError("--size must be WIDTHxHEIGHT with each side in 16..8192, got '" + s + "'");
+}
+
+std::vector<double> number_list(const std::string& s, const std::string& option) {
+  std::vector<double> out;
+  std::size_t at = 0;
+  for (;;) {
+    const std::size_t comma = s.find(',', at);
+    const std::string token = s.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
+    const auto v = parse_double(token);
+    if (!v) throw UsageError(option + " takes finite numbers separated by commas, got '" + s + "'");
+    out.push_back(*v);
+    if (comma == std::string::npos) return out;
+    at = comma + 1;
+  }
 }
 
 }  // namespace sublift::cli

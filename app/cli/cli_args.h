@@ -38,6 +38,9 @@ Args parse_args(int argc, char** argv, int first, const std::set<std::string>& w
 /// UsageError naming the option and the range.
 long integer_option(const Args& a, const char* name, long fallback, long lo, long hi);
 
+/// "a,b,c,...": finite numbers separated by commas. Throws UsageError naming `option`.
+std::vector<double> number_list(const std::string& s, const std::string& option);
+
 /// Parses "WxH" (each 16..8192). Throws UsageError.
 void parse_size(const std::string& s, int& width, int& height);
 

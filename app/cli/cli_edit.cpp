@@ -66,22 +66,12 @@ std::uint32_t index_value(const std::string& s) {
   return v;
 }
 
-// "a,b,c" as three finite numbers (or one, repeated, when `one_is_all`).
+// "a,b,c" as three numbers (or one, repeated, when `one_is_all`).
 glm::dvec3 triple(const std::string& s, const char* option, bool one_is_all) {
-  std::vector<std::string> parts(1);
-  for (const char ch : s) {
-    if (ch == ',') parts.emplace_back();
-    else parts.back().push_back(ch);
-  }
-  if (parts.size() == 1 && one_is_all) parts = {parts[0], parts[0], parts[0]};
-  if (parts.size() != 3) throw UsageError(std::string(option) + " needs " + (one_is_all ? "one number or " : "") + "three numbers A,B,C, got '" + s + "'");
-  glm::dvec3 out;
-  for (int c = 0; c < 3; ++c) {
-    const auto d = parse_double(parts[static_cast<std::size_t>(c)]);
-    if (!d) throw UsageError(std::string(option) + " needs finite numbers, got '" + s + "'");
-    out[c] = *d;
-  }
-  return out;
+  std::vector<double> v = number_list(s, option);
+  if (v.size() == 1 && one_is_all) v = {v[0], v[0], v[0]};
+  if (v.size() != 3) throw UsageError(std::string(option) + " needs " + (one_is_all ? "one number or " : "") + "three numbers A,B,C, got '" + s + "'");
+  return {v[0], v[1], v[2]};
 }
 
 }  // namespace

@@ -73,15 +73,11 @@ std::vector<double> keep_option(const Args& a) {
     for (int p = 0; p <= 30; p += 3) out.push_back(p / 100.0);
     return out;
   }
-  for (const std::string& item : it->second) {
-    std::stringstream ss(item);
-    std::string tok;
-    while (std::getline(ss, tok, ',')) {
-      const auto x = parse_double(tok);
-      if (!x || !(*x >= 0 && *x <= 1)) throw UsageError("--keep takes fractions in 0..1, got '" + tok + "'");
-      out.push_back(*x);
+  for (const std::string& item : it->second)
+    for (const double x : number_list(item, "--keep")) {
+      if (!(x >= 0 && x <= 1)) throw UsageError("--keep takes fractions in 0..1, got '" + item + "'");
+      out.push_back(x);
     }
-  }
   return out;
 }
 

@@ -179,18 +179,25 @@ void basis(const Call& c) {
   state.set_basis(b);
 }
 
-// rotate and scale: one transform of the selection, one history entry (cancelled on failure).
+// The work of a begun drag (move, transform, stroke) as one history entry: cancelled when it
+// fails, so no half-applied edit stays in the history.
+template <class Work>
+void as_one_drag(ModelerState& state, Work work) {
+  try {
+    work();
+  } catch (...) {
+    state.cancel_drag();
+    throw;
+  }
+  state.end_drag();
+}
+
+// rotate and scale: one transform of the selection.
 void transform(const Call& c, TransformMode mode, const glm::dvec3& axis, double angle, const glm::dvec3& factors) {
   if (c.state.selection().empty())
     throw ScriptError(std::string(mode == TransformMode::Rotate ? "rotate" : "scale") + " needs a selection (use 'select INDEX...')");
   c.state.begin_transform(mode);
-  try {
-    c.state.transform_to(axis, angle, factors);
-  } catch (...) {
-    c.state.cancel_drag();
-    throw;
-  }
-  c.state.end_drag();
+  as_one_drag(c.state, [&] { c.state.transform_to(axis, angle, factors); });
 }
 
 Scheme script_scheme(const std::string& name) {
@@ -304,13 +311,7 @@ constexpr Command kCommands[] = {
       if (c.state.selection().empty()) throw ScriptError("move needs a selection (use 'select INDEX...')");
       const double d[3] = {number(c.w[1], "DX"), number(c.w[2], "DY"), number(c.w[3], "DZ")};
       c.state.begin_drag("Move");
-      try {
-        c.state.drag_to(d);
-      } catch (...) {
-        c.state.cancel_drag();  // no half-applied drag in the history
-        throw;
-      }
-      c.state.end_drag();
+      as_one_drag(c.state, [&] { c.state.drag_to(d); });
     }},
     {"rotate", 2, 4, "rotate x|y|z DEGREES | rotate AX AY AZ DEGREES", [](const Call& c) {
       glm::dvec3 axis(0.0);
@@ -358,7 +359,7 @@ constexpr Command kCommands[] = {
       for (std::size_t i = 1; i + 2 < c.w.size(); i += 3)
         points.emplace_back(number(c.w[i], "X"), number(c.w[i + 1], "Y"), number(c.w[i + 2], "Z"));
       c.state.begin_stroke();
-      try {
+      as_one_drag(c.state, [&] {
         for (std::size_t i = 0; i < points.size(); ++i) {
           Dab d;
           d.center = points[i];
@@ -369,11 +370,7 @@ constexpr Command kCommands[] = {
           }
           c.state.dab(d);
         }
-      } catch (...) {
-        c.state.cancel_drag();
-        throw;
-      }
-      c.state.end_drag();
+      });
     }},
     {"crease", 1, 1, "crease mark|clear|toggle", [](const Call& c) {
       if (c.w[1] != "mark" && c.w[1] != "clear" && c.w[1] != "toggle") c.usage_error();

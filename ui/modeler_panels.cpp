@@ -66,7 +66,7 @@ void draw_file_section(const ModelerPanelData& d, FileFields& f, ModelerPanelReq
   ImGui::SameLine();
   if (ImGui::Button("Save", ImVec2(button, 0)) && !f.save_path.empty()) r.save = f.save_path;
   ImGui::SetNextItemWidth(-button - ImGui::GetStyle().ItemSpacing.x);
-  ImGui::InputTextWithHint("##export", "out.obj/.ply/.gltf/.glb/.lattice/.vtk", &f.export_path);
+  ImGui::InputTextWithHint("##export", "out.obj/.ply/.gltf/.glb/.lattice/.ovm/.vtk", &f.export_path);
   ImGui::SameLine();
   if (ImGui::Button("Export", ImVec2(button, 0)) && !f.export_path.empty()) {
     r.export_path = f.export_path;

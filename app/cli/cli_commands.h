@@ -30,7 +30,7 @@ int run_compress(int argc, char** argv);
 
 /// `info` on a .sublift project (levels, per-level wavelet statistics).
 int info_project(const std::string& file, bool json);
-/// `info` on a lattice (.lattice, .vtk): counts, cell sizes, feature dims, bounding box.
+/// `info` on a lattice (.lattice, .ovm, .vtk): counts, cell sizes, feature dims, bounding box.
 int info_shape(const std::string& file, bool json);
 
 }  // namespace sublift::cli

@@ -35,7 +35,7 @@ constexpr const char* kHelp =
     "                 counts the wavelets inside\n"
     "  --raw          rank by the raw magnitude |w| instead (for experiments)\n"
     "  OUT            a .sublift project (the compressed coefficients, gains and level kept), or\n"
-    "                 the finest level as a mesh by extension (.obj .off .ply .vtk .lattice)\n"
+    "                 the finest level as a mesh by extension (.obj .off .ply .vtk .lattice .ovm)\n"
     "  --json         prints kept, total, l2_error, linf_error (relative to the diagonal), mode,\n"
     "                 value and timings\n";
 

@@ -18,7 +18,7 @@ int run_convert(int argc, char** argv) {
                  "  Reads IN through the safe import layer and writes OUT in the format of its\n"
                  "  extension (.obj keeps 't' tags and 'l' polylines; .off; ascii .ply), vertices in\n"
                  "  the same order, coordinates with 17 significant digits. OUT is replaced\n"
-                 "  atomically. Lattices convert between .lattice and .vtk (features kept).\n";
+                 "  atomically. Lattices convert between .lattice, .vtk (features kept) and .ovm.\n";
     return 0;
   }
   if (a.positional.size() != 1) throw UsageError("expected exactly one input file");

@@ -55,7 +55,7 @@ constexpr const char* kHelp =
     "  --local-frames  keep detail in local frames of the coarser surface (surfaces only), so it\n"
     "               turns with the surface; default: world coordinates\n"
     "  OUT          a .sublift project (the edited session: coefficients, gains, level L), or the\n"
-    "               finest level as a mesh by extension (.obj .off .ply .vtk .lattice)\n"
+    "               finest level as a mesh by extension (.obj .off .ply .vtk .lattice .ovm)\n"
     "  --json       prints resynthesis_ms (the local resynthesis alone, no file I/O) and\n"
     "               vertices_updated; compare with 'synthesize --json' synthesis_ms\n";
 

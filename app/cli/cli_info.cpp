@@ -22,7 +22,7 @@ constexpr const char* kHelp =
     "  Meshes (.obj/.off/.ply): vertex/edge/face counts, polylines, the face-size and valence\n"
     "  histograms, boundary loops, non-manifold edges and vertices, misoriented edges,\n"
     "  components, Euler characteristic, tags and the bounding box.\n"
-    "  Lattices (.lattice/.vtk): counts of vertices, edges, faces, cells, faces per cell,\n"
+    "  Lattices (.lattice/.ovm/.vtk): counts of vertices, edges, faces, cells, faces per cell,\n"
     "  feature dimensionalities and the bounding box.\n"
     "  Projects (.sublift): scheme, integer flag, channels, dimension, base counts, 'levels' and\n"
     "  'per_level' (level, vertices, wavelets, wavelet_max, wavelet_rms: Euclidean norms).\n"
@@ -50,10 +50,10 @@ int run_info(int argc, char** argv) {
   const std::string& file = a.positional[0];
   const std::string ext = file_extension(file);
   if (ext == "sublift") return info_project(file, a.has("--json"));
-  if (ext == "lattice" || ext == "vtk") return info_shape(file, a.has("--json"));
+  if (ext == "lattice" || ext == "ovm" || ext == "vtk") return info_shape(file, a.has("--json"));
   // Everything info reads, so an unknown extension is answered with the whole list.
   if (ext != "obj" && ext != "off" && ext != "ply")
-    throw InputError(file, 0, "unsupported format '." + ext + "' (info reads .obj, .off, .ply, .lattice, .vtk and .sublift)");
+    throw InputError(file, 0, "unsupported format '." + ext + "' (info reads .obj, .off, .ply, .lattice, .ovm, .vtk and .sublift)");
   const LoadedMesh loaded = import_surface_mesh(file);
   std::cerr << loaded.report.format(file);
   const MeshStats s = compute_mesh_stats(loaded.mesh);

@@ -1,4 +1,4 @@
-// sublift-cli info for .sublift projects and for lattices (.lattice, .vtk).
+// sublift-cli info for .sublift projects and for lattices (.lattice, .ovm, .vtk).
 #include <iostream>
 #include <map>
 

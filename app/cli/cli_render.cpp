@@ -75,7 +75,7 @@ int run_render(int argc, char** argv) {
     std::cout << "usage: sublift-cli render FILE -o PNG [--size WxH] [--level L] [--colour L] [--json]\n"
                  "  Renders FILE shaded with its wireframe from the default 3/4 view, without a\n"
                  "  display (EGL surfaceless), and writes a PNG. Default size 800x600. FILE: a mesh\n"
-                 "  (.obj .off .ply), a lattice (.lattice .vtk: its outward boundary) or a .sublift\n"
+                 "  (.obj .off .ply), a lattice (.lattice .ovm .vtk: its outward boundary) or a .sublift\n"
                  "  project (its finest limit surface with the saved gains, as the modeler shows it).\n"
                  "  --level L   a project's limit surface of level L instead of the finest (the modeler's\n"
                  "              viewport level)\n"

@@ -22,7 +22,7 @@ constexpr const char* kHelp =
     "  are one per boundary or crease edge (even levels) and one per face. linear-tri, butterfly\n"
     "  and loop (Lounsbery, DeRose & Warren) split triangle meshes 1-to-4 (0..12; old vertices,\n"
     "  then one per edge). IN: .obj/.off/.ply surfaces, .obj with only 'l' polylines\n"
-    "  (curves), .lattice and .vtk lattices. OUT by extension: .obj/.off/.ply for surfaces,\n"
+    "  (curves), .lattice, .ovm and .vtk lattices. OUT by extension: .obj/.off/.ply for surfaces,\n"
     "  .obj for curves, .lattice for lattices, .vtk for any. --integer rounds every lifting\n"
     "  term (lossless integer transform). Requests beyond 50 million vertices are refused.\n";
 

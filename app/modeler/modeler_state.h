@@ -62,7 +62,7 @@ class ModelerState {
   /// finest vertices.
   static constexpr double kMaxOpenVertices = 2.0e6;
 
-  /// Opens a shape (OBJ/OFF/PLY, curve OBJ, .lattice, .vtk) as a hierarchy of `levels` levels
+  /// Opens a shape (OBJ/OFF/PLY, curve OBJ, .lattice, .ovm, .vtk) as a hierarchy of `levels` levels
   /// of `scheme`, or a `.sublift` project with its gains, frames and current level. Throws
   /// sublift::Error; on failure the current session is left untouched.
   void open(const std::string& path, int levels = kDefaultLevels, Scheme scheme = Scheme::Cubic);
@@ -260,7 +260,7 @@ class ModelerState {
   void save_project(const std::string& path);
   /// Exports the finest level (finest = true) or the current level by extension: .obj/.ply/
   /// .gltf/.glb with normals (the limit surface for the finest level; lattices: their boundary),
-  /// .lattice/.vtk (and .off) through write_shape. Returns notes on what the format dropped.
+  /// .lattice/.ovm/.vtk (and .off) through write_shape. Returns notes on what the format dropped.
   std::vector<std::string> export_shape(const std::string& path, bool finest);
   /// The same for the control net of `level` (-1: the finest limit surface).
   std::vector<std::string> export_level(const std::string& path, int level);

@@ -13,7 +13,7 @@ Shape read_ffd_lattice(const std::string& path) {
   Shape s = read_shape(path);
   if (s.base.dim != 3) {
     throw InputError(path, 0, "not a volume lattice (a " + std::string(s.base.dim == 1 ? "curve" : "surface") +
-                                  "); FFD needs cells (.lattice or .vtk)");
+                                  "); FFD needs cells (.lattice, .ovm or .vtk)");
   }
   return s;
 }

@@ -32,7 +32,7 @@ struct FfdScene {
   int finest() const { return lattice->finest_level(); }
 };
 
-/// A lattice file (.lattice, .vtk) as a Shape; throws InputError when it is not a volume.
+/// A lattice file (.lattice, .ovm, .vtk) as a Shape; throws InputError when it is not a volume.
 Shape read_ffd_lattice(const std::string& path);
 
 /// A box lattice of nx x ny x nz hexahedra around the model's bounding box, `margin` times the

@@ -170,7 +170,7 @@ TEST(ShapeIo, WritesEveryDimensionAndReadsItBack) {
   const auto notes = write_shape(dir.file("s.off"), s, xyz);
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_NE(notes[0].find("cannot hold feature tags"), std::string::npos);
-  EXPECT_EQ(shape_output_problem("x.obj", 3), "a lattice cannot be written as .obj; use .lattice or .vtk");
+  EXPECT_EQ(shape_output_problem("x.obj", 3), "a lattice cannot be written as .obj; use .lattice, .ovm or .vtk");
   EXPECT_EQ(shape_output_problem("x.vtk", 1), "");
 }
 

@@ -7,12 +7,15 @@
 #include "core/complex/feature_tags.h"
 #include "core/base/file_io.h"
 #include "core/io/lattice/lattice_format.h"
+#include "core/io/lattice/ovm_format.h"
 #include "core/io/mesh/mesh_export.h"
 #include "core/io/mesh/mesh_import.h"
 #include "core/io/lattice/vtk_format.h"
 
 namespace sublift {
 namespace {
+
+constexpr std::string_view kShapeFormats = ".obj, .off, .ply, .lattice, .ovm or .vtk";
 
 Shape shape_from_mesh(const std::string& name, LoadedMesh loaded) {
   Shape shape;
@@ -80,26 +83,28 @@ void curve_polylines(const Complex& c, SurfaceMesh& m) {
 Shape read_shape_from_memory(const std::string& name, const std::string& bytes) {
   const std::string ext = file_extension(name);
   if (ext == "lattice") return read_lattice(bytes, name);
+  if (ext == "ovm") return read_ovm(bytes, name);
   if (ext == "vtk") return read_vtk(bytes, name);
   if (ext == "obj" || ext == "off" || ext == "ply") return shape_from_mesh(name, import_surface_mesh_from_memory(name, bytes));
-  throw InputError(name, 0, "unsupported format '." + ext + "' (expected .obj, .off, .ply, .lattice or .vtk)");
+  throw InputError(name, 0, "unsupported format '." + ext + "' (expected " + std::string(kShapeFormats) + ")");
 }
 
 Shape read_shape(const std::string& path) {
   const std::string ext = file_extension(path);
-  if (ext != "lattice" && ext != "vtk" && ext != "obj" && ext != "off" && ext != "ply")
-    throw InputError(path, 0, "unsupported format '." + ext + "' (expected .obj, .off, .ply, .lattice or .vtk)");
+  if (ext != "lattice" && ext != "ovm" && ext != "vtk" && ext != "obj" && ext != "off" && ext != "ply")
+    throw InputError(path, 0, "unsupported format '." + ext + "' (expected " + std::string(kShapeFormats) + ")");
   return read_shape_from_memory(path, read_file_bytes(path));
 }
 
 std::string shape_output_problem(const std::string& path, int dim) {
   const std::string ext = file_extension(path);
   const std::string what = dim == 3 ? "lattice" : dim == 2 ? "surface" : "curve";
+  const bool volume_only = ext == "lattice" || ext == "ovm";
   if (ext == "vtk") return "";
-  if (ext != "lattice" && ext != "obj" && ext != "off" && ext != "ply")
-    return "cannot write '." + ext + "' (expected .obj, .off, .ply, .lattice or .vtk)";
-  if (dim == 3 && ext != "lattice") return "a lattice cannot be written as ." + ext + "; use .lattice or .vtk";
-  if (dim != 3 && ext == "lattice") return "a .lattice holds volumes; write this " + what + " as .obj or .vtk";
+  if (!volume_only && ext != "obj" && ext != "off" && ext != "ply")
+    return "cannot write '." + ext + "' (expected " + std::string(kShapeFormats) + ")";
+  if (dim == 3 && !volume_only) return "a lattice cannot be written as ." + ext + "; use .lattice, .ovm or .vtk";
+  if (dim != 3 && volume_only) return "a ." + ext + " holds volumes; write this " + what + " as .obj or .vtk";
   if (dim == 1 && ext != "obj") return "a curve cannot be written as ." + ext + "; use .obj or .vtk";
   return "";
 }
@@ -116,6 +121,15 @@ std::vector<std::string> write_shape(const std::string& path, const Complex& c, 
   }
   if (ext == "lattice") {
     write_lattice(path, c, xyz);
+    return notes;
+  }
+  if (ext == "ovm") {
+    write_ovm(path, c, xyz);
+    if (const FeatureTags tags = derive_feature_tags(c);
+        !tags.feature_faces.empty() || !tags.crease_edges.empty() || !tags.corner_vertices.empty())
+      notes.push_back(".ovm cannot hold feature tags: " + std::to_string(tags.feature_faces.size()) + " feature faces, " +
+                      std::to_string(tags.crease_edges.size()) + " crease edges and " +
+                      std::to_string(tags.corner_vertices.size()) + " corners not written (use .lattice or .vtk)");
     return notes;
   }
   SurfaceMesh m;

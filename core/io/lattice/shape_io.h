@@ -1,6 +1,6 @@
 #pragma once
 // Reading and writing any supported shape by extension: surfaces (.obj/.off/.ply through the
-// import layer), curves (.obj holding only `l` polylines), lattices (.lattice, .vtk; .vtk may
+// import layer), curves (.obj holding only `l` polylines), lattices (.lattice, .ovm, .vtk; .vtk may
 // also hold a surface or curve). Output vertices are in the complex's order, which for a
 // refined level is refine.h's numbering.
 #include <span>

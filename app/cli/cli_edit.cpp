@@ -56,8 +56,10 @@ constexpr const char* kHelp =
     "               turns with the surface; default: world coordinates\n"
     "  OUT          a .sublift project (the edited session: coefficients, gains, level L), or the\n"
     "               finest level as a mesh by extension (.obj .off .ply .vtk .lattice .ovm)\n"
-    "  --json       prints resynthesis_ms (the local resynthesis alone, no file I/O) and\n"
-    "               vertices_updated; compare with 'synthesize --json' synthesis_ms\n";
+    "  --json       prints resynthesis_ms (the local resynthesis alone, no file I/O),\n"
+    "               setup_ms (what opening pays once: the sparse indices, every level's\n"
+    "               positions, the edit buffers) and vertices_updated; compare with\n"
+    "               'synthesize --json' synthesis_ms\n";
 
 std::uint32_t index_value(const std::string& s) {
   std::uint32_t v = 0;
@@ -227,7 +229,9 @@ int run_edit(int argc, char** argv) {
     std::sort(selected.begin(), selected.end());
     selected.erase(std::unique(selected.begin(), selected.end()), selected.end());
   }
-  Session session(std::move(h), extras.gains);
+  const auto open_t0 = std::chrono::steady_clock::now();
+  Session session(std::move(h), extras.gains);  // builds the sparse indices and every level's positions
+  const double open_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - open_t0).count();
   if (a.has("--local-frames") || extras.local_frames) session.set_detail_frames(DetailFrames::Local);
   const SoftWeights w = soft_selection(session.positions(level), selected, falloff);
   glm::dvec3 pivot(0.0);
@@ -295,6 +299,7 @@ int run_edit(int argc, char** argv) {
                               {"pivot", {pivot.x, pivot.y, pivot.z}},
                               {"detail_frames", session.detail_frames() == DetailFrames::Local ? "local" : "world"},
                               {"resynthesis_ms", r.resynthesis_ms},
+                              {"setup_ms", open_ms + r.setup_ms},
                               {"vertices_updated", r.vertices_updated},
                               {"finest_vertices", session.num_vertices(session.finest_level())},
                               {"warnings", report_json(topology)},

@@ -186,11 +186,21 @@ void Session::push_entry(HistoryEntry e) {
   }
 }
 
-void Session::ensure_touched() {
+double Session::prepare_edit_buffers() {
+  const auto t0 = std::chrono::steady_clock::now();
+  bool sized = false;
+  const auto size = [&](std::vector<std::uint32_t>& t, std::uint32_t n) {
+    if (t.size() != n) t.resize(n, 0u), sized = true;
+  };
   touched_.resize(static_cast<std::size_t>(finest_level()) + 3);
-  for (int l = 0; l <= finest_level(); ++l) touched_[static_cast<std::size_t>(l)].resize(num_vertices(l), 0u);
-  touched_[touched_.size() - 2].resize(num_vertices(finest_level()), 0u);
-  touched_[touched_.size() - 1].resize(num_vertices(finest_level()), 0u);
+  for (int l = 0; l <= finest_level(); ++l) {
+    size(touched_[static_cast<std::size_t>(l)], num_vertices(l));
+    SparseDelta& d = deltas_[static_cast<std::size_t>(l)];
+    if (d.x.size() != std::size_t(num_vertices(l)) * 3) d.reset(num_vertices(l)), sized = true;
+  }
+  size(touched_[touched_.size() - 2], num_vertices(finest_level()));
+  size(touched_[touched_.size() - 1], num_vertices(finest_level()));
+  return sized ? ms_since(t0) : 0.0;
 }
 
 // ---- edits -----------------------------------------------------------------------------------
@@ -268,7 +278,7 @@ OpReport Session::move_impl(int level, std::span<const std::uint32_t> vertices, 
   check_gain_below(level);
   const bool own_entry = !open_;
   if (own_entry) begin_edit("Move");
-  ensure_touched();
+  const double setup_ms = prepare_edit_buffers();
   const auto t0 = std::chrono::steady_clock::now();
   clear_changed();
   const bool local = frames_ == DetailFrames::Local;
@@ -327,6 +337,7 @@ OpReport Session::move_impl(int level, std::span<const std::uint32_t> vertices, 
 
   report_ = {};
   report_.resynthesis_ms = ms_since(t0);
+  report_.setup_ms = setup_ms;
   report_.full = full;
   report_.from_level = full ? 0 : level;
   for (const auto& c : changed_) report_.vertices_updated += c.size();

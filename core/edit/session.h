@@ -39,6 +39,7 @@ enum class DetailFrames : std::uint8_t { World, Local };
 /// What the last operation changed and what it cost.
 struct OpReport {
   double resynthesis_ms = 0.0;          // local resynthesis and fold-back (no file I/O)
+  double setup_ms = 0.0;                // one-time buffers the first edit after opening sizes
   std::size_t vertices_updated = 0;     // control points changed, summed over levels
   bool full = false;                    // every level from `from_level` up was recomputed
   int from_level = 0;
@@ -164,7 +165,9 @@ class Session {
   const ChildSites* sites(int level) const;           // sqrt2's new-vertex sites, else nullptr
   void synthesize_sparse(int level, SparseDelta& d);  // transition level -> level + 1
   void analyze_sparse(int level, SparseDelta& d);
-  void ensure_touched();
+  /// Sizes the history stamps and per-level change buffers (first edit after opening or after
+  /// the levels change); the ms it took, 0 when they were ready.
+  double prepare_edit_buffers();
   void record(int array, std::uint32_t v);  // remembers the old value before a change
   double* array_ptr(int array);
   std::size_t array_vertices(int array) const;

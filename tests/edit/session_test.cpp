@@ -320,6 +320,21 @@ TEST(Session, SubdivideAndUndo) {
   }
 }
 
+// Issue 21: what the first edit after opening pays once (its buffers) is reported apart from the
+// resynthesis, and only by the edits that size something.
+TEST(Session, FirstEditReportsItsSetupApart) {
+  Session s(torus(2, Scheme::Cubic));
+  const std::uint32_t v[1] = {3};
+  const double d[3] = {0.0, 0.1, 0.0};
+  EXPECT_GT(s.move(0, v, {}, d).setup_ms, 0.0);
+  EXPECT_EQ(s.move(0, v, {}, d).setup_ms, 0.0);
+  EXPECT_EQ(s.move(1, v, {}, d).setup_ms, 0.0);
+  s.subdivide();  // a new level's buffers are sized by the next edit
+  EXPECT_GT(s.move(0, v, {}, d).setup_ms, 0.0);
+  EXPECT_EQ(s.move(2, v, {}, d).setup_ms, 0.0);
+  expect_consistent(s, 1e-12);
+}
+
 TEST(Session, BadInput) {
   Session s(torus_cubic());
   const double d[3] = {1, 0, 0};

@@ -4,16 +4,20 @@
 
 namespace sublift {
 
-void ImportReport::add(const std::string& what, std::size_t line) {
-  auto it = std::find_if(warnings.begin(), warnings.end(),
-                         [&](const ImportWarning& w) { return w.what == what; });
-  if (it == warnings.end()) {
-    warnings.push_back({what, 0, {}});
-    it = warnings.end() - 1;
-  }
+namespace {
+
+// One occurrence of `what` at `line`, merged with earlier ones of the same kind in `list`; line 0
+// (no line) is listed only when `keep_no_line`.
+void count(std::vector<ImportWarning>& list, const std::string& what, std::size_t line, bool keep_no_line) {
+  auto it = std::find_if(list.begin(), list.end(), [&](const ImportWarning& w) { return w.what == what; });
+  if (it == list.end()) it = list.insert(list.end(), ImportWarning{what, 0, {}});
   ++it->count;
-  if (line > 0 && it->first_lines.size() < kMaxLines) it->first_lines.push_back(line);
+  if ((line > 0 || keep_no_line) && it->first_lines.size() < ImportReport::kMaxLines) it->first_lines.push_back(line);
 }
+
+}  // namespace
+
+void ImportReport::add(const std::string& what, std::size_t line) { count(warnings, what, line, false); }
 
 std::string ImportReport::format(const std::string& file) const {
   std::string out;
@@ -31,15 +35,7 @@ std::string ImportReport::format(const std::string& file) const {
   return out;
 }
 
-void ImportReport::note_not_kept(const std::string& what, std::size_t line) {
-  for (ImportWarning& w : not_kept)
-    if (w.what == what) {
-      ++w.count;
-      if (w.first_lines.size() < kMaxLines) w.first_lines.push_back(line);
-      return;
-    }
-  not_kept.push_back({what, 1, {line}});
-}
+void ImportReport::note_not_kept(const std::string& what, std::size_t line) { count(not_kept, what, line, true); }
 
 std::string ImportReport::not_kept_summary() const {
   std::string s;

@@ -40,18 +40,10 @@ double ray_triangle(const Tri& t, const glm::dvec3& origin, const glm::dvec3& di
 
 }  // namespace
 
-TriangleBvh::TriangleBvh(const SurfaceMesh& mesh) {
-  std::vector<Tri> tris;
-  tris.reserve(mesh.face_indices.size());
-  for (std::size_t face = 0; face < mesh.num_faces(); ++face) {
-    const auto c = mesh.face(face);
-    for (std::size_t i = 1; i + 1 < c.size(); ++i) {
-      const glm::dvec3& a = mesh.positions[c[0]];
-      tris.push_back({a, mesh.positions[c[i]] - a, mesh.positions[c[i + 1]] - a, static_cast<std::uint32_t>(face)});
-    }
-  }
-  init(std::move(tris));
-}
+// glm::dvec3 is three packed doubles.
+TriangleBvh::TriangleBvh(const SurfaceMesh& mesh)
+    : TriangleBvh(std::span<const double>(reinterpret_cast<const double*>(mesh.positions.data()), 3 * mesh.num_vertices()),
+                  Csr{mesh.face_offsets, mesh.face_indices}) {}
 
 TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
   std::vector<Tri> tris;
@@ -61,10 +53,6 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
     const auto c = faces.row(f);
     for (std::size_t i = 1; i + 1 < c.size(); ++i) tris.push_back({at(c[0]), at(c[i]) - at(c[0]), at(c[i + 1]) - at(c[0]), static_cast<std::uint32_t>(f)});
   }
-  init(std::move(tris));
-}
-
-void TriangleBvh::init(std::vector<Tri> tris) {
   if (tris.empty()) return;
   if (tris.size() > std::numeric_limits<std::uint32_t>::max() / 2) throw Error("too many triangles for the triangle hierarchy");
   std::vector<glm::dvec3> centers;
@@ -84,14 +72,12 @@ void TriangleBvh::init(std::vector<Tri> tris) {
   build(order, centers, tris, 0, static_cast<std::uint32_t>(order.size()));
   tris_.resize(tris.size());
   for (std::size_t i = 0; i < order.size(); ++i) tris_[i] = tris[order[i]];
-  std::uint32_t faces = 0;
-  for (const Tri& t : tris_) faces = std::max(faces, t.face + 1);
-  face_tris_.offsets.assign(std::size_t(faces) + 1, 0);
-  for (const Tri& t : tris_) ++face_tris_.offsets[t.face + 1];
-  for (std::uint32_t f = 0; f < faces; ++f) face_tris_.offsets[f + 1] += face_tris_.offsets[f];
-  face_tris_.items.resize(tris_.size());
-  std::vector<std::uint32_t> fill(face_tris_.offsets.begin(), face_tris_.offsets.end() - 1);
-  for (std::uint32_t i = 0; i < tris_.size(); ++i) face_tris_.items[fill[tris_[i].face]++] = i;
+  Csr tri_face;  // triangle -> its polygon
+  for (const Tri& t : tris_) {
+    tri_face.items.push_back(t.face);
+    tri_face.offsets.push_back(static_cast<std::uint32_t>(tri_face.items.size()));
+  }
+  face_tris_ = transpose(tri_face, tris.back().face + 1);  // tris is in polygon order
 }
 
 std::uint32_t TriangleBvh::build(std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers,
@@ -180,7 +166,6 @@ double TriangleBvh::nearest_hit(const glm::dvec3& origin, const glm::dvec3& dir,
   return best;
 }
 
-
 namespace {
 
 // The closest point of triangle (a, a + e1, a + e2) to p (Ericson, Real-Time Collision
@@ -212,15 +197,11 @@ double box_distance2(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec
 
 }  // namespace
 
-TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p) const { return closest_impl(p, nullptr, UINT32_MAX); }
+TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p) const { return closest(p, nullptr, UINT32_MAX); }
 
-TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p, const glm::dvec3& facing) const { return closest_impl(p, &facing, UINT32_MAX); }
+TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p, const glm::dvec3& facing) const { return closest(p, &facing, UINT32_MAX); }
 
 TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p, const glm::dvec3* facing, std::uint32_t hint) const {
-  return closest_impl(p, facing, hint);
-}
-
-TriangleBvh::Closest TriangleBvh::closest_impl(const glm::dvec3& p, const glm::dvec3* facing, std::uint32_t hint) const {
   Closest best;
   double best2 = std::numeric_limits<double>::infinity();
   const auto consider = [&](std::uint32_t i) {

@@ -65,8 +65,6 @@ class TriangleBvh {
     std::uint32_t first = 0, count = 0;  // leaf: tris_[first, first + count); inner: count == 0
     std::uint32_t right = 0;             // inner: index of the right child (left is this + 1)
   };
-  void init(std::vector<Tri> tris);
-  Closest closest_impl(const glm::dvec3& p, const glm::dvec3* facing, std::uint32_t hint) const;
   // Calls visit(triangle index) for the triangles of every leaf whose box the ray meets within
   // [0, limit()] (limit is asked again at each node, so a search can shrink it).
   template <class Limit, class Visit>

@@ -59,30 +59,25 @@ void emit(const Node& a, const Node& b, const Node& c, const Node& high, Contour
 }
 
 void march(const std::array<Node, 4>& t, double level, ContourMesh& out) {
-  std::array<int, 4> above{}, below{};
-  int na = 0, nb = 0;
-  for (int i = 0; i < 4; ++i) {
-    if (t[static_cast<std::size_t>(i)].f > level) above[static_cast<std::size_t>(na++)] = i;
-    else below[static_cast<std::size_t>(nb++)] = i;
-  }
+  std::array<std::size_t, 4> above{}, below{};
+  std::size_t na = 0, nb = 0;
+  for (std::size_t i = 0; i < 4; ++i) (t[i].f > level ? above[na++] : below[nb++]) = i;
   if (na == 0 || nb == 0) return;
-  const auto& T = t;
   if (na == 1 || nb == 1) {
     const bool lone_above = na == 1;
-    const int lone = lone_above ? above[0] : below[0];
-    const std::array<int, 4>& others = lone_above ? below : above;
-    const Node& L = T[static_cast<std::size_t>(lone)];
-    const Node a = cut(L, T[static_cast<std::size_t>(others[0])], level);
-    const Node b = cut(L, T[static_cast<std::size_t>(others[1])], level);
-    const Node c = cut(L, T[static_cast<std::size_t>(others[2])], level);
-    emit(a, b, c, lone_above ? L : T[static_cast<std::size_t>(others[0])], out);
+    const std::array<std::size_t, 4>& others = lone_above ? below : above;
+    const Node& L = t[lone_above ? above[0] : below[0]];
+    const Node a = cut(L, t[others[0]], level);
+    const Node b = cut(L, t[others[1]], level);
+    const Node c = cut(L, t[others[2]], level);
+    emit(a, b, c, lone_above ? L : t[others[0]], out);
     return;
   }
   // Two above (a0, a1), two below (b0, b1): a quad through the four crossing edges in cyclic order.
-  const Node& a0 = T[static_cast<std::size_t>(above[0])];
-  const Node& a1 = T[static_cast<std::size_t>(above[1])];
-  const Node& b0 = T[static_cast<std::size_t>(below[0])];
-  const Node& b1 = T[static_cast<std::size_t>(below[1])];
+  const Node& a0 = t[above[0]];
+  const Node& a1 = t[above[1]];
+  const Node& b0 = t[below[0]];
+  const Node& b1 = t[below[1]];
   const Node p = cut(a0, b0, level), q = cut(a0, b1, level), r = cut(a1, b1, level), s = cut(a1, b0, level);
   emit(p, q, r, a0, out);
   emit(p, r, s, a0, out);

@@ -44,7 +44,8 @@ void check_xyz(const Hierarchy& h, std::span<const double> xyz, const char* what
 
 double ratio(double a, double b) { return b > 0 ? a / b : std::numeric_limits<double>::quiet_NaN(); }
 
-// low_pass without copying the topology: zeroes the finer wavelets, synthesises, restores them.
+// Finest-level model of `level`: the coefficients of the levels below it synthesised to J with
+// every finer wavelet zero (restored afterwards, so h is as it was).
 std::vector<double> low_pass_in_place(Hierarchy& h, int level) {
   if (level < 0 || level > h.finest_level()) throw Error("low_pass: level " + std::to_string(level) + " out of range");
   const auto first = std::ptrdiff_t(std::size_t(h.num_vertices(level)) * h.channels);
@@ -117,11 +118,6 @@ std::vector<double> gaussian_noise(std::uint32_t vertices, double stddev, std::u
     }
   });
   return out;
-}
-
-std::vector<double> low_pass(const Hierarchy& h, int level) {
-  Hierarchy copy = h;
-  return low_pass_in_place(copy, level);
 }
 
 LevelExperiment noise_experiment(Hierarchy& h, std::span<const double> base_xyz, double sigma, std::uint64_t seed) {

@@ -63,7 +63,6 @@ struct CompressExperiment {
 /// coefficient vector.
 enum class Ranking : std::uint8_t { L2, Raw };
 
-
 /// rms and max of |a_i - ref_i| over xyz triples, divided by `diagonal`. Sizes must match.
 ShapeError shape_error(std::span<const double> a, std::span<const double> ref, double diagonal);
 
@@ -71,10 +70,6 @@ ShapeError shape_error(std::span<const double> a, std::span<const double> ref, d
 /// x_k = seed + (k+1) * 0x9E3779B97F4A7C15, mixed), draws 4i..4i+3 for vertex i, so the values
 /// do not depend on the standard library or the thread count.
 std::vector<double> gaussian_noise(std::uint32_t vertices, double stddev, std::uint64_t seed);
-
-/// Finest-level model of level L: the coefficients of levels < L synthesised to J with every
-/// finer wavelet zero (h is not changed).
-std::vector<double> low_pass(const Hierarchy& h, int level);
 
 /// 001 Table 2 / 000 Table 1: the base subdivided J times (the clean model), N(0, (sigma d)^2)
 /// added to every coordinate of every finest vertex (d the clean model's diagonal), then

@@ -7,7 +7,6 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <set>
 #include <sstream>
 
 #include "core/base/errors.h"
@@ -49,11 +48,7 @@ Stencil vertex_stencil(Scheme s) {
   return st;
 }
 
-std::string offset_str(Offset d) {
-  std::ostringstream s;
-  s << "(" << d.i << "," << d.j << ")";
-  return s.str();
-}
+std::string offset_str(Offset d) { return "(" + std::to_string(d.i) + "," + std::to_string(d.j) + ")"; }
 
 long long cross(Offset o, Offset a, Offset b) {
   return (long long)(a.i - o.i) * (b.j - o.j) - (long long)(a.j - o.j) * (b.i - o.i);
@@ -266,10 +261,8 @@ LatticeInnerProducts lattice_inner_products(const LatticeMask& mask, const Latti
   sys.total = out.cell;
   out.diagnostics = solve_homogeneous(sys);
   if (!out.diagnostics.simple) {
-    std::ostringstream msg;
-    msg << "lattice_inner_products: eigenvalue 1 of the transition matrix is not simple (nullity "
-        << out.diagnostics.nullity << ")";
-    throw Error(msg.str());
+    throw Error("lattice_inner_products: eigenvalue 1 of the transition matrix is not simple (nullity " +
+                std::to_string(out.diagnostics.nullity) + ")");
   }
   out.unknowns = sys.unknowns;
   out.offsets = D;

@@ -216,12 +216,10 @@ SphereResample resample_sphere(const SurfaceMesh& mesh, int levels) {
     }
   }
 
-  out.positions.resize(3 * std::size_t(n));
+  out.positions.reserve(3 * std::size_t(n));
   for (std::uint32_t v = 0; v < n; ++v) {
     const glm::dvec3 p = c + radius[v] * sphere.directions[v];
-    out.positions[3 * std::size_t(v)] = p.x;
-    out.positions[3 * std::size_t(v) + 1] = p.y;
-    out.positions[3 * std::size_t(v) + 2] = p.z;
+    out.positions.insert(out.positions.end(), {p.x, p.y, p.z});
   }
   out.base_positions.assign(out.positions.begin(), out.positions.begin() + 3 * sphere.base.num_vertices);
   out.base = std::move(sphere.base);

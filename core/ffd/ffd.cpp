@@ -307,34 +307,22 @@ Grid make_grid(const Cells& t, std::uint32_t nc, double tol) {
     g.lo[a] = lo[a] - 0.5 * (e[a] - ext[a]);
     g.h[a] = e[a] / g.n[a];
   }
-  // Boxes grow by the inside tolerance so points accepted with slack find their cell.
-  auto range = [&](std::uint32_t k, int a, int& i0, int& i1) {
+  // Cell -> the bins its box overlaps, grown by the inside tolerance so points accepted with
+  // slack find their cell; transposed, bin -> cells.
+  Csr cell_bins;
+  for (std::uint32_t k = 0; k < nc; ++k) {
     const double pad = tol * t.size[k];
-    i0 = g.coord(a, t.box[6 * k + a] - pad);
-    i1 = g.coord(a, t.box[6 * k + 3 + a] + pad);
-  };
-  const std::size_t nb = std::size_t(g.n[0]) * g.n[1] * g.n[2];
-  std::vector<std::uint32_t> count(nb + 1, 0);
-  for (int pass = 0; pass < 2; ++pass) {
-    for (std::uint32_t k = 0; k < nc; ++k) {
-      int r[3][2];
-      for (int a = 0; a < 3; ++a) range(k, a, r[a][0], r[a][1]);
-      for (int z = r[2][0]; z <= r[2][1]; ++z)
-        for (int y = r[1][0]; y <= r[1][1]; ++y)
-          for (int x = r[0][0]; x <= r[0][1]; ++x) {
-            const std::size_t b = g.index(x, y, z);
-            if (pass == 0)
-              ++count[b + 1];
-            else
-              g.bins.items[count[b]++] = k;
-          }
+    int r[3][2];
+    for (int a = 0; a < 3; ++a) {
+      r[a][0] = g.coord(a, t.box[6 * k + a] - pad);
+      r[a][1] = g.coord(a, t.box[6 * k + 3 + a] + pad);
     }
-    if (pass == 0) {
-      for (std::size_t b = 0; b < nb; ++b) count[b + 1] += count[b];
-      g.bins.offsets.assign(count.begin(), count.end());
-      g.bins.items.resize(count[nb]);
-    }
+    for (int z = r[2][0]; z <= r[2][1]; ++z)
+      for (int y = r[1][0]; y <= r[1][1]; ++y)
+        for (int x = r[0][0]; x <= r[0][1]; ++x) cell_bins.items.push_back(static_cast<std::uint32_t>(g.index(x, y, z)));
+    cell_bins.offsets.push_back(static_cast<std::uint32_t>(cell_bins.items.size()));
   }
+  g.bins = transpose(cell_bins, std::size_t(g.n[0]) * g.n[1] * g.n[2]);
   return g;
 }
 

@@ -1,7 +1,5 @@
 #include "core/ffd/ffd_edits.h"
 
-#include <cmath>
-
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
 #include "core/base/text_lines.h"

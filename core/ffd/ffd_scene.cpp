@@ -1,8 +1,5 @@
 #include "core/ffd/ffd_scene.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include "core/ffd/box_lattice.h"
 #include "core/base/errors.h"
 #include "core/io/lattice/shape_io.h"

@@ -1,6 +1,7 @@
 #pragma once
 // Bounds-checked reading of fixed-size binary values (either endianness) from a byte buffer.
 // Every read checks the remaining length first, so a lying count can never read past the end.
+#include <algorithm>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
@@ -11,6 +12,26 @@
 #include "core/base/errors.h"
 
 namespace sublift {
+
+/// The T (arithmetic, 1/2/4/8 bytes) stored at `p` in the given byte order.
+template <class T>
+T load_endian(const void* p, bool big_endian) {
+  unsigned char raw[sizeof(T)];
+  std::memcpy(raw, p, sizeof(T));
+  if (big_endian != (std::endian::native == std::endian::big)) std::reverse(raw, raw + sizeof(T));
+  T v;
+  std::memcpy(&v, raw, sizeof(T));
+  return v;
+}
+
+/// Stores `v` at `p` in the given byte order.
+template <class T>
+void store_endian(void* p, T v, bool big_endian) {
+  unsigned char raw[sizeof(T)];
+  std::memcpy(raw, &v, sizeof(T));
+  if (big_endian != (std::endian::native == std::endian::big)) std::reverse(raw, raw + sizeof(T));
+  std::memcpy(p, raw, sizeof(T));
+}
 
 class BinaryCursor {
  public:
@@ -26,13 +47,8 @@ class BinaryCursor {
     if (remaining() < sizeof(T))
       throw InputError(file_, 0, std::string("unexpected end of file at byte offset ") +
                                      std::to_string(pos_) + " while reading " + what);
-    unsigned char raw[sizeof(T)];
-    std::memcpy(raw, bytes_.data() + pos_, sizeof(T));
+    const T v = load_endian<T>(bytes_.data() + pos_, big_);
     pos_ += sizeof(T);
-    if (big_ != (std::endian::native == std::endian::big))
-      for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(raw[i], raw[sizeof(T) - 1 - i]);
-    T v;
-    std::memcpy(&v, raw, sizeof(T));
     return v;
   }
 

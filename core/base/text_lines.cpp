@@ -80,6 +80,16 @@ std::optional<std::int64_t> parse_int(std::string_view t) {
   return v;
 }
 
+std::vector<std::string> nonempty_lines(std::string_view text) {
+  std::vector<std::string> out;
+  for (std::size_t start = 0; start < text.size();) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    if (end > start) out.emplace_back(text.substr(start, end - start));
+    start = end + 1;
+  }
+  return out;
+}
+
 std::string to_lower(std::string_view s) {
   std::string r(s);
   for (char& c : r)

@@ -55,6 +55,9 @@ std::string printable(std::string_view bytes, std::size_t max_bytes = 32);
 /// "1.6999999999999999e+308"; "nan", "inf", "-inf" as printf writes them.
 std::string format_shortest(double v);
 
+/// The non-empty lines of `text` (split at '\n'): a message of several lines as notes.
+std::vector<std::string> nonempty_lines(std::string_view text);
+
 /// Lower-case ASCII copy (for extensions and keywords).
 std::string to_lower(std::string_view s);
 

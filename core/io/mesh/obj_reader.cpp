@@ -70,6 +70,18 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
   std::vector<std::string_view> tok;
   std::vector<std::int64_t> corners;
   LineReader lines(bytes, file, limits.max_line_length);
+  // The vertices of an `f` or `l` line into `corners` (v, v/vt, v//vn, v/vt/vn; negative:
+  // relative to here); false when there are more than the size limit or one is unreadable or 0.
+  auto read_corners = [&] {
+    corners.clear();
+    if (tok.size() > limits.max_face_size + 1) return false;
+    for (std::size_t k = 1; k < tok.size(); ++k) {
+      const auto idx = parse_int(tok[k].substr(0, tok[k].find('/')));
+      if (!idx || *idx == 0) return false;
+      corners.push_back(*idx > 0 ? *idx - 1 : static_cast<std::int64_t>(mesh.positions.size()) + *idx);
+    }
+    return true;
+  };
   while (next_tokens(lines, tok)) {
     const std::size_t ln = lines.line_number();
     const std::string_view key = tok[0];
@@ -99,24 +111,12 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
       mesh.positions.push_back(p);
       vertex_lines.push_back(ln);
     } else if (key == "f") {
-      corners.clear();
-      bool ok = tok.size() <= limits.max_face_size + 1;
-      for (std::size_t k = 1; ok && k < tok.size(); ++k) {
-        const std::string_view t = tok[k];
-        auto idx = parse_int(t.substr(0, t.find('/')));
-        if (!idx || *idx == 0) {
-          ok = false;
-          break;
-        }
-        const auto nv = static_cast<std::int64_t>(mesh.positions.size());
-        corners.push_back(*idx > 0 ? *idx - 1 : nv + *idx);  // negative: relative to here
-      }
-      if (!ok)
+      if (read_corners())
+        faces.add(corners, ln);
+      else
         faces.add_unreadable(ln, report, tok.size() > limits.max_face_size + 1
                                              ? "more corners than the face-size limit"
                                              : "unreadable or zero vertex index");
-      else
-        faces.add(corners, ln);
     } else if (key == "t") {
       MeshTag tag;
       if (parse_tag(tok, ln, tag))
@@ -124,20 +124,12 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
       else
         report.add("tag dropped: malformed 't name ni/nf/ns values' line", ln);
     } else if (key == "l") {
-      corners.clear();
-      bool ok = tok.size() <= limits.max_face_size + 1;
-      for (std::size_t k = 1; ok && k < tok.size(); ++k) {
-        const std::string_view t = tok[k];
-        auto idx = parse_int(t.substr(0, t.find('/')));
-        ok = idx && *idx != 0;
-        if (ok) corners.push_back(*idx > 0 ? *idx - 1 : static_cast<std::int64_t>(mesh.positions.size()) + *idx);
-      }
-      if (!ok)
+      if (read_corners())
+        polylines.add(corners, ln);
+      else
         report.add(tok.size() > limits.max_face_size + 1 ? "polyline dropped: more vertices than the size limit"
                                                          : "polyline dropped: unreadable or zero vertex index",
                    ln);
-      else
-        polylines.add(corners, ln);
     } else if (key == "vt" || key == "vn" || key == "usemtl") {
       report.note_not_kept(key == "vt" ? "texture coordinates (vt)" : key == "vn" ? "normals (vn)" : "materials (usemtl)", ln);
     } else if (key == "p") {

@@ -2,10 +2,7 @@
 // `face` (vertex_indices / vertex_index list) and Stanford `tristrips`; other elements and
 // properties are skipped by their declared types. Counts are bounded by the file size first.
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <string>
 #include <vector>
 
@@ -19,45 +16,11 @@
 namespace sublift {
 namespace {
 
-struct PlyProperty {
-  std::string name;
-  PlyType type = PlyType::Float32;
-  bool is_list = false;
-  PlyType count_type = PlyType::UInt8;
-};
-
-struct PlyElement {
-  std::string name;
-  std::int64_t count = 0;
-  std::size_t line = 0;
-  std::vector<PlyProperty> props;
-};
-
-enum class PlyFormat { Ascii, BinaryLE, BinaryBE };
-
 // The value of type t whose bytes end at `end`, read in the byte order the header does not
 // say: what a file mislabelled little- for big-endian (or back) really holds.
 double swapped_value(std::string_view bytes, std::size_t end, PlyType t, PlyFormat fmt) {
-  const std::size_t n = ply_type_size(t);
-  unsigned char b[8] = {};
-  std::memcpy(b, bytes.data() + end - n, n);
-  const bool want_big = fmt == PlyFormat::BinaryLE;
-  if ((std::endian::native == std::endian::big) != want_big) std::reverse(b, b + n);
-  auto as = [&](auto v) {
-    std::memcpy(&v, b, sizeof v);
-    return static_cast<double>(v);
-  };
-  switch (t) {
-    case PlyType::Int8: return as(std::int8_t{});
-    case PlyType::UInt8: return as(std::uint8_t{});
-    case PlyType::Int16: return as(std::int16_t{});
-    case PlyType::UInt16: return as(std::uint16_t{});
-    case PlyType::Int32: return as(std::int32_t{});
-    case PlyType::UInt32: return as(std::uint32_t{});
-    case PlyType::Float32: return as(float{});
-    case PlyType::Float64: return as(double{});
-  }
-  return 0.0;
+  BinaryCursor in(bytes, end - ply_type_size(t), {}, /*big_endian=*/fmt == PlyFormat::BinaryLE);
+  return read_ply_value(in, t, "");
 }
 
 // "the file may be big-endian (its header says binary_little_endian)", or the reverse.
@@ -90,17 +53,7 @@ class PlyValues {
                                                   printable(tok) + "' in " + what);
       return static_cast<double>(*i);
     }
-    switch (t) {
-      case PlyType::Int8: return bin_.read<std::int8_t>(what);
-      case PlyType::UInt8: return bin_.read<std::uint8_t>(what);
-      case PlyType::Int16: return bin_.read<std::int16_t>(what);
-      case PlyType::UInt16: return bin_.read<std::uint16_t>(what);
-      case PlyType::Int32: return bin_.read<std::int32_t>(what);
-      case PlyType::UInt32: return bin_.read<std::uint32_t>(what);
-      case PlyType::Float32: return bin_.read<float>(what);
-      case PlyType::Float64: return bin_.read<double>(what);
-    }
-    return 0.0;
+    return read_ply_value(bin_, t, what);
   }
   /// Source line (ascii) or 0 (binary, where messages give byte offsets instead).
   std::size_t line() const { return fmt_ == PlyFormat::Ascii ? header_lines_ + lines_.line_number() : 0; }
@@ -143,14 +96,13 @@ class PlyValues {
 
 }  // namespace
 
-LoadedMesh read_ply(std::string_view bytes, const std::string& file, const ImportLimits& limits) {
-  LineReader header(bytes, file, limits.max_line_length);
+PlyHeader read_ply_header(std::string_view bytes, const std::string& file, std::size_t max_line_length) {
+  LineReader header(bytes, file, max_line_length);
   std::vector<std::string_view> tok;
   std::string_view line;
   if (!header.next(line) || line != "ply") throw InputError(file, 1, "not a PLY file (first line is not 'ply')");
-  PlyFormat fmt = PlyFormat::Ascii;
+  PlyHeader h;
   bool have_format = false, ended = false;
-  std::vector<PlyElement> elements;
   constexpr std::size_t kMaxHeaderLines = 100000;
   while (!ended) {
     bool got = false;
@@ -168,18 +120,18 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
     if (key == "comment" || key == "obj_info") continue;
     if (key == "format") {
       if (tok.size() != 3 || tok[2] != "1.0") throw InputError(file, ln, "unsupported PLY format line");
-      if (tok[1] == "ascii") fmt = PlyFormat::Ascii;
-      else if (tok[1] == "binary_little_endian") fmt = PlyFormat::BinaryLE;
-      else if (tok[1] == "binary_big_endian") fmt = PlyFormat::BinaryBE;
+      if (tok[1] == "ascii") h.format = PlyFormat::Ascii;
+      else if (tok[1] == "binary_little_endian") h.format = PlyFormat::BinaryLE;
+      else if (tok[1] == "binary_big_endian") h.format = PlyFormat::BinaryBE;
       else throw InputError(file, ln, "unknown PLY format '" + printable(tok[1]) + "'");
       have_format = true;
     } else if (key == "element") {
       if (tok.size() != 3) throw InputError(file, ln, "expected 'element NAME COUNT'");
       auto n = parse_int(tok[2]);
       if (!n || *n < 0) throw InputError(file, ln, "element count is not a non-negative integer");
-      elements.push_back({std::string(tok[1]), *n, ln, {}});
+      h.elements.push_back({std::string(tok[1]), *n, ln, {}});
     } else if (key == "property") {
-      if (elements.empty()) throw InputError(file, ln, "property before any element");
+      if (h.elements.empty()) throw InputError(file, ln, "property before any element");
       PlyProperty p;
       if (tok.size() == 5 && tok[1] == "list") {
         p.is_list = true;
@@ -195,7 +147,7 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
       } else {
         throw InputError(file, ln, "expected 'property TYPE NAME' or 'property list CTYPE TYPE NAME'");
       }
-      elements.back().props.push_back(p);
+      h.elements.back().props.push_back(p);
     } else if (key == "end_header") {
       ended = true;
     } else {
@@ -204,9 +156,18 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
     }
   }
   if (!have_format) throw InputError(file, header.line_number(), "PLY header has no 'format' line");
+  h.body = header.offset();
+  h.lines = header.line_number();
+  return h;
+}
+
+LoadedMesh read_ply(std::string_view bytes, const std::string& file, const ImportLimits& limits) {
+  const PlyHeader header = read_ply_header(bytes, file, limits.max_line_length);
+  const PlyFormat fmt = header.format;
+  const std::vector<PlyElement>& elements = header.elements;
 
   // Bound every element count by the bytes left before reserving anything.
-  const std::size_t body = header.offset();
+  const std::size_t body = header.body;
   double min_bytes = 0;
   for (const PlyElement& e : elements) {
     double row = 0;
@@ -238,7 +199,7 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
   FaceBuilder faces;
   std::vector<std::size_t> vertex_lines;
   PlyValues in(bytes, body, file, fmt, limits.max_line_length);
-  in.set_header_lines(header.line_number());
+  in.set_header_lines(header.lines);
   std::vector<std::int64_t> list;
   bool have_vertices = false;
   bool vertices_read = false;  // the vertex element is behind us: indices can be checked

@@ -1,9 +1,14 @@
 #pragma once
 // PLY scalar types by their header names (Stanford's `char`...`double` and the sized aliases
-// `int8`...`float64`), shared by the reader (core/io/mesh/ply_reader.cpp) and the model writer that
-// overwrites coordinates in place (core/io/model/mesh_model.cpp).
+// `int8`...`float64`) and the header, shared by the reader (core/io/mesh/ply_reader.cpp) and the
+// model writer that overwrites coordinates in place (core/io/model/mesh_model.cpp).
 #include <cstddef>
+#include <cstdint>
+#include <string>
 #include <string_view>
+#include <vector>
+
+#include "core/base/binary_cursor.h"
 
 namespace sublift {
 
@@ -31,6 +36,33 @@ inline bool parse_ply_type(std::string_view s, PlyType& t) {
   return false;
 }
 
+struct PlyProperty {
+  std::string name;
+  PlyType type = PlyType::Float32;
+  bool is_list = false;
+  PlyType count_type = PlyType::UInt8;
+};
+
+struct PlyElement {
+  std::string name;
+  std::int64_t count = 0;
+  std::size_t line = 0;
+  std::vector<PlyProperty> props;
+};
+
+enum class PlyFormat { Ascii, BinaryLE, BinaryBE };
+
+struct PlyHeader {
+  PlyFormat format = PlyFormat::Ascii;
+  std::vector<PlyElement> elements;
+  std::size_t body = 0;   // byte offset of the body
+  std::size_t lines = 0;  // header lines, end_header included
+};
+
+/// Reads and checks the header of a PLY file (the line `ply` to `end_header`); throws InputError
+/// naming the line and what is wrong. Defined in core/io/mesh/ply_reader.cpp.
+PlyHeader read_ply_header(std::string_view bytes, const std::string& file, std::size_t max_line_length);
+
 /// Bytes of one value in a binary file.
 inline std::size_t ply_type_size(PlyType t) {
   switch (t) {
@@ -43,5 +75,26 @@ inline std::size_t ply_type_size(PlyType t) {
 }
 
 inline bool ply_type_is_float(PlyType t) { return t == PlyType::Float32 || t == PlyType::Float64; }
+
+/// f(T{}) for the C++ type T that stores a value of type t.
+template <class F>
+decltype(auto) with_ply_type(PlyType t, F&& f) {
+  switch (t) {
+    case PlyType::Int8: return f(std::int8_t{});
+    case PlyType::UInt8: return f(std::uint8_t{});
+    case PlyType::Int16: return f(std::int16_t{});
+    case PlyType::UInt16: return f(std::uint16_t{});
+    case PlyType::Int32: return f(std::int32_t{});
+    case PlyType::UInt32: return f(std::uint32_t{});
+    case PlyType::Float32: return f(float{});
+    case PlyType::Float64: break;
+  }
+  return f(double{});
+}
+
+/// One binary value of type t as double (integers stay exact); throws InputError naming `what` at EOF.
+inline double read_ply_value(BinaryCursor& in, PlyType t, const char* what) {
+  return with_ply_type(t, [&](auto x) { return static_cast<double>(in.read<decltype(x)>(what)); });
+}
 
 }  // namespace sublift

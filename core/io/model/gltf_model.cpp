@@ -5,19 +5,19 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <map>
-#include <set>
 #include <sstream>
 #include <system_error>
 #include <unordered_map>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
 #include <glm/mat4x4.hpp>
 
+#include "core/base/binary_cursor.h"
 #include "core/base/errors.h"
 #include "core/base/text_lines.h"
 #include "core/base/file_io.h"
@@ -43,18 +43,7 @@ std::string str(std::size_t v) { return std::to_string(v); }
 
 std::string prim_name(int mesh, int prim) { return "mesh " + std::to_string(mesh) + " primitive " + std::to_string(prim); }
 
-float load_f32(const unsigned char* p) {
-  std::uint32_t u;
-  std::memcpy(&u, p, 4);
-  if constexpr (std::endian::native == std::endian::big) u = __builtin_bswap32(u);
-  return std::bit_cast<float>(u);
-}
-
-void store_f32(unsigned char* p, float f) {
-  std::uint32_t u = std::bit_cast<std::uint32_t>(f);
-  if constexpr (std::endian::native == std::endian::big) u = __builtin_bswap32(u);
-  std::memcpy(p, &u, 4);
-}
+float load_f32(const unsigned char* p) { return load_endian<float>(p, false); }
 
 std::uint32_t load_index(const unsigned char* p, int component) {
   if (component == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) return p[0];
@@ -141,9 +130,7 @@ glm::dmat4 local_matrix(const tinygltf::Node& n, std::size_t index, const std::s
   if (!n.matrix.empty()) {
     if (n.matrix.size() != 16) throw InputError(file, 0, who + ": matrix has " + str(n.matrix.size()) + " numbers, not 16");
     finite(n.matrix, "matrix");
-    glm::dmat4 m;
-    for (int i = 0; i < 16; ++i) m[i / 4][i % 4] = n.matrix[std::size_t(i)];  // column-major, as glm
-    return m;
+    return glm::make_mat4(n.matrix.data());  // column-major, as glm
   }
   glm::dmat4 m(1.0);
   if (!n.translation.empty()) {
@@ -347,14 +334,6 @@ bool has_extension(const std::vector<std::string>& list, const char* name) {
   return std::find(list.begin(), list.end(), name) != list.end();
 }
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);)
-    if (!l.empty()) out.push_back(l);
-  return out;
-}
-
 // Key of a smoothing group: a vertex's original position and normal bits (-0 as +0).
 struct GroupKey {
   std::array<std::uint32_t, 6> bits{};
@@ -368,11 +347,7 @@ struct GroupKeyHash {
   }
 };
 
-glm::dmat4 range_world(const ModelRange& r) {
-  glm::dmat4 m;
-  for (int i = 0; i < 16; ++i) m[i / 4][i % 4] = r.world[std::size_t(i)];
-  return m;
-}
+glm::dmat4 range_world(const ModelRange& r) { return glm::make_mat4(r.world.data()); }
 
 }  // namespace
 
@@ -392,8 +367,7 @@ Model import_gltf_model(const std::string& path, ModelFormat format) {
   try {
     if (format == ModelFormat::Glb) {
       const std::size_t length = check_glb_container(bytes, path);
-      std::uint32_t json_len = 0;
-      for (int k = 3; k >= 0; --k) json_len = (json_len << 8) | static_cast<unsigned char>(bytes[12 + std::size_t(k)]);
+      const auto json_len = load_endian<std::uint32_t>(bytes.data() + 12, false);
       check_json_depth(std::string_view(bytes).substr(20, json_len), path);
       precheck_gltf_json(std::string_view(bytes).substr(20, json_len), path);
       ok = loader.LoadBinaryFromMemory(&g, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
@@ -412,7 +386,7 @@ Model import_gltf_model(const std::string& path, ModelFormat format) {
   if (!ok) {
     if (!box.refused.empty())
       throw InputError(path, 0, "uri '" + printable(box.refused.front(), kMaxQuotedUri) + "' points outside the model's folder (an absolute path, '..', a URL or a symlink out): refused");
-    const auto errs = lines_of(err);
+    const auto errs = nonempty_lines(err);
     throw InputError(path, 0, "glTF: " + (errs.empty() ? std::string("tinygltf could not read it") : printable(errs.front(), kMaxQuotedUri)));
   }
   Model model;
@@ -420,7 +394,7 @@ Model import_gltf_model(const std::string& path, ModelFormat format) {
   model.format = format;
   for (const std::string& r : box.refused)
     model.notes.push_back("image uri '" + printable(r, kMaxQuotedUri) + "' points outside the model's folder: not read, the reference is kept as it is");
-  for (const std::string& w : lines_of(warn)) model.notes.push_back("tinygltf: " + printable(w, kMaxQuotedUri));
+  for (const std::string& w : nonempty_lines(warn)) model.notes.push_back("tinygltf: " + printable(w, kMaxQuotedUri));
 
   for (const char* ext : {"KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_mesh_quantization", "EXT_mesh_gpu_instancing"})
     if (has_extension(g.extensionsRequired, ext))
@@ -434,7 +408,6 @@ Model import_gltf_model(const std::string& path, ModelFormat format) {
   std::map<int, std::string> targets;     // accessors rewritten on export -> role
   std::vector<int> first_node(g.meshes.size(), -1), instances(g.meshes.size(), 0);
   std::vector<float> orig_normals;        // mesh space, 3 per vertex (0 where the file has none)
-  std::vector<char> has_normal;
   // Adds mesh `mesh` as instanced by `node` (-1: by none, placed in its own mesh space).
   auto add_mesh = [&](int mesh, int node) {
     const bool skinned = node >= 0 && g.nodes[std::size_t(node)].skin >= 0;
@@ -468,7 +441,7 @@ Model import_gltf_model(const std::string& path, ModelFormat format) {
         const double det = glm::determinant(world);
         if (!std::isfinite(det) || std::abs(det) < 1e-300)
           throw InputError(path, 0, "node " + std::to_string(node) + ": its world matrix is singular (a zero scale?), so " + role + " cannot be written back");
-        for (int i = 0; i < 16; ++i) r.world[std::size_t(i)] = world[i / 4][i % 4];
+        std::copy_n(glm::value_ptr(world), 16, r.world.begin());
         if (model.num_vertices() + ps.count >= std::numeric_limits<std::uint32_t>::max())
           throw InputError(path, 0, "more than 2^32 vertices");
         const std::vector<float> mp = read_vec3(g, ps, pos->second, role, path);
@@ -478,7 +451,6 @@ Model import_gltf_model(const std::string& path, ModelFormat format) {
         }
         source->mesh_positions.insert(source->mesh_positions.end(), mp.begin(), mp.end());
         orig_normals.resize(3 * model.num_vertices(), 0.0f);
-        has_normal.resize(model.num_vertices(), 0);
         targets[pos->second] = role;
         found = range_of.emplace(pos->second, model.ranges.size()).first;
         model.ranges.push_back(std::move(r));
@@ -510,7 +482,6 @@ Model import_gltf_model(const std::string& path, ModelFormat format) {
           targets[nrm->second] = nrole;
           const std::vector<float> n = read_vec3(g, ns, nrm->second, nrole, path);
           std::copy(n.begin(), n.end(), orig_normals.begin() + std::ptrdiff_t(3 * r.first_vertex));
-          std::fill(has_normal.begin() + std::ptrdiff_t(r.first_vertex), has_normal.begin() + std::ptrdiff_t(r.first_vertex + r.num_vertices), 1);
         }
       }
       const std::vector<std::uint32_t> idx = primitive_indices(g, p, mesh, prim, ps.count, path);
@@ -664,7 +635,7 @@ void export_gltf_model(const Model& model, std::span<const double> world_positio
     for (std::size_t i = 0; i < s.count; ++i)
       for (std::size_t c = 0; c < 3; ++c) {
         const float f = values[3 * (first + i) + c];
-        store_f32(data + s.base + i * s.stride + 4 * c, f);
+        store_endian(data + s.base + i * s.stride + 4 * c, f, false);
         lo[c] = std::min(lo[c], double(f));
         hi[c] = std::max(hi[c], double(f));
       }

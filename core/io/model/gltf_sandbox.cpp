@@ -1,13 +1,14 @@
 #include "core/io/model/gltf_sandbox.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdint>
-#include <cstring>
 #include <filesystem>
 #include <system_error>
 
 #include <nlohmann/json.hpp>
 
+#include "core/base/binary_cursor.h"
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
 
@@ -42,12 +43,8 @@ bool inside(const std::string& path, GltfSandbox& box) {
   };
   if (rel.empty()) return false;
   if (rel.front() == '/' || has_scheme(rel)) return refuse();  // absolute path or URL
-  for (std::size_t start = 0; start <= rel.size();) {
-    std::size_t end = rel.find('/', start);
-    if (end == std::string::npos) end = rel.size();
-    if (rel.compare(start, end - start, "..") == 0) return refuse();
-    start = end + 1;
-  }
+  const fs::path parts(rel);
+  if (std::any_of(parts.begin(), parts.end(), [](const fs::path& c) { return c == ".."; })) return refuse();
   std::error_code ec;
   const fs::path real = fs::weakly_canonical(fs::path(path), ec);
   if (ec) return false;
@@ -97,6 +94,27 @@ bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::stri
   return true;
 }
 
+// Standard base64 with padding.
+std::string base64_encode(const std::vector<unsigned char>& in) {
+  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((in.size() + 2) / 3 * 4);
+  std::size_t i = 0;
+  for (; i + 2 < in.size(); i += 3) {
+    const std::uint32_t v = (std::uint32_t(in[i]) << 16) | (std::uint32_t(in[i + 1]) << 8) | in[i + 2];
+    for (int k = 3; k >= 0; --k) out.push_back(kAlphabet[(v >> (6 * k)) & 63]);
+  }
+  if (i < in.size()) {
+    const bool two = i + 1 < in.size();
+    const std::uint32_t v = (std::uint32_t(in[i]) << 16) | (two ? std::uint32_t(in[i + 1]) << 8 : 0);
+    out.push_back(kAlphabet[(v >> 18) & 63]);
+    out.push_back(kAlphabet[(v >> 12) & 63]);
+    out.push_back(two ? kAlphabet[(v >> 6) & 63] : '=');
+    out.push_back('=');
+  }
+  return out;
+}
+
 bool write_image_as_read(const std::string*, const std::string*, const tinygltf::Image* image, bool,
                          std::string* out_uri, void*) {
   if (!image->uri.empty()) {  // an external file: the same reference
@@ -109,15 +127,9 @@ bool write_image_as_read(const std::string*, const std::string*, const tinygltf:
   return true;
 }
 
-std::uint32_t le32(std::string_view b, std::size_t at) {
-  std::uint32_t v = 0;
-  for (int k = 3; k >= 0; --k) v = (v << 8) | static_cast<unsigned char>(b[at + std::size_t(k)]);
-  return v;
-}
+std::uint32_t le32(std::string_view b, std::size_t at) { return load_endian<std::uint32_t>(b.data() + at, false); }
 
-void put_le32(std::string& b, std::size_t at, std::uint32_t v) {
-  for (int k = 0; k < 4; ++k) b[at + std::size_t(k)] = static_cast<char>((v >> (8 * k)) & 0xff);
-}
+void put_le32(std::string& b, std::size_t at, std::uint32_t v) { store_endian(b.data() + at, v, false); }
 
 }  // namespace
 
@@ -192,26 +204,6 @@ std::string percent_decode(std::string_view uri) {
     } else {
       out.push_back(uri[i]);
     }
-  }
-  return out;
-}
-
-std::string base64_encode(const std::vector<unsigned char>& in) {
-  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((in.size() + 2) / 3 * 4);
-  std::size_t i = 0;
-  for (; i + 2 < in.size(); i += 3) {
-    const std::uint32_t v = (std::uint32_t(in[i]) << 16) | (std::uint32_t(in[i + 1]) << 8) | in[i + 2];
-    for (int k = 3; k >= 0; --k) out.push_back(kAlphabet[(v >> (6 * k)) & 63]);
-  }
-  if (i < in.size()) {
-    const bool two = i + 1 < in.size();
-    const std::uint32_t v = (std::uint32_t(in[i]) << 16) | (two ? std::uint32_t(in[i + 1]) << 8 : 0);
-    out.push_back(kAlphabet[(v >> 18) & 63]);
-    out.push_back(kAlphabet[(v >> 12) & 63]);
-    out.push_back(two ? kAlphabet[(v >> 6) & 63] : '=');
-    out.push_back('=');
   }
   return out;
 }

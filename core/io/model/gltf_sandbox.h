@@ -38,9 +38,6 @@ void check_json_depth(std::string_view json, const std::string& file, int max_de
 /// Decodes %XX escapes (tinygltf resolves external URIs the same way).
 std::string percent_decode(std::string_view uri);
 
-/// Standard base64 with padding.
-std::string base64_encode(const std::vector<unsigned char>& bytes);
-
 /// tinygltf 2.7 writes an object whose properties all have default values as `null` (and then
 /// cannot read its file back): replaces such nulls in the top-level arrays by `{}`. Works on
 /// JSON text; `glb` = the bytes are a GLB container (its JSON chunk is fixed and re-padded).

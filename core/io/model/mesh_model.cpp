@@ -3,11 +3,9 @@
 // stays as it was. The writers re-scan the file with the same line and token rules as the
 // readers (text_lines.h), so vertex i here is vertex i there.
 #include <algorithm>
-#include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <optional>
 #include <string_view>
@@ -108,11 +106,7 @@ std::string rewrite_obj(const Model& model, const std::string& bytes, std::span<
   std::vector<std::uint32_t> corners;
   std::vector<std::int64_t> corner_vn;
   std::size_t nv = 0;
-  std::string_view line;
-  while (lines.next(line)) {
-    if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-    split_tokens(line, tok);
-    if (tok.empty()) continue;
+  while (next_tokens(lines, tok)) {
     if (tok[0] == "v") {
       const std::size_t v = nv++;
       if (v >= model.num_vertices()) throw InputError(file, lines.line_number(), "more 'v' lines than when the file was imported");
@@ -178,20 +172,6 @@ std::string rewrite_obj(const Model& model, const std::string& bytes, std::span<
 
 // ---- PLY: x y z (and nx ny nz, recomputed) overwritten in their declared type, in place for
 // binary files, token by token for ASCII ones.
-struct PlyProp {
-  std::string name;
-  PlyType type = PlyType::Float32;
-  bool list = false;
-  PlyType count_type = PlyType::UInt8;
-  int slot = -1;  // 0..2 x y z, 3..5 nx ny nz of the vertex element
-};
-
-struct PlyElem {
-  std::string name;
-  std::int64_t count = 0;
-  std::vector<PlyProp> props;
-};
-
 // The value as the property's type stores it; integers are rounded and must fit.
 struct PlyValue {
   bool ok = true;
@@ -202,17 +182,10 @@ PlyValue ply_cast(PlyType t, double v) {
   if (t == PlyType::Float64) return {true, v};
   if (t == PlyType::Float32) return {std::isfinite(static_cast<float>(v)), double(static_cast<float>(v))};
   const double r = std::nearbyint(v);
-  double lo = 0, hi = 0;
-  switch (t) {
-    case PlyType::Int8: lo = -128, hi = 127; break;
-    case PlyType::UInt8: lo = 0, hi = 255; break;
-    case PlyType::Int16: lo = -32768, hi = 32767; break;
-    case PlyType::UInt16: lo = 0, hi = 65535; break;
-    case PlyType::Int32: lo = -2147483648.0, hi = 2147483647.0; break;
-    case PlyType::UInt32: lo = 0, hi = 4294967295.0; break;
-    default: break;
-  }
-  return {r >= lo && r <= hi, r};
+  return with_ply_type(t, [&](auto x) {
+    using T = decltype(x);
+    return PlyValue{r >= double(std::numeric_limits<T>::lowest()) && r <= double(std::numeric_limits<T>::max()), r};
+  });
 }
 
 std::string ply_text(PlyType t, double v) {
@@ -224,75 +197,11 @@ std::string ply_text(PlyType t, double v) {
   return std::string(buf, res.ptr);
 }
 
-template <class T>
-void put(std::string& out, std::size_t at, T value, bool big) {
-  unsigned char b[sizeof(T)];
-  std::memcpy(b, &value, sizeof(T));
-  if (big != (std::endian::native == std::endian::big)) std::reverse(b, b + sizeof(T));
-  std::memcpy(out.data() + at, b, sizeof(T));
-}
-
-void put_ply(std::string& out, std::size_t at, PlyType t, double v, bool big) {
-  switch (t) {
-    case PlyType::Int8: put(out, at, static_cast<std::int8_t>(v), big); break;
-    case PlyType::UInt8: put(out, at, static_cast<std::uint8_t>(v), big); break;
-    case PlyType::Int16: put(out, at, static_cast<std::int16_t>(v), big); break;
-    case PlyType::UInt16: put(out, at, static_cast<std::uint16_t>(v), big); break;
-    case PlyType::Int32: put(out, at, static_cast<std::int32_t>(v), big); break;
-    case PlyType::UInt32: put(out, at, static_cast<std::uint32_t>(v), big); break;
-    case PlyType::Float32: put(out, at, static_cast<float>(v), big); break;
-    case PlyType::Float64: put(out, at, v, big); break;
-  }
-}
-
-double read_ply_binary(BinaryCursor& in, PlyType t) {
-  switch (t) {
-    case PlyType::Int8: return in.read<std::int8_t>("PLY data");
-    case PlyType::UInt8: return in.read<std::uint8_t>("PLY data");
-    case PlyType::Int16: return in.read<std::int16_t>("PLY data");
-    case PlyType::UInt16: return in.read<std::uint16_t>("PLY data");
-    case PlyType::Int32: return in.read<std::int32_t>("PLY data");
-    case PlyType::UInt32: return in.read<std::uint32_t>("PLY data");
-    case PlyType::Float32: return in.read<float>("PLY data");
-    case PlyType::Float64: return in.read<double>("PLY data");
-  }
-  return 0;
-}
-
 std::string rewrite_ply(const Model& model, const std::string& bytes, std::span<const double> xyz) {
   const std::string& file = model.path;
   const ImportLimits limits;
-  LineReader header(bytes, file, limits.max_line_length);
-  std::vector<std::string_view> tok;
-  std::string_view line;
-  std::vector<PlyElem> elements;
-  std::string format;
-  while (header.next(line)) {  // validated by the reader already: only what is needed is parsed
-    split_tokens(line, tok);
-    if (tok.empty()) continue;
-    if (tok[0] == "format" && tok.size() >= 2) format = std::string(tok[1]);
-    else if (tok[0] == "element" && tok.size() == 3) elements.push_back({std::string(tok[1]), parse_int(tok[2]).value_or(0), {}});
-    else if (tok[0] == "property" && !elements.empty()) {
-      PlyProp p;
-      if (tok.size() == 5 && tok[1] == "list") {
-        p.list = true;
-        parse_ply_type(tok[2], p.count_type);
-        parse_ply_type(tok[3], p.type);
-        p.name = tok[4];
-      } else if (tok.size() == 3) {
-        parse_ply_type(tok[1], p.type);
-        p.name = tok[2];
-      }
-      static constexpr std::string_view kSlots[] = {"x", "y", "z", "nx", "ny", "nz"};
-      if (elements.back().name == "vertex" && !p.list)
-        for (int s = 0; s < 6; ++s)
-          if (p.name == kSlots[s]) p.slot = s;
-      elements.back().props.push_back(p);
-    } else if (tok[0] == "end_header") {
-      break;
-    }
-  }
-  const std::size_t body = header.offset();
+  const PlyHeader header = read_ply_header(bytes, file, limits.max_line_length);
+  const std::size_t body = header.body;
   const VertexNormals normals = moved_normals(model, xyz);
   // The value a slot of vertex v gets, or nullopt to keep the file's.
   auto value_of = [&](std::size_t v, int slot) -> std::optional<double> {
@@ -300,16 +209,48 @@ std::string rewrite_ply(const Model& model, const std::string& bytes, std::span<
     if (!normals.want[v]) return std::nullopt;
     return normals.n[3 * v + std::size_t(slot - 3)];
   };
-  auto fail_range = [&](std::size_t v, const PlyProp& p, double x) {
+  auto fail_range = [&](std::size_t v, const PlyProperty& p, double x) {
     throw InputError(file, 0, "vertex " + std::to_string(v) + ": " + p.name + " = " + format_double(x) +
                                   " does not fit the file's property type");
   };
-  std::string out = bytes;
-  if (format == "ascii") {
+  // Walks the body up to the end of the vertex element: `next(type)` passes one value and says
+  // where it is, `count(type)` reads a list count, `store(where, type, v)` writes a new value.
+  auto rewrite = [&](auto next, auto count, auto store) {
+    for (const PlyElement& e : header.elements) {
+      const bool vertex = e.name == "vertex";
+      std::vector<int> slots(e.props.size(), -1);  // 0..2 x y z, 3..5 nx ny nz of the vertex element
+      static constexpr std::string_view kSlots[] = {"x", "y", "z", "nx", "ny", "nz"};
+      for (std::size_t i = 0; vertex && i < e.props.size(); ++i)
+        for (int s = 0; s < 6; ++s)
+          if (!e.props[i].is_list && e.props[i].name == kSlots[s]) slots[i] = s;
+      for (std::int64_t r = 0; r < e.count; ++r)
+        for (std::size_t i = 0; i < e.props.size(); ++i) {
+          const PlyProperty& p = e.props[i];
+          const int slot = slots[i];
+          if (p.is_list) {
+            const std::int64_t n = count(p.count_type);
+            for (std::int64_t k = 0; k < n; ++k) next(p.type);
+            continue;
+          }
+          const auto at = next(p.type);
+          if (!vertex || slot < 0) continue;
+          const auto x = value_of(std::size_t(r), slot);
+          if (!x) continue;
+          const PlyValue pv = ply_cast(p.type, *x);
+          if (!pv.ok) {
+            if (slot < 3) fail_range(std::size_t(r), p, *x);
+            continue;  // an integer normal is left as written
+          }
+          if (slot < 3 || ply_type_is_float(p.type)) store(at, p.type, pv.v);
+        }
+      if (vertex) break;
+    }
+  };
+  if (header.format == PlyFormat::Ascii) {
     LineReader body_lines(std::string_view(bytes).substr(body), file, limits.max_line_length);
     std::vector<std::string_view> toks;
     std::size_t next = 0;
-    auto token = [&]() -> std::string_view {
+    auto token = [&](PlyType) -> std::string_view {
       while (next >= toks.size()) {
         std::string_view l;
         if (!body_lines.next(l)) throw InputError(file, 0, "PLY body ends early (the file changed since it was imported?)");
@@ -319,59 +260,26 @@ std::string rewrite_ply(const Model& model, const std::string& bytes, std::span<
       return toks[next++];
     };
     std::vector<Edit> edits;
-    for (const PlyElem& e : elements) {
-      const bool vertex = e.name == "vertex";
-      for (std::int64_t r = 0; r < e.count; ++r)
-        for (const PlyProp& p : e.props) {
-          if (p.list) {
-            const auto n = parse_int(token());
-            for (std::int64_t k = 0; k < n.value_or(0); ++k) token();
-            continue;
-          }
-          const std::string_view t = token();
-          if (!vertex || p.slot < 0) continue;
-          const auto x = value_of(std::size_t(r), p.slot);
-          if (!x) continue;
-          const PlyValue pv = ply_cast(p.type, *x);
-          if (!pv.ok) {
-            if (p.slot < 3) fail_range(std::size_t(r), p, *x);
-            continue;  // an integer normal is left as written
-          }
-          if (p.slot >= 3 && !ply_type_is_float(p.type)) continue;
-          const auto old = parse_double(t);
-          if (old && *old == pv.v) continue;
-          edits.push_back({offset_in(bytes, t), t.size(), ply_text(p.type, pv.v)});
-        }
-      if (vertex) break;
-    }
+    rewrite(token, [&](PlyType t) { return parse_int(token(t)).value_or(0); },
+            [&](std::string_view t, PlyType type, double v) {
+              const auto old = parse_double(t);
+              if (!old || *old != v) edits.push_back({offset_in(bytes, t), t.size(), ply_text(type, v)});
+            });
     return apply_edits(bytes, edits);
   }
-  const bool big = format == "binary_big_endian";
+  const bool big = header.format == PlyFormat::BinaryBE;
   BinaryCursor in(bytes, body, file, big);
-  for (const PlyElem& e : elements) {
-    const bool vertex = e.name == "vertex";
-    for (std::int64_t r = 0; r < e.count; ++r)
-      for (const PlyProp& p : e.props) {
-        if (p.list) {
-          const double n = read_ply_binary(in, p.count_type);
-          for (std::int64_t k = 0; k < std::int64_t(n); ++k) read_ply_binary(in, p.type);
-          continue;
-        }
+  std::string out = bytes;
+  rewrite(
+      [&](PlyType t) {
         const std::size_t at = in.offset();
-        read_ply_binary(in, p.type);
-        if (!vertex || p.slot < 0) continue;
-        const auto x = value_of(std::size_t(r), p.slot);
-        if (!x) continue;
-        const PlyValue pv = ply_cast(p.type, *x);
-        if (!pv.ok) {
-          if (p.slot < 3) fail_range(std::size_t(r), p, *x);
-          continue;
-        }
-        if (p.slot >= 3 && !ply_type_is_float(p.type)) continue;
-        put_ply(out, at, p.type, pv.v, big);
-      }
-    if (vertex) break;
-  }
+        read_ply_value(in, t, "PLY data");
+        return at;
+      },
+      [&](PlyType t) { return std::int64_t(read_ply_value(in, t, "PLY data")); },
+      [&](std::size_t at, PlyType t, double v) {
+        with_ply_type(t, [&](auto x) { store_endian(out.data() + at, static_cast<decltype(x)>(v), big); });
+      });
   return out;
 }
 
@@ -402,7 +310,7 @@ std::string rewrite_off(const Model& model, const std::string& bytes, std::span<
     for (std::size_t i = 0; i < 3 * nv; ++i) {
       const float f = static_cast<float>(xyz[i]);
       if (!std::isfinite(f)) throw InputError(file, 0, "vertex " + std::to_string(i / 3) + ": position does not fit in float32");
-      put(out, start + 4 * i, f, true);
+      store_endian(out.data() + start + 4 * i, f, true);
     }
     return out;
   }
@@ -440,15 +348,7 @@ Model import_mesh_model(const std::string& path, ModelFormat format) {
   model.faces.offsets = std::move(loaded.mesh.face_offsets);
   model.faces.items = std::move(loaded.mesh.face_indices);
   model.normals = area_weighted_normals(model.faces, model.positions);
-  if (!loaded.report.empty()) {
-    const std::string text = loaded.report.format(path);
-    for (std::size_t start = 0; start < text.size();) {
-      std::size_t end = text.find('\n', start);
-      if (end == std::string::npos) end = text.size();
-      if (end > start) model.notes.push_back(text.substr(start, end - start));
-      start = end + 1;
-    }
-  }
+  model.notes = nonempty_lines(loaded.report.format(path));
   model.source = std::move(source);
   return model;
 }

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 
 #include "core/base/errors.h"
@@ -9,50 +10,34 @@
 namespace sublift {
 namespace {
 
-bool format_of(const std::string& path, ModelFormat& f) {
-  const std::string ext = file_extension(path);
-  if (ext == "gltf") f = ModelFormat::Gltf;
-  else if (ext == "glb") f = ModelFormat::Glb;
-  else if (ext == "obj") f = ModelFormat::Obj;
-  else if (ext == "ply") f = ModelFormat::Ply;
-  else if (ext == "off") f = ModelFormat::Off;
-  else return false;
-  return true;
-}
+constexpr const char* kExtensions[] = {"gltf", "glb", "obj", "ply", "off"};  // in ModelFormat order
 
 bool is_gltf(ModelFormat f) { return f == ModelFormat::Gltf || f == ModelFormat::Glb; }
 
-const char* extension_name(ModelFormat f) {
-  switch (f) {
-    case ModelFormat::Gltf: return ".gltf";
-    case ModelFormat::Glb: return ".glb";
-    case ModelFormat::Obj: return ".obj";
-    case ModelFormat::Ply: return ".ply";
-    case ModelFormat::Off: return ".off";
-  }
-  return "";
+std::string extension_name(ModelFormat f) { return std::string(".") + kExtensions[static_cast<int>(f)]; }
+
+// The format of `path` by its extension; throws InputError for any other.
+ModelFormat format_of(const std::string& path) {
+  const std::string ext = file_extension(path);
+  for (int k = 0; k < 5; ++k)
+    if (ext == kExtensions[k]) return static_cast<ModelFormat>(k);
+  throw InputError(path, 0, "unsupported model format '." + ext + "' (expected .gltf, .glb, .obj, .ply or .off)");
 }
 
 }  // namespace
 
 bool model_format_supported(const std::string& path) {
-  ModelFormat f;
-  return format_of(path, f);
+  const std::string ext = file_extension(path);
+  return std::find(std::begin(kExtensions), std::end(kExtensions), ext) != std::end(kExtensions);
 }
 
 Model import_model(const std::string& path) {
-  ModelFormat f;
-  if (!format_of(path, f))
-    throw InputError(path, 0, "unsupported model format '." + file_extension(path) +
-                                  "' (expected .gltf, .glb, .obj, .ply or .off)");
+  const ModelFormat f = format_of(path);
   return is_gltf(f) ? import_gltf_model(path, f) : import_mesh_model(path, f);
 }
 
 void export_model(const Model& model, std::span<const double> world_positions, const std::string& path) {
-  ModelFormat f;
-  if (!format_of(path, f))
-    throw InputError(path, 0, "unsupported model format '." + file_extension(path) +
-                                  "' (expected .gltf, .glb, .obj, .ply or .off)");
+  const ModelFormat f = format_of(path);
   if (!model.source) throw InputError(path, 0, "the model has no source to write back (not made by import_model)");
   const bool same_family = is_gltf(f) ? is_gltf(model.format) : f == model.format;
   if (!same_family)

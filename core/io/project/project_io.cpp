@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/base/binary_cursor.h"
 #include "core/base/errors.h"
 #include "core/base/text_lines.h"
 #include "core/base/file_io.h"
@@ -30,8 +31,7 @@ void put(std::ostream& out, const std::vector<T>& v) {
   } else {
     for (T x : v) {
       unsigned char b[sizeof(T)];
-      std::memcpy(b, &x, sizeof(T));
-      for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
+      store_endian(b, x, false);
       out.write(reinterpret_cast<const char*>(b), sizeof(T));
     }
   }
@@ -43,12 +43,7 @@ std::vector<T> take(std::string_view bytes, std::size_t& pos, std::size_t n) {
   std::vector<T> v(n);
   if (n) std::memcpy(v.data(), bytes.data() + pos, n * sizeof(T));
   if constexpr (std::endian::native != std::endian::little && sizeof(T) > 1)
-    for (T& x : v) {
-      unsigned char b[sizeof(T)];
-      std::memcpy(b, &x, sizeof(T));
-      for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
-      std::memcpy(&x, b, sizeof(T));
-    }
+    for (T& x : v) x = load_endian<T>(&x, false);
   pos += n * sizeof(T);
   return v;
 }
@@ -89,10 +84,6 @@ void check_extras(const ProjectExtras& x, int levels, std::size_t base_vertices,
     if (!std::isfinite(x.gains[i])) fail("gain of level " + std::to_string(i) + " is not finite");
 }
 
-}  // namespace
-
-namespace {
-
 // The level a vertex is born at (its coefficient: a scaling one at level 0, else a wavelet of
 // the level before), for messages.
 int birth_level(const Hierarchy& h, std::size_t vertex) {
@@ -111,8 +102,6 @@ std::string coefficient_problem(const Hierarchy& h, std::span<const double> coef
 }
 
 }  // namespace
-
-void write_project(const std::string& path, const Hierarchy& h) { write_project(path, h, ProjectExtras{}); }
 
 void write_project(const std::string& path, const Hierarchy& h, const ProjectExtras& extras) {
   const Complex& b = h.levels.at(0);
@@ -173,10 +162,6 @@ void write_project(const std::string& path, const Hierarchy& h, const ProjectExt
         }
       },
       true);
-}
-
-Hierarchy read_project_from_memory(const std::string& file, const std::string& bytes) {
-  return read_project_from_memory(file, bytes, nullptr);
 }
 
 Hierarchy read_project_from_memory(const std::string& file, const std::string& bytes_in, ProjectExtras* extras_out) {
@@ -408,8 +393,6 @@ std::string input_order_problem(const InputOrder& order, const Complex& level) {
   }
   return connectivity_mismatch(level, mapped);
 }
-
-Hierarchy read_project(const std::string& path) { return read_project(path, nullptr); }
 
 Hierarchy read_project(const std::string& path, ProjectExtras* extras) {
   return read_project_from_memory(path, read_file_bytes(path), extras);

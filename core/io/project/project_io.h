@@ -67,26 +67,20 @@ std::vector<double> in_input_order(const InputOrder& order, std::span<const doub
 /// faces); else what is wrong, for messages.
 std::string input_order_problem(const InputOrder& order, const Complex& level);
 
-/// Writes `h` to `path` atomically. Throws IoError.
-void write_project(const std::string& path, const Hierarchy& h);
-
 /// Writes `h` and the session `extras` to `path` atomically. Throws Error (current_level
 /// outside 0..J, gains neither empty nor J finite values) or IoError.
-void write_project(const std::string& path, const Hierarchy& h, const ProjectExtras& extras);
+void write_project(const std::string& path, const Hierarchy& h, const ProjectExtras& extras = {});
 
 /// Reads a project and rebuilds its hierarchy (levels, tables, coefficients). Throws
 /// InputError (bad magic or version, malformed header, truncated or oversized payload,
 /// inconsistent counts, invalid base complex, non-finite coefficients) or IoError.
-Hierarchy read_project(const std::string& path);
-
-/// The same, also filling `*extras` (if not null) from the optional header keys; its gains
-/// always hold J values (all 1 when the file has none). Throws InputError naming line 2 for
-/// current_level outside 0..J or gains that are not J finite numbers.
-Hierarchy read_project(const std::string& path, ProjectExtras* extras);
+/// Fills `*extras` (if not null) from the optional header keys; its gains always hold J values
+/// (all 1 when the file has none). Throws InputError naming line 2 for current_level outside
+/// 0..J or gains that are not J finite numbers.
+Hierarchy read_project(const std::string& path, ProjectExtras* extras = nullptr);
 
 /// The same from memory; `name` is used in messages.
-Hierarchy read_project_from_memory(const std::string& name, const std::string& bytes);
-Hierarchy read_project_from_memory(const std::string& name, const std::string& bytes, ProjectExtras* extras);
+Hierarchy read_project_from_memory(const std::string& name, const std::string& bytes, ProjectExtras* extras = nullptr);
 
 // The level limits are the scheme registry's (kMaxLevels, max_levels in core/schemes/registry.h).
 

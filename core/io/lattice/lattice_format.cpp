@@ -49,9 +49,9 @@ Shape read_lattice(std::string_view bytes, const std::string& file) {
 
   std::size_t open_cell = 0;  // line of the `cell` being read, 0 outside
   std::size_t cells = 0;
-  auto read_ids = [&](std::size_t first, std::size_t ln) {
+  auto read_ids = [&](std::size_t ln) {  // the vertex indices after the keyword
     ids.clear();
-    for (std::size_t k = first; k < tok.size(); ++k) {
+    for (std::size_t k = 1; k < tok.size(); ++k) {
       auto v = parse_int(tok[k]);
       if (!v) throw InputError(file, ln, "'" + printable(tok[k]) + "' is not a vertex index");
       if (*v < 0 || *v > 0xfffffffeLL)
@@ -78,7 +78,7 @@ Shape read_lattice(std::string_view bytes, const std::string& file) {
       vertex_lines.push_back(ln);
       if (vertex_lines.size() > 0xfffffffeu) throw InputError(file, ln, "too many vertices");
     } else if (shape_keyword(key, cs)) {
-      read_ids(1, ln);
+      read_ids(ln);
       const int n = cell_shape_vertex_count(cs);
       if (ids.size() != static_cast<std::size_t>(n))
         throw InputError(file, ln, "'" + printable(key) + "' takes " + std::to_string(n) + " vertex indices, got " +
@@ -96,22 +96,22 @@ Shape read_lattice(std::string_view bytes, const std::string& file) {
       builder.begin_cell(ln, "cell " + std::to_string(cells++));
     } else if (key == "f") {
       if (!open_cell) throw InputError(file, ln, "'f' outside a 'cell' ... 'end' block");
-      read_ids(1, ln);
+      read_ids(ln);
       builder.add_cell_face(ids, ln);
     } else if (key == "end") {
       if (!open_cell) throw InputError(file, ln, "'end' without a 'cell'");
       if (tok.size() != 1) throw InputError(file, ln, "'end' stands alone on its line");
       open_cell = 0;
     } else if (key == "corner") {
-      read_ids(1, ln);
+      read_ids(ln);
       if (ids.size() != 1) throw InputError(file, ln, "'corner' takes one vertex index");
       builder.add_corner(ids[0], ln);
     } else if (key == "crease") {
-      read_ids(1, ln);
+      read_ids(ln);
       if (ids.size() < 2) throw InputError(file, ln, "'crease' takes a chain of at least 2 vertex indices");
       builder.add_crease(ids, ln);
     } else if (key == "feature_face") {
-      read_ids(1, ln);
+      read_ids(ln);
       if (ids.size() < 3) throw InputError(file, ln, "'feature_face' takes a loop of at least 3 vertex indices");
       builder.add_feature_face(ids, ln);
     } else {
@@ -135,9 +135,7 @@ void write_lattice(const std::string& path, const Complex& c, std::span<const do
   write_file_atomic(path, [&](std::ostream& out) {
     out << kMagic << " 1\n# written by Sublift: " << c.num_vertices << " vertices, " << c.num_cells()
         << " cells; vertex indices are 0-based\n";
-    for (std::uint32_t v = 0; v < c.num_vertices; ++v)
-      out << "v " << format_double(xyz[3 * v]) << ' ' << format_double(xyz[3 * v + 1]) << ' '
-          << format_double(xyz[3 * v + 2]) << '\n';
+    for (std::uint32_t v = 0; v < c.num_vertices; ++v) write_xyz_line(out, "v ", &xyz[3 * v]);
     const auto oriented = oriented_lattice_loops(c, xyz);
     for (std::uint32_t k = 0; k < c.num_cells(); ++k) {
       const auto& loops = oriented[k];

@@ -1,7 +1,5 @@
 #include "core/io/lattice/shape_io.h"
 
-#include <algorithm>
-
 #include "core/complex/complex_build.h"
 #include "core/base/errors.h"
 #include "core/complex/feature_tags.h"
@@ -115,12 +113,8 @@ std::vector<std::string> write_shape(const std::string& path, const Complex& c, 
   if (xyz.size() != 3 * static_cast<std::size_t>(c.num_vertices))
     throw InputError(path, 0, "positions do not match the vertex count");
   if (const std::string why = shape_output_problem(path, c.dim); !why.empty()) throw InputError(path, 0, why);
-  if (ext == "vtk") {
-    write_vtk(path, c, xyz);
-    return notes;
-  }
-  if (ext == "lattice") {
-    write_lattice(path, c, xyz);
+  if (ext == "vtk" || ext == "lattice") {
+    (ext == "vtk" ? write_vtk : write_lattice)(path, c, xyz);
     return notes;
   }
   if (ext == "ovm") {

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <optional>
 #include <ostream>
+#include <type_traits>
 #include <vector>
 
 #include "core/base/binary_cursor.h"
@@ -196,16 +196,21 @@ struct Grid {
   bool have_types = false;
 };
 
-// Reads `n` numbers as doubles (ASCII tokens or big-endian binary of `type`).
+// Reads `n` numbers: ASCII tokens (doubles, or integers for an integer T, whatever `type` says),
+// or big-endian binary of `type` read as double.
+template <class T>
 void read_values(Scanner& s, bool binary, const std::string& type, std::int64_t n, const std::string& what,
-                 const std::string& file, std::vector<double>& out, std::vector<std::size_t>* lines = nullptr) {
+                 const std::string& file, std::vector<T>& out, std::vector<std::size_t>* lines = nullptr) {
+  constexpr bool ints = std::is_integral_v<T>;
   const std::size_t size = type_size(type);
-  if (size == 0 || type == "bit") throw InputError(file, s.line(), "unsupported data type '" + printable(type) + "' for " + what);
+  if ((binary || !ints) && (size == 0 || type == "bit"))
+    throw InputError(file, s.line(), "unsupported data type '" + printable(type) + "' for " + what);
   s.check_fits(n, binary ? size : 0, what);
   out.reserve(out.size() + static_cast<std::size_t>(n));
   if (!binary) {
     for (std::int64_t i = 0; i < n; ++i) {
-      out.push_back(s.need_double(what));
+      if constexpr (ints) out.push_back(s.need_int(what));
+      else out.push_back(s.need_double(what));
       if (lines) lines->push_back(s.line());
     }
     return;
@@ -225,27 +230,10 @@ void read_values(Scanner& s, bool binary, const std::string& type, std::int64_t 
     else if (type == "vtktypeuint64") v = static_cast<double>(c.read<std::uint64_t>(what.c_str()));
     else v = static_cast<double>(c.read<std::int64_t>(what.c_str()));
     if (!std::isfinite(v)) throw InputError(file, s.line(), "non-finite value in " + what + " (value " + std::to_string(i) + ")");
-    out.push_back(v);
+    out.push_back(static_cast<T>(v));
     if (lines) lines->push_back(s.line());
   }
   s.skip_bytes(c.offset() - s.offset());
-}
-
-// Reads `n` integers (ASCII or big-endian binary of `type`, default int32).
-void read_ints(Scanner& s, bool binary, const std::string& type, std::int64_t n, const std::string& what,
-               const std::string& file, std::vector<std::int64_t>& out, std::vector<std::size_t>* lines = nullptr) {
-  if (!binary) {
-    s.check_fits(n, 0, what);
-    out.reserve(out.size() + static_cast<std::size_t>(n));
-    for (std::int64_t i = 0; i < n; ++i) {
-      out.push_back(s.need_int(what));
-      if (lines) lines->push_back(s.line());
-    }
-    return;
-  }
-  std::vector<double> tmp;
-  read_values(s, binary, type, n, what, file, tmp, lines);
-  for (double d : tmp) out.push_back(static_cast<std::int64_t>(d));
 }
 
 void skip_field(Scanner& s, bool binary, const std::string& file) {
@@ -316,7 +304,7 @@ Grid parse(std::string_view bytes, const std::string& file) {
         if (to_lower(s.need("OFFSETS")) != "offsets") throw InputError(file, s.line(), "expected OFFSETS (a version 5 file)");
         const std::string otype = to_lower(s.need("OFFSETS type"));
         std::vector<std::int64_t> off;
-        read_ints(s, binary, otype, a, "OFFSETS", file, off);
+        read_values(s, binary, otype, a, "OFFSETS", file, off);
         if (a < 1 || off.front() != 0 || off.back() != b)
           throw InputError(file, ln, "OFFSETS must run from 0 to the CONNECTIVITY size " + std::to_string(b));
         for (std::size_t i = 1; i < off.size(); ++i)
@@ -324,7 +312,7 @@ Grid parse(std::string_view bytes, const std::string& file) {
         if (to_lower(s.need("CONNECTIVITY")) != "connectivity") throw InputError(file, s.line(), "expected CONNECTIVITY");
         const std::string ctype = to_lower(s.need("CONNECTIVITY type"));
         std::vector<std::size_t> lines;
-        read_ints(s, binary, ctype, b, "CONNECTIVITY", file, g.conn, &lines);
+        read_values(s, binary, ctype, b, "CONNECTIVITY", file, g.conn, &lines);
         g.offsets.assign(off.begin(), off.end());
         for (std::size_t c = 0; c + 1 < g.offsets.size(); ++c)
           g.cell_lines.push_back(g.offsets[c] < lines.size() ? lines[g.offsets[c]] : ln);
@@ -332,7 +320,7 @@ Grid parse(std::string_view bytes, const std::string& file) {
         if (a > b) throw InputError(file, ln, "CELLS count " + std::to_string(a) + " exceeds its size " + std::to_string(b));
         std::vector<std::int64_t> raw;
         std::vector<std::size_t> lines;
-        read_ints(s, binary, "int", b, "CELLS", file, raw, &lines);
+        read_values(s, binary, "int", b, "CELLS", file, raw, &lines);
         std::size_t pos = 0;
         g.conn.reserve(raw.size());
         for (std::int64_t c = 0; c < a; ++c) {
@@ -356,7 +344,7 @@ Grid parse(std::string_view bytes, const std::string& file) {
     } else if (key == "cell_types") {
       if (g.have_types) throw InputError(file, ln, "a second CELL_TYPES section");
       const std::int64_t n = s.need_count("CELL_TYPES count");
-      read_ints(s, binary, "int", n, "CELL_TYPES", file, g.types, &g.type_lines);
+      read_values(s, binary, "int", n, "CELL_TYPES", file, g.types, &g.type_lines);
       g.have_types = true;
     } else if (key == "cell_data" || key == "point_data") {
       break;  // attributes: not needed
@@ -510,9 +498,7 @@ void write_vtk(const std::string& path, const Complex& c, std::span<const double
   write_file_atomic(path, [&](std::ostream& out) {
     out << "# vtk DataFile Version 4.2\nSublift " << (c.dim == 3 ? "lattice" : c.dim == 2 ? "surface" : "curve") << ": "
         << c.num_vertices << " vertices\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS " << c.num_vertices << " double\n";
-    for (std::uint32_t v = 0; v < c.num_vertices; ++v)
-      out << format_double(xyz[3 * v]) << ' ' << format_double(xyz[3 * v + 1]) << ' ' << format_double(xyz[3 * v + 2])
-          << '\n';
+    for (std::uint32_t v = 0; v < c.num_vertices; ++v) write_xyz_line(out, "", &xyz[3 * v]);
     out << "CELLS " << types.size() << ' ' << rec.size() << '\n';
     for (std::size_t p = 0; p < rec.size();) {
       const auto n = static_cast<std::size_t>(rec[p]);

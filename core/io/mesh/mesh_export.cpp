@@ -15,19 +15,15 @@ std::string format_double(double v) {
   return buf;
 }
 
-namespace {
-
-void write_point(std::ostream& out, const glm::dvec3& p) {
-  out << format_double(p.x) << ' ' << format_double(p.y) << ' ' << format_double(p.z);
+void write_xyz_line(std::ostream& out, const char* prefix, const double* p) {
+  out << prefix << format_double(p[0]) << ' ' << format_double(p[1]) << ' ' << format_double(p[2]) << '\n';
 }
+
+namespace {
 
 void write_obj(std::ostream& out, const SurfaceMesh& m) {
   out << "# written by Sublift\n";
-  for (const glm::dvec3& p : m.positions) {
-    out << "v ";
-    write_point(out, p);
-    out << '\n';
-  }
+  for (const glm::dvec3& p : m.positions) write_xyz_line(out, "v ", &p.x);
   for (std::size_t f = 0; f < m.num_faces(); ++f) {
     out << 'f';
     for (std::uint32_t v : m.face(f)) out << ' ' << v + 1;
@@ -47,12 +43,9 @@ void write_obj(std::ostream& out, const SurfaceMesh& m) {
   }
 }
 
-void write_off(std::ostream& out, const SurfaceMesh& m) {
-  out << "OFF\n" << m.num_vertices() << ' ' << m.num_faces() << " 0\n";
-  for (const glm::dvec3& p : m.positions) {
-    write_point(out, p);
-    out << '\n';
-  }
+// The body OFF and ASCII PLY share: a line per vertex, then per face its size and 0-based corners.
+void write_points_and_faces(std::ostream& out, const SurfaceMesh& m) {
+  for (const glm::dvec3& p : m.positions) write_xyz_line(out, "", &p.x);
   for (std::size_t f = 0; f < m.num_faces(); ++f) {
     out << m.face_size(f);
     for (std::uint32_t v : m.face(f)) out << ' ' << v;
@@ -60,19 +53,16 @@ void write_off(std::ostream& out, const SurfaceMesh& m) {
   }
 }
 
+void write_off(std::ostream& out, const SurfaceMesh& m) {
+  out << "OFF\n" << m.num_vertices() << ' ' << m.num_faces() << " 0\n";
+  write_points_and_faces(out, m);
+}
+
 void write_ply(std::ostream& out, const SurfaceMesh& m) {
   out << "ply\nformat ascii 1.0\ncomment written by Sublift\nelement vertex " << m.num_vertices()
       << "\nproperty double x\nproperty double y\nproperty double z\nelement face " << m.num_faces()
       << "\nproperty list uint int vertex_indices\nend_header\n";
-  for (const glm::dvec3& p : m.positions) {
-    write_point(out, p);
-    out << '\n';
-  }
-  for (std::size_t f = 0; f < m.num_faces(); ++f) {
-    out << m.face_size(f);
-    for (std::uint32_t v : m.face(f)) out << ' ' << v;
-    out << '\n';
-  }
+  write_points_and_faces(out, m);
 }
 
 }  // namespace

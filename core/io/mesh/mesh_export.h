@@ -17,4 +17,7 @@ void write_surface_mesh(const std::string& path, const SurfaceMesh& mesh);
 /// Formats a double with 17 significant digits (shortest exact form is not required).
 std::string format_double(double v);
 
+/// Writes `prefix`, then p[0] p[1] p[2] by format_double, then a newline.
+void write_xyz_line(std::ostream& out, const char* prefix, const double* p);
+
 }  // namespace sublift

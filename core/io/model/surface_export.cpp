@@ -12,6 +12,7 @@
 
 #include <tiny_gltf.h>
 
+#include "core/base/binary_cursor.h"
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
 #include "core/base/magnitude.h"
@@ -66,12 +67,8 @@ Surface checked_surface(const std::string& path, const Csr& faces, std::span<con
 void write_obj(std::ostream& out, const Surface& s) {
   out << "# written by Sublift\n";
   const std::size_t nv = s.num_vertices();
-  for (std::size_t v = 0; v < nv; ++v)
-    out << "v " << format_double(s.xyz[3 * v]) << ' ' << format_double(s.xyz[3 * v + 1]) << ' '
-        << format_double(s.xyz[3 * v + 2]) << '\n';
-  for (std::size_t v = 0; v < nv; ++v)
-    out << "vn " << format_double(s.normals[3 * v]) << ' ' << format_double(s.normals[3 * v + 1]) << ' '
-        << format_double(s.normals[3 * v + 2]) << '\n';
+  for (std::size_t v = 0; v < nv; ++v) write_xyz_line(out, "v ", &s.xyz[3 * v]);
+  for (std::size_t v = 0; v < nv; ++v) write_xyz_line(out, "vn ", &s.normals[3 * v]);
   for (std::size_t f = 0; f < s.faces.rows(); ++f) {
     out << 'f';
     for (std::uint32_t v : s.faces.row(f)) out << ' ' << v + 1 << "//" << v + 1;
@@ -82,8 +79,7 @@ void write_obj(std::ostream& out, const Surface& s) {
 template <class T>
 void put_le(std::ostream& out, T x) {
   unsigned char b[sizeof(T)];
-  std::memcpy(b, &x, sizeof(T));
-  if constexpr (std::endian::native == std::endian::big) std::reverse(b, b + sizeof(T));
+  store_endian(b, x, false);
   out.write(reinterpret_cast<const char*>(b), sizeof(T));
 }
 

@@ -1,22 +1,18 @@
 #include "core/analysis/boundary_surface.h"
 
 #include <algorithm>
-#include <array>
 #include <numeric>
 #include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
 
 #include "core/base/errors.h"
 
 namespace sublift {
 namespace {
 
-using Vec = std::array<double, 3>;
-
-Vec point(std::span<const double> xyz, std::uint32_t v) { return {xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]}; }
-Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double triple(const Vec& a, const Vec& b, const Vec& c) {
-  return a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
-}
+glm::dvec3 point(std::span<const double> xyz, std::uint32_t v) { return {xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]}; }
 
 // Orients the faces of one closed cell consistently and outward. Scratch arrays are reused
 // across cells; `sign[i]` (+1 keep, -1 reverse) is filled for local face i of the cell.
@@ -56,7 +52,7 @@ class CellOrienter {
     }
     // Walk each connected set of faces, then make its volume positive.
     sign_.assign(m, 0);
-    const Vec ref = point(xyz_, c_.faces.row(faces[0])[0]);
+    const glm::dvec3 ref = point(xyz_, c_.faces.row(faces[0])[0]);
     for (std::uint32_t start = 0; start < m; ++start) {
       if (sign_[start]) continue;
       sign_[start] = 1;
@@ -78,10 +74,10 @@ class CellOrienter {
       double volume = 0;
       for (std::uint32_t i : queue_) {
         const auto corners = c_.faces.row(faces[i]);
-        const Vec p0 = sub(point(xyz_, corners[0]), ref);
+        const glm::dvec3 p0 = point(xyz_, corners[0]) - ref;
         double v = 0;
         for (std::size_t j = 1; j + 1 < corners.size(); ++j)
-          v += triple(p0, sub(point(xyz_, corners[j]), ref), sub(point(xyz_, corners[j + 1]), ref));
+          v += glm::dot(p0, glm::cross(point(xyz_, corners[j]) - ref, point(xyz_, corners[j + 1]) - ref));
         volume += sign_[i] * v;
       }
       if (volume < 0)

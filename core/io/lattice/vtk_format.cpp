@@ -168,10 +168,7 @@ class Scanner {
     raw_line(kMaxToken);
     for (;;) {
       if (pos_ >= b_.size()) return;
-      const std::string_view l = raw_line(std::size_t(1) << 20);
-      bool blank = true;
-      for (char c : l) blank = blank && (c == ' ' || c == '\t');
-      if (blank) return;
+      if (raw_line(std::size_t(1) << 20).find_first_not_of(" \t") == std::string_view::npos) return;
     }
   }
 

@@ -61,27 +61,21 @@ class PlyValues {
   std::size_t remaining_binary() const { return bin_.remaining(); }
   bool ascii() const { return fmt_ == PlyFormat::Ascii; }
   /// True when only blanks remain (ascii) or nothing (binary).
-  bool at_end() {
-    if (fmt_ != PlyFormat::Ascii) return bin_.remaining() == 0;
-    if (next_ < tok_.size()) return false;
+  bool at_end() { return fmt_ != PlyFormat::Ascii ? bin_.remaining() == 0 : !have_token(); }
+
+ private:
+  // True when a token is left (ascii), reading lines as needed.
+  bool have_token() {
     std::string_view l;
-    while (lines_.next(l)) {
+    while (next_ >= tok_.size()) {
+      if (!lines_.next(l)) return false;
       split_tokens(l, tok_);
       next_ = 0;
-      if (!tok_.empty()) return false;
     }
     return true;
   }
-
- private:
   std::string_view next_token(const char* what) {
-    while (next_ >= tok_.size()) {
-      std::string_view l;
-      if (!lines_.next(l))
-        throw InputError(file_, line(), std::string("unexpected end of file while reading ") + what);
-      split_tokens(l, tok_);
-      next_ = 0;
-    }
+    if (!have_token()) throw InputError(file_, line(), std::string("unexpected end of file while reading ") + what);
     return tok_[next_++];
   }
 

@@ -99,10 +99,12 @@ std::string rewrite_obj(const Model& model, const std::string& bytes, std::span<
   LineReader lines(bytes, file, limits.max_line_length);
   std::vector<Edit> edits;
   std::vector<std::string_view> tok;
-  struct Vn { std::string_view t[3]; bool ok = false; };
+  struct Vn {  // a `vn` line: its tokens, and the area vectors of the faces naming it
+    std::string_view t[3];
+    bool ok = false, moved = false;
+    double sum[3] = {0, 0, 0};
+  };
   std::vector<Vn> vns;
-  std::vector<double> vn_sum;
-  std::vector<char> vn_moved;
   std::vector<std::uint32_t> corners;
   std::vector<std::int64_t> corner_vn;
   std::size_t nv = 0;
@@ -122,8 +124,6 @@ std::string rewrite_obj(const Model& model, const std::string& bytes, std::span<
         n.ok = parse_double(n.t[k]).has_value();
       }
       vns.push_back(n);
-      vn_sum.insert(vn_sum.end(), {0.0, 0.0, 0.0});
-      vn_moved.push_back(0);
     } else if (tok[0] == "f") {
       corners.clear();
       corner_vn.clear();
@@ -155,8 +155,8 @@ std::string rewrite_obj(const Model& model, const std::string& bytes, std::span<
         for (int k = 0; k < 3; ++k) face_moved |= xyz[3 * v + std::size_t(k)] != model.positions[3 * v + std::size_t(k)];
       for (std::int64_t n : corner_vn) {
         if (n < 0) continue;
-        for (int k = 0; k < 3; ++k) vn_sum[3 * std::size_t(n) + std::size_t(k)] += a[k];
-        vn_moved[std::size_t(n)] |= face_moved;
+        for (int k = 0; k < 3; ++k) vns[std::size_t(n)].sum[k] += a[k];
+        vns[std::size_t(n)].moved |= face_moved;
       }
     }
   }
@@ -164,7 +164,7 @@ std::string rewrite_obj(const Model& model, const std::string& bytes, std::span<
     throw InputError(file, 0, "the file has " + std::to_string(nv) + " 'v' lines, the model " + std::to_string(model.num_vertices()) + " vertices");
   for (std::size_t i = 0; i < vns.size(); ++i) {
     double n[3];
-    if (!vns[i].ok || !vn_moved[i] || !unit(&vn_sum[3 * i], n)) continue;
+    if (!vns[i].ok || !vns[i].moved || !unit(vns[i].sum, n)) continue;
     for (int k = 0; k < 3; ++k) edit_number(edits, bytes, vns[i].t[k], n[k]);
   }
   return apply_edits(bytes, edits);

@@ -42,7 +42,8 @@ double ray_triangle(const Tri& t, const glm::dvec3& origin, const glm::dvec3& di
 
 // glm::dvec3 is three packed doubles.
 TriangleBvh::TriangleBvh(const SurfaceMesh& mesh)
-    : TriangleBvh(std::span<const double>(reinterpret_cast<const double*>(mesh.positions.data()), 3 * mesh.num_vertices()),
+    : TriangleBvh(std::span<const double>(reinterpret_cast<const double*>(mesh.positions.data()),
+                                          3 * mesh.num_vertices()),
                   Csr{mesh.face_offsets, mesh.face_indices}) {}
 
 TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {

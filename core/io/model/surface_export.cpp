@@ -159,11 +159,15 @@ std::string gltf_bytes(const std::string& path, const Surface& s, bool binary) {
   const int nrm_view = add_view(m, 12 * nv, 12 * nv, TINYGLTF_TARGET_ARRAY_BUFFER);
   const int idx_view = add_view(m, 24 * nv, 4 * tri.size(), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
 
-  tinygltf::Accessor position;
-  position.bufferView = pos_view;
-  position.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-  position.type = TINYGLTF_TYPE_VEC3;
-  position.count = nv;
+  auto accessor = [](int view, int component, int type, std::size_t count) {  // over a whole view
+    tinygltf::Accessor a;
+    a.bufferView = view;
+    a.componentType = component;
+    a.type = type;
+    a.count = count;
+    return a;
+  };
+  tinygltf::Accessor position = accessor(pos_view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, nv);
   position.minValues.assign(3, std::numeric_limits<double>::infinity());
   position.maxValues.assign(3, -std::numeric_limits<double>::infinity());
   for (std::size_t v = 0; v < nv; ++v)
@@ -171,17 +175,8 @@ std::string gltf_bytes(const std::string& path, const Surface& s, bool binary) {
       position.minValues[k] = std::min(position.minValues[k], double(pos[3 * v + k]));
       position.maxValues[k] = std::max(position.maxValues[k], double(pos[3 * v + k]));
     }
-  tinygltf::Accessor normal;
-  normal.bufferView = nrm_view;
-  normal.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-  normal.type = TINYGLTF_TYPE_VEC3;
-  normal.count = nv;
-  tinygltf::Accessor index;
-  index.bufferView = idx_view;
-  index.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-  index.type = TINYGLTF_TYPE_SCALAR;
-  index.count = tri.size();
-  m.accessors = {position, normal, index};
+  m.accessors = {position, accessor(nrm_view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, nv),
+                 accessor(idx_view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, tri.size())};
 
   tinygltf::Primitive prim;
   prim.mode = TINYGLTF_MODE_TRIANGLES;

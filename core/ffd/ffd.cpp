@@ -7,20 +7,18 @@
 #include <limits>
 #include <string>
 
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
 #include "core/base/errors.h"
 #include "core/base/parallel.h"
 
 namespace sublift {
 namespace {
 
-using Vec = std::array<double, 3>;
+using Vec = glm::dvec3;
 
 Vec at(const double* xyz, std::uint32_t v) { return {xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]}; }
-Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec cross(const Vec& a, const Vec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 
 // Per-cell data of the lattice: distinct vertices (hexahedra in trilinear corner order),
 // whether the cell is a topological cube, bounding box and its diagonal.
@@ -116,7 +114,7 @@ Cells make_cells(const Complex& c, const double* xyz) {
         bx[3 + a] = std::max(bx[3 + a], xyz[3 * v + a]);
       }
     const Vec d{bx[3] - bx[0], bx[4] - bx[1], bx[5] - bx[2]};
-    t.size[k] = std::sqrt(dot(d, d));
+    t.size[k] = std::sqrt(glm::dot(d, d));
   }
   return t;
 }
@@ -136,8 +134,8 @@ bool inverse_trilinear(const double* xyz, const std::uint32_t* h, double scale, 
   // Relative to corner 0, so round-off scales with the cell, not with its distance from the origin.
   const Vec o = at(xyz, h[0]);
   Vec X[8];
-  for (int i = 0; i < 8; ++i) X[i] = sub(at(xyz, h[i]), o);
-  const Vec q = sub(p, o);
+  for (int i = 0; i < 8; ++i) X[i] = at(xyz, h[i]) - o;
+  const Vec q = p - o;
   // x(u,v,w) = a0 + a1 u + a2 v + a3 w + a4 uv + a5 uw + a6 vw + a7 uvw
   Vec a[8];
   for (int d = 0; d < 3; ++d) {
@@ -163,7 +161,7 @@ bool inverse_trilinear(const double* xyz, const std::uint32_t* h, double scale, 
       jv[d] = a[2][d] + a[4][d] * u + a[6][d] * w + a[7][d] * u * w;
       jw[d] = a[3][d] + a[5][d] * u + a[6][d] * v + a[7][d] * u * v;
     }
-    const double res = std::sqrt(dot(r, r));
+    const double res = std::sqrt(glm::dot(r, r));
     if (!(res < best)) {
       if (it > 3 && best <= accept) break;  // round-off floor reached
     } else {
@@ -171,10 +169,10 @@ bool inverse_trilinear(const double* xyz, const std::uint32_t* h, double scale, 
       if (res <= done) break;
     }
     // Cramer's rule on J du = r with J = [ju jv jw].
-    const Vec c_vw = cross(jv, jw), c_wu = cross(jw, ju), c_uv = cross(ju, jv);
-    const double det = dot(ju, c_vw);
+    const Vec c_vw = glm::cross(jv, jw), c_wu = glm::cross(jw, ju), c_uv = glm::cross(ju, jv);
+    const double det = glm::dot(ju, c_vw);
     if (!(std::abs(det) > 1e-14 * scale * scale * scale)) break;
-    const double du = dot(r, c_vw) / det, dv = dot(r, c_wu) / det, dw = dot(r, c_uv) / det;
+    const double du = glm::dot(r, c_vw) / det, dv = glm::dot(r, c_wu) / det, dw = glm::dot(r, c_uv) / det;
     if (!std::isfinite(du) || !std::isfinite(dv) || !std::isfinite(dw)) break;
     u += du, v += dv, w += dw;
     if (std::abs(u) > 1e6 || std::abs(v) > 1e6 || std::abs(w) > 1e6) break;
@@ -202,14 +200,15 @@ bool tet_split_param(const Complex& c, const Cells& t, const double* xyz, std::u
   for (std::uint32_t f : c.cell_faces.row(k)) {
     const auto loop = c.faces.row(f);
     const Vec m = mean_of(xyz, loop);
-    const Vec dm = sub(m, cc), dp = sub(p, cc);
+    const Vec dm = m - cc, dp = p - cc;
     for (std::uint32_t i = 0; i < loop.size(); ++i) {
-      const Vec da = sub(at(xyz, loop[i]), cc), db = sub(at(xyz, loop[(i + 1) % loop.size()]), cc);
+      const Vec da = at(xyz, loop[i]) - cc, db = at(xyz, loop[(i + 1) % loop.size()]) - cc;
       // p - cc = lm dm + la da + lb db, by Cramer's rule.
-      const Vec c_ab = cross(da, db);
-      const double det = dot(dm, c_ab);
+      const Vec c_ab = glm::cross(da, db);
+      const double det = glm::dot(dm, c_ab);
       if (!(std::abs(det) > min_det)) continue;
-      const double lm = dot(dp, c_ab) / det, la = dot(dm, cross(dp, db)) / det, lb = dot(dm, cross(da, dp)) / det;
+      const double lm = glm::dot(dp, c_ab) / det, la = glm::dot(dm, glm::cross(dp, db)) / det,
+                   lb = glm::dot(dm, glm::cross(da, dp)) / det;
       const double lc = 1.0 - lm - la - lb;
       const double viol = std::max({0.0, -lc, -lm, -la, -lb});
       if (!std::isfinite(viol)) continue;
@@ -270,17 +269,15 @@ Grid make_grid(const Cells& t, std::uint32_t nc, double tol) {
     g.bins.offsets = {0, 0};  // one empty bin
     return g;
   }
-  Vec lo, hi;
-  lo.fill(std::numeric_limits<double>::infinity());
-  hi.fill(-std::numeric_limits<double>::infinity());
+  Vec lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   double max_size = 0;
   for (std::uint32_t k = 0; k < nc; ++k) {
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], t.box[6 * k + a]), hi[a] = std::max(hi[a], t.box[6 * k + 3 + a]);
     max_size = std::max(max_size, t.size[k]);
   }
   for (int a = 0; a < 3; ++a) lo[a] -= tol * max_size, hi[a] += tol * max_size;
-  const Vec ext = sub(hi, lo);
-  const double diag = std::sqrt(dot(ext, ext));
+  const Vec ext = hi - lo;
+  const double diag = std::sqrt(glm::dot(ext, ext));
   // Flat axes get a thickness so the bin size stays positive.
   const double floor_ext = diag > 0 ? 1e-6 * diag : 1.0;
   Vec e;

@@ -179,7 +179,6 @@ NodeWalk walk_nodes(const tinygltf::Model& m, const std::string& file) {
   w.world.assign(nn, glm::dmat4(1.0));
   std::vector<char> placed(nn, 0);
   std::vector<int> stack;
-  std::size_t num_placed = 0;
   for (std::size_t r = 0; r < nn; ++r) {
     if (parent[r] != -1) continue;
     stack.assign(1, int(r));
@@ -189,14 +188,11 @@ NodeWalk walk_nodes(const tinygltf::Model& m, const std::string& file) {
       const glm::dmat4 local = local_matrix(m.nodes[std::size_t(n)], std::size_t(n), file);
       w.world[std::size_t(n)] = parent[std::size_t(n)] < 0 ? local : w.world[std::size_t(parent[std::size_t(n)])] * local;
       placed[std::size_t(n)] = 1;
-      ++num_placed;
       for (int c : m.nodes[std::size_t(n)].children) stack.push_back(c);
     }
   }
-  if (num_placed != nn) {
-    const auto it = std::find(placed.begin(), placed.end(), 0);
+  if (const auto it = std::find(placed.begin(), placed.end(), 0); it != placed.end())
     throw InputError(file, 0, "the node hierarchy has a cycle (through node " + str(std::size_t(it - placed.begin())) + ")");
-  }
   std::vector<char> seen(nn, 0);
   auto visit = [&](int root) {
     stack.assign(1, root);

@@ -233,8 +233,7 @@ void write_ovm(const std::string& path, const Complex& c, std::span<const double
   const auto oriented = oriented_lattice_loops(c, xyz);
   write_file_atomic(path, [&](std::ostream& out) {
     out << "OVM ASCII\nVertices\n" << c.num_vertices << '\n';
-    for (std::uint32_t v = 0; v < c.num_vertices; ++v)
-      out << format_double(xyz[3 * v]) << ' ' << format_double(xyz[3 * v + 1]) << ' ' << format_double(xyz[3 * v + 2]) << '\n';
+    for (std::uint32_t v = 0; v < c.num_vertices; ++v) write_xyz_line(out, "", &xyz[3 * std::size_t(v)]);
     out << "Edges\n" << c.num_edges() << '\n';
     for (std::uint32_t e = 0; e < c.num_edges(); ++e) out << c.edge_verts[2 * e] << ' ' << c.edge_verts[2 * e + 1] << '\n';
     out << "Faces\n" << c.num_faces() << '\n';

@@ -1,6 +1,8 @@
 // sublift-cli compress PROJECT (--keep F | --threshold T | --linf E) [--region SPEC] [--raw]
-//             -o OUT [--json]
+//             [--bits B] -o OUT [--json]
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -19,7 +21,7 @@ namespace {
 
 constexpr const char* kHelp =
     "usage: sublift-cli compress PROJECT (--keep F | --threshold T | --linf E) [--region SPEC] [--raw]\n"
-    "                            -o OUT [--json]\n"
+    "                            [--bits B] -o OUT [--json]\n"
     "  Drops the wavelet coefficients of a .sublift project that contribute least and writes the\n"
     "  result (docs/compression.md). Wavelets are ranked by normalised magnitude |w| x ||psi||_2\n"
     "  (the wavelet's L2 norm; the level's detail gain applied); exactly one mode:\n"
@@ -34,10 +36,14 @@ constexpr const char* kHelp =
     "                 or sphere:cx,cy,cz,r (position on the level the wavelet lives on); F then\n"
     "                 counts the wavelets inside\n"
     "  --raw          rank by the raw magnitude |w| instead (for experiments)\n"
+    "  --bits B       a project OUT stores the kept wavelets quantized to B bits (8, 16 or 32; a\n"
+    "                 step per level and channel): smaller, lossy; the error is reported.\n"
+    "                 Without it the project is exact, the dropped wavelets a bit each\n"
     "  OUT            a .sublift project (the compressed coefficients, gains and level kept), or\n"
     "                 the finest level as a mesh by extension (.obj .off .ply .vtk .lattice .ovm)\n"
     "  --json         prints kept, total, l2_error, linf_error (relative to the diagonal), mode,\n"
-    "                 value and timings\n";
+    "                 value, timings and, for a project, its encoding and bytes (with --bits the\n"
+    "                 largest coefficient change and finest-vertex move it adds)\n";
 
 double mode_value(const std::string& option, const std::string& text) {
   const auto v = parse_double(text);
@@ -50,7 +56,7 @@ double mode_value(const std::string& option, const std::string& text) {
 }  // namespace
 
 int run_compress(int argc, char** argv) {
-  const Args a = parse_args(argc, argv, 2, {"-o", "--keep", "--threshold", "--linf", "--region"},
+  const Args a = parse_args(argc, argv, 2, {"-o", "--keep", "--threshold", "--linf", "--region", "--bits"},
                             {"--json", "--help", "--raw"});
   if (a.has("--help")) {
     std::cout << kHelp;
@@ -84,6 +90,14 @@ int run_compress(int argc, char** argv) {
     }
   }
 
+  int bits = 0;
+  if (const auto b = a.value("--bits")) {
+    const auto n = parse_int(*b);
+    if (!n || (*n != 8 && *n != 16 && *n != 32)) throw UsageError("--bits takes 8, 16 or 32, got '" + *b + "'");
+    if (!is_project_path(*a.value("-o"))) throw UsageError("--bits quantizes a project: OUT must be a .sublift file");
+    bits = static_cast<int>(*n);
+  }
+
   const std::string& in = a.positional[0];
   ProjectExtras extras;
   const Hierarchy h = read_project(in, &extras);
@@ -101,10 +115,18 @@ int run_compress(int argc, char** argv) {
   const auto t2 = std::chrono::steady_clock::now();
 
   std::vector<std::string> notes;
+  SavedProject saved;
+  double quantized_linf = 0.0;  // the finest level's largest move by quantization, / diagonal
   if (project_out) {
     Hierarchy compressed = h;
     compressed.coeffs = c.coeffs;
-    write_project(out, compressed, extras);
+    saved = write_project(out, compressed, extras, bits);
+    if (bits) {
+      const std::vector<double> back = synthesize(read_project(out), h.finest_level());
+      const std::vector<double> exact = synthesize(compressed, h.finest_level());
+      for (std::size_t i = 0; i < exact.size(); ++i) quantized_linf = std::max(quantized_linf, std::abs(back[i] - exact[i]));
+      quantized_linf /= compressor.diagonal();
+    }
   } else {
     notes = write_level(out, h, h.finest_level(), c.finest, h.channels, extras.input_order);
   }
@@ -128,12 +150,31 @@ int run_compress(int argc, char** argv) {
                         {"compress_ms", ms(t1, t2)},
                         {"warnings", report_json(topology)},
                         {"notes", notes}};
+    if (project_out) {
+      j["encoding"] = saved.encoding;
+      j["bytes"] = saved.bytes;
+      if (bits) {
+        j["bits"] = bits;
+        j["quantization_max_error"] = saved.max_quantization_error;
+        j["quantization_linf_error"] = quantized_linf;
+      }
+    }
     std::cout << j.dump(2) << "\n";
   } else {
     char line[200];
     std::snprintf(line, sizeof line, "kept %zu of %zu wavelets; error relative to the diagonal: L2 %.3g, L-infinity %.3g\n",
                   c.kept, c.total, c.l2_error, c.linf_error);
     std::cout << line;
+    if (project_out) {
+      std::snprintf(line, sizeof line, "wrote %llu bytes (%s coefficients", static_cast<unsigned long long>(saved.bytes),
+                    saved.encoding.c_str());
+      std::cout << line;
+      if (bits) {
+        std::snprintf(line, sizeof line, ", %d bits: finest vertices moved by up to %.3g of the diagonal", bits, quantized_linf);
+        std::cout << line;
+      }
+      std::cout << ")\n";
+    }
   }
   return 0;
 }

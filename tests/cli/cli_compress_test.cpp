@@ -73,6 +73,38 @@ TEST(CliCompress, JsonFieldsAndProjectOutputMatchCore) {
   }
 }
 
+// Issue 20: a compressed project is small on disk (the dropped wavelets a bit each), and --bits
+// quantizes the kept ones, reporting the error measured on the file written.
+TEST(CliCompress, ProjectsStoreOnlyWhatIsKeptAndBitsReportTheirError) {
+  TempDir dir("sublift_cli_compress_bytes");
+  const Hierarchy h = project_hierarchy();
+  write_project(dir.file("in.sublift"), h);
+  const auto run = [&](const std::vector<std::string>& extra, const std::string& out) {
+    std::vector<std::string> args = {"compress", dir.file("in.sublift"), "--keep", "0.25", "-o", dir.file(out), "--json"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const ProcessResult r = cli(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return nlohmann::json::parse(r.out);
+  };
+  const auto lossless = run({}, "q.sublift");
+  EXPECT_EQ(lossless["encoding"], "sparse");
+  EXPECT_EQ(lossless["bytes"].get<std::uint64_t>(), std::filesystem::file_size(dir.file("q.sublift")));
+  EXPECT_LE(lossless["bytes"].get<double>(), 0.35 * double(std::filesystem::file_size(dir.file("in.sublift"))));
+  EXPECT_FALSE(lossless.contains("quantization_linf_error"));
+  const auto q8 = run({"--bits", "8"}, "q8.sublift");
+  EXPECT_EQ(q8["encoding"], "quantized");
+  EXPECT_EQ(q8["bits"], 8);
+  EXPECT_LT(q8["bytes"].get<double>(), lossless["bytes"].get<double>());
+  // The reported move is the one the file makes: the finest levels of the two projects.
+  const std::vector<double> a = synthesize(read_project(dir.file("q.sublift")), 3);
+  const std::vector<double> b = synthesize(read_project(dir.file("q8.sublift")), 3);
+  double move = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) move = std::max(move, std::abs(a[i] - b[i]));
+  EXPECT_GT(move, 0.0);
+  EXPECT_DOUBLE_EQ(q8["quantization_linf_error"].get<double>(), move / q8["diagonal"].get<double>());
+  EXPECT_GT(q8["quantization_max_error"].get<double>(), 0.0);
+}
+
 TEST(CliCompress, MeshOutputIsTheFinestLevelAndEqualsSynthesizeKeep) {
   TempDir dir("sublift_cli_compress_mesh");
   const Hierarchy h = project_hierarchy();
@@ -258,6 +290,8 @@ TEST(CliCompress, UsageAndInputErrors) {
       {{"compress", in, "--keep", "0.5", "-o", dir.file("out.xyz")}, 2, ""},
       {{"compress", dir.file("missing.sublift"), "--keep", "0.5", "-o", out}, 1, "missing.sublift"},
       {{"compress", "--keep", "0.5", "-o", out}, 2, "PROJECT"},
+      {{"compress", in, "--keep", "0.5", "--bits", "12", "-o", dir.file("q.sublift")}, 2, "--bits takes 8, 16 or 32, got '12'"},
+      {{"compress", in, "--keep", "0.5", "--bits", "8", "-o", out}, 2, "--bits quantizes a project: OUT must be a .sublift file"},
   };
   for (const Case& c : cases) {
     const ProcessResult r = cli(c.args);

@@ -108,9 +108,9 @@ TEST(ProjectIo, RefusesBadMagicVersionAndHeader) {
   const std::string good = saved(random_hierarchy(lattice_with_features(), 1, 3, false, 9), dir);
   EXPECT_NE(error_of("").find("not a Sublift project"), std::string::npos);
   EXPECT_NE(error_of("PK\x03\x04 zip").find("not a Sublift project"), std::string::npos);
-  std::string v2 = good;
-  v2[16] = '2';
-  EXPECT_NE(error_of(v2).find("unsupported project version '2'"), std::string::npos) << error_of(v2);
+  std::string v3 = good;
+  v3[16] = '3';
+  EXPECT_NE(error_of(v3).find("unsupported project version '3'"), std::string::npos) << error_of(v3);
   EXPECT_NE(error_of("sublift-project 1\n{not json}\n").find("p.sublift:2: malformed header"), std::string::npos);
   EXPECT_NE(error_of("sublift-project 1\n{\"format\":\"sublift-project\"}\n").find("malformed header"), std::string::npos);
   EXPECT_NE(error_of("sublift-project 1\n").find("header"), std::string::npos);
@@ -244,8 +244,8 @@ TEST(ProjectIo, ExtrasRoundTrip) {
   EXPECT_EQ(back.current_level, 0);
   EXPECT_EQ(back.gains, std::vector<double>(2, 1.0));
   EXPECT_FALSE(back.local_frames);
-  // Still version 1.
-  EXPECT_EQ(read_file_bytes(path).substr(0, 18), "sublift-project 1\n");
+  // The session keys need no version of their own (version 2 is the coefficients' encoding).
+  EXPECT_EQ(read_file_bytes(path).substr(0, 18), "sublift-project 2\n");
   // A fitted project's base-to-mesh map (docs/fit.md).
   ProjectExtras fitted;
   const std::uint32_t nb = h.levels[0].num_vertices;

@@ -17,12 +17,14 @@
 #include "core/complex/complex_build.h"
 #include "core/complex/connectivity_match.h"
 #include "core/complex/level_counts.h"
+#include "core/io/project/coefficient_codec.h"
 
 namespace sublift {
 namespace {
 
 constexpr std::string_view kMagic = "sublift-project";
 constexpr std::size_t kMaxHeader = std::size_t(1) << 20;
+constexpr int kVersion = 2;  // 2: coefficients dense, sparse or quantized (coefficient_codec.h); 1: dense
 
 template <class T>
 void put(std::ostream& out, const std::vector<T>& v) {
@@ -103,8 +105,12 @@ std::string coefficient_problem(const Hierarchy& h, std::span<const double> coef
 
 }  // namespace
 
-void write_project(const std::string& path, const Hierarchy& h, const ProjectExtras& extras) {
+SavedProject write_project(const std::string& path, const Hierarchy& h, const ProjectExtras& extras, int quantize_bits) {
   const Complex& b = h.levels.at(0);
+  if (quantize_bits && !valid_quantize_bits(quantize_bits))
+    throw Error(path + ": cannot save project: quantization takes 8, 16 or 32 bits, not " + std::to_string(quantize_bits));
+  if (quantize_bits && h.integer)
+    throw Error(path + ": cannot save project: an integer-mode project is exact; it cannot be quantized");
   if (const std::string why = coefficient_problem(h, h.coeffs); !why.empty())
     throw Error(path + ": cannot save project: " + why + "; nothing written");
   check_extras(extras, h.finest_level(), b.num_vertices, [&](const std::string& why) { throw Error(path + ": cannot save project: " + why); });
@@ -113,9 +119,12 @@ void write_project(const std::string& path, const Hierarchy& h, const ProjectExt
     if (const std::string why = input_order_problem(extras.input_order, h.levels[static_cast<std::size_t>(extras.input_order.level)]); !why.empty())
       throw Error(path + ": cannot save project: input order: " + why);
   }
+  std::vector<std::uint32_t> level_vertices;
+  for (const Complex& c : h.levels) level_vertices.push_back(c.num_vertices);
+  const EncodedCoefficients enc = encode_coefficients(h.coeffs, level_vertices, h.channels, quantize_bits);
   nlohmann::json j;
   j["format"] = "sublift-project";
-  j["version"] = 1;
+  j["version"] = kVersion;
   j["scheme"] = scheme_name(h.scheme);
   j["integer"] = h.integer;
   if (scheme_is_tri(h.scheme)) j["disc"] = h.disc;
@@ -126,6 +135,9 @@ void write_project(const std::string& path, const Hierarchy& h, const ProjectExt
                {"faces", b.num_faces()},               {"cells", b.num_cells()},
                {"face_corners", b.faces.items.size()}, {"cell_faces", b.cell_faces.items.size()}};
   j["coefficients"] = h.coeffs.size();
+  j["encoding"] = encoding_name(enc.encoding);
+  if (enc.encoding != CoefficientEncoding::Dense) j["stored_vertices"] = enc.stored_vertices;
+  if (enc.encoding == CoefficientEncoding::Quantized) j["bits"] = enc.bits;
   j["current_level"] = extras.current_level;
   j["gains"] = extras.gains.empty() ? std::vector<double>(static_cast<std::size_t>(h.finest_level()), 1.0) : extras.gains;
   j["local_frames"] = extras.local_frames;
@@ -140,11 +152,12 @@ void write_project(const std::string& path, const Hierarchy& h, const ProjectExt
   j["payload"] =
       "little-endian u32 edge_verts[2*edges] face_offsets[faces+1] face_verts[face_corners] "
       "face_edges[face_corners] cell_offsets[cells+1] cell_faces[cell_faces]; u8 vertex_dim[vertices] "
-      "edge_dim[edges] face_dim[faces]; f64 coefficients[coefficients]";
+      "edge_dim[edges] face_dim[faces]; the coefficients as 'encoding' says (docs/file_formats.md)";
+  std::uint64_t bytes = 0;
   write_file_atomic(
       path,
       [&](std::ostream& out) {
-        out << kMagic << " 1\n" << j.dump() << '\n';
+        out << kMagic << ' ' << kVersion << '\n' << j.dump() << '\n';
         put(out, b.edge_verts);
         put(out, b.faces.offsets);
         put(out, b.faces.items);
@@ -154,14 +167,16 @@ void write_project(const std::string& path, const Hierarchy& h, const ProjectExt
         put(out, b.vertex_dim);
         put(out, b.edge_dim);
         put(out, b.face_dim);
-        put(out, h.coeffs);
+        out.write(enc.bytes.data(), static_cast<std::streamsize>(enc.bytes.size()));
         if (!io.empty()) {
           put(out, io.engine_vertex);
           put(out, io.faces.offsets);
           put(out, io.faces.items);
         }
+        bytes = static_cast<std::uint64_t>(out.tellp());
       },
       true);
+  return {encoding_name(enc.encoding), bytes, enc.max_error};
 }
 
 Hierarchy read_project_from_memory(const std::string& file, const std::string& bytes_in, ProjectExtras* extras_out) {
@@ -172,9 +187,10 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
     throw InputError(file, 1, "not a Sublift project (the first line must be 'sublift-project 1')");
   std::string_view first = bytes.substr(0, nl1);
   if (!first.empty() && first.back() == '\r') first.remove_suffix(1);
-  if (first != "sublift-project 1") {
+  const int version = first == "sublift-project 1" ? 1 : first == "sublift-project 2" ? 2 : 0;
+  if (!version) {
     const std::string_view ver = first.substr(std::min(first.size(), kMagic.size() + 1));
-    throw InputError(file, 1, "unsupported project version '" + printable(ver) + "' (this Sublift reads version 1)");
+    throw InputError(file, 1, "unsupported project version '" + printable(ver) + "' (this Sublift reads versions 1 and 2)");
   }
   // Line 2: JSON header.
   const std::size_t nl2 = bytes.find('\n', nl1 + 1);
@@ -189,10 +205,14 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   std::int64_t current_level = 0;
   std::int64_t io_level = -1;
   std::uint64_t IV = 0, IF = 0, IK = 0;  // input order: vertices, faces, face corners
+  CoefficientEncoding encoding = CoefficientEncoding::Dense;
+  std::uint64_t stored = 0;
+  int bits = 0;
   try {
     j = nlohmann::json::parse(bytes.substr(nl1 + 1, nl2 - nl1 - 1));
     if (j.at("format").get<std::string>() != "sublift-project") throw InputError(file, 2, "header 'format' is not sublift-project");
-    if (header_integer(file, j, "version") != 1) throw InputError(file, 2, "header version is not 1");
+    if (header_integer(file, j, "version") != version)
+      throw InputError(file, 2, "header version is not " + std::to_string(version) + ", as line 1 says");
     try {
       scheme = parse_scheme(j.at("scheme").get<std::string>());
     } catch (const std::invalid_argument&) {
@@ -212,6 +232,16 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
     SF = header_count(file, b, "face_corners");
     CF = header_count(file, b, "cell_faces");
     N = header_count(file, j, "coefficients");
+    if (const auto it = j.find("encoding"); it != j.end()) {
+      if (version < 2) throw InputError(file, 2, "header 'encoding' needs version 2");
+      if (!it->is_string() || !parse_encoding(it->get<std::string>(), encoding))
+        throw InputError(file, 2, "header 'encoding' must be dense, sparse or quantized");
+    }
+    if (encoding != CoefficientEncoding::Dense) stored = header_count(file, j, "stored_vertices");
+    if (encoding == CoefficientEncoding::Quantized) {
+      bits = header_small_integer(file, j, "bits");
+      if (!valid_quantize_bits(bits)) throw InputError(file, 2, "header 'bits' must be 8, 16 or 32, got " + std::to_string(bits));
+    }
     // Optional session keys (absent in older version-1 files).
     if (j.contains("current_level")) current_level = header_integer(file, j, "current_level");
     if (const auto it = j.find("gains"); it != j.end()) {
@@ -259,15 +289,22 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   constexpr std::uint64_t kMax = 0xfffffffeu;
   for (std::uint64_t n : {V, E, F, C, SF, CF, IV, IF, IK})
     if (n > kMax) throw InputError(file, 2, "a base count exceeds 2^32 - 2");
+  const double coeff_d = encoded_bytes(encoding, double(N), double(V), channels, levels, double(stored), bits);
   // Payload size, computed in doubles first so that lying counts cannot wrap.
   const std::size_t start = nl2 + 1;
   const std::size_t have = bytes.size() - start;
   const double io_d = io_level < 0 ? 0.0 : 4.0 * (double(IV) + double(IF) + 1.0 + double(IK));
-  const double want_d = 4.0 * (2.0 * E + (F + 1) + 2.0 * SF + (C + 1) + CF) + double(V) + double(E) + double(F) + 8.0 * double(N) + io_d;
+  const double want_d = 4.0 * (2.0 * E + (F + 1) + 2.0 * SF + (C + 1) + CF) + double(V) + double(E) + double(F) + coeff_d + io_d;
   if (want_d > static_cast<double>(have) + 0.5)
     throw InputError(file, 0, "truncated payload: the header announces " + std::to_string(static_cast<unsigned long long>(want_d)) +
                                   " bytes, the file holds " + std::to_string(have));
-  const std::size_t want = 4 * (2 * E + (F + 1) + 2 * SF + (C + 1) + CF) + V + E + F + 8 * N +
+  if (N % static_cast<std::uint64_t>(channels) != 0 || N / static_cast<std::uint64_t>(channels) < V ||
+      stored > N / static_cast<std::uint64_t>(channels) - V)
+    throw InputError(file, 2, "coefficient counts do not fit: " + std::to_string(N) + " values of " + std::to_string(channels) +
+                                  " channels on a base of " + std::to_string(V) + " vertices, " + std::to_string(stored) +
+                                  " stored wavelet vertices");
+  const auto coeff_bytes = static_cast<std::size_t>(coeff_d);
+  const std::size_t want = 4 * (2 * E + (F + 1) + 2 * SF + (C + 1) + CF) + V + E + F + coeff_bytes +
                            (io_level < 0 ? 0 : 4 * (IV + IF + 1 + IK));
   if (want != have)
     throw InputError(file, 0, "payload of " + std::to_string(have) + " bytes, but the header announces " + std::to_string(want));
@@ -321,15 +358,19 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
     throw InputError(file, 2, "current_level " + std::to_string(current_level) + " outside 0.." + std::to_string(levels));
   extras.current_level = static_cast<int>(current_level);
   check_extras(extras, levels, static_cast<std::size_t>(V), [&](const std::string& why) { throw InputError(file, 2, why); });
-  std::vector<double> coeffs = take<double>(bytes, pos, N);
+  const std::string_view coeff_payload = bytes.substr(pos, coeff_bytes);
+  pos += coeff_bytes;
   Hierarchy h;
   try {
     h = make_hierarchy(std::move(c), levels, scheme, channels, integer, 0, disc);
   } catch (const TopologyError& e) {  // sqrt2 needs consistently oriented faces
     throw InputError(file, 0, std::string("base complex: ") + e.what());
   }
-  if (h.coeffs.size() != coeffs.size())
-    throw InputError(file, 2, "coefficient count does not match the refined base");
+  if (h.coeffs.size() != N) throw InputError(file, 2, "coefficient count does not match the refined base");
+  std::vector<std::uint32_t> level_vertices;
+  for (const Complex& l : h.levels) level_vertices.push_back(l.num_vertices);
+  std::vector<double> coeffs =
+      decode_coefficients(coeff_payload, encoding, N, level_vertices, channels, stored, bits, file);
   if (const std::string why = coefficient_problem(h, coeffs); !why.empty()) throw InputError(file, 0, why);
   h.coeffs = std::move(coeffs);
   if (io_level >= 0) {

@@ -2,12 +2,13 @@
 // `.sublift` projects (docs/file_formats.md): a hierarchy saved exactly — base complex with
 // every feature dim, scheme, integer flag, levels, channels and all coefficients, bit for bit.
 //
-// Layout: line 1 `sublift-project 1`; line 2 a one-line JSON header (counts, scheme, ...);
-// then a little-endian binary payload whose size the header fixes (checked against the file
-// size before anything is read): u32 edge_verts[2E], face_offsets[F+1], face_verts[SF],
-// face_edges[SF], cell_offsets[C+1], cell_faces[CF]; u8 vertex_dim[V], edge_dim[E],
-// face_dim[F]; f64 coefficients[N] in hierarchy.h's layout.
-// Optional header keys (still version 1; files without them read with the defaults):
+// Layout: line 1 `sublift-project 2` (version 1 files are read too); line 2 a one-line JSON
+// header (counts, scheme, ...); then a little-endian binary payload whose size the header fixes
+// (checked against the file size before anything is read): u32 edge_verts[2E],
+// face_offsets[F+1], face_verts[SF], face_edges[SF], cell_offsets[C+1], cell_faces[CF]; u8
+// vertex_dim[V], edge_dim[E], face_dim[F]; the N coefficients in hierarchy.h's layout, encoded as
+// the header's `encoding` says (dense f64 in version 1; coefficient_codec.h).
+// Optional header keys (files without them read with the defaults):
 // `current_level`, `gains` and `local_frames`, the modeler's session state (ProjectExtras), and
 // `input_order` {level, vertices, faces, face_corners}: then the payload ends with u32
 // engine_vertex[vertices] face_offsets[faces+1] face_verts[face_corners] (InputOrder);
@@ -67,9 +68,19 @@ std::vector<double> in_input_order(const InputOrder& order, std::span<const doub
 /// faces); else what is wrong, for messages.
 std::string input_order_problem(const InputOrder& order, const Complex& level);
 
-/// Writes `h` and the session `extras` to `path` atomically. Throws Error (current_level
-/// outside 0..J, gains neither empty nor J finite values) or IoError.
-void write_project(const std::string& path, const Hierarchy& h, const ProjectExtras& extras = {});
+/// What a save wrote: the coefficients' encoding (core/io/project/coefficient_codec.h), the
+/// file's size, and for a quantized save the largest change of a coefficient.
+struct SavedProject {
+  std::string encoding;
+  std::uint64_t bytes = 0;
+  double max_quantization_error = 0.0;
+};
+
+/// Writes `h` and the session `extras` to `path` atomically: lossless (zero wavelets stored as a
+/// bit each where that is smaller), or with `quantize_bits` 8, 16 or 32 quantized (lossy).
+/// Throws Error (current_level outside 0..J, gains neither empty nor J finite values, bits
+/// other than those, an integer-mode hierarchy quantized) or IoError.
+SavedProject write_project(const std::string& path, const Hierarchy& h, const ProjectExtras& extras = {}, int quantize_bits = 0);
 
 /// Reads a project and rebuilds its hierarchy (levels, tables, coefficients). Throws
 /// InputError (bad magic or version, malformed header, truncated or oversized payload,

@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <string>
-#include <type_traits>
 #include <unordered_map>
 
 #include "core/base/errors.h"

@@ -5,7 +5,6 @@
 #include <string>
 
 #include "core/base/errors.h"
-#include "core/complex/level_counts.h"
 #include "core/engine/executor.h"
 #include "core/multires/limit.h"
 

@@ -1,5 +1,4 @@
 #include "core/multires/limit.h"
-#include "core/schemes/tri/tri_transform.h"
 
 #include <algorithm>
 #include <array>
@@ -531,7 +530,7 @@ LimitStencils build_limit_stencils(const Hierarchy& h) {
     return s;
   }
   if (scheme_info(h.scheme).limit == LimitRule::LoopMasks) {  // Loop's limit masks; normals from the faces (no tangent rows)
-    loop_limit_rows(fin, s.rows, s.weights);
+    scheme_info(h.scheme).limit_rows(fin, s.rows, s.weights);
     s.tangent_rows.offsets.assign(std::size_t(nv) + 1, 0);
     s.users = transpose(s.rows, nv);
     return s;

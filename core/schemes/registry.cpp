@@ -6,6 +6,7 @@
 #include "core/schemes/bertram/bertram_transition.h"
 #include "core/schemes/sqrt2/sqrt2_level.h"
 #include "core/schemes/tri/tri_level.h"
+#include "core/schemes/tri/tri_transform.h"
 
 namespace sublift {
 namespace {
@@ -19,14 +20,14 @@ LevelBuild loop_level(Complex& parent, const LevelContext& ctx) { return build_t
 using R = Refinement;
 using L = LimitRule;
 // id, name, refinement, surfaces only, triangles only, interpolates, integer, levels per split,
-// limit, exact norms, builder
+// limit, limit rows, builder, peak bytes
 constexpr SchemeInfo kSchemes[] = {
-    {Scheme::Linear, "linear", R::Split, false, false, false, true, 1, L::ControlNet, false, linear_level, {400, 900}},
-    {Scheme::Cubic, "cubic", R::Split, false, false, false, true, 1, L::Eigen, false, cubic_level, {400, 900}},
-    {Scheme::Sqrt2, "sqrt2", R::Sqrt2, true, false, true, true, 2, L::ControlNet, false, build_sqrt2_level, {900, 0}},
-    {Scheme::LinearTri, "linear-tri", R::Tri, true, true, true, true, 1, L::ControlNet, true, linear_tri_level, {1250, 0}},
-    {Scheme::Butterfly, "butterfly", R::Tri, true, true, true, true, 1, L::ControlNet, true, butterfly_level, {1600, 0}},
-    {Scheme::Loop, "loop", R::Tri, true, true, false, false, 1, L::LoopMasks, true, loop_level, {1500, 0}},
+    {Scheme::Linear, "linear", R::Split, false, false, false, true, 1, L::ControlNet, nullptr, linear_level, {400, 900}},
+    {Scheme::Cubic, "cubic", R::Split, false, false, false, true, 1, L::Eigen, nullptr, cubic_level, {400, 900}},
+    {Scheme::Sqrt2, "sqrt2", R::Sqrt2, true, false, true, true, 2, L::ControlNet, nullptr, build_sqrt2_level, {900, 0}},
+    {Scheme::LinearTri, "linear-tri", R::Tri, true, true, true, true, 1, L::ControlNet, nullptr, linear_tri_level, {1250, 0}},
+    {Scheme::Butterfly, "butterfly", R::Tri, true, true, true, true, 1, L::ControlNet, nullptr, butterfly_level, {1600, 0}},
+    {Scheme::Loop, "loop", R::Tri, true, true, false, false, 1, L::LoopMasks, loop_limit_rows, loop_level, {1500, 0}},
 };
 
 }  // namespace

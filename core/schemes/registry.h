@@ -26,6 +26,8 @@ enum class LimitRule : std::uint8_t {
 };
 
 using LevelBuilder = LevelBuild (*)(Complex& parent, const LevelContext& ctx);
+/// LoopMasks: the limit-position rows over the vertices of a finest level (derived rows not needed).
+using LimitRows = void (*)(const Complex& c, Csr& rows, std::vector<double>& weights);
 
 struct SchemeInfo {
   Scheme id;
@@ -37,7 +39,7 @@ struct SchemeInfo {
   bool integer;            // has an exact integer mode
   int levels_per_split;    // levels that make one 1-to-4 refinement: sqrt2 2, else 1
   LimitRule limit;
-  bool exact_norms;        // the builder gives each wavelet's exact L2 norm
+  LimitRows limit_rows;    // LoopMasks only, else nullptr
   LevelBuilder build;
   // Peak bytes per finest-level vertex of building a hierarchy and synthesizing its finest level
   // (surfaces and curves, lattices; 0: not refined), measured with sublift-cli subdivide's

@@ -7,7 +7,6 @@
 #include <memory>
 #include <mutex>
 #include <numbers>
-#include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>

@@ -254,10 +254,7 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
     std::array<std::uint32_t, 4> n{};
     std::array<std::uint32_t, 12> phi{};
     const bool all_inner = face_rules.add(f, fp, predict, n);
-    if (c.faces.size(f) != 4) {  // level-0 polygons: no lifting (the paper starts from quads)
-      ++t.unlifted_face_points;
-      continue;
-    }
+    if (c.faces.size(f) != 4) continue;  // level-0 polygons: no lifting (the paper starts from quads)
     if (!find_phis(c, f, inner, phi) || !all_inner) {
       near_curve.push_back(fp);
       near_phi.push_back(phi);

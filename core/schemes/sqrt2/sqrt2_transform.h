@@ -43,7 +43,6 @@ struct Sqrt2Transition {
   Transition transition;
   std::uint32_t lifted_face_points = 0;      // face points lifted with the omega table
   std::uint32_t near_curve_face_points = 0;  // lifted with a local solve (sec. 4)
-  std::uint32_t unlifted_face_points = 0;    // left primitive (level-0 polygons)
 };
 
 /// Builds the sub-steps of the step coarse -> fine described by `children` (refine_sqrt2's

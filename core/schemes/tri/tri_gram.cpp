@@ -121,7 +121,6 @@ void FaceGramCache::solve_pending() {
   std::vector<int> stack;
   std::unordered_map<int, bool> on_stack;
   int counter = 0;
-  last_sweeps_ = 0;
   last_change_ = 0;
   std::function<void(int)> visit = [&](int t) {
     index[t] = low[t] = counter++;
@@ -158,7 +157,6 @@ void FaceGramCache::solve_pending() {
       for (int sweep = 0; sweep < 400; ++sweep) {
         double change = 0;
         for (int y : comp) change = std::max(change, eval(y));
-        last_sweeps_ = std::max(last_sweeps_, sweep + 1);
         // Converged to rounding: the change stops shrinking once it is a few ulps of the entries.
         if (change < 1e-16 || (sweep > 40 && change >= 0.5 * prev)) {
           last_change_ = std::max(last_change_, change);
@@ -182,7 +180,6 @@ FaceGramCache::FaceGram FaceGramCache::face_gram(const Complex& c, const TriRing
   const Type& ty = types_[static_cast<std::size_t>(t)];
   g.verts.assign(o.vertex.begin(), o.vertex.begin() + ty.n);
   g.G = &ty.G;
-  g.type = t;
   return g;
 }
 

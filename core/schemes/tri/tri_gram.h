@@ -23,7 +23,6 @@
 #include <array>
 #include <deque>
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -54,14 +53,12 @@ class FaceGramCache {
   struct FaceGram {
     std::vector<std::uint32_t> verts;
     const Eigen::MatrixXd* G = nullptr;
-    int type = -1;
   };
   FaceGram face_gram(const Complex& c, const TriRings& r, std::uint32_t f);
 
   std::size_t num_types() const { return types_.size(); }
-  /// Largest change of the last solve's final sweep, and its sweep count.
+  /// Largest change of the last solve's final sweep.
   double last_change() const { return last_change_; }
-  int last_sweeps() const { return last_sweeps_; }
 
  private:
   struct Type {
@@ -80,7 +77,6 @@ class FaceGramCache {
   std::deque<Type> types_;  // stable addresses: FaceGram points into it
   std::vector<int> pending_;
   double last_change_ = 0;
-  int last_sweeps_ = 0;
 };
 
 /// Seeds for a face's canonical order: its corners in cycle order, each walking from the next.

@@ -157,12 +157,6 @@ LocalOrder local_order(const TriRings& r, std::span<const std::uint32_t> seeds,
   return o;
 }
 
-std::uint32_t label_of(const LocalOrder& o, std::uint32_t v) {
-  for (std::uint32_t l = 0; l < o.vertex.size(); ++l)
-    if (o.vertex[l] == v) return l;
-  return UINT32_MAX;
-}
-
 std::string local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius) {
   table.begin(c.num_vertices);
   for (std::uint32_t l = 0; l < o.vertex.size(); ++l)

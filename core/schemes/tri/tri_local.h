@@ -42,10 +42,6 @@ struct LocalOrder {
 LocalOrder local_order(const TriRings& r, std::span<const std::uint32_t> seeds,
                        std::span<const std::uint32_t> seed_start, int radius);
 
-/// Label of mesh vertex v in `o` (UINT32_MAX when absent): a linear scan for small orders,
-/// callers with many lookups build a map.
-std::uint32_t label_of(const LocalOrder& o, std::uint32_t v);
-
 /// The signature of the labelled neighbourhood up to distance `radius` (<= the order's): per
 /// label its distance, fan closure, valence, vertex dim, and its fan as labels (-1 beyond) with
 /// the edges' dims. Equal signatures <=> isomorphic labelled neighbourhoods.

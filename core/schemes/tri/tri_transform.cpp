@@ -1,21 +1,16 @@
 #include "core/schemes/tri/tri_transform.h"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
-#include <unordered_map>
 #include <cmath>
 #include <map>
 #include <mutex>
-#include <string>
 
-#include "core/base/errors.h"
 #include "core/base/parallel.h"
 #include "core/schemes/tri/tri_local.h"
 #include "core/schemes/tri/tri_wavelets.h"
 
 namespace sublift {
-
 
 namespace {
 
@@ -78,10 +73,8 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
       if (regular[e]) {
         offset[e + 1] = static_cast<std::uint32_t>(regular_alpha.size());
         out.norm2[e] = reg->norm2;
-        out.max_residual = std::max(out.max_residual, reg->residual);
         continue;
       }
-      ++out.irregular_edges;
       need_fine_rings();
       const EdgeWavelet& w = b.edge_wavelet(level, e, &d, false);
       if (w.alpha.size() != d.size()) throw std::logic_error("tri_transform: disc and alpha sizes differ");
@@ -89,7 +82,6 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
       disc_items.insert(disc_items.end(), d.begin(), d.end());
       alpha_items.insert(alpha_items.end(), w.alpha.begin(), w.alpha.end());
       out.norm2[e] = w.norm2;
-      out.max_residual = std::max(out.max_residual, w.residual);
     }
   }
   // Flat per-edge lists: irregular edges' entries move into place, regular ones are listed.

@@ -15,7 +15,6 @@
 // sec. 6.3: not local, so slower), the interpolating schemes have P_oo = I and are linear time
 // both ways (integer mode exact, as for sqrt2).
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include "core/complex/complex.h"
@@ -27,8 +26,6 @@ namespace sublift {
 struct TriTransitionResult {
   Transition transition;
   std::vector<double> norm2;  // ||psi||^2 per coarse edge, a level-j face having area 1
-  double max_residual = 0;    // largest |<psi, phi_i>| over all discs
-  std::size_t irregular_edges = 0;  // edges whose wavelet needed their own neighbourhood
 };
 
 /// Builds the sub-steps for the 1-to-4 split of `coarse` into `fine` (= refine_tri(coarse); both

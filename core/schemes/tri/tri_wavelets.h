@@ -54,8 +54,6 @@ struct TriLevel {
 class TriWaveletBuilder {
  public:
   TriWaveletBuilder(Scheme s, int disc);
-  Scheme scheme() const { return gram_.scheme(); }
-  int disc() const { return disc_; }
   /// Rings of the patch an edge's wavelet is computed on.
   int edge_radius() const;
   /// Rings of the neighbourhood the wavelet depends on (its cache signature): the disc, the
@@ -70,9 +68,7 @@ class TriWaveletBuilder {
   const EdgeWavelet& edge_wavelet(const Complex& c, const TriRings& r, std::uint32_t e,
                                   std::vector<std::uint32_t>* disc_out);
 
-  FaceGramCache& gram() { return gram_; }
   bool has_regular() const { return regular_ != nullptr; }
-  std::size_t cached_edges() const { return edges_.size(); }
 
  private:
   EdgeWavelet compute(TriLevel& level, std::uint32_t e);

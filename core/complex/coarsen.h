@@ -69,6 +69,13 @@ bool has_repeat(std::vector<std::uint32_t>& ends);
 void name_coarse_vertices(std::span<const std::uint32_t> input, const std::vector<std::uint8_t>& labels,
                           const std::vector<std::uint32_t>& coarse_id, std::uint32_t num_coarse, Coarsening& c);
 
+/// Records why `at` failed (near input vertex `where`) and returns it: the coarseners' `return fail(...)`.
+inline Attempt failed(Attempt& at, std::uint32_t where, std::string why) {
+  at.where = where;
+  at.why = std::move(why);
+  return at;
+}
+
 /// Position of v in face row `q` (q must contain v).
 inline unsigned corner_of(std::span<const std::uint32_t> q, std::uint32_t v) {
   unsigned k = 0;
@@ -80,10 +87,10 @@ inline unsigned corner_of(std::span<const std::uint32_t> q, std::uint32_t v) {
 /// (c.a[v] = its coarse id), adds to at.score each whose face count is not the regular one
 /// (`regular_inside`, `regular_boundary`: extraordinary vertices are likelier old), and checks
 /// that its coarse edges lead to distinct vertices: far_end(q, k) is the far end of the coarse
-/// edge that face q (v at corner k) holds, UINT32_MAX for none. Returns the first vertex with a
-/// doubled coarse edge, or UINT32_MAX.
+/// edge that face q (v at corner k) holds, UINT32_MAX for none. False (at failed, naming the
+/// first vertex with a doubled coarse edge) when two lead to the same vertex.
 template <class FarEnd>
-std::uint32_t check_old_vertices(const Mesh& m, const Star& s, const std::vector<std::uint8_t>& labels,
+bool check_old_vertices(const Mesh& m, const Star& s, const std::vector<std::uint8_t>& labels,
                                  const std::vector<std::uint32_t>& coarse_id, unsigned regular_inside,
                                  unsigned regular_boundary, FarEnd far_end, Attempt& at) {
   std::vector<std::uint32_t> ends;
@@ -97,9 +104,12 @@ std::uint32_t check_old_vertices(const Mesh& m, const Star& s, const std::vector
       const std::uint32_t x = far_end(q, corner_of(q, v));
       if (x != UINT32_MAX) ends.push_back(x);
     }
-    if (has_repeat(ends)) return v;
+    if (has_repeat(ends)) {
+      failed(at, m.input[v], "two edges of the coarser mesh would join vertex " + std::to_string(m.input[v]) + " to the same vertex");
+      return false;
+    }
   }
-  return UINT32_MAX;
+  return true;
 }
 
 }  // namespace sublift::detect

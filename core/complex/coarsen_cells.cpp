@@ -13,24 +13,14 @@ namespace sublift::detect {
 
 namespace {
 
-
 bool in_row(std::span<const std::uint32_t> row, std::uint32_t x) { return std::find(row.begin(), row.end(), x) != row.end(); }
-
-std::uint32_t other_end(const Complex& c, std::uint32_t e, std::uint32_t v) {
-  return c.edge_verts[2 * e] == v ? c.edge_verts[2 * e + 1] : c.edge_verts[2 * e];
-}
 
 }  // namespace
 
 Attempt coarsen_hexes(const Complex& c, const std::vector<std::uint32_t>& input, int candidate) {
   Attempt at;
   const std::uint32_t n = c.num_vertices, ncell = c.num_cells();
-  auto fail = [&](std::uint32_t v, std::string why) {
-    at.ok = false;
-    at.where = input[v];
-    at.why = std::move(why);
-    return at;
-  };
+  auto fail = [&](std::uint32_t v, std::string why) { return failed(at, input[v], std::move(why)); };
   std::vector<std::uint8_t> lab(n, kNone), seen(ncell, 0);
   std::uint32_t clash = UINT32_MAX;
   auto set = [&](std::uint32_t v, std::uint8_t l) {
@@ -68,7 +58,7 @@ Attempt coarsen_hexes(const Complex& c, const std::vector<std::uint32_t>& input,
         const int step = olds ? 1 : -1;  // away from the old vertex, or back towards it
         for (std::uint32_t x : corners)
           for (std::uint32_t e : c.vertex_edges.row(x)) {
-            const std::uint32_t y = other_end(c, e, x);
+            const std::uint32_t y = edge_other_end(c, e, x);
             if (in_row(corners, y) || !in_row(c.cell_edges.row(h), e)) continue;
             if (!set(y, std::uint8_t(lab[x] + step)))
               return fail(clash, "the cells around vertex " + std::to_string(input[clash]) + " do not follow a 1-to-8 split");
@@ -95,7 +85,7 @@ Attempt coarsen_hexes(const Complex& c, const std::vector<std::uint32_t>& input,
     std::uint32_t ends[3];
     unsigned k = 0;
     for (std::uint32_t e : c.vertex_edges.row(v)) {
-      const std::uint32_t y = other_end(c, e, v);
+      const std::uint32_t y = edge_other_end(c, e, v);
       if (lab[y] == V) {
         if (k == 2) return fail(v, "edge point " + std::to_string(input[v]) + " touches more than two vertices of the coarser lattice");
         ends[k++] = y;
@@ -111,7 +101,7 @@ Attempt coarsen_hexes(const Complex& c, const std::vector<std::uint32_t>& input,
     out.a[v] = coarse_id[v];
     others.clear();
     for (std::uint32_t e : c.vertex_edges.row(v)) {
-      const std::uint32_t y = other_end(c, e, v);
+      const std::uint32_t y = edge_other_end(c, e, v);
       others.push_back(out.a[y] == coarse_id[v] ? out.b[y] : out.a[y]);
     }
     if (has_repeat(others))
@@ -119,7 +109,6 @@ Attempt coarsen_hexes(const Complex& c, const std::vector<std::uint32_t>& input,
   }
   // Face points: the quads around one that hold an old vertex lie on its coarse face; walked by
   // their shared edge points (lattice faces need not be oriented alike) they give its corners.
-  out.coarse_faces.offsets.assign(1, 0);
   std::vector<std::uint32_t> outer;
   for (std::uint32_t v = 0; v < n; ++v) {
     if (lab[v] != F) continue;
@@ -148,13 +137,12 @@ Attempt coarsen_hexes(const Complex& c, const std::vector<std::uint32_t>& input,
     out.coarse_faces.offsets.push_back(static_cast<std::uint32_t>(out.coarse_faces.items.size()));
   }
   // Cell points: inside, their face points are the coarse cell's faces.
-  out.coarse_cells.offsets.assign(1, 0);
   for (std::uint32_t v = 0; v < n; ++v) {
     if (lab[v] != C) continue;
     out.a[v] = coarse_id[v];
     const std::size_t before = out.coarse_cells.items.size();
     for (std::uint32_t e : c.vertex_edges.row(v)) {
-      const std::uint32_t y = other_end(c, e, v);
+      const std::uint32_t y = edge_other_end(c, e, v);
       if (lab[y] == F) out.coarse_cells.items.push_back(coarse_id[y]);
     }
     if (out.coarse_cells.items.size() - before < 4)

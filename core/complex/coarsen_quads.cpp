@@ -11,7 +11,6 @@ namespace sublift::detect {
 
 namespace {
 
-
 const char* kind_word(std::uint8_t l) { return l == V ? "a vertex" : l == E ? "an edge point" : "a face point"; }
 
 }  // namespace
@@ -22,12 +21,7 @@ Attempt coarsen_quads(const Mesh& m, const Star& s, int candidate) {
   std::vector<std::uint8_t> lab(n, kNone);
   std::vector<std::uint32_t> queue;
   queue.reserve(n / 2 + 1);
-  auto fail = [&](std::uint32_t v, std::string why) {
-    at.ok = false;
-    at.where = m.input[v];
-    at.why = std::move(why);
-    return at;
-  };
+  auto fail = [&](std::uint32_t v, std::string why) { return failed(at, m.input[v], std::move(why)); };
   std::uint32_t clash = UINT32_MAX;
   std::uint8_t clash_want = 0;
   auto set = [&](std::uint32_t v, std::uint8_t l) {
@@ -93,15 +87,13 @@ Attempt coarsen_quads(const Mesh& m, const Star& s, int candidate) {
     c.b[v] = coarse_id[ends[1]];
   }
   // An old vertex's edge points lead to distinct vertices (no doubled coarse edge).
-  const std::uint32_t doubled = check_old_vertices(m, s, lab, coarse_id, 4, 2, [&](std::span<const std::uint32_t> q, unsigned k) {
+  if (!check_old_vertices(m, s, lab, coarse_id, 4, 2, [&](std::span<const std::uint32_t> q, unsigned k) {
     const std::uint32_t e = q[(k + 1) & 3u];
     return c.a[e] == coarse_id[q[k]] ? c.b[e] : c.a[e];
-  }, at);
-  if (doubled != UINT32_MAX)
-    return fail(doubled, "two edges of the coarser mesh would join vertex " + std::to_string(m.input[doubled]) + " to the same vertex");
+  }, at))
+    return at;
   std::vector<std::uint32_t> others;
   // Face points: inside, with a closed fan of n >= 3 quads whose old corners make the face.
-  c.coarse_faces.offsets.assign(1, 0);
   c.coarse_faces.items.reserve(n);
   for (std::uint32_t v = 0; v < n; ++v) {
     if (lab[v] != F) continue;

@@ -39,12 +39,7 @@ bool boundary_edge(const Mesh& m, const Star& s, std::uint32_t x, std::uint32_t 
 Attempt coarsen_sqrt2(const Mesh& m, const Star& s, int candidate) {
   Attempt at;
   const std::uint32_t n = m.n;
-  auto fail = [&](std::uint32_t v, std::string why) {
-    at.ok = false;
-    at.where = m.input[v];
-    at.why = std::move(why);
-    return at;
-  };
+  auto fail = [&](std::uint32_t v, std::string why) { return failed(at, m.input[v], std::move(why)); };
   std::vector<std::uint8_t> lab(n, kNone);
   std::vector<std::uint32_t> queue;
   queue.reserve(n);
@@ -103,17 +98,15 @@ Attempt coarsen_sqrt2(const Mesh& m, const Star& s, int candidate) {
     if (lab[v] == V) coarse_id[v] = nv++;
   if (nv == 0 || nv == n) return fail(0, "no vertex of a coarser mesh is left");
   // Old vertices: each quad's diagonal and each triangle's boundary edge is a coarse edge, once.
-  const std::uint32_t doubled = check_old_vertices(m, s, lab, coarse_id, 4, 2, [&](std::span<const std::uint32_t> q, unsigned k) {
+  if (!check_old_vertices(m, s, lab, coarse_id, 4, 2, [&](std::span<const std::uint32_t> q, unsigned k) {
     if (q.size() == 4) return q[(k + 2) & 3u];
     const std::uint32_t next = q[(k + 1) % 3];  // a triangle's boundary edge, from its first end
     return lab[next] == V ? next : UINT32_MAX;
-  }, at);
-  if (doubled != UINT32_MAX)
-    return fail(doubled, "two edges of the coarser mesh would join vertex " + std::to_string(m.input[doubled]) + " to the same vertex");
+  }, at))
+    return at;
   std::vector<std::uint32_t> others;
   // New points: inside, a closed fan gives a coarse face; on the boundary (curve steps only) an
   // open fan of two quads gives a coarse triangle and the point is its boundary edge's curve point.
-  c.coarse_faces.offsets.assign(1, 0);
   c.coarse_faces.items.reserve(n);
   std::uint32_t nf = 0;
   for (std::uint32_t v = 0; v < n; ++v) {

@@ -42,12 +42,7 @@ Attempt coarsen_tris(const Mesh& m, const Star& s, int candidate) {
   std::vector<std::uint8_t> lab(n, kNone), role(nt, 0);
   std::vector<std::uint32_t> queue;
   queue.reserve(n / 4 + 1);
-  auto fail = [&](std::uint32_t v, std::string why) {
-    at.ok = false;
-    at.where = m.input[v];
-    at.why = std::move(why);
-    return at;
-  };
+  auto fail = [&](std::uint32_t v, std::string why) { return failed(at, m.input[v], std::move(why)); };
   auto set = [&](std::uint32_t v, std::uint8_t l) {
     if (lab[v] == kNone) {
       lab[v] = l;
@@ -130,12 +125,11 @@ Attempt coarsen_tris(const Mesh& m, const Star& s, int candidate) {
     c.a[v] = coarse_id[ends[0]];
     c.b[v] = coarse_id[ends[1]];
   }
-  const std::uint32_t doubled = check_old_vertices(m, s, lab, coarse_id, 6, 3, [&](std::span<const std::uint32_t> q, unsigned k) {
+  if (!check_old_vertices(m, s, lab, coarse_id, 6, 3, [&](std::span<const std::uint32_t> q, unsigned k) {
     const std::uint32_t e = q[(k + 1) % 3];
     return c.a[e] == coarse_id[q[k]] ? c.b[e] : c.a[e];
-  }, at);
-  if (doubled != UINT32_MAX)
-    return fail(doubled, "two edges of the coarser mesh would join vertex " + std::to_string(m.input[doubled]) + " to the same vertex");
+  }, at))
+    return at;
   // One coarse triangle per middle triangle (e1, e2, e3): corners e3^e1, e1^e2, e2^e3, where
   // e^e' is the old vertex the two edges share; a middle triangle keeps its parent's orientation.
   auto shared = [&](std::uint32_t e, std::uint32_t g) {
@@ -143,7 +137,6 @@ Attempt coarsen_tris(const Mesh& m, const Star& s, int candidate) {
     if (c.b[e] == c.a[g] || c.b[e] == c.b[g]) return c.b[e];
     return UINT32_MAX;
   };
-  c.coarse_faces.offsets.assign(1, 0);
   c.coarse_faces.items.reserve(3 * static_cast<std::size_t>(middles));
   for (std::uint32_t f = 0; f < nt; ++f) {
     if (role[f] != kMiddle) continue;

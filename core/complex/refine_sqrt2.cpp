@@ -12,8 +12,6 @@ namespace {
 
 constexpr std::uint32_t kNone = Sqrt2Children::kNone;
 
-bool is_curve(const Complex& c, std::uint32_t e) { return sqrt2_is_curve_edge(c, e); }
-
 // The slot of edge e in face f.
 std::uint32_t edge_slot(const Complex& c, std::uint32_t f, std::uint32_t e) {
   for (std::uint32_t s = c.face_edges.offsets[f]; s < c.face_edges.offsets[f + 1]; ++s)
@@ -52,12 +50,23 @@ std::uint32_t curve_neighbour(const Complex& c, std::uint32_t p, std::uint32_t e
   std::uint32_t other = kNone;
   int count = 0;
   for (std::uint32_t x : c.vertex_edges.row(p))
-    if (is_curve(c, x)) {
+    if (sqrt2_is_curve_edge(c, x)) {
       ++count;
       if (x != e) other = x;
     }
   if (count != 2 || other == kNone) return kNone;
-  return c.edge_verts[2 * other] == p ? c.edge_verts[2 * other + 1] : c.edge_verts[2 * other];
+  return edge_other_end(c, other, p);
+}
+
+// The curve edges of p in order into ch.curve_edges; per edge its index there, kNone off curves.
+std::vector<std::uint32_t> list_curve_edges(const Complex& p, Sqrt2Children& ch) {
+  std::vector<std::uint32_t> curve_index(p.num_edges(), kNone);
+  for (std::uint32_t e = 0; e < p.num_edges(); ++e)
+    if (sqrt2_is_curve_edge(p, e)) {
+      curve_index[e] = static_cast<std::uint32_t>(ch.curve_edges.size());
+      ch.curve_edges.push_back(e);
+    }
+  return curve_index;
 }
 
 Complex start_fine(const Complex& p, std::uint32_t num_vertices) {
@@ -78,12 +87,7 @@ Sqrt2Step keep_step(const Complex& p) {
   ch.point_faces.resize(nf);
   for (std::uint32_t f = 0; f < nf; ++f) ch.point_faces[f] = f;
   ch.point_corners = p.faces;
-  std::vector<std::uint32_t> curve_index(ne, kNone);
-  for (std::uint32_t e = 0; e < ne; ++e)
-    if (is_curve(p, e)) {
-      curve_index[e] = static_cast<std::uint32_t>(ch.curve_edges.size());
-      ch.curve_edges.push_back(e);
-    }
+  const std::vector<std::uint32_t> curve_index = list_curve_edges(p, ch);
   const std::uint32_t nc = static_cast<std::uint32_t>(ch.curve_edges.size());
 
   Complex c = start_fine(p, nv + nf);
@@ -130,12 +134,7 @@ Sqrt2Step curve_step(const Complex& p) {
   Sqrt2Step out;
   Sqrt2Children& ch = out.children;
   ch.curve_step = true;
-  std::vector<std::uint32_t> curve_index(ne, kNone);
-  for (std::uint32_t e = 0; e < ne; ++e)
-    if (is_curve(p, e)) {
-      curve_index[e] = static_cast<std::uint32_t>(ch.curve_edges.size());
-      ch.curve_edges.push_back(e);
-    }
+  const std::vector<std::uint32_t> curve_index = list_curve_edges(p, ch);
   const std::uint32_t nc = static_cast<std::uint32_t>(ch.curve_edges.size());
   ch.first_face_point = nv + nc;
 

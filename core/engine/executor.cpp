@@ -273,8 +273,28 @@ void solve_channels(const Matrix& A, std::uint32_t n, double* x, int ch, const c
 
 void unrun_matrix(const MatrixStep& m, double* x, int ch) { solve_channels(m.solver->P, m.n, x, ch, "P"); }
 
-void no_integer_matrix(bool integer) {
-  if (integer) throw Error("integer mode needs an interpolating scheme; a vertex-rule solve is not exact in integers");
+template <class... F>
+struct Overload : F... {
+  using F::operator()...;
+};
+template <class... F>
+Overload(F...) -> Overload<F...>;
+
+// One step forwards (synthesis) or inverted (analysis).
+void run_step(const Step& s, const Transition& t, const Complex& p, double* x, int ch, bool integer, bool inverse) {
+  const double sign = inverse ? -1.0 : 1.0;
+  std::visit(Overload{[&](const WeightedStep& w) { run_weighted(w, x, ch, sign, integer); },
+                      [&](const CentroidStep& c) { run_centroid(c, p, t, x, ch, sign, integer); },
+                      [&](const ScaleStep& sc) {
+                        if (!integer) run_scale(sc, p, x, ch, inverse);
+                      },
+                      [&](const MatrixStep& m) {
+                        if (integer)
+                          throw Error("integer mode needs an interpolating scheme; a vertex-rule solve is not exact in integers");
+                        if (inverse) unrun_matrix(m, x, ch);
+                        else run_matrix(m, x, ch);
+                      }},
+             s.op);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -282,18 +302,11 @@ void no_integer_matrix(bool integer) {
 
 constexpr std::uint32_t kSparseGrain = 2048;
 
-struct Reverse {
-  const std::uint32_t* offsets = nullptr;
-  const std::uint32_t* items = nullptr;
-  std::uint32_t stride = 0;
-};
-
 // The centroid rows reading a changed source are found through the reverse incidences; they
 // are evaluated on the change as the dense loop evaluates them.
 void sparse_centroid(const CentroidStep& s, const Complex& p, const Transition& t, double sign, SparseDelta& d) {
   if (!s.count || !s.num_groups) return;
-  Group g[3];
-  Reverse rev[3];
+  Group g[3], rev[3];  // rev: the reverse rows (source -> targets)
   const int G = s.num_groups;
   for (int k = 0; k < G; ++k) {
     g[k] = resolve(p, t, s.groups[k], sign);
@@ -307,16 +320,9 @@ void sparse_centroid(const CentroidStep& s, const Complex& p, const Transition& 
     for (int k = 0; k < G; ++k) {
       const std::uint32_t b = s.groups[k].source_base;
       if (v < b || v >= b + s.groups[k].source_count) continue;
-      const std::uint32_t src = v - b;
-      const std::uint32_t* row;
-      std::uint32_t len;
-      if (rev[k].offsets) {
-        row = rev[k].items + rev[k].offsets[src];
-        len = rev[k].offsets[src + 1] - rev[k].offsets[src];
-      } else {
-        row = rev[k].items + std::size_t(src) * rev[k].stride;
-        len = rev[k].stride;
-      }
+      std::uint32_t rb, len;
+      group_row(rev[k], v - b, rb, len);
+      const std::uint32_t* row = rev[k].items + rb;
       for (std::uint32_t i = 0; i < len; ++i) {
         std::uint32_t& st = d.stamp[s.target_base + row[i]];
         if (st != epoch) {
@@ -425,6 +431,20 @@ void sparse_unmatrix(const MatrixStep& m, SparseDelta& d) {
   }
 }
 
+// Step k of the sparse mode, forwards or inverted.
+void run_sparse_step(const Transition& t, const Complex& p, const SparseIndex& index, std::size_t k, bool inverse,
+                     SparseDelta& d) {
+  const double sign = inverse ? -1.0 : 1.0;
+  std::visit(Overload{[&](const WeightedStep& w) { sparse_weighted(w, index.readers[k], sign, d); },
+                      [&](const CentroidStep& c) { sparse_centroid(c, p, t, sign, d); },
+                      [&](const ScaleStep& sc) { sparse_scale(sc, p, inverse, d); },
+                      [&](const MatrixStep& m) {
+                        if (inverse) sparse_unmatrix(m, d);
+                        else sparse_matrix(m, d);
+                      }},
+             t.steps[k].op);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Adjoint of the analysis: the analysis row x_t -= w x_s becomes x_s -= w x_t.
 
@@ -455,13 +475,6 @@ void adjoint_weighted(const WeightedStep& s, double* y) {
       y[s.sources.items[k]] -= s.weights[k] * yt;
   }
 }
-
-template <class... F>
-struct Overload : F... {
-  using F::operator()...;
-};
-template <class... F>
-Overload(F...) -> Overload<F...>;
 
 bool reads_only_new(const CentroidStep& s, std::uint32_t num_coarse) {
   for (int k = 0; k < s.num_groups; ++k)
@@ -522,31 +535,12 @@ void run_synthesis(const Transition& t, const Complex& p, double* x, int ch, boo
   for (const Step& s : t.steps) {
     if (zero && !s.reads_coarse) continue;
     zero = zero && !s.writes_new;
-    std::visit(Overload{[&](const WeightedStep& w) { run_weighted(w, x, ch, 1.0, integer); },
-                        [&](const CentroidStep& c) { run_centroid(c, p, t, x, ch, 1.0, integer); },
-                        [&](const ScaleStep& sc) {
-                          if (!integer) run_scale(sc, p, x, ch, false);
-                        },
-                        [&](const MatrixStep& m) {
-                          no_integer_matrix(integer);
-                          run_matrix(m, x, ch);
-                        }},
-               s.op);
+    run_step(s, t, p, x, ch, integer, false);
   }
 }
 
 void run_analysis(const Transition& t, const Complex& p, double* x, int ch, bool integer) {
-  for (auto it = t.steps.rbegin(); it != t.steps.rend(); ++it)
-    std::visit(Overload{[&](const WeightedStep& w) { run_weighted(w, x, ch, -1.0, integer); },
-                        [&](const CentroidStep& c) { run_centroid(c, p, t, x, ch, -1.0, integer); },
-                        [&](const ScaleStep& sc) {
-                          if (!integer) run_scale(sc, p, x, ch, true);
-                        },
-                        [&](const MatrixStep& m) {
-                          no_integer_matrix(integer);
-                          unrun_matrix(m, x, ch);
-                        }},
-               it->op);
+  for (auto it = t.steps.rbegin(); it != t.steps.rend(); ++it) run_step(*it, t, p, x, ch, integer, true);
 }
 
 SparseIndex build_sparse_index(const Transition& t) {
@@ -560,21 +554,11 @@ SparseIndex build_sparse_index(const Transition& t) {
 }
 
 void run_synthesis_sparse(const Transition& t, const Complex& p, const SparseIndex& index, SparseDelta& d) {
-  for (std::size_t k = 0; k < t.steps.size(); ++k)
-    std::visit(Overload{[&](const WeightedStep& w) { sparse_weighted(w, index.readers[k], 1.0, d); },
-                        [&](const CentroidStep& c) { sparse_centroid(c, p, t, 1.0, d); },
-                        [&](const ScaleStep& sc) { sparse_scale(sc, p, false, d); },
-                        [&](const MatrixStep& m) { sparse_matrix(m, d); }},
-               t.steps[k].op);
+  for (std::size_t k = 0; k < t.steps.size(); ++k) run_sparse_step(t, p, index, k, false, d);
 }
 
 void run_analysis_sparse(const Transition& t, const Complex& p, const SparseIndex& index, SparseDelta& d) {
-  for (std::size_t k = t.steps.size(); k-- > 0;)
-    std::visit(Overload{[&](const WeightedStep& w) { sparse_weighted(w, index.readers[k], -1.0, d); },
-                        [&](const CentroidStep& c) { sparse_centroid(c, p, t, -1.0, d); },
-                        [&](const ScaleStep& sc) { sparse_scale(sc, p, true, d); },
-                        [&](const MatrixStep& m) { sparse_unmatrix(m, d); }},
-               t.steps[k].op);
+  for (std::size_t k = t.steps.size(); k-- > 0;) run_sparse_step(t, p, index, k, true, d);
 }
 
 void run_analysis_adjoint(const Transition& t, const Complex& p, double* y) {

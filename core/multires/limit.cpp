@@ -15,8 +15,8 @@ namespace sublift {
 namespace {
 
 constexpr std::uint32_t kGrain = 4096;
-constexpr std::int32_t kOther = -1;
-constexpr std::size_t kKeyedRotations = 16;  // fans up to this valence key every rotation (canonical_patch)  // dim of a patch primitive not incident to the centre (irrelevant)
+constexpr std::int32_t kOther = -1;  // dim of a patch primitive not incident to the centre (irrelevant)
+constexpr std::size_t kKeyedRotations = 16;  // fans up to this valence key every rotation (canonical_patch)
 
 // ---------------------------------------------------------------------------------------------
 // Local patches: the feature-filtered closed star of a vertex as a small Complex whose vertex 0 is
@@ -250,7 +250,6 @@ struct Regular {
   std::array<double, 27> w{}, du{}, dv{};
 };
 
-
 // Classifies v; fills r for the regular kinds.
 void classify(const Complex& C, const Adj& A, std::uint32_t v, Regular& r) {
   const std::uint8_t m = C.vertex_dim[v];
@@ -442,11 +441,6 @@ inline void cross(const double* a, const double* b, double* c) {
   c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-// Twice the area vector of face f (Newell, core/complex/polygon_normal.h).
-inline void face_normal(const Csr& faces, std::size_t f, const double* x, double* n) {
-  polygon_area_vector(faces.row(f), x, n);
-}
-
 // The limit position of v from its stencil row.
 inline void limit_row(const LimitStencils& s, std::uint32_t v, const double* control, double* out) {
   double acc[3] = {0, 0, 0};
@@ -476,24 +470,11 @@ inline bool tangent_cross(const LimitStencils& s, std::uint32_t v, const double*
 
 // Final normal of v from its face-normal sum `fn` and the tangent stencils.
 inline void finish_normal(const LimitStencils& s, std::uint32_t v, const double* control, const double* fn, double* out) {
-  double n[3] = {fn[0], fn[1], fn[2]};
-  const std::uint32_t b = s.tangent_rows.offsets[v], e = s.tangent_rows.offsets[v + 1];
-  if (b != e) {
-    double tu[3] = {0, 0, 0}, tv[3] = {0, 0, 0};
-    for (std::uint32_t k = b; k < e; ++k) {
-      const double* p = control + 3 * std::size_t(s.tangent_rows.items[k]);
-      for (int c = 0; c < 3; ++c) tu[c] += s.du[k] * p[c], tv[c] += s.dv[k] * p[c];
-    }
-    double t[3];
-    cross(tu, tv, t);
-    const double tl = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-    const double lu = std::sqrt(tu[0] * tu[0] + tu[1] * tu[1] + tu[2] * tu[2]);
-    const double lv = std::sqrt(tv[0] * tv[0] + tv[1] * tv[1] + tv[2] * tv[2]);
-    if (tl > 1e-12 * lu * lv && tl > 0) {
-      const double d = t[0] * fn[0] + t[1] * fn[1] + t[2] * fn[2];
-      const double sign = d < 0 ? -1.0 : 1.0;
-      for (int c = 0; c < 3; ++c) n[c] = sign * t[c];
-    }
+  double n[3] = {fn[0], fn[1], fn[2]}, t[3];
+  if (tangent_cross(s, v, control, t)) {
+    const double d = t[0] * fn[0] + t[1] * fn[1] + t[2] * fn[2];
+    const double sign = d < 0 ? -1.0 : 1.0;
+    for (int c = 0; c < 3; ++c) n[c] = sign * t[c];
   }
   const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   for (int c = 0; c < 3; ++c) out[c] = len > 0 ? n[c] / len : 0.0;
@@ -502,16 +483,11 @@ inline void finish_normal(const LimitStencils& s, std::uint32_t v, const double*
 }  // namespace
 
 ProbedStencil probe_limit_stencil(const Complex& c, std::uint32_t v, LimitSolver solver) {
-  ProbedStencil out;
   const Adj A{c.vertex_edges, c.vertex_faces, c.vertex_cells, c.cell_verts};
   const Patch p = canonical_patch(c, v, filtered_star(c, A, v));
-  const PatchSolution s = solve_limit_patch(p.c, solver);
-  out.ok = s.ok;
-  out.spectrum = s.spectrum;
+  ProbedStencil out;
+  static_cast<PatchSolution&>(out) = solve_limit_patch(p.c, solver);
   out.vertices = p.global;
-  out.weights = s.weights;
-  out.du = s.du;
-  out.dv = s.dv;
   return out;
 }
 
@@ -655,9 +631,7 @@ LimitStencils build_limit_stencils(const Hierarchy& h) {
 void eval_limit(const LimitStencils& s, const double* control, double* limit) {
   const std::uint32_t nv = static_cast<std::uint32_t>(s.rows.rows());
   parallel_for(nv, kGrain, [&](std::uint32_t b, std::uint32_t e) {
-    for (std::uint32_t v = b; v < e; ++v) {
-      limit_row(s, v, control, limit + 3 * std::size_t(v));
-    }
+    for (std::uint32_t v = b; v < e; ++v) limit_row(s, v, control, limit + 3 * std::size_t(v));
   });
 }
 
@@ -698,7 +672,7 @@ void limit_normals(const LimitStencils& s, const Csr& faces, const double* contr
   const std::uint32_t nf = static_cast<std::uint32_t>(faces.rows());
   std::vector<double> fn(3 * std::size_t(nf));
   parallel_for(nf, kGrain, [&](std::uint32_t b, std::uint32_t e) {
-    for (std::uint32_t f = b; f < e; ++f) face_normal(faces, f, limit, &fn[3 * std::size_t(f)]);
+    for (std::uint32_t f = b; f < e; ++f) polygon_area_vector(faces.row(f), limit, &fn[3 * std::size_t(f)]);
   });
   std::vector<double> acc(3 * std::size_t(nv), 0.0);
   for (std::uint32_t f = 0; f < nf; ++f)
@@ -742,7 +716,7 @@ void limit_normals_subset(const LimitStencils& s, const Csr& faces, const Csr& v
       double acc[3] = {0, 0, 0}, n[3];
       if (v < vertex_faces.rows())
         for (std::uint32_t f : vertex_faces.row(v)) {
-          face_normal(faces, f, limit, n);
+          polygon_area_vector(faces.row(f), limit, n);
           for (int c = 0; c < 3; ++c) acc[c] += n[c];
         }
       finish_normal(s, v, control, acc, normals + 3 * std::size_t(v));

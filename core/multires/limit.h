@@ -72,13 +72,17 @@ void limit_normals_subset(const LimitStencils& s, const Csr& faces, const Csr& v
 enum class LimitSolver { Auto, Dense, Structured };
 inline constexpr std::size_t kLimitDenseStar = 65;  // valence 32 among quads: the dense solve takes ~8 ms there
 
-/// The eigenvector path for one vertex, whatever its configuration (for tests and tools).
-struct ProbedStencil {
+/// The solution of one vertex's local eigenproblem (limit_solve.h).
+struct PatchSolution {
   bool ok = false;                      // S had a simple dominant eigenvalue 1
-  std::vector<std::uint32_t> vertices;  // vertices of `c` the stencils read (vertices[0] = v)
-  std::vector<double> weights;          // limit-position weights, aligned with vertices
-  std::vector<double> du, dv;           // tangent weights (empty: no double subdominant eigenvalue)
+  std::vector<double> weights, du, dv;  // limit-position and tangent weights (du, dv empty: no exact tangents)
   std::vector<double> spectrum;         // |eigenvalues| of the local subdivision matrix, descending (empty: not computed)
+};
+
+/// The eigenvector path for one vertex, whatever its configuration (for tests and tools); the
+/// weights are aligned with `vertices`.
+struct ProbedStencil : PatchSolution {
+  std::vector<std::uint32_t> vertices;  // vertices of `c` the stencils read (vertices[0] = v)
 };
 
 /// Probes the cubic scheme's zero-detail synthesis on the feature-filtered star of vertex `v` of

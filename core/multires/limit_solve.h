@@ -10,13 +10,8 @@
 
 namespace sublift {
 
-struct PatchSolution {
-  bool ok = false;
-  std::vector<double> weights, du, dv;  // over the patch's local vertices; du, dv empty: no exact tangents
-  std::vector<double> spectrum;         // |eigenvalues| of the star's matrix, descending (empty: not computed)
-};
-
-/// Solves the patch (no adjacency needed) with the given method (LimitSolver in limit.h).
+/// Solves the patch (no adjacency needed) with the given method (LimitSolver in limit.h); the
+/// weights are over the patch's local vertices.
 PatchSolution solve_limit_patch(const Complex& patch, LimitSolver solver);
 
 }  // namespace sublift

@@ -18,12 +18,6 @@ namespace {
 
 constexpr std::uint32_t kNone = Sqrt2Children::kNone;
 
-bool is_curve(const Complex& c, std::uint32_t e) { return sqrt2_is_curve_edge(c, e); }
-
-std::uint32_t other_end(const Complex& c, std::uint32_t e, std::uint32_t v) {
-  return c.edge_verts[2 * e] == v ? c.edge_verts[2 * e + 1] : c.edge_verts[2 * e];
-}
-
 // Edge neighbours of the corner at slot s of face f in eq. 1's order: the next corner, the
 // previous corner, then on around the vertex away from f. False when the corner is not inner
 // (curve edge, open or non-manifold fan, valence outside 3..1000). inner[v]: no curve edge at v
@@ -52,7 +46,7 @@ bool corner_ring(const Complex& c, const std::vector<std::uint8_t>& inner, std::
     if (e2 == kNone) return false;
     if (e2 == first) break;
     if (ring.size() >= valence) return false;
-    ring.push_back(other_end(c, e2, v));
+    ring.push_back(edge_other_end(c, e2, v));
     e = e2;
     face = g;
   }
@@ -169,7 +163,7 @@ bool find_phis(const Complex& c, std::uint32_t f, const std::vector<std::uint8_t
   for (std::uint32_t i = 0; i < 4; ++i) {
     phi[i] = c.faces.items[b + i];
     const std::uint32_t e = c.face_edges.items[b + i];
-    if (c.edge_faces.size(e) != 2 || is_curve(c, e)) continue;
+    if (c.edge_faces.size(e) != 2 || sqrt2_is_curve_edge(c, e)) continue;
     const auto fs = c.edge_faces.row(e);
     const std::uint32_t g = fs[0] == f ? fs[1] : fs[0];
     if (c.faces.size(g) != 4) continue;
@@ -239,7 +233,7 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
   // inner[v]: no curve edge at v (the fan check is done per corner in corner_ring).
   std::vector<std::uint8_t> inner(nv, 1);
   for (std::uint32_t e = 0; e < c.num_edges(); ++e)
-    if (is_curve(c, e)) inner[c.edge_verts[2 * e]] = inner[c.edge_verts[2 * e + 1]] = 0;
+    if (sqrt2_is_curve_edge(c, e)) inner[c.edge_verts[2 * e]] = inner[c.edge_verts[2 * e + 1]] = 0;
 
   // Reserved for a quad mesh of valence 4 (5 terms per corner, 12 lifting terms per face point)
   // plus the curve points, so the big arrays grow without copies in the common case.

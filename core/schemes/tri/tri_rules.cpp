@@ -81,9 +81,6 @@ struct TriTopo {
     for (std::uint32_t v = 0; v < nv; ++v) manifold[v] = fans(v) <= 1;
   }
 
-  std::uint32_t other(std::uint32_t e, std::uint32_t v) const {
-    return c.edge_verts[2 * e] == v ? c.edge_verts[2 * e + 1] : c.edge_verts[2 * e];
-  }
   // The corner of triangle f that is not on edge e.
   std::uint32_t opposite(std::uint32_t f, std::uint32_t e) const {
     const std::uint32_t a = c.edge_verts[2 * e], b = c.edge_verts[2 * e + 1];
@@ -194,7 +191,7 @@ void butterfly_rules(const TriTopo& t, TriStencils& st) {
   // The curve neighbour across end a of feature edge e, or the reflection 2a - b.
   auto curve_neighbour = [&](std::uint32_t e, std::uint32_t a, std::uint32_t b, double w) {
     if (t.feature_count[a] == 2 && c.vertex_dim[a] != 0) {
-      row.add(t.other(t.other_feature_edge(a, e), a), w);
+      row.add(edge_other_end(c, t.other_feature_edge(a, e), a), w);
     } else {
       row.add(a, 2 * w);
       row.add(b, -w);
@@ -207,7 +204,7 @@ void butterfly_rules(const TriTopo& t, TriStencils& st) {
     const std::vector<double>& w = weights_for(K);
     std::uint32_t edge = e, face = c.edge_faces.row(e)[0];
     for (std::uint32_t j = 0; j < K; ++j) {
-      row.add(t.other(edge, a), scale * w[j]);
+      row.add(edge_other_end(c, edge, a), scale * w[j]);
       edge = t.other_edge_at(face, a, edge);
       face = t.other_face(edge, face);
     }
@@ -275,7 +272,7 @@ void loop_rules(const TriTopo& t, TriStencils& st) {
     } else if (s == 2) {
       row.add(v, 0.75);  // crease vertex: 1/8, 3/4, 1/8 along the crease
       for (std::uint32_t e : edges)
-        if (t.feature_edge[e]) row.add(t.other(e, v), 0.125);
+        if (t.feature_edge[e]) row.add(edge_other_end(c, e, v), 0.125);
     } else {
       // Smooth or dart: Loop's original beta, computed as Sdc::Scheme<SCHEME_LOOP> does.
       const std::uint32_t n = static_cast<std::uint32_t>(edges.size());
@@ -288,7 +285,7 @@ void loop_rules(const TriTopo& t, TriStencils& st) {
         v_weight = 1.0 - e_weight * dn;
       }
       row.add(v, v_weight);
-      for (std::uint32_t e : edges) row.add(t.other(e, v), e_weight);
+      for (std::uint32_t e : edges) row.add(edge_other_end(c, e, v), e_weight);
     }
     row.flush(st.old_rows, st.old_weights);
   }

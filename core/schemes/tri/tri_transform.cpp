@@ -161,7 +161,6 @@ void loop_limit_rows(const Complex& c, Csr& rows, std::vector<double>& weights) 
   for (std::uint32_t v = 0; v < nv; ++v) {
     feature.clear();
     const auto edges = vertex_edges.row(v);
-    const auto other = [&](std::uint32_t e) { return c.edge_verts[2 * e] == v ? c.edge_verts[2 * e + 1] : c.edge_verts[2 * e]; };
     for (std::uint32_t e : edges)
       if (faces_of_edge[e] < 2 || (!c.edge_dim.empty() && c.edge_dim[e] == 1)) feature.push_back(e);
     const bool corner = feature.size() > 2 || edges.empty() || (!c.vertex_dim.empty() && c.vertex_dim[v] == 0);
@@ -171,7 +170,7 @@ void loop_limit_rows(const Complex& c, Csr& rows, std::vector<double>& weights) 
     } else if (feature.size() == 2) {
       weights.push_back(2.0 / 3.0);
       for (std::uint32_t e : feature) {
-        rows.items.push_back(other(e));
+        rows.items.push_back(edge_other_end(c, e, v));
         weights.push_back(1.0 / 6.0);
       }
     } else {
@@ -181,7 +180,7 @@ void loop_limit_rows(const Complex& c, Csr& rows, std::vector<double>& weights) 
       const double g = 1.0 / (3.0 / (8.0 * beta) + n);
       weights.push_back(1.0 - n * g);
       for (std::uint32_t e : edges) {
-        rows.items.push_back(other(e));
+        rows.items.push_back(edge_other_end(c, e, v));
         weights.push_back(g);
       }
     }

@@ -9,44 +9,28 @@
 namespace sublift {
 namespace {
 
-// VTK's face tables (vtkTetra, vtkHexahedron, vtkWedge, vtkPyramid): outward loops.
-const std::vector<std::vector<int>> kTetraFaces = {{0, 1, 3}, {1, 2, 3}, {2, 0, 3}, {0, 2, 1}};
-const std::vector<std::vector<int>> kHexFaces = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4},
-                                                 {3, 7, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 7}};
-const std::vector<std::vector<int>> kWedgeFaces = {{0, 1, 2}, {3, 5, 4}, {0, 3, 4, 1}, {1, 4, 5, 2}, {2, 5, 3, 0}};
-const std::vector<std::vector<int>> kPyramidFaces = {{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+// One row per CellShape, in its order: name, vertex count and VTK's face table (vtkTetra,
+// vtkHexahedron, vtkWedge, vtkPyramid; outward loops).
+struct ShapeFacts {
+  const char* name;
+  int vertices;
+  std::vector<std::vector<int>> faces;
+};
+const ShapeFacts kShapes[] = {
+    {"tetrahedron", 4, {{0, 1, 3}, {1, 2, 3}, {2, 0, 3}, {0, 2, 1}}},
+    {"hexahedron", 8, {{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 7}}},
+    {"wedge", 6, {{0, 1, 2}, {3, 5, 4}, {0, 3, 4, 1}, {1, 4, 5, 2}, {2, 5, 3, 0}}},
+    {"pyramid", 5, {{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}}},
+};
+const ShapeFacts& facts(CellShape s) { return kShapes[static_cast<std::size_t>(s)]; }
 
 }  // namespace
 
-int cell_shape_vertex_count(CellShape s) {
-  switch (s) {
-    case CellShape::Tetrahedron: return 4;
-    case CellShape::Hexahedron: return 8;
-    case CellShape::Wedge: return 6;
-    case CellShape::Pyramid: return 5;
-  }
-  return 0;
-}
+int cell_shape_vertex_count(CellShape s) { return facts(s).vertices; }
 
-std::string cell_shape_name(CellShape s) {
-  switch (s) {
-    case CellShape::Tetrahedron: return "tetrahedron";
-    case CellShape::Hexahedron: return "hexahedron";
-    case CellShape::Wedge: return "wedge";
-    case CellShape::Pyramid: return "pyramid";
-  }
-  return "?";
-}
+std::string cell_shape_name(CellShape s) { return facts(s).name; }
 
-const std::vector<std::vector<int>>& cell_shape_faces(CellShape s) {
-  switch (s) {
-    case CellShape::Tetrahedron: return kTetraFaces;
-    case CellShape::Hexahedron: return kHexFaces;
-    case CellShape::Wedge: return kWedgeFaces;
-    case CellShape::Pyramid: break;
-  }
-  return kPyramidFaces;
-}
+const std::vector<std::vector<int>>& cell_shape_faces(CellShape s) { return facts(s).faces; }
 
 namespace {
 
@@ -195,7 +179,7 @@ std::optional<std::array<std::uint32_t, 8>> hexahedron_vertices(const std::vecto
   }
   std::set<std::vector<std::uint32_t>> have;
   for (const auto& l : loops) have.insert(canonical_loop(l));
-  for (const auto& f : kHexFaces) {
+  for (const auto& f : cell_shape_faces(CellShape::Hexahedron)) {
     std::vector<std::uint32_t> l;
     for (int i : f) l.push_back(h[static_cast<std::size_t>(i)]);
     if (!have.count(canonical_loop(l))) return std::nullopt;

@@ -426,13 +426,8 @@ DetectedLevels detect_levels(std::uint32_t num_vertices, const Csr& faces, Split
     }
     fine_off = coarse_off;
   }
-  if (levels > 0) {
-    d.base_vertices = d.steps.front().coarse_vertices;
-    d.base_faces = d.steps.front().coarse_faces;
-  } else {
-    d.base_vertices = num_vertices;
-    d.base_faces = faces;
-  }
+  d.base_vertices = levels > 0 ? d.steps.front().coarse_vertices : num_vertices;
+  d.base_faces = levels > 0 ? d.steps.front().coarse_faces : faces;
   return d;
 }
 
@@ -494,15 +489,10 @@ DetectedLevels detect_volume_levels(const Complex& fine, int max_levels, std::sp
   piece.stop = d.stop;
   d.components.push_back(piece);
   d.steps.assign(std::make_move_iterator(chain.rbegin()), std::make_move_iterator(chain.rend()));
-  if (d.levels > 0) {
-    d.base_vertices = d.steps.front().coarse_vertices;
-    d.base_faces = d.steps.front().coarse_faces;
-    d.base_cells = d.steps.front().coarse_cells;
-  } else {
-    d.base_vertices = fine.num_vertices;
-    d.base_faces = fine.faces;
-    d.base_cells = fine.cell_faces;
-  }
+  const bool coarser = d.levels > 0;
+  d.base_vertices = coarser ? d.steps.front().coarse_vertices : fine.num_vertices;
+  d.base_faces = coarser ? d.steps.front().coarse_faces : fine.faces;
+  d.base_cells = coarser ? d.steps.front().coarse_cells : fine.cell_faces;
   return d;
 }
 

@@ -9,20 +9,6 @@
 
 namespace sublift {
 
-namespace {
-
-// The input's positions moved to the engine's order and analysed into r.hierarchy, timed.
-void analyse_in_engine_order(Rebuilt& r, std::span<const double> positions) {
-  const auto t = std::chrono::steady_clock::now();
-  std::vector<double> x(positions.size());
-  for (std::size_t i = 0; i < r.engine_vertex.size(); ++i)
-    for (std::size_t k = 0; k < 3; ++k) x[3 * std::size_t(r.engine_vertex[i]) + k] = positions[3 * i + k];
-  analyze(r.hierarchy, x);
-  r.analysis_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
-
-}  // namespace
-
 Scheme rebuild_auto_scheme(const Csr& faces) {
   for (std::size_t f = 0; f < faces.rows(); ++f)
     if (faces.size(f) != 3) return Scheme::Cubic;
@@ -124,7 +110,12 @@ Rebuilt rebuild_stages(std::uint32_t num_vertices, std::span<const double> posit
   r.engine_vertex = engine_order(d, r.hierarchy.levels);
   r.build_ms = ms_since(t);
   at("analysing", 0.9);
-  analyse_in_engine_order(r, positions);
+  t = Clock::now();
+  std::vector<double> x(positions.size());  // the input's positions in the engine's order
+  for (std::size_t i = 0; i < r.engine_vertex.size(); ++i)
+    for (std::size_t k = 0; k < 3; ++k) x[3 * std::size_t(r.engine_vertex[i]) + k] = positions[3 * i + k];
+  analyze(r.hierarchy, x);
+  r.analysis_ms = ms_since(t);
   at("done", 1.0);
   return r;
 }

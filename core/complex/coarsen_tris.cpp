@@ -74,15 +74,13 @@ Attempt coarsen_tris(const Mesh& m, const Star& s, int candidate) {
       if (!set(x, E) || !set(y, E) || role[f] == kMiddle) return conflict(v);
       role[f] = kCorner;
       const std::uint32_t mid = across(m, s, f, x, y);
-      if (mid >= UINT32_MAX - 1) return conflict(x);
-      if (role[mid] == kCorner) return conflict(x);
+      if (mid >= UINT32_MAX - 1 || role[mid] == kCorner) return conflict(x);
       role[mid] = kMiddle;
       const std::uint32_t z = third(m.faces.row(mid), x, y);
       if (!set(z, E)) return conflict(z);
       for (std::uint32_t e : {x, y}) {
         const std::uint32_t g = across(m, s, mid, e, z);
-        if (g >= UINT32_MAX - 1) return conflict(e);
-        if (role[g] == kMiddle) return conflict(e);
+        if (g >= UINT32_MAX - 1 || role[g] == kMiddle) return conflict(e);
         role[g] = kCorner;
         if (!set(third(m.faces.row(g), e, z), V)) return conflict(e);
       }

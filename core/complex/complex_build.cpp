@@ -47,7 +47,6 @@ void add_face_loop(Complex& c, EdgeTable& edges, std::span<const std::uint32_t> 
   c.face_edges.offsets.push_back(static_cast<std::uint32_t>(c.face_edges.items.size()));
 }
 
-
 }  // namespace
 
 std::uint8_t untagged_face_dim(const Complex& c, std::uint32_t f) {

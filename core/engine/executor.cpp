@@ -476,12 +476,6 @@ void adjoint_weighted(const WeightedStep& s, double* y) {
   }
 }
 
-bool reads_only_new(const CentroidStep& s, std::uint32_t num_coarse) {
-  for (int k = 0; k < s.num_groups; ++k)
-    if (s.groups[k].source_base < num_coarse) return false;
-  return true;
-}
-
 }  // namespace
 
 MatrixStep make_matrix_step(std::uint32_t n, Csr rows, std::vector<double> weights) {
@@ -508,7 +502,9 @@ void Transition::add(WeightedStep s) {
   steps.push_back({std::move(s), reads, writes});
 }
 void Transition::add(CentroidStep s) {
-  const bool reads = !reads_only_new(s, num_coarse), writes = s.target_base >= num_coarse && s.count;
+  const bool reads =
+      std::any_of(s.groups, s.groups + s.num_groups, [&](const CentroidGroup& g) { return g.source_base < num_coarse; });
+  const bool writes = s.target_base >= num_coarse && s.count;
   steps.push_back({std::move(s), reads, writes});
 }
 void Transition::add(ScaleStep s) { steps.push_back({std::move(s), true, true}); }

@@ -659,10 +659,7 @@ void eval_limit_subset(const LimitStencils& s, const double* control, std::span<
     }
   ++epoch;  // epoch + 1 marked "recomputed"
   parallel_for(static_cast<std::uint32_t>(fresh.size()), kSubsetGrain, [&](std::uint32_t b, std::uint32_t e) {
-    for (std::uint32_t i = b; i < e; ++i) {
-      const std::uint32_t v = fresh[i];
-      limit_row(s, v, control, limit + 3 * std::size_t(v));
-    }
+    for (std::uint32_t i = b; i < e; ++i) limit_row(s, fresh[i], control, limit + 3 * std::size_t(fresh[i]));
   });
 }
 

@@ -13,6 +13,7 @@
 #include "core/base/file_io.h"
 #include "core/base/magnitude.h"
 #include "core/io/project/project_io.h"
+#include "core/multires/hierarchy.h"
 #include "core/io/lattice/shape_io.h"
 #include "tests/io_test_util.h"
 #include "tests/cli_run.h"
@@ -317,7 +318,11 @@ TEST(CliHierarchy, CoefficientsOutOfRangeAreRefusedNotSynthesised) {
   const std::string cube = kAssets + "/cube.obj", fine = dir.file("fine.obj"), project = dir.file("p.sublift");
   const std::string out = dir.file("out.obj");
   ok(cli({"subdivide", cube, "--scheme", "cubic", "--levels", "1", "-o", fine}));
-  ok(cli({"analyze", fine, "--base", cube, "--scheme", "cubic", "--levels", "1", "-o", project}));
+  // No zero wavelet, so the project stores its coefficients dense and the last 8 bytes are the
+  // last vertex's last channel (a pure subdivision would be stored sparse, docs/file_formats.md).
+  sublift::Hierarchy dense = sublift::make_hierarchy(sublift::read_shape(cube).base, 1, sublift::Scheme::Cubic, 3);
+  for (std::size_t i = 0; i < dense.coeffs.size(); ++i) dense.coeffs[i] = 0.25 + 0.001 * double(i % 17);
+  ASSERT_EQ(sublift::write_project(project, dense).encoding, "dense");
   std::string bytes = sublift::read_file_bytes(project);
   const double huge = 1.7e308;
   std::memcpy(bytes.data() + bytes.size() - 8, &huge, 8);  // the last vertex's last channel

@@ -137,9 +137,10 @@ TEST(WritersRange, ProjectWriterAndReaderRefuseCoefficientsOutOfRange) {
                                          ", level 1, channel 1 exceeds the supported magnitude 1e30 (1.7e+308); nothing written");
   }
   EXPECT_FALSE(std::filesystem::exists(path));
-  // The reader refuses the same file made by hand: the good file with the value patched in.
-  h.coeffs[3 * v + 1] = 0.5;
-  write_project(path, h);
+  // The reader refuses the same file made by hand: the good file with the value patched in
+  // (no zero wavelet, so the coefficients are stored dense, in place).
+  std::fill(h.coeffs.begin(), h.coeffs.end(), 0.5);
+  ASSERT_EQ(write_project(path, h).encoding, "dense");
   std::string bytes = read_file_bytes(path);
   const std::size_t at = bytes.size() - 8 * (h.coeffs.size() - (3 * v + 1));
   ASSERT_EQ(std::memcmp(bytes.data() + at, &h.coeffs[3 * v + 1], 8), 0);

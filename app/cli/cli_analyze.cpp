@@ -53,11 +53,15 @@ int run_analyze(int argc, char** argv) {
   check_refined_size(base.base, levels, scheme);
   Shape fine = read_shape(fine_path);
   std::cerr << fine.report.format(fine_path);
-  Hierarchy h = make_hierarchy(std::move(base.base), levels, scheme, 3, a.has("--integer"), 0, disc_option(a, scheme));
+  // FINE's colours and scalars are analysed as channels of their own beside x, y, z.
+  const int channels = 3 + static_cast<int>(fine.attributes.size());
+  Hierarchy h = make_hierarchy(std::move(base.base), levels, scheme, channels, a.has("--integer"), 0, disc_option(a, scheme));
   if (const std::string why = connectivity_mismatch(h.levels.back(), fine.base); !why.empty())
     throw InputError(fine_path, 0, "is not " + *base_path + " refined " + std::to_string(levels) + " times: " + why);
-  analyze(h, fine.positions);
-  write_project(out, h);
+  analyze(h, with_attributes(fine.positions, fine.attributes));
+  ProjectExtras extras;
+  extras.attributes = attribute_names(fine.attributes);
+  write_project(out, h, extras);
   if (a.has("--json")) {
     nlohmann::json stats = nlohmann::json::array();
     for (const LevelStats& s : level_stats(h))
@@ -66,6 +70,7 @@ int run_analyze(int argc, char** argv) {
                         {"scheme", scheme_name(scheme)}, {"integer", a.has("--integer")}, {"levels", levels},
                         {"disc", h.disc},
                         {"vertices", h.num_vertices(levels)}, {"per_level", stats},
+                        {"attributes", attribute_list_json(extras.attributes)},
                         {"warnings", report_json(fine.report)}, {"base_warnings", report_json(base.report)}};
     std::cout << j.dump(2) << "\n";
   }

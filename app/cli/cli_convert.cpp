@@ -45,6 +45,9 @@ int run_convert(int argc, char** argv) {
   if (file_extension(*out) != "obj" && loaded.mesh.num_polylines() > 0 && loaded.mesh.num_faces() > 0)
     std::cerr << *out << ": warning: " << loaded.mesh.num_polylines() << " polylines not written (." << file_extension(*out)
               << " holds faces only)\n";
+  if (const std::string dropped = attributes_not_written(file_extension(*out), loaded.mesh.attributes); !dropped.empty())
+    std::cerr << *out << ": warning: ." << file_extension(*out) << " cannot hold the vertex attributes " << dropped
+              << ": not written (use .ply)\n";
   write_surface_mesh(*out, loaded.mesh);
   if (a.has("--json")) {
     nlohmann::json j = {{"input", a.positional[0]}, {"output", *out},

@@ -77,6 +77,7 @@ int run_fit(int argc, char** argv) {
   }
   const std::string& in = a.positional[0];
   LoadedMesh lm = import_surface_mesh(in);
+  lm.report.note_attributes_not_kept(lm.mesh.attributes);
   add_topology_warnings(lm.report, lm.mesh);
   std::cerr << lm.report.format(in);
   if (const std::string s = lm.report.not_kept_summary(); !s.empty())

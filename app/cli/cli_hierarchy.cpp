@@ -78,9 +78,45 @@ bool is_project_path(const std::string& path) {
 }
 
 std::vector<std::string> write_level(const std::string& out, const Hierarchy& h, int L, std::span<const double> x,
-                                     int channels, const InputOrder& order) {
-  if (order.level != L) return write_shape(out, h.levels[static_cast<std::size_t>(L)], xyz_of(x, channels));
-  return write_shape(out, in_input_order(order, h.levels[static_cast<std::size_t>(L)]), xyz_of(in_input_order(order, x, channels), channels));
+                                     int channels, const InputOrder& order, std::span<const VertexAttribute> names) {
+  const auto attributes = [&](std::span<const double> values) {
+    return channels == 3 + static_cast<int>(names.size()) ? attributes_of(values, channels, names) : std::vector<VertexAttribute>{};
+  };
+  if (order.level != L) return write_shape(out, h.levels[static_cast<std::size_t>(L)], xyz_of(x, channels), attributes(x));
+  const std::vector<double> ordered = in_input_order(order, x, channels);
+  return write_shape(out, in_input_order(order, h.levels[static_cast<std::size_t>(L)]), xyz_of(ordered, channels), attributes(ordered));
+}
+
+std::vector<double> with_attributes(std::span<const double> xyz, std::span<const VertexAttribute> attributes) {
+  const std::size_t n = xyz.size() / 3, ch = 3 + attributes.size();
+  std::vector<double> x(n * ch);
+  for (std::size_t v = 0; v < n; ++v) {
+    std::copy_n(&xyz[3 * v], 3, &x[v * ch]);
+    for (std::size_t k = 0; k < attributes.size(); ++k) x[v * ch + 3 + k] = attributes[k].values[v];
+  }
+  return x;
+}
+
+std::vector<VertexAttribute> attributes_of(std::span<const double> x, int channels, std::span<const VertexAttribute> names) {
+  const auto ch = static_cast<std::size_t>(channels);
+  std::vector<VertexAttribute> out = attribute_names(names);
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    out[k].values.resize(x.size() / ch);
+    for (std::size_t v = 0; v < out[k].values.size(); ++v) out[k].values[v] = x[v * ch + 3 + k];
+  }
+  return out;
+}
+
+std::vector<VertexAttribute> attribute_names(std::span<const VertexAttribute> attributes) {
+  std::vector<VertexAttribute> out;
+  for (const VertexAttribute& a : attributes) out.push_back({a.name, a.type, {}});
+  return out;
+}
+
+nlohmann::json attribute_list_json(std::span<const VertexAttribute> attributes) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const VertexAttribute& a : attributes) j.push_back({{"name", a.name}, {"type", a.type}});
+  return j;
 }
 
 

@@ -39,9 +39,22 @@ bool is_project_path(const std::string& path);
 
 
 /// Writes the control net `x` of level L (`channels` per vertex) to `out`; in the vertex and
-/// face order of the file the project was rebuilt from when `order` is of that level.
+/// face order of the file the project was rebuilt from when `order` is of that level. Channels
+/// 3.. are the attributes `names` (ProjectExtras::attributes), written where the format can.
 std::vector<std::string> write_level(const std::string& out, const Hierarchy& h, int L, std::span<const double> x,
-                                     int channels, const InputOrder& order);
+                                     int channels, const InputOrder& order, std::span<const VertexAttribute> names = {});
+
+/// x, y, z and the attributes' values interleaved: 3 + attributes.size() values per vertex.
+std::vector<double> with_attributes(std::span<const double> xyz, std::span<const VertexAttribute> attributes);
+
+/// Channels 3.. of `x` (`channels` per vertex) as attributes with the names and types of `names`.
+std::vector<VertexAttribute> attributes_of(std::span<const double> x, int channels, std::span<const VertexAttribute> names);
+
+/// The attributes' names and types, without their values (what a project's header keeps).
+std::vector<VertexAttribute> attribute_names(std::span<const VertexAttribute> attributes);
+
+/// [{"name": ..., "type": ...}, ...] for --json.
+nlohmann::json attribute_list_json(std::span<const VertexAttribute> attributes);
 
 /// Counts of a complex: dim, vertices, edges, faces, cells.
 nlohmann::json complex_counts_json(const Complex& c);

@@ -34,7 +34,13 @@ std::string dims_text(const nlohmann::json& j) {
 }  // namespace
 
 int info_project(const std::string& file, bool json) {
-  const Hierarchy h = read_project(file);
+  ProjectExtras extras;
+  const Hierarchy h = read_project(file, &extras);
+  std::vector<std::string> names;  // what each channel holds
+  for (int k = 0; k < h.channels; ++k)
+    names.push_back(k < 3 ? std::string(1, char('x' + k))
+                          : k - 3 < static_cast<int>(extras.attributes.size()) ? extras.attributes[static_cast<std::size_t>(k - 3)].name
+                                                                                : "channel " + std::to_string(k));
   const Complex& base = h.levels.front();
   const int J = h.finest_level();
   nlohmann::json per_level = nlohmann::json::array();
@@ -49,6 +55,7 @@ int info_project(const std::string& file, bool json) {
                       {"scheme", scheme_name(h.scheme)},
                       {"integer", h.integer},
                       {"channels", h.channels},
+                      {"channel_names", names},
                       {"dim", base.dim},
                       {"levels", J},
                       {"vertices", base.num_vertices},
@@ -67,6 +74,11 @@ int info_project(const std::string& file, bool json) {
   std::cout << "file:                  " << file << "\n"
             << "project:               " << scheme_name(h.scheme) << " scheme" << (h.integer ? ", integer" : "")
             << ", " << h.channels << " channel(s), dimension " << base.dim << "\n"
+            << "channels:              " << [&] {
+                 std::string t;
+                 for (const std::string& n : names) t += (t.empty() ? "" : " ") + n;
+                 return t;
+               }() << "\n"
             << "base:                  " << base.num_vertices << " vertices, " << base.num_edges() << " edges, "
             << base.num_faces() << " faces, " << base.num_cells() << " cells\n"
             << "levels:                " << J << " (finest: " << h.num_vertices(J) << " vertices)\n";

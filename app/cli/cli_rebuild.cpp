@@ -63,6 +63,7 @@ int run_rebuild(int argc, char** argv) {
 
   const auto t0 = std::chrono::steady_clock::now();
   Shape fine = read_shape(fine_path);
+  fine.report.note_attributes_not_kept(fine.attributes);  // the rebuilt levels carry positions
   add_topology_warnings(fine.report, fine.base);
   std::cerr << fine.report.format(fine_path);
   if (fine.base.dim == 1) throw UsageError("rebuild takes surface meshes and volume lattices; " + fine_path + " is a curve");

@@ -45,17 +45,20 @@ int run_subdivide(int argc, char** argv) {
   const std::string out = output_option(a, shape.base.dim);
   check_refined_size(shape.base, levels, scheme);
   const nlohmann::json base_counts = complex_counts_json(shape.base);
-  Hierarchy h = make_hierarchy(std::move(shape.base), levels, scheme, 3, a.has("--integer"));
-  set_base(h, shape.positions);
+  // A file's colours and scalars are channels of their own, subdivided with the positions.
+  const int channels = 3 + static_cast<int>(shape.attributes.size());
+  Hierarchy h = make_hierarchy(std::move(shape.base), levels, scheme, channels, a.has("--integer"));
+  set_base(h, with_attributes(shape.positions, shape.attributes));
   const std::vector<double> x = synthesize(h, levels);
   const Complex& fine = h.levels.back();
-  const auto notes = write_shape(out, fine, x);
+  const auto notes = write_shape(out, fine, xyz_of(x, channels), attributes_of(x, channels, shape.attributes));
   for (const std::string& n : notes) std::cerr << out << ": warning: " << n << "\n";
   if (a.has("--json")) {
     nlohmann::json j = {{"input", in},       {"output", out},
                         {"scheme", scheme_name(scheme)}, {"integer", a.has("--integer")},
                         {"levels", levels},  {"base", base_counts},
                         {"finest", complex_counts_json(fine)}, {"vertices", fine.num_vertices},
+                        {"attributes", attribute_list_json(shape.attributes)},
                         {"warnings", report_json(shape.report)}, {"notes", notes}};
     std::cout << j.dump(2) << "\n";
   }

@@ -103,11 +103,12 @@ int run_synthesize(int argc, char** argv) {
     for (int l = 0; l <= h.finest_level(); ++l) {
       const std::string file = (p.parent_path() / (p.stem().string() + "_L" + std::to_string(l) + p.extension().string())).string();
       const std::vector<double> xl = l == L ? x : synthesize_in_range(h, l);
-      for (const std::string& n : write_level(file, h, l, xl, h.channels, extras.input_order)) notes.push_back(file + ": " + n);
+      for (const std::string& n : write_level(file, h, l, xl, h.channels, extras.input_order, extras.attributes))
+        notes.push_back(file + ": " + n);
       written.push_back(file);
     }
   } else {
-    notes = write_level(out, h, L, x, h.channels, extras.input_order);
+    notes = write_level(out, h, L, x, h.channels, extras.input_order, extras.attributes);
   }
   for (const std::string& n : notes) std::cerr << out << ": warning: " << n << "\n";
   if (a.has("--json")) {

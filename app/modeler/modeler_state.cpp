@@ -70,6 +70,7 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
     project = true;
   } else {
     Shape shape = read_shape(path);
+    shape.report.note_attributes_not_kept(shape.attributes);  // the modeler edits x, y, z only (so far)
     add_topology_warnings(shape.report, shape.base);  // non-manifold or misoriented: said before it surprises
     if (!shape.report.empty()) {
       std::istringstream in(shape.report.format(std::filesystem::path(path).filename().string()));

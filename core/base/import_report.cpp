@@ -37,6 +37,13 @@ std::string ImportReport::format(const std::string& file) const {
 
 void ImportReport::note_not_kept(const std::string& what, std::size_t line) { count(not_kept, what, line, true); }
 
+void ImportReport::note_attributes_not_kept(const std::vector<VertexAttribute>& attributes) {
+  if (attributes.empty()) return;
+  std::string names;
+  for (const VertexAttribute& a : attributes) names += (names.empty() ? "" : ", ") + a.name;
+  not_kept.push_back({"values of the vertex attributes " + names, attributes.front().values.size(), {}});
+}
+
 std::string ImportReport::not_kept_summary() const {
   std::string s;
   for (const ImportWarning& w : not_kept) s += (s.empty() ? "" : ", ") + std::to_string(w.count) + " " + w.what;

@@ -25,6 +25,9 @@ struct ImportReport {
   /// warnings for reading; commands that promise to give the file back (rebuild) name them.
   std::vector<ImportWarning> not_kept;
   void note_not_kept(const std::string& what, std::size_t line);
+  /// Names `attributes` as not kept, for commands that carry positions only (rebuild, fit, the
+  /// modeler): "4 values of the vertex attributes red, green, blue".
+  void note_attributes_not_kept(const std::vector<VertexAttribute>& attributes);
   /// "4 texture coordinates (vt), 1 normals (vn)"; empty when nothing.
   std::string not_kept_summary() const;
   /// Records one occurrence of `what` at `line` (merged with earlier ones of the same kind).

@@ -9,7 +9,8 @@
 // Polylines (OBJ `l` lines, curves) use the same CSR form in line_offsets/line_indices: each
 // has at least 2 vertices, every index < num_vertices(), no vertex twice in a row and no segment
 // used twice (in this polyline or an earlier one); first == last closes it.
-// `tags` keeps OpenSubdiv-style `t` lines (crease, corner, ...) with 0-based vertex indices.
+// `tags` keeps OpenSubdiv-style `t` lines (crease, corner, ...) with 0-based vertex indices;
+// `attributes` the per-vertex values beside positions (colours, scalars).
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -19,6 +20,15 @@
 #include <glm/vec3.hpp>
 
 namespace sublift {
+
+/// A value per vertex that a file carries beside its position (PLY `red green blue alpha`,
+/// `quality` and other scalar vertex properties, OBJ `v x y z r g b` colours): subdivision and
+/// analysis carry it as a channel of its own, writers give it back under its name.
+struct VertexAttribute {
+  std::string name;            // the file's property name ("red", "quality", ...)
+  std::string type;            // PLY type to write it back as ("uchar", "float", ...)
+  std::vector<double> values;  // one per vertex, in the file's units (uchar colours 0..255)
+};
 
 /// One OpenSubdiv-style tag line: `t name ni/nf/ns ints... floats... strings...`.
 struct MeshTag {
@@ -36,6 +46,7 @@ struct SurfaceMesh {
   std::vector<std::uint32_t> line_offsets{0};
   std::vector<std::uint32_t> line_indices;
   std::vector<MeshTag> tags;
+  std::vector<VertexAttribute> attributes;  // each with one value per vertex
 
   std::size_t num_vertices() const { return positions.size(); }
   std::size_t num_faces() const { return face_offsets.size() - 1; }

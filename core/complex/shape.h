@@ -1,7 +1,8 @@
 #pragma once
 // Shape: what a curve, surface or lattice file gives the engine — a base complex, its vertex
-// positions (x, y, z per vertex, in the complex's vertex order, which is the file's order) and
-// the import report of repaired or ignored elements.
+// positions (x, y, z per vertex, in the complex's vertex order, which is the file's order), the
+// file's per-vertex attributes (colours, scalars) and the import report of repaired or ignored
+// elements.
 #include <vector>
 
 #include "core/complex/complex.h"
@@ -12,6 +13,7 @@ namespace sublift {
 struct Shape {
   Complex base;
   std::vector<double> positions;  // 3 per vertex
+  std::vector<VertexAttribute> attributes;  // per-vertex values beside positions (surface files)
   ImportReport report;
 };
 

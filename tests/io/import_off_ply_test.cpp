@@ -165,13 +165,18 @@ TEST(ImportPly, RefusesBrokenHeaders) {
 namespace {
 
 // Data the surface mesh does not keep is counted by name (commands that give files back say so).
+// Issue 20: a PLY's scalar vertex properties (red here) are kept as attributes; its normals are not.
 TEST(ImportNotKept, PlyPropertiesAndOffColoursAreNamed) {
   const LoadedMesh ply = sublift::testing::load(
       "c.ply",
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\n"
-      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 255\n1 0 0 255\n0 1 0 255\n3 0 1 2\n");
+      "property float nx\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 255 0\n1 0 0 255 0\n0 1 0 255 0\n"
+      "3 0 1 2\n");
   EXPECT_TRUE(ply.report.empty());
-  EXPECT_EQ(ply.report.not_kept_summary(), "3 vertex property 'red' (PLY)");
+  EXPECT_EQ(ply.report.not_kept_summary(), "3 vertex property 'nx' (PLY)");
+  ASSERT_EQ(ply.mesh.attributes.size(), 1u);
+  EXPECT_EQ(ply.mesh.attributes[0].name, "red");
+  EXPECT_EQ(ply.mesh.attributes[0].values, (std::vector<double>{255, 255, 255}));
   const LoadedMesh off = sublift::testing::load("c.off", "OFF\n3 1 0\n0 0 0 1 0 0\n1 0 0 1 0 0\n0 1 0 1 0 0\n3 0 1 2 255 0 0\n");
   EXPECT_EQ(off.report.not_kept_summary(), "3 vertex colours or normals (OFF), 1 face colours (OFF)");
   const LoadedMesh obj = sublift::testing::load("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvn 0 0 1\nf 1/1/1 2/2/1 3/1/1\n");

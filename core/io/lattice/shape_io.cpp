@@ -18,6 +18,7 @@ constexpr std::string_view kShapeFormats = ".obj, .off, .ply, .lattice, .ovm or 
 Shape shape_from_mesh(const std::string& name, LoadedMesh loaded) {
   Shape shape;
   shape.report = std::move(loaded.report);
+  shape.attributes = std::move(loaded.mesh.attributes);
   const SurfaceMesh& m = loaded.mesh;
   shape.positions.reserve(3 * m.num_vertices());
   for (const glm::dvec3& p : m.positions) shape.positions.insert(shape.positions.end(), {p.x, p.y, p.z});
@@ -107,12 +108,17 @@ std::string shape_output_problem(const std::string& path, int dim) {
   return "";
 }
 
-std::vector<std::string> write_shape(const std::string& path, const Complex& c, std::span<const double> xyz) {
+std::vector<std::string> write_shape(const std::string& path, const Complex& c, std::span<const double> xyz,
+                                     std::span<const VertexAttribute> attributes) {
   const std::string ext = file_extension(path);
   std::vector<std::string> notes;
   if (xyz.size() != 3 * static_cast<std::size_t>(c.num_vertices))
     throw InputError(path, 0, "positions do not match the vertex count");
   if (const std::string why = shape_output_problem(path, c.dim); !why.empty()) throw InputError(path, 0, why);
+  // What the format cannot hold of the attributes is named (PLY holds them all, OBJ colours).
+  if (const std::string dropped = attributes_not_written(ext, attributes); !dropped.empty())
+    notes.push_back("." + ext + " cannot hold the vertex attributes " + dropped + ": not written (use .ply" +
+                    (ext == "obj" ? "; .obj holds red, green and blue as 'v x y z r g b')" : ")"));
   if (ext == "vtk" || ext == "lattice") {
     (ext == "vtk" ? write_vtk : write_lattice)(path, c, xyz);
     return notes;
@@ -145,6 +151,7 @@ std::vector<std::string> write_shape(const std::string& path, const Complex& c, 
                     " corners not written (use .obj or .vtk)");
     m.tags.clear();
   }
+  m.attributes.assign(attributes.begin(), attributes.end());
   write_surface_mesh(path, m);
   return notes;
 }

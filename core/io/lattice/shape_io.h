@@ -20,9 +20,11 @@ Shape read_shape_from_memory(const std::string& name, const std::string& bytes);
 /// Writes complex `c` with positions `xyz` (3 per vertex) in the format of path's extension:
 /// dim 2 to .obj (faces, `t crease`/`t corner` tags that reproduce its features), .off or .ply
 /// (faces only); dim 1 to .obj (`l` polylines, `t corner` tags); dim 3 to .lattice; any dim to
-/// .vtk. Returns notes on what the format could not hold (empty when nothing was lost).
-/// Throws InputError (extension that cannot hold this dimension) or IoError.
-std::vector<std::string> write_shape(const std::string& path, const Complex& c, std::span<const double> xyz);
+/// .vtk. `attributes` (one value per vertex each) go to .ply as properties, and red, green and
+/// blue to .obj as `v x y z r g b`. Returns notes on what the format could not hold (empty when
+/// nothing was lost). Throws InputError (extension that cannot hold this dimension) or IoError.
+std::vector<std::string> write_shape(const std::string& path, const Complex& c, std::span<const double> xyz,
+                                     std::span<const VertexAttribute> attributes = {});
 
 /// Empty when write_shape can write a complex of dimension `dim` to `path`; else the reason.
 std::string shape_output_problem(const std::string& path, int dim);

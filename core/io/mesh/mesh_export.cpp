@@ -1,5 +1,7 @@
 #include "core/io/mesh/mesh_export.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <ostream>
 
@@ -19,11 +21,55 @@ void write_xyz_line(std::ostream& out, const char* prefix, const double* p) {
   out << prefix << format_double(p[0]) << ' ' << format_double(p[1]) << ' ' << format_double(p[2]) << '\n';
 }
 
+std::string attributes_not_written(const std::string& ext, std::span<const VertexAttribute> attributes) {
+  int colours = 0;
+  for (const VertexAttribute& a : attributes) colours += a.name == "red" || a.name == "green" || a.name == "blue";
+  std::string dropped;
+  for (const VertexAttribute& a : attributes) {
+    const bool colour = a.name == "red" || a.name == "green" || a.name == "blue";
+    if (ext == "ply" || (ext == "obj" && colour && colours == 3)) continue;
+    dropped += (dropped.empty() ? "" : ", ") + a.name;
+  }
+  return dropped;
+}
+
 namespace {
+
+// The attribute named `name`, or null.
+const VertexAttribute* find_attribute(const SurfaceMesh& m, std::string_view name) {
+  for (const VertexAttribute& a : m.attributes)
+    if (a.name == name) return &a;
+  return nullptr;
+}
+
+// An attribute value as its PLY type holds it: integer types rounded to the nearest and held to
+// their range (a subdivided uchar colour is a mean of colours, so it stays in range anyway).
+std::string attribute_text(const VertexAttribute& a, std::size_t v) {
+  struct Range {
+    std::string_view type;
+    double lo, hi;
+  };
+  static constexpr Range kRanges[] = {{"char", -128, 127},       {"uchar", 0, 255},          {"short", -32768, 32767},
+                                      {"ushort", 0, 65535},      {"int", -2147483648.0, 2147483647.0},
+                                      {"uint", 0, 4294967295.0}};
+  for (const Range& r : kRanges)
+    if (a.type == r.type) return std::to_string(std::llround(std::clamp(a.values[v], r.lo, r.hi)));
+  return format_double(a.values[v]);
+}
 
 void write_obj(std::ostream& out, const SurfaceMesh& m) {
   out << "# written by Sublift\n";
-  for (const glm::dvec3& p : m.positions) write_xyz_line(out, "v ", &p.x);
+  const VertexAttribute *r = find_attribute(m, "red"), *g = find_attribute(m, "green"), *b = find_attribute(m, "blue");
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
+    if (r && g && b) {  // `v x y z r g b`, colours 0..1 as OBJ readers expect them (PLY's uchar ones are 0..255)
+      const auto unit = [&](const VertexAttribute* a) { return a->values[v] / (a->type == "uchar" ? 255.0 : a->type == "ushort" ? 65535.0 : 1.0); };
+      const double p[6] = {m.positions[v].x, m.positions[v].y, m.positions[v].z, unit(r), unit(g), unit(b)};
+      out << "v " << format_double(p[0]) << ' ' << format_double(p[1]) << ' ' << format_double(p[2]) << ' ';
+      write_xyz_line(out, "", p + 3);
+    } else {
+      write_xyz_line(out, "v ", &m.positions[v].x);
+    }
+  }
   for (std::size_t f = 0; f < m.num_faces(); ++f) {
     out << 'f';
     for (std::uint32_t v : m.face(f)) out << ' ' << v + 1;
@@ -60,9 +106,19 @@ void write_off(std::ostream& out, const SurfaceMesh& m) {
 
 void write_ply(std::ostream& out, const SurfaceMesh& m) {
   out << "ply\nformat ascii 1.0\ncomment written by Sublift\nelement vertex " << m.num_vertices()
-      << "\nproperty double x\nproperty double y\nproperty double z\nelement face " << m.num_faces()
-      << "\nproperty list uint int vertex_indices\nend_header\n";
-  write_points_and_faces(out, m);
+      << "\nproperty double x\nproperty double y\nproperty double z\n";
+  for (const VertexAttribute& a : m.attributes) out << "property " << a.type << ' ' << a.name << '\n';
+  out << "element face " << m.num_faces() << "\nproperty list uint int vertex_indices\nend_header\n";
+  if (m.attributes.empty()) return write_points_and_faces(out, m);
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
+    out << format_double(m.positions[v].x) << ' ' << format_double(m.positions[v].y) << ' ' << format_double(m.positions[v].z);
+    for (const VertexAttribute& a : m.attributes) out << ' ' << attribute_text(a, v);
+    out << '\n';
+  }
+  SurfaceMesh faces_only;
+  faces_only.face_offsets = m.face_offsets;
+  faces_only.face_indices = m.face_indices;
+  write_points_and_faces(out, faces_only);
 }
 
 }  // namespace
@@ -77,6 +133,14 @@ void write_surface_mesh(const std::string& path, const SurfaceMesh& mesh) {
   if (ext != "obj" && mesh.num_faces() == 0 && mesh.num_polylines() > 0)
     throw InputError(path, 0, "." + ext + " cannot hold polylines (a curve); write .obj");
   check_writable_positions(path, mesh.positions);
+  for (const VertexAttribute& a : mesh.attributes) {
+    if (a.values.size() != mesh.num_vertices())
+      throw InputError(path, 0, "vertex attribute '" + a.name + "' has " + std::to_string(a.values.size()) + " values for " +
+                                    std::to_string(mesh.num_vertices()) + " vertices");
+    if (const auto i = first_out_of_range(a.values))
+      throw InputError(path, 0, "vertex attribute '" + a.name + "' of vertex " + std::to_string(*i) + " " +
+                                    out_of_range_text(a.values[*i]) + "; nothing written");
+  }
   write_file_atomic(path, [&](std::ostream& out) { writer(out, mesh); });
 }
 

@@ -17,6 +17,11 @@ void write_surface_mesh(const std::string& path, const SurfaceMesh& mesh);
 /// Formats a double with 17 significant digits (shortest exact form is not required).
 std::string format_double(double v);
 
+/// The names of `attributes` a file of extension `ext` cannot hold, comma-separated ("" when
+/// it holds them all): .ply every one, .obj red, green and blue together (`v x y z r g b`, as
+/// 0..1), other formats none. write_surface_mesh writes what it can and leaves the rest.
+std::string attributes_not_written(const std::string& ext, std::span<const VertexAttribute> attributes);
+
 /// Writes `prefix`, then p[0] p[1] p[2] by format_double, then a newline.
 void write_xyz_line(std::ostream& out, const char* prefix, const double* p);
 

@@ -69,6 +69,8 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
   std::vector<std::size_t> vertex_lines;
   std::vector<std::string_view> tok;
   std::vector<std::int64_t> corners;
+  std::vector<double> colours;           // r g b per vertex (`v x y z r g b`, the common extension)
+  std::size_t coloured = 0, first_colour_line = 0;
   LineReader lines(bytes, file, limits.max_line_length);
   // The vertices of an `f` or `l` line into `corners` (v, v/vt, v//vn, v/vt/vn; negative:
   // relative to here); false when there are more than the size limit or one is unreadable or 0.
@@ -108,6 +110,15 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
         report.add("unreadable vertex line: unused placeholder kept so numbering is unchanged", ln);
         faces.mark_unusable_vertex(mesh.positions.size());
       }
+      double rgb[3] = {0.0, 0.0, 0.0};
+      bool has_rgb = ok && tok.size() == 7;
+      for (int k = 0; has_rgb && k < 3; ++k) {
+        const auto d = parse_double(tok[4 + k]);
+        has_rgb = d && std::abs(*d) <= kMaxCoordinate;
+        if (has_rgb) rgb[k] = *d;
+      }
+      if (has_rgb && !coloured++) first_colour_line = ln;
+      colours.insert(colours.end(), rgb, rgb + 3);
       mesh.positions.push_back(p);
       vertex_lines.push_back(ln);
     } else if (key == "f") {
@@ -137,6 +148,19 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
     } else if (!ignorable_statement(key)) {
       report.add("unknown statement ignored ('" + printable(key, 16) + "')", ln);
     }
+  }
+  // Colours on every vertex are kept (red, green, blue, as the file writes them, usually 0..1);
+  // on some only, they cannot be channels and are named as not kept.
+  if (coloured == mesh.num_vertices() && coloured > 0) {
+    for (int k = 0; k < 3; ++k) {
+      VertexAttribute a{k == 0 ? "red" : k == 1 ? "green" : "blue", "float", std::vector<double>(coloured)};
+      for (std::size_t v = 0; v < coloured; ++v) a.values[v] = colours[3 * v + k];
+      mesh.attributes.push_back(std::move(a));
+    }
+  } else if (coloured > 0) {
+    report.not_kept.push_back({"vertex colours (on " + std::to_string(coloured) + " of " + std::to_string(mesh.num_vertices()) +
+                                   " vertices: a colour channel needs all)",
+                               coloured, {first_colour_line}});
   }
   faces.finish(mesh, report);
   polylines.finish(mesh, faces.unusable(), report);

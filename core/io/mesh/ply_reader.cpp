@@ -176,8 +176,11 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
 
   LoadedMesh out;
   SurfaceMesh& mesh = out.mesh;
-  // Per-vertex and per-face data beyond positions and corners (colours, normals, texture
-  // coordinates...), and other elements: skipped, and named for commands that give files back.
+  // Scalar vertex properties beyond x, y, z (colours, quality, ...) are kept as attributes, in
+  // header order. Normals (derived from the surface), per-face data, lists and other elements
+  // are skipped, and named for commands that give files back.
+  const auto is_position = [](const PlyProperty& p) { return p.name == "x" || p.name == "y" || p.name == "z"; };
+  const auto is_normal = [](const PlyProperty& p) { return p.name == "nx" || p.name == "ny" || p.name == "nz"; };
   for (const PlyElement& e : elements) {
     const bool is_vertex = e.name == "vertex", is_face = e.name == "face" || e.name == "tristrips";
     if (!is_vertex && !is_face) {
@@ -185,8 +188,12 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
       continue;
     }
     for (const PlyProperty& p : e.props) {
-      const bool used = is_vertex ? (p.name == "x" || p.name == "y" || p.name == "z")
-                                  : (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index"));
+      if (is_vertex && !p.is_list && !is_position(p) && !is_normal(p)) {
+        mesh.attributes.push_back({p.name, std::string(ply_type_name(p.type)), {}});
+        mesh.attributes.back().values.reserve(static_cast<std::size_t>(e.count));
+        continue;
+      }
+      const bool used = is_vertex ? is_position(p) : (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index"));
       if (!used) out.report.not_kept.push_back({printable(e.name) + " property '" + printable(p.name) + "' (PLY)", std::size_t(e.count), {e.line}});
     }
   }
@@ -212,11 +219,19 @@ LoadedMesh read_ply(std::string_view bytes, const std::string& file, const Impor
     for (std::int64_t r = 0; r < e.count; ++r) {
       glm::dvec3 pos(0.0);
       std::size_t row_line = 0;
+      std::size_t attribute = 0;  // the next of mesh.attributes, in header order
       for (const PlyProperty& p : e.props) {
         if (!p.is_list) {
           const double v = in.read(p.type, is_vertex ? "vertex data" : "element data");
           row_line = row_line ? row_line : in.line();
-          if (is_vertex && (p.name == "x" || p.name == "y" || p.name == "z")) {
+          if (is_vertex && !is_position(p) && !is_normal(p)) {
+            if (!in_supported_range(v))
+              throw InputError(file, in.line(), "vertex property '" + printable(p.name) + "' of vertex " + std::to_string(r) +
+                                                    (std::isfinite(v) ? " exceeds the supported magnitude " + max_coordinate_text()
+                                                                      : std::string(" is not finite")));
+            mesh.attributes[attribute++].values.push_back(v);
+          }
+          if (is_vertex && is_position(p)) {
             if (!in_supported_range(v)) {
               std::string where;
               if (!in.ascii()) {

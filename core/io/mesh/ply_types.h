@@ -36,6 +36,12 @@ inline bool parse_ply_type(std::string_view s, PlyType& t) {
   return false;
 }
 
+/// The header name a writer uses for a type (Stanford's: char, uchar, ..., double).
+inline std::string_view ply_type_name(PlyType t) {
+  static constexpr std::string_view kNames[] = {"char", "uchar", "short", "ushort", "int", "uint", "float", "double"};
+  return kNames[static_cast<int>(t)];
+}
+
 struct PlyProperty {
   std::string name;
   PlyType type = PlyType::Float32;

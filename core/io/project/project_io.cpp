@@ -77,6 +77,10 @@ void check_extras(const ProjectExtras& x, int levels, std::size_t base_vertices,
         fail("fit_source: base vertex " + std::to_string(v) + " is mesh vertex " + std::to_string(fs.base_vertex[v]) + ", but the mesh has " +
              std::to_string(fs.mesh_vertices));
   }
+  for (const VertexAttribute& a : x.attributes)
+    if (a.name.empty() || a.name.size() > 64 || printable(a.name, 64) != a.name || a.type.empty() || printable(a.type, 16) != a.type ||
+        a.name.find_first_of(" \t") != std::string::npos)
+      fail("an attribute channel needs a name of 1 to 64 printable characters without blanks, and a type");
   if (x.current_level < 0 || x.current_level > levels)
     fail("current_level " + std::to_string(x.current_level) + " outside 0.." + std::to_string(levels));
   if (!x.gains.empty() && x.gains.size() != static_cast<std::size_t>(levels))
@@ -147,6 +151,13 @@ SavedProject write_project(const std::string& path, const Hierarchy& h, const Pr
                         {"vertices", io.engine_vertex.size()},
                         {"faces", io.faces.rows()},
                         {"face_corners", io.faces.items.size()}};
+  if (!extras.attributes.empty()) {
+    if (extras.attributes.size() + 3 != static_cast<std::size_t>(h.channels))
+      throw Error(path + ": cannot save project: " + std::to_string(extras.attributes.size()) + " attribute channels named for " +
+                  std::to_string(h.channels) + " channels (x, y, z and one per attribute)");
+    j["attributes"] = nlohmann::json::array();
+    for (const VertexAttribute& a : extras.attributes) j["attributes"].push_back({{"name", a.name}, {"type", a.type}});
+  }
   if (const FitSource& fs = extras.fit_source; !fs.empty())
     j["fit_source"] = {{"mesh", fs.mesh}, {"mesh_vertices", fs.mesh_vertices}, {"base_vertex", fs.base_vertex}};
   j["payload"] =
@@ -275,6 +286,14 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
         fs.base_vertex.push_back(static_cast<std::uint32_t>(std::min<std::uint64_t>(x.get<std::uint64_t>(), 0xffffffffu)));
       }
     }
+    if (const auto it = j.find("attributes"); it != j.end()) {
+      if (!it->is_array()) throw InputError(file, 2, "header 'attributes' is not an array");
+      for (const auto& a : *it) {
+        if (!a.is_object() || !a.at("name").is_string() || !a.at("type").is_string())
+          throw InputError(file, 2, "header 'attributes' holds something other than {name, type} objects");
+        extras.attributes.push_back({a.at("name").get<std::string>(), a.at("type").get<std::string>(), {}});
+      }
+    }
     if (const auto it = j.find("local_frames"); it != j.end()) {
       if (!it->is_boolean()) throw InputError(file, 2, "header 'local_frames' is not true or false");
       extras.local_frames = it->get<bool>();
@@ -357,6 +376,9 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   if (current_level < 0 || current_level > levels)
     throw InputError(file, 2, "current_level " + std::to_string(current_level) + " outside 0.." + std::to_string(levels));
   extras.current_level = static_cast<int>(current_level);
+  if (!extras.attributes.empty() && extras.attributes.size() + 3 != static_cast<std::size_t>(channels))
+    throw InputError(file, 2, std::to_string(extras.attributes.size()) + " attribute channels named for " + std::to_string(channels) +
+                                  " channels (x, y, z and one per attribute)");
   check_extras(extras, levels, static_cast<std::size_t>(V), [&](const std::string& why) { throw InputError(file, 2, why); });
   const std::string_view coeff_payload = bytes.substr(pos, coeff_bytes);
   pos += coeff_bytes;

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/base/csr.h"
+#include "core/base/surface_mesh.h"
 #include "core/complex/complex.h"
 
 #include "core/multires/hierarchy.h"
@@ -55,6 +56,9 @@ struct ProjectExtras {
   bool local_frames = false;  // detail kept in local frames (session.h DetailFrames::Local)
   InputOrder input_order;     // header key `input_order` and a payload tail when not empty
   FitSource fit_source;       // header key `fit_source` when not empty
+  /// What channels 3.. hold beyond x, y, z (a file's colours and scalars): name and PLY type
+  /// each, `values` empty. Header key `attributes`; as many as the channels after the third.
+  std::vector<VertexAttribute> attributes;
 };
 
 /// Level `order.level`'s complex numbered as the file: a surface with the file's faces (in the

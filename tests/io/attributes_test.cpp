@@ -1,0 +1,142 @@
+// Per-vertex attributes (issue 20, first slice): PLY colours and scalar properties and OBJ
+// `v x y z r g b` colours are read as attributes, carried as channels of their own through
+// subdivide, analyze and synthesize, and written back under their names where the format can
+// hold them; what it cannot is named.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/base/file_io.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/io/mesh/mesh_import.h"
+#include "core/io/project/project_io.h"
+#include "tests/cli_run.h"
+#include "tests/io_test_util.h"
+
+using namespace sublift;
+using sublift::testing::input_error;
+using sublift::testing::ProcessResult;
+using sublift::testing::run_cli;
+using sublift::testing::TempDir;
+
+namespace {
+
+// A square with a colour and a quality per corner (and normals, which are not kept).
+const std::string kSquarePly =
+    "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+    "property float nx\nproperty float ny\nproperty float nz\n"
+    "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty float quality\n"
+    "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+    "0 0 0 0 0 1 255 0 0 0.5\n1 0 0 0 0 1 0 255 0 0.25\n1 1 0 0 0 1 0 0 255 1\n0 1 0 0 0 1 255 255 255 0\n4 0 1 2 3\n";
+
+const VertexAttribute* find(const std::vector<VertexAttribute>& a, const std::string& name) {
+  for (const VertexAttribute& x : a)
+    if (x.name == name) return &x;
+  return nullptr;
+}
+
+void write_text(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+}  // namespace
+
+TEST(Attributes, PlyScalarPropertiesAreKeptNormalsAreNot) {
+  const Shape s = read_shape_from_memory("sq.ply", kSquarePly);
+  ASSERT_EQ(s.attributes.size(), 4u);
+  EXPECT_EQ(s.attributes[0].name, "red");
+  EXPECT_EQ(s.attributes[0].type, "uchar");
+  EXPECT_EQ(s.attributes[3].name, "quality");
+  EXPECT_EQ(s.attributes[3].type, "float");
+  EXPECT_EQ(s.attributes[1].values, (std::vector<double>{0, 255, 0, 255}));
+  EXPECT_EQ(s.attributes[3].values, (std::vector<double>{0.5, 0.25, 1, 0}));
+  const std::string not_kept = s.report.not_kept_summary();
+  EXPECT_NE(not_kept.find("'nx'"), std::string::npos) << not_kept;
+  EXPECT_EQ(not_kept.find("red"), std::string::npos) << not_kept;
+  // Values a channel cannot hold are refused, naming the line.
+  std::string bad = kSquarePly;
+  bad.replace(bad.find("0.25"), 4, "1e31");
+  EXPECT_NE(input_error([&] { read_shape_from_memory("bad.ply", bad); }).find("bad.ply:18: vertex property 'quality' of vertex 1 exceeds"),
+            std::string::npos)
+      << input_error([&] { read_shape_from_memory("bad.ply", bad); });
+}
+
+TEST(Attributes, ObjVertexColoursOnEveryVertexOrNamedAsNotKept) {
+  const Shape s = read_shape_from_memory("c.obj", "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 0.5\nf 1 2 3\n");
+  ASSERT_EQ(s.attributes.size(), 3u);
+  EXPECT_EQ(s.attributes[2].name, "blue");
+  EXPECT_EQ(s.attributes[2].values, (std::vector<double>{0, 0, 0.5}));
+  const Shape some = read_shape_from_memory("c.obj", "v 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_TRUE(some.attributes.empty());
+  EXPECT_NE(some.report.not_kept_summary().find("vertex colours (on 1 of 3 vertices"), std::string::npos)
+      << some.report.not_kept_summary();
+}
+
+TEST(Attributes, WritersGiveBackWhatTheFormatHoldsAndNameTheRest) {
+  TempDir dir("sublift_attr_write");
+  const Shape s = read_shape_from_memory("sq.ply", kSquarePly);
+  EXPECT_TRUE(write_shape(dir.file("a.ply"), s.base, s.positions, s.attributes).empty());
+  const Shape ply = read_shape(dir.file("a.ply"));
+  ASSERT_EQ(ply.attributes.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(ply.attributes[k].name, s.attributes[k].name);
+    EXPECT_EQ(ply.attributes[k].type, s.attributes[k].type);
+    EXPECT_EQ(ply.attributes[k].values, s.attributes[k].values);
+  }
+  // OBJ holds the colours (as 0..1), not the quality; OFF holds none. Both say so.
+  const auto obj_notes = write_shape(dir.file("a.obj"), s.base, s.positions, s.attributes);
+  ASSERT_EQ(obj_notes.size(), 1u);
+  EXPECT_NE(obj_notes[0].find("cannot hold the vertex attributes quality"), std::string::npos) << obj_notes[0];
+  const Shape obj = read_shape(dir.file("a.obj"));
+  ASSERT_EQ(obj.attributes.size(), 3u);
+  EXPECT_EQ(obj.attributes[0].values, (std::vector<double>{1, 0, 0, 1}));
+  const auto off_notes = write_shape(dir.file("a.off"), s.base, s.positions, s.attributes);
+  ASSERT_EQ(off_notes.size(), 1u);
+  EXPECT_NE(off_notes[0].find(".off cannot hold the vertex attributes red, green, blue, quality"), std::string::npos) << off_notes[0];
+}
+
+TEST(Attributes, SubdivideCarriesThemAsChannels) {
+  TempDir dir("sublift_attr_subdivide");
+  write_text(dir.file("sq.ply"), kSquarePly);
+  // Linear: the corners keep their values, edge and face points are the means (exact in binary).
+  ProcessResult r = run_cli({"subdivide", dir.file("sq.ply"), "--scheme", "linear", "--levels", "1", "-o", dir.file("l.ply"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Shape l = read_shape(dir.file("l.ply"));
+  ASSERT_EQ(l.attributes.size(), 4u);
+  const VertexAttribute& q = *find(l.attributes, "quality");
+  ASSERT_EQ(q.values.size(), 9u);
+  for (std::uint32_t v = 0; v < 4; ++v) EXPECT_EQ(q.values[v], (std::vector<double>{0.5, 0.25, 1, 0})[v]);
+  double mean = 0;
+  for (double x : q.values) mean += x;
+  // Edge points: means of their ends; the face point: the mean of the corners. Their sum:
+  // 4 corners (1.75) + edges (each corner in two: 1.75) + face (0.4375).
+  EXPECT_DOUBLE_EQ(mean, 1.75 + 1.75 + 0.4375);
+  const VertexAttribute& red = *find(l.attributes, "red");
+  for (double x : red.values) EXPECT_EQ(x, std::round(x)) << "uchar written back as whole numbers";
+  EXPECT_NE(r.out.find("\"quality\""), std::string::npos) << r.out;
+}
+
+TEST(Attributes, AnalyzeAndSynthesizeRoundTripTheChannels) {
+  TempDir dir("sublift_attr_project");
+  write_text(dir.file("sq.ply"), kSquarePly);
+  ASSERT_EQ(run_cli({"subdivide", dir.file("sq.ply"), "--scheme", "cubic", "--levels", "2", "-o", dir.file("fine.ply")}).exit_code, 0);
+  ProcessResult r = run_cli({"analyze", dir.file("fine.ply"), "--base", dir.file("sq.ply"), "--scheme", "cubic", "--levels", "2", "-o",
+                             dir.file("p.sublift")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ProjectExtras x;
+  const Hierarchy h = read_project(dir.file("p.sublift"), &x);
+  EXPECT_EQ(h.channels, 7);
+  ASSERT_EQ(x.attributes.size(), 4u);
+  EXPECT_EQ(x.attributes[3].name, "quality");
+  r = run_cli({"info", dir.file("p.sublift")});
+  EXPECT_NE(r.out.find("channels:              x y z red green blue quality"), std::string::npos) << r.out;
+  ASSERT_EQ(run_cli({"synthesize", dir.file("p.sublift"), "-o", dir.file("back.ply")}).exit_code, 0);
+  EXPECT_EQ(read_file_bytes(dir.file("back.ply")), read_file_bytes(dir.file("fine.ply")));  // perfect reconstruction, names kept
+  // A project whose names do not match its channels is refused on both sides.
+  ProjectExtras wrong = x;
+  wrong.attributes.pop_back();
+  EXPECT_THROW(write_project(dir.file("w.sublift"), h, wrong), Error);
+  std::string bytes = read_file_bytes(dir.file("p.sublift"));
+  bytes.replace(bytes.find(",{\"name\":\"quality\",\"type\":\"float\"}"), 34, "");
+  EXPECT_NE(input_error([&] { read_project_from_memory("p.sublift", bytes); }).find("3 attribute channels named for 7 channels"),
+            std::string::npos);
+}

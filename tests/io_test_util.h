@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "core/complex/complex.h"
 #include "core/base/errors.h"
 
@@ -39,6 +41,18 @@ inline std::string input_error(const std::function<void()>& f, std::size_t* line
     return e.what();
   }
   return "";
+}
+
+/// Expects `read(text, file)` to throw an InputError on `line` whose message names `file` and
+/// contains `needle` (the readers' shared contract: file, line, what is wrong).
+template <class Reader>
+void expect_input_error(Reader read, const std::string& text, const std::string& file, std::size_t line,
+                        const std::string& needle) {
+  std::size_t got = 12345;
+  const std::string e = input_error([&] { read(text, file); }, &got);
+  EXPECT_NE(e.find(needle), std::string::npos) << "message: " << e << "\nfile:\n" << text;
+  EXPECT_EQ(got, line) << e;
+  EXPECT_NE(e.find(file), std::string::npos) << e;
 }
 
 /// Feature dims keyed by vertex indices (independent of edge/face numbering): vertex -> dim,

@@ -23,13 +23,9 @@ std::string error_of(const std::string& text, std::size_t* line = nullptr) {
   return input_error([&] { read_lattice(text, "t.lattice"); }, line);
 }
 
-// Expects an InputError on `line` whose message contains `needle`.
+// Expects an InputError on `line` whose message names the file and contains `needle`.
 void expect_error(const std::string& text, std::size_t line, const std::string& needle) {
-  std::size_t got = 12345;
-  const std::string e = error_of(text, &got);
-  EXPECT_NE(e.find(needle), std::string::npos) << "message: " << e << "\nfile:\n" << text;
-  EXPECT_EQ(got, line) << e;
-  EXPECT_NE(e.find("t.lattice"), std::string::npos) << e;
+  sublift::testing::expect_input_error([](const std::string& t, const std::string& f) { read_lattice(t, f); }, text, "t.lattice", line, needle);
 }
 
 }  // namespace

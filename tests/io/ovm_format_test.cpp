@@ -41,12 +41,9 @@ std::string error_of(const std::string& text, std::size_t* line = nullptr) {
   return input_error([&] { read_ovm(text, "t.ovm"); }, line);
 }
 
+// Expects an InputError on `line` whose message names the file and contains `needle`.
 void expect_error(const std::string& text, std::size_t line, const std::string& needle) {
-  std::size_t got = 12345;
-  const std::string e = error_of(text, &got);
-  EXPECT_NE(e.find(needle), std::string::npos) << "message: " << e << "\nfile:\n" << text;
-  EXPECT_EQ(got, line) << e;
-  EXPECT_NE(e.find("t.ovm"), std::string::npos) << e;
+  sublift::testing::expect_input_error([](const std::string& t, const std::string& f) { read_ovm(t, f); }, text, "t.ovm", line, needle);
 }
 
 std::string replace(std::string s, const std::string& from, const std::string& to) {

@@ -50,10 +50,10 @@ int run_info(int argc, char** argv) {
   const std::string& file = a.positional[0];
   const std::string ext = file_extension(file);
   if (ext == "sublift") return info_project(file, a.has("--json"));
-  if (ext == "lattice" || ext == "ovm" || ext == "vtk") return info_shape(file, a.has("--json"));
+  if (ext == "lattice" || ext == "ovm" || ext == "vtk" || ext == "gltf" || ext == "glb") return info_shape(file, a.has("--json"));
   // Everything info reads, so an unknown extension is answered with the whole list.
   if (ext != "obj" && ext != "off" && ext != "ply")
-    throw InputError(file, 0, "unsupported format '." + ext + "' (info reads .obj, .off, .ply, .lattice, .ovm, .vtk and .sublift)");
+    throw InputError(file, 0, "unsupported format '." + ext + "' (info reads .obj, .off, .ply, .gltf, .glb, .lattice, .ovm, .vtk and .sublift)");
   const LoadedMesh loaded = import_surface_mesh(file);
   std::cerr << loaded.report.format(file);
   const MeshStats s = compute_mesh_stats(loaded.mesh);

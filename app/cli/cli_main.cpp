@@ -64,7 +64,7 @@ constexpr const char* kUsage =
     "                                        split 1-to-4 J times, by rays from its centroid\n"
     "\n"
     "Meshes: .obj (with OpenSubdiv 't' tags; 'l' polylines are curves), .off, .ply (ascii and\n"
-    "binary). Lattices: .lattice (Sublift's text format), .vtk (legacy unstructured grid),\n"
+    "binary), .gltf/.glb (read: triangles welded by position). Lattices: .lattice (Sublift's text format), .vtk (legacy unstructured grid),\n"
     ".ovm (OpenVolumeMesh ASCII).\n"
     "Projects: .sublift. Formats: docs/file_formats.md.\n"
     "Run 'sublift-cli COMMAND --help' for a command's options.\n";

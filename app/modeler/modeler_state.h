@@ -62,7 +62,7 @@ class ModelerState {
   /// finest vertices.
   static constexpr double kMaxOpenVertices = 2.0e6;
 
-  /// Opens a shape (OBJ/OFF/PLY, curve OBJ, .lattice, .ovm, .vtk) as a hierarchy of `levels` levels
+  /// Opens a shape (OBJ/OFF/PLY, glTF/GLB, curve OBJ, .lattice, .ovm, .vtk) as a hierarchy of `levels` levels
   /// of `scheme`, or a `.sublift` project with its gains, frames and current level. Throws
   /// sublift::Error; on failure the current session is left untouched.
   void open(const std::string& path, int levels = kDefaultLevels, Scheme scheme = Scheme::Cubic);

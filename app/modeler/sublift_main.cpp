@@ -17,7 +17,7 @@ void print_usage(std::ostream& out) {
   out << "usage: sublift [FILE] [--script FILE [--json]] [--headless] [--screenshot PATH] [--frames N]\n"
          "               [--size WxH] [--help]\n"
          "\n"
-         "Opens FILE (OBJ, OFF, PLY, curve OBJ, .lattice, .ovm, .vtk or a .sublift project) in the\n"
+         "Opens FILE (OBJ, OFF, PLY, glTF/GLB, curve OBJ, .lattice, .ovm, .vtk or a .sublift project) in the\n"
          "Sublift modeler; without FILE opens the bundled sample\n"
          "(" << sublift::default_model_path() << ").\n"
          "\n"

@@ -130,7 +130,7 @@ TEST(Cli, InfoOnAnUnknownExtensionListsEveryFormatItReads) {
   std::ofstream(f) << "solid x\nendsolid x\n";
   const ProcessResult r = run_process({kCli, "info", f.string()});
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.err.find("unsupported format '.stl' (info reads .obj, .off, .ply, .lattice, .ovm, .vtk and .sublift)"),
+  EXPECT_NE(r.err.find("unsupported format '.stl' (info reads .obj, .off, .ply, .gltf, .glb, .lattice, .ovm, .vtk and .sublift)"),
             std::string::npos)
       << r.err;
 }

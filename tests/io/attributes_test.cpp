@@ -140,3 +140,31 @@ TEST(Attributes, AnalyzeAndSynthesizeRoundTripTheChannels) {
   EXPECT_NE(input_error([&] { read_project_from_memory("p.sublift", bytes); }).find("3 attribute channels named for 7 channels"),
             std::string::npos);
 }
+
+// Issue 20: a glTF opens as a surface: its triangles in world space, welded where the file split
+// them at seams, what it does not keep named.
+TEST(GltfSurface, SharedBoxesOpenWeldedAndClosed) {
+  const std::filesystem::path data(SUBLIFT_SHARED_DATA);
+  const std::filesystem::path box = data / "gltf/Box/Box.glb", textured = data / "gltf/BoxTextured/BoxTextured.gltf";
+  if (!std::filesystem::exists(box)) GTEST_SKIP() << box << " not found (../shared/data is absent)";
+  for (const auto& f : {box, textured, data / "gltf/BoxVertexColors/BoxVertexColors.glb"}) {
+    SCOPED_TRACE(f.string());
+    const Shape s = read_shape(f.string());
+    // 24 vertices (4 per face: one per normal) weld into the cube's 8 corners; 12 triangles.
+    EXPECT_EQ(s.base.dim, 2);
+    EXPECT_EQ(s.base.num_vertices, 8u);
+    EXPECT_EQ(s.base.num_faces(), 12u);
+    EXPECT_EQ(s.base.num_edges(), 18u);  // closed: V - E + F = 2
+    const std::string r = s.report.format(f.string());
+    EXPECT_NE(r.find("welded by position: 24 into 8"), std::string::npos) << r;
+    EXPECT_NE(s.report.not_kept_summary().find("normals, UVs, colours"), std::string::npos);
+  }
+  // Subdivided from the CLI like any mesh (the limit of a closed cube: no boundary).
+  TempDir dir("sublift_gltf_surface");
+  const ProcessResult r = run_cli({"subdivide", box.string(), "--scheme", "loop", "--levels", "2", "-o", dir.file("box.obj"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_shape(dir.file("box.obj")).base.num_vertices, 8u + 18u + 72u);  // V + E at each level: 8, 26, 98
+  EXPECT_NE(input_error([&] { read_shape_from_memory("m.gltf", "{}"); }).find("read from its file"), std::string::npos);
+  const std::filesystem::path bad = data / "gltf/invalid/IndexOutOfRange.gltf";
+  EXPECT_NE(input_error([&] { read_shape(bad.string()); }), "") << "a bad glTF is refused as by the FFD importer";
+}

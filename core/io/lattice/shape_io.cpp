@@ -1,5 +1,10 @@
 #include "core/io/lattice/shape_io.h"
 
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <map>
+
 #include "core/complex/complex_build.h"
 #include "core/base/errors.h"
 #include "core/complex/feature_tags.h"
@@ -8,12 +13,14 @@
 #include "core/io/lattice/ovm_format.h"
 #include "core/io/mesh/mesh_export.h"
 #include "core/io/mesh/mesh_import.h"
+#include "core/io/model/model.h"
 #include "core/io/lattice/vtk_format.h"
 
 namespace sublift {
 namespace {
 
-constexpr std::string_view kShapeFormats = ".obj, .off, .ply, .lattice, .ovm or .vtk";
+constexpr std::string_view kShapeFormats = ".obj, .off, .ply, .lattice, .ovm or .vtk";  // read and written
+constexpr std::string_view kReadFormats = ".obj, .off, .ply, .gltf, .glb, .lattice, .ovm or .vtk";
 
 Shape shape_from_mesh(const std::string& name, LoadedMesh loaded) {
   Shape shape;
@@ -41,6 +48,46 @@ Shape shape_from_mesh(const std::string& name, LoadedMesh loaded) {
     throw InputError(name, 0, e.what());
   }
   return shape;
+}
+
+// A glTF's triangles as a surface, in world space: its vertices welded where their positions
+// are the same bits (glTF splits a vertex wherever its normal or UV changes, so a closed surface
+// arrives cut along every seam), in the order they first appear.
+Shape shape_from_gltf(const std::string& path) {
+  const Model model = import_model(path);
+  if (model.faces.rows() == 0) throw InputError(path, 0, "no triangles to open as a surface (points and lines only)");
+  LoadedMesh loaded;
+  SurfaceMesh& m = loaded.mesh;
+  std::map<std::array<std::uint64_t, 3>, std::uint32_t> first;
+  std::vector<std::uint32_t> welded(model.num_vertices());
+  for (std::size_t v = 0; v < model.num_vertices(); ++v) {
+    const double* p = &model.positions[3 * v];
+    const std::array<std::uint64_t, 3> key{std::bit_cast<std::uint64_t>(p[0] + 0.0), std::bit_cast<std::uint64_t>(p[1] + 0.0),
+                                           std::bit_cast<std::uint64_t>(p[2] + 0.0)};  // + 0.0: -0 and 0 weld
+    const auto [it, fresh] = first.emplace(key, static_cast<std::uint32_t>(m.positions.size()));
+    if (fresh) m.positions.emplace_back(p[0], p[1], p[2]);
+    welded[v] = it->second;
+  }
+  std::vector<std::uint32_t> tri;
+  for (std::size_t f = 0; f < model.faces.rows(); ++f) {
+    tri.clear();
+    for (const std::uint32_t v : model.faces.row(f)) tri.push_back(welded[v]);
+    std::sort(tri.begin(), tri.end());
+    if (std::adjacent_find(tri.begin(), tri.end()) != tri.end()) {
+      loaded.report.add("triangles whose corners welded together (dropped)", 0);
+      continue;
+    }
+    tri.clear();
+    for (const std::uint32_t v : model.faces.row(f)) tri.push_back(welded[v]);
+    m.add_face(tri);
+  }
+  for (const std::string& n : model.notes) loaded.report.add(n, 0);
+  if (m.positions.size() < model.num_vertices())
+    loaded.report.add("glTF vertices welded by position: " + std::to_string(model.num_vertices()) + " into " +
+                          std::to_string(m.positions.size()) + " (the file splits them at seams of normals and UVs)",
+                      0);
+  loaded.report.note_not_kept("glTF meshes opened as one surface without their normals, UVs, colours, materials or nodes", 0);
+  return shape_from_mesh(path, std::move(loaded));
 }
 
 // Polylines covering every edge of a curve once: maximal chains through vertices on exactly
@@ -85,13 +132,15 @@ Shape read_shape_from_memory(const std::string& name, const std::string& bytes) 
   if (ext == "ovm") return read_ovm(bytes, name);
   if (ext == "vtk") return read_vtk(bytes, name);
   if (ext == "obj" || ext == "off" || ext == "ply") return shape_from_mesh(name, import_surface_mesh_from_memory(name, bytes));
-  throw InputError(name, 0, "unsupported format '." + ext + "' (expected " + std::string(kShapeFormats) + ")");
+  if (ext == "gltf" || ext == "glb") throw InputError(name, 0, "a glTF is read from its file (its buffers and images live beside it)");
+  throw InputError(name, 0, "unsupported format '." + ext + "' (expected " + std::string(kReadFormats) + ")");
 }
 
 Shape read_shape(const std::string& path) {
   const std::string ext = file_extension(path);
+  if (ext == "gltf" || ext == "glb") return shape_from_gltf(path);  // reads its buffers from its own folder
   if (ext != "lattice" && ext != "ovm" && ext != "vtk" && ext != "obj" && ext != "off" && ext != "ply")
-    throw InputError(path, 0, "unsupported format '." + ext + "' (expected " + std::string(kShapeFormats) + ")");
+    throw InputError(path, 0, "unsupported format '." + ext + "' (expected " + std::string(kReadFormats) + ")");
   return read_shape_from_memory(path, read_file_bytes(path));
 }
 

@@ -11,7 +11,9 @@
 
 namespace sublift {
 
-/// Reads `path` by extension into a base complex and positions. Throws InputError or IoError.
+/// Reads `path` by extension into a base complex and positions. A .gltf/.glb opens as one
+/// surface: its triangles in world space, vertices welded by position (import_model's sandbox
+/// and checks apply). Throws InputError or IoError.
 Shape read_shape(const std::string& path);
 
 /// The same from memory; `name` picks the format by extension and names it in messages.

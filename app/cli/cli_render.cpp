@@ -53,7 +53,7 @@ SurfaceMesh mesh_to_render(const std::string& file, int level) {
     return surface_of(s.positions, s.faces);
   }
   const std::string ext = file_extension(file);
-  if (ext == "lattice" || ext == "vtk") {
+  if (ext == "lattice" || ext == "ovm" || ext == "vtk" || ext == "gltf" || ext == "glb") {
     const Shape shape = read_shape(file);
     std::cerr << shape.report.format(file);
     if (shape.base.dim != 3) {
@@ -75,7 +75,7 @@ int run_render(int argc, char** argv) {
     std::cout << "usage: sublift-cli render FILE -o PNG [--size WxH] [--level L] [--colour L] [--json]\n"
                  "  Renders FILE shaded with its wireframe from the default 3/4 view, without a\n"
                  "  display (EGL surfaceless), and writes a PNG. Default size 800x600. FILE: a mesh\n"
-                 "  (.obj .off .ply), a lattice (.lattice .ovm .vtk: its outward boundary) or a .sublift\n"
+                 "  (.obj .off .ply .gltf .glb), a lattice (.lattice .ovm .vtk: its outward boundary) or a .sublift\n"
                  "  project (its finest limit surface with the saved gains, as the modeler shows it).\n"
                  "  --level L   a project's limit surface of level L instead of the finest (the modeler's\n"
                  "              viewport level)\n"

@@ -132,6 +132,11 @@ FeatureTags feature_tags_from_obj(const std::vector<MeshTag>& tags, ImportReport
         report.add(t.name + " with sharpness 0 ignored", t.line);
         continue;
       }
+      // OpenSubdiv's semi-sharp features (0 < s < 10) soften after s levels; Sublift's tags are
+      // sharp at every level, which the user is told (issue 20 plans the per-level rule).
+      if (s < 10.0)
+        report.add("semi-sharp " + t.name + " tags (sharpness below 10) taken as infinitely sharp: Sublift's features stay sharp at every level",
+                   t.line);
       if (crease)
         out.crease_edges.emplace_back(static_cast<std::uint32_t>(t.ints[i]), static_cast<std::uint32_t>(t.ints[i + 1]));
       else

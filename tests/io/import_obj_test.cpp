@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "core/complex/complex_build.h"
+
 #include "core/base/errors.h"
 #include "core/io/mesh/mesh_import.h"
 #include "tests/test_util.h"
@@ -137,6 +139,19 @@ TEST(ImportObj, ReadsOpenSubdivTags) {
   EXPECT_EQ(m.mesh.tags[1].name, "corner");
   EXPECT_EQ(find_warning(m.report, "names a vertex out of range")->first_lines, std::vector<std::size_t>{9});
   EXPECT_EQ(find_warning(m.report, "malformed")->first_lines, std::vector<std::size_t>{10});
+}
+
+// Issue 20: OpenSubdiv's semi-sharp creases (0 < sharpness < 10) were taken as infinitely sharp
+// without a word; they still are (per-level sharpness is to come), and the user is told once.
+TEST(ImportObj, SemiSharpCreasesAreNamedAsTakenSharp) {
+  const LoadedMesh m = load("t.obj", kSquare + "t crease 2/1/0 0 1 2.5\nt crease 2/1/0 1 2 10\nt crease 2/1/0 2 3 0.5\n");
+  ImportReport report;
+  const FeatureTags tags = feature_tags_from_obj(m.mesh.tags, report);
+  EXPECT_EQ(tags.crease_edges.size(), 3u);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_EQ(report.warnings[0].count, 2u);  // the 2.5 and the 0.5; 10 is OpenSubdiv's infinitely sharp
+  EXPECT_EQ(report.warnings[0].first_lines, (std::vector<std::size_t>{6, 8}));
+  EXPECT_NE(report.warnings[0].what.find("semi-sharp crease tags"), std::string::npos) << report.warnings[0].what;
 }
 
 TEST(ImportObj, ReportsIgnoredStatements) {

@@ -68,18 +68,11 @@ Shape shape_from_gltf(const std::string& path) {
     if (fresh) m.positions.emplace_back(p[0], p[1], p[2]);
     welded[v] = it->second;
   }
-  std::vector<std::uint32_t> tri;
-  for (std::size_t f = 0; f < model.faces.rows(); ++f) {
-    tri.clear();
-    for (const std::uint32_t v : model.faces.row(f)) tri.push_back(welded[v]);
-    std::sort(tri.begin(), tri.end());
-    if (std::adjacent_find(tri.begin(), tri.end()) != tri.end()) {
-      loaded.report.add("triangles whose corners welded together (dropped)", 0);
-      continue;
-    }
-    tri.clear();
-    for (const std::uint32_t v : model.faces.row(f)) tri.push_back(welded[v]);
-    m.add_face(tri);
+  for (std::size_t f = 0; f < model.faces.rows(); ++f) {  // glTF faces are triangles
+    const auto row = model.faces.row(f);
+    const std::uint32_t tri[3] = {welded[row[0]], welded[row[1]], welded[row[2]]};
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) loaded.report.add("triangles whose corners welded together (dropped)", 0);
+    else m.add_face(tri);
   }
   for (const std::string& n : model.notes) loaded.report.add(n, 0);
   if (m.positions.size() < model.num_vertices())

@@ -22,12 +22,11 @@ void write_xyz_line(std::ostream& out, const char* prefix, const double* p) {
 }
 
 std::string attributes_not_written(const std::string& ext, std::span<const VertexAttribute> attributes) {
-  int colours = 0;
-  for (const VertexAttribute& a : attributes) colours += a.name == "red" || a.name == "green" || a.name == "blue";
+  const auto colour = [](const VertexAttribute& a) { return a.name == "red" || a.name == "green" || a.name == "blue"; };
+  const auto colours = std::count_if(attributes.begin(), attributes.end(), colour);
   std::string dropped;
   for (const VertexAttribute& a : attributes) {
-    const bool colour = a.name == "red" || a.name == "green" || a.name == "blue";
-    if (ext == "ply" || (ext == "obj" && colour && colours == 3)) continue;
+    if (ext == "ply" || (ext == "obj" && colour(a) && colours == 3)) continue;
     dropped += (dropped.empty() ? "" : ", ") + a.name;
   }
   return dropped;
@@ -89,9 +88,18 @@ void write_obj(std::ostream& out, const SurfaceMesh& m) {
   }
 }
 
-// The body OFF and ASCII PLY share: a line per vertex, then per face its size and 0-based corners.
-void write_points_and_faces(std::ostream& out, const SurfaceMesh& m) {
-  for (const glm::dvec3& p : m.positions) write_xyz_line(out, "", &p.x);
+// The body OFF and ASCII PLY share: a line per vertex (x y z, then the attributes when asked),
+// then per face its size and 0-based corners.
+void write_points_and_faces(std::ostream& out, const SurfaceMesh& m, bool attributes) {
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
+    if (!attributes || m.attributes.empty()) {
+      write_xyz_line(out, "", &m.positions[v].x);
+      continue;
+    }
+    out << format_double(m.positions[v].x) << ' ' << format_double(m.positions[v].y) << ' ' << format_double(m.positions[v].z);
+    for (const VertexAttribute& a : m.attributes) out << ' ' << attribute_text(a, v);
+    out << '\n';
+  }
   for (std::size_t f = 0; f < m.num_faces(); ++f) {
     out << m.face_size(f);
     for (std::uint32_t v : m.face(f)) out << ' ' << v;
@@ -101,7 +109,7 @@ void write_points_and_faces(std::ostream& out, const SurfaceMesh& m) {
 
 void write_off(std::ostream& out, const SurfaceMesh& m) {
   out << "OFF\n" << m.num_vertices() << ' ' << m.num_faces() << " 0\n";
-  write_points_and_faces(out, m);
+  write_points_and_faces(out, m, false);
 }
 
 void write_ply(std::ostream& out, const SurfaceMesh& m) {
@@ -109,16 +117,7 @@ void write_ply(std::ostream& out, const SurfaceMesh& m) {
       << "\nproperty double x\nproperty double y\nproperty double z\n";
   for (const VertexAttribute& a : m.attributes) out << "property " << a.type << ' ' << a.name << '\n';
   out << "element face " << m.num_faces() << "\nproperty list uint int vertex_indices\nend_header\n";
-  if (m.attributes.empty()) return write_points_and_faces(out, m);
-  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
-    out << format_double(m.positions[v].x) << ' ' << format_double(m.positions[v].y) << ' ' << format_double(m.positions[v].z);
-    for (const VertexAttribute& a : m.attributes) out << ' ' << attribute_text(a, v);
-    out << '\n';
-  }
-  SurfaceMesh faces_only;
-  faces_only.face_offsets = m.face_offsets;
-  faces_only.face_indices = m.face_indices;
-  write_points_and_faces(out, faces_only);
+  write_points_and_faces(out, m, true);
 }
 
 }  // namespace

@@ -146,6 +146,10 @@ TEST(ProjectIo, RefusesTruncatedOrPaddedPayloadAndLyingCounts) {
   // Counts that would need terabytes are refused by size before anything is read.
   EXPECT_NE(error_of(with("\"coefficients\":", "\"coefficients\":99999999999")).find("truncated payload"), std::string::npos);
   EXPECT_NE(error_of(with("\"vertices\":13", "\"vertices\":4000000000")).find("truncated payload"), std::string::npos);
+  // A count whose bytes exceed what a long long holds: the message, not an undefined cast.
+  EXPECT_NE(error_of(with("\"coefficients\":", "\"coefficients\":9000000000000000000,\"x\":")).find("announces 7.2e+19 bytes"),
+            std::string::npos)
+      << error_of(with("\"coefficients\":", "\"coefficients\":9000000000000000000,\"x\":"));
   // One more level than the coefficients cover (the payload size is unchanged: the check is
   // against the refined base, before it is built).
   const std::string e = error_of(with("\"levels\":1", "\"levels\":2"));

@@ -29,7 +29,7 @@ void check_counts(const std::string& file, std::size_t line, const OffCounts& c,
                      "header claims " + std::to_string(c.vertices) + " vertices and " +
                          std::to_string(c.faces) + " faces, but only " +
                          std::to_string(bytes_left) + " bytes follow (at least " +
-                         std::to_string(static_cast<long long>(need)) + " needed)");
+                         (need < 9e18 ? std::to_string(static_cast<long long>(need)) : format_shortest(need)) + " needed)");
 }
 
 void check_coordinate(const std::string& file, std::size_t line, double v) {

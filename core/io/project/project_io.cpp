@@ -50,6 +50,10 @@ std::vector<T> take(std::string_view bytes, std::size_t& pos, std::size_t n) {
   return v;
 }
 
+// A count computed in doubles, for a message: exact while it fits a long long, else "%g" (a
+// lying header's count cannot be cast).
+std::string whole_number(double v) { return v < 9e18 ? std::to_string(static_cast<long long>(v)) : format_shortest(v); }
+
 // Header numbers read as what they must be: a count is a non-negative integer, a level or flag
 // an integer (JSON's 1e20 or 2.5 would otherwise be cast, out of range, undefined).
 std::uint64_t header_count(const std::string& file, const nlohmann::json& j, const char* key) {
@@ -315,7 +319,7 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   const double io_d = io_level < 0 ? 0.0 : 4.0 * (double(IV) + double(IF) + 1.0 + double(IK));
   const double want_d = 4.0 * (2.0 * E + (F + 1) + 2.0 * SF + (C + 1) + CF) + double(V) + double(E) + double(F) + coeff_d + io_d;
   if (want_d > static_cast<double>(have) + 0.5)
-    throw InputError(file, 0, "truncated payload: the header announces " + std::to_string(static_cast<unsigned long long>(want_d)) +
+    throw InputError(file, 0, "truncated payload: the header announces " + whole_number(want_d) +
                                   " bytes, the file holds " + std::to_string(have));
   if (N % static_cast<std::uint64_t>(channels) != 0 || N / static_cast<std::uint64_t>(channels) < V ||
       stored > N / static_cast<std::uint64_t>(channels) - V)
@@ -371,7 +375,7 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   if (static_cast<double>(N) != counts.back() * channels)
     throw InputError(file, 2, std::to_string(N) + " coefficients, but " + std::to_string(levels) + " levels of this base with " +
                                   std::to_string(channels) + " channels need " +
-                                  std::to_string(static_cast<unsigned long long>(counts.back() * channels)));
+                                  whole_number(counts.back() * channels));
   // The session keys, once the levels are known to fit the payload.
   if (current_level < 0 || current_level > levels)
     throw InputError(file, 2, "current_level " + std::to_string(current_level) + " outside 0.." + std::to_string(levels));

@@ -2,7 +2,7 @@
 # and link only the layers named after it. core/CMakeLists.txt links them from this table and
 # tests/check_layers.cmake checks every #include against it, so this is the one place the
 # layering is written down.
-set(SUBLIFT_LAYERS base complex engine schemes multires io_mesh io_lattice io_model io_project edit ffd analysis fit)
+set(SUBLIFT_LAYERS base complex engine schemes multires io_mesh io_lattice io_model io_project edit ffd analysis fit anim)
 set(SUBLIFT_LAYER_DIR_base base)
 set(SUBLIFT_LAYER_USES_base "")
 set(SUBLIFT_LAYER_DIR_complex complex)
@@ -29,3 +29,5 @@ set(SUBLIFT_LAYER_DIR_analysis analysis)
 set(SUBLIFT_LAYER_USES_analysis multires schemes engine complex base)
 set(SUBLIFT_LAYER_DIR_fit fit)
 set(SUBLIFT_LAYER_USES_fit multires schemes engine complex base)
+set(SUBLIFT_LAYER_DIR_anim anim)
+set(SUBLIFT_LAYER_USES_anim analysis multires schemes engine complex base)

@@ -1,9 +1,6 @@
 #include "core/io/lattice/shape_io.h"
 
 #include <algorithm>
-#include <array>
-#include <bit>
-#include <map>
 
 #include "core/complex/complex_build.h"
 #include "core/base/errors.h"
@@ -14,6 +11,7 @@
 #include "core/io/mesh/mesh_export.h"
 #include "core/io/mesh/mesh_import.h"
 #include "core/io/model/model.h"
+#include "core/io/model/weld.h"
 #include "core/io/lattice/vtk_format.h"
 
 namespace sublift {
@@ -50,30 +48,19 @@ Shape shape_from_mesh(const std::string& name, LoadedMesh loaded) {
   return shape;
 }
 
-// A glTF's triangles as a surface, in world space: its vertices welded where their positions
-// are the same bits (glTF splits a vertex wherever its normal or UV changes, so a closed surface
-// arrives cut along every seam), in the order they first appear.
+// A glTF's triangles as a surface, in world space, welded by weld_by_position (weld.h: the same
+// vertices and order as the frames of sample_gltf_animation).
 Shape shape_from_gltf(const std::string& path) {
   const Model model = import_model(path);
   if (model.faces.rows() == 0) throw InputError(path, 0, "no triangles to open as a surface (points and lines only)");
   LoadedMesh loaded;
   SurfaceMesh& m = loaded.mesh;
-  std::map<std::array<std::uint64_t, 3>, std::uint32_t> first;
-  std::vector<std::uint32_t> welded(model.num_vertices());
-  for (std::size_t v = 0; v < model.num_vertices(); ++v) {
-    const double* p = &model.positions[3 * v];
-    const std::array<std::uint64_t, 3> key{std::bit_cast<std::uint64_t>(p[0] + 0.0), std::bit_cast<std::uint64_t>(p[1] + 0.0),
-                                           std::bit_cast<std::uint64_t>(p[2] + 0.0)};  // + 0.0: -0 and 0 weld
-    const auto [it, fresh] = first.emplace(key, static_cast<std::uint32_t>(m.positions.size()));
-    if (fresh) m.positions.emplace_back(p[0], p[1], p[2]);
-    welded[v] = it->second;
-  }
-  for (std::size_t f = 0; f < model.faces.rows(); ++f) {  // glTF faces are triangles
-    const auto row = model.faces.row(f);
-    const std::uint32_t tri[3] = {welded[row[0]], welded[row[1]], welded[row[2]]};
-    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) loaded.report.add("triangles whose corners welded together (dropped)", 0);
-    else m.add_face(tri);
-  }
+  const PositionWeld weld = weld_by_position(model.positions, model.faces);  // glTF faces are triangles
+  m.positions.reserve(weld.first.size());
+  for (std::uint32_t v : weld.first) m.positions.emplace_back(model.positions[3 * v], model.positions[3 * v + 1], model.positions[3 * v + 2]);
+  m.face_offsets = weld.faces.offsets;
+  m.face_indices = weld.faces.items;
+  for (std::size_t k = 0; k < weld.dropped; ++k) loaded.report.add("triangles whose corners welded together (dropped)", 0);
   for (const std::string& n : model.notes) loaded.report.add(n, 0);
   if (m.positions.size() < model.num_vertices())
     loaded.report.add("glTF vertices welded by position: " + std::to_string(model.num_vertices()) + " into " +

@@ -73,7 +73,7 @@ class NetRenderer {
   /// Uploads only vertices `changed` of the full position array `xyz` (3 doubles per vertex, as
   /// after the change); keeps the centre and grows the bounds.
   void update_positions(std::span<const double> xyz, std::span<const std::uint32_t> changed);
-  /// Per-vertex state (0 none, 1 hover, 2 selected) and soft-selection weight in [0, 1]; empty
+  /// Per-vertex state (0 none, 1 hover, 2 selected, 3 hidden) and soft-selection weight in [0, 1]; empty
   /// spans mean all 0.
   void set_state(std::span<const std::uint8_t> state, std::span<const float> soft_weight);
   /// Uploads only vertices `changed` of the full state/weight arrays (e.g. a hover change).

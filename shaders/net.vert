@@ -2,7 +2,7 @@
 // Colour is decided here from feature class, state and soft weight (see NetColors).
 layout(location = 0) in vec3 a_position;  // relative to the net's centre
 layout(location = 1) in uint a_feature;   // 0 ordinary, 1 crease/boundary, 2 corner
-layout(location = 2) in uint a_state;     // 0 none, 1 hover, 2 selected
+layout(location = 2) in uint a_state;     // 0 none, 1 hover, 2 selected, 3 hidden (not drawn)
 layout(location = 3) in float a_weight;   // soft-selection weight in [0, 1]
 
 uniform mat4 u_model_view;
@@ -62,4 +62,6 @@ void main() {
   v_color = color;
   v_outline = size >= 5.0 ? 1.0 : 0.0;
   gl_PointSize = max(size * (1.0 - 0.4 * cue), 1.0);
+  // Hidden points (another time layer of an animation) fall outside the clip volume.
+  if (a_state == 3u) gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
 }

@@ -18,6 +18,7 @@ add_executable(sublift-cli
   ${CMAKE_CURRENT_LIST_DIR}/cli_basis.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cli_basis_png.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cli_ffd.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/cli_animation.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cli_coefficients.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cli_experiment.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cli_resample_sphere.cpp

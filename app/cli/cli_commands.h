@@ -20,6 +20,7 @@ int run_edit(int argc, char** argv);
 int run_set(int argc, char** argv);
 int run_basis(int argc, char** argv);
 int run_ffd(int argc, char** argv);
+int run_animation(int argc, char** argv);
 int run_coefficients(int argc, char** argv);
 /// `experiment noise|fit|compress`: the papers' experiments (docs/experiments.md).
 int run_experiment(int argc, char** argv);

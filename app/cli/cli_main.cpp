@@ -59,6 +59,10 @@ constexpr const char* kUsage =
     "  experiment noise|fit|compress --scheme S --model BASE --levels J [--sigma X] [--json]\n"
     "                                        the papers' noise-filtering, fitting and\n"
     "                                        compression errors per level (docs/experiments.md)\n"
+    "  animation IN... [--frames N] [--levels J] [--cyclic] [--edits E] [--keep F | --linf E]\n"
+    "        [-o OUT] [--json]               a glTF animation or OBJ/PLY frames as a swept\n"
+    "                                        space-time lattice: edit and compress it in space\n"
+    "                                        and time (docs/animation.md)\n"
     "  resample-sphere MESH --levels J -o OUT [--base-out BASE] [--json]\n"
     "                                        sample a star-shaped closed mesh onto the octahedron\n"
     "                                        split 1-to-4 J times, by rays from its centroid\n"
@@ -92,6 +96,7 @@ int main(int argc, char** argv) {
     if (cmd == "set") return cli::run_set(argc, argv);
     if (cmd == "basis") return cli::run_basis(argc, argv);
     if (cmd == "ffd") return cli::run_ffd(argc, argv);
+    if (cmd == "animation") return cli::run_animation(argc, argv);
     if (cmd == "coefficients") return cli::run_coefficients(argc, argv);
     if (cmd == "experiment") return cli::run_experiment(argc, argv);
     if (cmd == "resample-sphere") return cli::run_resample_sphere(argc, argv);

@@ -350,6 +350,27 @@ std::vector<double> layer_positions(const SpaceTime& st, std::span<const double>
   return out;
 }
 
+std::vector<double> frame_positions(const SpaceTime& st, std::span<const double> finest_values, double frame) {
+  const int J = st.levels(), n = st.layers(J);
+  if (!std::isfinite(frame)) throw Error("frame is not a number");
+  double f = st.cyclic ? std::fmod(frame, double(n)) : std::clamp(frame, 0.0, double(n - 1));
+  if (f < 0) f += n;
+  const int a = std::min(int(std::floor(f)), n - 1), b = st.cyclic ? (a + 1) % n : std::min(a + 1, n - 1);
+  const double s = f - a;
+  std::vector<double> x = layer_positions(st, finest_values, J, a);
+  if (s == 0.0) return x;
+  const std::vector<double> y = layer_positions(st, finest_values, J, b);
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] += s * (y[i] - x[i]);
+  return x;
+}
+
+int nearest_layer(const SpaceTime& st, int level, double frame) {
+  const int J = st.levels(), stride = 1 << (J - level), n = st.layers(level);
+  const long long l = std::llround(frame / stride);
+  if (st.cyclic) return int(((l % n) + n) % n);
+  return int(std::clamp<long long>(l, 0, n - 1));
+}
+
 std::vector<std::uint8_t> time_wavelet_flags(const SpaceTime& st) {
   const int J = st.levels();
   const std::uint32_t nv0 = st.lattice.num_vertices(0);

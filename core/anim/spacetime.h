@@ -91,6 +91,14 @@ FitReport fit_frames(SpaceTime& st, std::span<const double> frames);
 /// in the surface level's vertex order.
 std::vector<double> layer_positions(const SpaceTime& st, std::span<const double> level_values, int level, int layer);
 
+/// The surface at finest frame `frame` (fractional: between two layers, the linear blend of both;
+/// cyclic: taken modulo the frame count, the last layer blending into the first), from the
+/// finest level's values (3 per lattice vertex), in the surface's finest vertex order.
+std::vector<double> frame_positions(const SpaceTime& st, std::span<const double> finest_values, double frame);
+
+/// The layer of level `level` nearest to finest frame `frame` (cyclic: modulo its layers).
+int nearest_layer(const SpaceTime& st, int level, double frame);
+
 /// Whether the wavelet on lattice vertex v of level j+1 (v >= nv_j) lies on an odd layer of level
 /// j+1: a time wavelet (new in time); the rest are space wavelets on the layers of level j.
 /// One flag per wavelet, index v - nv_0, as rank_wavelets' candidates take them.

@@ -114,6 +114,30 @@ TEST_F(GltfValidator, FfdExportsOfBentAndDentedModelsHaveNoErrors) {
   }
 }
 
+// Issue 22: `sublift-cli animation` writes the frames as morph targets keyed in time, and the
+// validator accepts them: the Fox's walk edited at level 0 (.glb), the morph cube as a cyclic
+// loop (.gltf, one more key back to frame 0).
+TEST_F(GltfValidator, AnimationExportsHaveNoErrors) {
+  sublift::testing::TempDir dir("sublift_gltf_validator_animation");
+  std::ofstream(dir.path() / "edits.txt") << "0 4 10 0 5 0\n";
+  const std::vector<std::vector<std::string>> cases = {
+      {(kGltf / "Fox" / "Fox.glb").string(), "--animation", "1", "--frames", "9", "--levels", "1", "--edits",
+       (dir.path() / "edits.txt").string(), "-o", (dir.path() / "fox_walk.glb").string()},
+      {(kGltf / "AnimatedMorphCube" / "AnimatedMorphCube.gltf").string(), "--cyclic", "--frames", "12", "--levels", "2",
+       "-o", (dir.path() / "cube_loop.gltf").string()}};
+  for (const auto& args : cases) {
+    SCOPED_TRACE(args.back());
+    std::vector<std::string> argv{SUBLIFT_CLI, "animation"};
+    argv.insert(argv.end(), args.begin(), args.end());
+    const sublift::testing::ProcessResult r = sublift::testing::run_process(argv, 120);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    int code = -1;
+    const nlohmann::json report = validate(args.back(), &code);
+    EXPECT_EQ(code, 0) << report.dump();
+    EXPECT_EQ(report.value("errors", -1), 0) << report.dump(2);
+  }
+}
+
 TEST_F(GltfValidator, TheValidatorReportsABrokenFile) {
   // The check above is only as good as the script: a known-invalid model must fail it.
   const fs::path bad = kGltf / "invalid" / "IndexOutOfRange.gltf";

@@ -1,0 +1,86 @@
+#include "core/anim/animation_open.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "core/base/errors.h"
+#include "core/base/file_io.h"
+#include "core/complex/complex_build.h"
+#include "core/io/model/animation.h"
+
+namespace sublift {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+bool is_gltf(const std::string& path) {
+  const std::string ext = file_extension(path);
+  return ext == "gltf" || ext == "glb";
+}
+
+}  // namespace
+
+std::string valid_frame_counts(int frames, int levels, bool cyclic) {
+  const int step = 1 << levels, extra = cyclic ? 0 : 1, least = cyclic ? 3 : 1;
+  const int k = (frames - extra) / step;
+  if (k < least) return std::to_string(least * step + extra);
+  const int below = k * step + extra;
+  if (below == frames) return std::to_string(below);
+  return std::to_string(below) + " or " + std::to_string(below + step);
+}
+
+OpenedAnimation open_animation(std::span<const std::string> inputs, const AnimationOptions& options) {
+  if (inputs.empty()) throw Error("no animation to open");
+  const bool gltf = inputs.size() == 1 && is_gltf(inputs[0]);
+  if (inputs.size() == 1 && !gltf)
+    throw InputError(inputs[0], 0, "one file is an animation only as glTF; a sequence needs two or more OBJ/PLY/OFF files");
+  const int levels = options.levels;
+  const char* kind = options.cyclic ? "a cyclic" : "an open";
+  const std::string rule = options.cyclic ? "2^J K frames with K >= 3" : "2^J K + 1 frames with K >= 1";
+  auto t = std::chrono::steady_clock::now();
+  OpenedAnimation a;
+  a.source = inputs[0];
+  FrameSet set;
+  if (gltf) {
+    const int frames = options.frames > 0 ? options.frames : space_time_frames(4, levels, options.cyclic);
+    if (!space_time_base_steps(frames, levels, options.cyclic))
+      throw InputError(inputs[0], 0, std::to_string(frames) + " frames do not fit " + std::to_string(levels) + " levels: " + kind +
+                                         " animation takes " + rule + " (try " + valid_frame_counts(frames, levels, options.cyclic) + ")");
+    set = sample_gltf_animation(inputs[0], options.animation, frames, options.cyclic);
+  } else {
+    const int frames = int(inputs.size());
+    if (options.frames > 0 && options.frames != frames)
+      throw InputError(inputs[0], 0, "--frames " + std::to_string(options.frames) + " but " + std::to_string(frames) + " files were given");
+    if (!space_time_base_steps(frames, levels, options.cyclic))
+      throw InputError(inputs[0], 0, std::to_string(frames) + " files do not fit " + std::to_string(levels) + " levels: " + kind +
+                                         " animation takes " + rule + " (give " + valid_frame_counts(frames, levels, options.cyclic) +
+                                         " files, or other --levels)");
+    set = read_frame_sequence(inputs, options.fps);
+  }
+  a.load_ms = ms_since(t);
+  a.notes = set.notes;
+  a.times = set.times;
+  const int n = int(set.num_frames());
+  if (options.cyclic) a.loop_end = n > 1 ? set.times[std::size_t(n) - 1] + (set.times[1] - set.times[0]) : set.times[0] + 1;
+  t = std::chrono::steady_clock::now();
+  Complex surface;
+  try {
+    surface = complex_from_polygons(set.num_vertices, set.faces);
+  } catch (const TopologyError& e) {
+    throw InputError(a.source, 0, std::string("the animated mesh is not a surface Sublift can sweep: ") + e.what());
+  }
+  a.st = make_space_time(surface, *space_time_base_steps(n, levels, options.cyclic), options.cyclic, levels, options.scheme);
+  a.build_ms = ms_since(t);
+  t = std::chrono::steady_clock::now();
+  a.frames = std::move(set.positions);
+  a.fit = fit_frames(a.st, a.frames);
+  a.fit_ms = ms_since(t);
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (std::size_t i = 0; i < a.frames.size(); ++i) lo[i % 3] = std::min(lo[i % 3], a.frames[i]), hi[i % 3] = std::max(hi[i % 3], a.frames[i]);
+  a.diagonal = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  return a;
+}
+
+}  // namespace sublift

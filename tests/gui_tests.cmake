@@ -54,6 +54,19 @@ target_compile_definitions(modeler_controller_test PRIVATE SUBLIFT_ASSETS_DIR="$
   SUBLIFT_SHARED_DATA="${SUBLIFT_SHARED_DATA}")
 gtest_discover_tests(modeler_controller_test DISCOVERY_MODE PRE_TEST)
 
+# The modeler's animation mode (docs/animation.md) on ModelerState, without a window.
+add_executable(modeler_animation_test ${CMAKE_CURRENT_LIST_DIR}/modeler/modeler_animation_test.cpp)
+target_link_libraries(modeler_animation_test PRIVATE sublift_modeler GTest::gtest_main)
+gtest_discover_tests(modeler_animation_test DISCOVERY_MODE PRE_TEST)
+add_executable(modeler_animation_gui_test ${CMAKE_CURRENT_LIST_DIR}/modeler/modeler_animation_gui_test.cpp)
+target_link_libraries(modeler_animation_gui_test PRIVATE PkgConfig::STB GTest::gtest_main)
+target_compile_definitions(modeler_animation_gui_test PRIVATE
+  SUBLIFT_GUI_EXE="$<TARGET_FILE:sublift>"
+  SUBLIFT_SHARED_DATA="${SUBLIFT_SHARED_DATA}"
+  SUBLIFT_TEST_OUT_DIR="${CMAKE_CURRENT_BINARY_DIR}/modeler_animation_gui_out")
+add_dependencies(modeler_animation_gui_test sublift)
+gtest_discover_tests(modeler_animation_gui_test DISCOVERY_MODE PRE_TEST PROPERTIES TIMEOUT 120 LABELS gui)
+
 # The modeler's compression view (docs/compression.md): on the controller, and `sublift --script`
 # under Xvfb with screenshots (PNGs in modeler_compress_gui_out/).
 add_executable(modeler_compress_test ${CMAKE_CURRENT_LIST_DIR}/modeler/modeler_compress_test.cpp)

@@ -120,6 +120,14 @@ ModelerCommand map_modeler_key(Key key, const Modifiers& mods, TransformState& g
       if (alt) return {};
       if (shift) return command(ctrl ? ModelerCommandType::ToggleCorner : ModelerCommandType::ToggleCrease);
       return ctrl ? command(ModelerCommandType::Export) : ModelerCommand{};
+    case Key::Space:
+      return ctrl || shift || alt ? ModelerCommand{} : command(ModelerCommandType::PlayPause);
+    case Key::Left:
+      if (ctrl || alt) return {};
+      return command(shift ? ModelerCommandType::FrameFirst : ModelerCommandType::FramePrev);
+    case Key::Right:
+      if (ctrl || alt) return {};
+      return command(shift ? ModelerCommandType::FrameLast : ModelerCommandType::FrameNext);
     case Key::G:
     case Key::R:
       if (ctrl || shift || alt || !has_selection) return {};
@@ -210,6 +218,7 @@ const std::vector<KeyBinding>& modeler_key_bindings() {
       {"Ctrl+D", "Subdivide once more"},
       {"Ctrl+Z / Ctrl+Shift+Z, Y", "Undo / redo"},
       {"Ctrl+S / O / E", "Save / open / export"},
+      {"Space, Left / Right, Shift+Left / Right", "Animation: play / pause, a frame back / on, first / last"},
   };
   return bindings;
 }

@@ -40,6 +40,11 @@ enum class ModelerCommandType {
   TransformConfirm,   // Enter, left click
   TransformCancel,    // Esc, right click
   CursorToSelected,   // Shift+S: the 3-D cursor to the selection's median
+  PlayPause,     // Space: play / pause an animation (Blender)
+  FramePrev,     // Left: the previous frame
+  FrameNext,     // Right: the next frame
+  FrameFirst,    // Shift+Left: the first frame
+  FrameLast,     // Shift+Right: the last frame
 };
 
 struct ModelerCommand {

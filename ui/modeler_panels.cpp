@@ -4,6 +4,8 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 #include <cstdio>
 #include <vector>
 
@@ -488,6 +490,75 @@ void draw_ffd_section(const ModelerPanelData& d, FileFields& f, ModelerPanelRequ
   }
 }
 
+// Animation (docs/animation.md): an animation as a space-time lattice; the frame shown, playback
+// (Space), ghosts of the frames around it, export of every frame.
+void draw_animation_section(const ModelerPanelData& d, FileFields& f, ModelerPanelRequests& r) {
+  const AnimationPanelData& a = d.animation;
+  if (!section("Animation", a.on)) return;
+  const float button = 70.0f;
+  ImGui::SetNextItemWidth(-button - ImGui::GetStyle().ItemSpacing.x);
+  const bool enter = ImGui::InputTextWithHint("##animation", "anim.glb | frame0.obj frame1.obj ...", &f.animation_paths,
+                                              ImGuiInputTextFlags_EnterReturnsTrue);
+  ImGui::SameLine();
+  if ((ImGui::Button("Open##animation", ImVec2(button, 0)) || enter) && !f.animation_paths.empty()) {
+    AnimationOpenRequest q;
+    std::istringstream words(f.animation_paths);
+    for (std::string w; words >> w;) q.paths.push_back(w);
+    q.frames = f.animation_frames;
+    q.levels = f.animation_levels;
+    q.clip = f.animation_clip;
+    q.cyclic = f.animation_cyclic;
+    r.animation_open = q;
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("a glTF animation (morph targets, skin or nodes) or two or more OBJ/PLY/OFF frames");
+  ImGui::SetNextItemWidth(90.0f);
+  ImGui::InputInt("frames", &f.animation_frames, 8, 32);
+  f.animation_frames = std::max(0, f.animation_frames);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("glTF samples: 2^J K + 1 (open) or 2^J K (cyclic); 0: K = 4");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(70.0f);
+  ImGui::SliderInt("levels##animation", &f.animation_levels, 1, 4);
+  ImGui::SetNextItemWidth(90.0f);
+  ImGui::InputInt("clip", &f.animation_clip);
+  f.animation_clip = std::max(0, f.animation_clip);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the glTF animation's index");
+  ImGui::SameLine();
+  ImGui::Checkbox("cyclic (a loop)", &f.animation_cyclic);
+  if (!a.on) return;
+  ImGui::Separator();
+  ImGui::Text("%d frames, %d base steps, %d levels%s", a.frames, a.base_steps, a.levels, a.cyclic ? ", cyclic" : "");
+  float frame = static_cast<float>(a.frame);
+  ImGui::SetNextItemWidth(-1.0f);
+  if (ImGui::SliderFloat("##frame", &frame, 0.0f, static_cast<float>(a.frames - (a.cyclic ? 0 : 1)), "frame %.2f"))
+    r.animation_frame = frame;
+  if (ImGui::Button("|<")) r.animation_frame = 0.0;
+  ImGui::SameLine();
+  if (ImGui::Button("<")) r.animation_frame = std::ceil(a.frame) - 1.0;
+  ImGui::SameLine();
+  if (ImGui::Button(a.playing ? "Pause" : "Play", ImVec2(60, 0))) r.animation_play = !a.playing;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Space");
+  ImGui::SameLine();
+  if (ImGui::Button(">")) r.animation_frame = std::floor(a.frame) + 1.0;
+  ImGui::SameLine();
+  if (ImGui::Button(">|")) r.animation_frame = a.frames - 1.0;
+  ImGui::SameLine();
+  ImGui::TextColored(kMuted, "%.3f s", a.time);
+  int ghosts = a.ghosts;
+  ImGui::SetNextItemWidth(120.0f);
+  if (ImGui::SliderInt("ghosts", &ghosts, 0, 8)) r.animation_ghosts = ghosts;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("wireframes of the frames around this one, at the edit level's layer spacing");
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextColored(kMuted, "Editing level %d on its layer %d (frame %d): a drag there spreads over the frames its time "
+                             "support covers, finer motion kept.",
+                     a.level, a.layer, a.layer_frame);
+  ImGui::PopTextWrapPos();
+  ImGui::SetNextItemWidth(-button - ImGui::GetStyle().ItemSpacing.x);
+  ImGui::InputTextWithHint("##animation_export", "out.glb | frames_####.obj", &f.animation_export_path);
+  ImGui::SameLine();
+  if (ImGui::Button("Export##animation", ImVec2(button, 0)) && !f.animation_export_path.empty())
+    r.animation_export = f.animation_export_path;
+}
+
 // Compression (docs/compression.md): a live preview of the shape from the largest fraction of
 // its wavelets, with what it costs; Apply makes it an undoable edit, Off shows the full shape.
 void draw_compression_section(const CompressionPanelData& c, ModelerPanelRequests& r) {
@@ -651,6 +722,7 @@ ModelerPanelRequests draw_modeler_panel(const ModelerPanelData& d, ModelerDispla
     draw_detail_section(d, r);
     draw_sculpt_section(d, r);
     draw_ffd_section(d, fields, r);
+    draw_animation_section(d, fields, r);
     draw_basis_section(d, r);
     draw_compression_section(d.compression, r);
     draw_history_section(d, r);

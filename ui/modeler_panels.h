@@ -72,6 +72,16 @@ struct FfdPanelData {
   std::size_t moved = 0;           // model vertices the last lattice operation recomputed
 };
 
+/// The Animation section (docs/animation.md): the time shown, playback, ghosts.
+struct AnimationPanelData {
+  bool on = false;
+  int frames = 0, base_steps = 0, levels = 0;
+  bool cyclic = false, playing = false;
+  double frame = 0, time = 0, fps = 24;
+  int ghosts = 0;
+  int level = 0, layer = 0, layer_frame = 0;  // the edit level's layer shown and its frame
+};
+
 /// The Compression section (docs/compression.md): the kept fraction and what it costs.
 struct CompressionPanelData {
   bool on = false;                    // the compressed shape is shown
@@ -125,6 +135,7 @@ struct ModelerPanelData {
   BasisPanelData basis;
   FfdPanelData ffd;
   CompressionPanelData compression;
+  AnimationPanelData animation;
 };
 
 /// Text fields the panel edits in place (paths typed by the user).
@@ -135,6 +146,17 @@ struct FileFields {
   std::string model_path, model_export_path;  // FFD
   int box[3] = {4, 4, 4};
   float box_margin = 0.05f;
+  // Animation: the files (one glTF, or OBJ/PLY/OFF frames separated by spaces) and options.
+  std::string animation_paths, animation_export_path;
+  int animation_frames = 0, animation_levels = 2, animation_clip = 0;
+  bool animation_cyclic = false;
+};
+
+/// An animation to open (the Animation section's Open).
+struct AnimationOpenRequest {
+  std::vector<std::string> paths;
+  int frames = 0, levels = 2, clip = -1;
+  bool cyclic = false;
 };
 
 /// What the user asked for this frame.
@@ -172,6 +194,12 @@ struct ModelerPanelRequests {
   // Compression: show the largest fraction of the wavelets, make it an edit, back to the full shape.
   std::optional<double> compress_fraction;
   bool compress_apply = false, compress_off = false;
+  // Animation: open, the frame shown, play or pause, ghost frames, export.
+  std::optional<AnimationOpenRequest> animation_open;
+  std::optional<double> animation_frame;
+  std::optional<bool> animation_play;
+  std::optional<int> animation_ghosts;
+  std::optional<std::string> animation_export;
   CameraAction camera;
 };
 

@@ -23,7 +23,7 @@ enum class Key {
   // Modeler keys (ui/modeler_keys.h); the camera mapping ignores them.
   A, D, G, R, X, Y, Z, S, O, E, L, C, I, K, T, P, Tab,
   NumpadPlus, NumpadMinus,
-  PageUp, PageDown, Escape, Enter, Backspace, Minus, Period,
+  PageUp, PageDown, Escape, Enter, Backspace, Minus, Period, Space, Left, Right,
   Digit0, Digit1, Digit2, Digit3, Digit4, Digit5, Digit6, Digit7, Digit8, Digit9,
 };
 

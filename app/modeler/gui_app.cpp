@@ -222,6 +222,9 @@ Key to_key(int k) {
     case GLFW_KEY_MINUS: return Key::Minus;
     case GLFW_KEY_KP_SUBTRACT: return Key::NumpadMinus;
     case GLFW_KEY_PERIOD: return Key::Period;
+    case GLFW_KEY_SPACE: return Key::Space;
+    case GLFW_KEY_LEFT: return Key::Left;
+    case GLFW_KEY_RIGHT: return Key::Right;
     default: return Key::None;
   }
 }
@@ -302,6 +305,8 @@ int run_window(WindowContext& window, ModelerController& app, RunPlan& plan) {
   while (true) {
     if (plan.bounded()) {
       glfwPollEvents();
+    } else if (app.playing()) {
+      glfwPollEvents();  // playback: a frame each swap
     } else if (glfwGetTime() - input.last_activity < kAwakeSeconds || app.model.dragging()) {
       glfwWaitEventsTimeout(0.1);
     } else {

@@ -181,6 +181,17 @@ void ModelerController::proceed(const Pending& p) {
 }
 
 void ModelerController::tick(double now) {
+  // Playback of an animation: the frame follows the clock.
+  const double since = last_tick_ < 0.0 ? 0.0 : now - last_tick_;
+  last_tick_ = now;
+  if (playing()) {
+    try {
+      model.advance(std::min(since, 0.25));  // a stall does not skip half the animation
+    } catch (const std::exception& e) {
+      model.set_playing(false);
+      fail(e, "Playback: ");
+    }
+  }
   if (!interactive_ || !model.has_session()) return;
   if (last_autosave_ < 0.0) last_autosave_ = now;
   const bool busy = model.dragging() || grab_.active || gain_active_ || press_ != Press::None;
@@ -217,7 +228,9 @@ PickView ModelerController::pick_view() const {
 
 const PickIndex& ModelerController::pick_index() {
   const PickView v = pick_view();
-  if (pick_dirty_ || v.view_proj != pick_matrix_ || clip_now_ != pick_clip_ || display.xray != pick_xray_) {
+  const long long layer = model.animation() ? model.animation()->layer : -1;  // an animation's frame moved the net
+  if (pick_dirty_ || v.view_proj != pick_matrix_ || clip_now_ != pick_clip_ || display.xray != pick_xray_ || layer != pick_layer_) {
+    pick_layer_ = layer;
     // Points the clipping plane removed from view cannot be picked either.
     const auto xyz = model.net_positions();  // as drawn (compressed while that view is on)
     pick_visible_.clear();
@@ -226,6 +239,11 @@ const PickIndex& ModelerController::pick_index() {
       for (std::size_t i = 0; i < pick_visible_.size(); ++i)
         pick_visible_[i] = clip_now_.x * xyz[3 * i] + clip_now_.y * xyz[3 * i + 1] + clip_now_.z * xyz[3 * i + 2] +
                                clip_now_.w >= 0.0;
+    }
+    // An animation: only the layer shown (the level's other layers are other times).
+    if (const auto mask = model.net_pick_mask(); mask.size() == xyz.size() / 3) {
+      if (pick_visible_.empty()) pick_visible_.assign(mask.begin(), mask.end());
+      else for (std::size_t i = 0; i < mask.size(); ++i) pick_visible_[i] = pick_visible_[i] && mask[i];
     }
     std::vector<float> depth;
     if (!display.xray && depth_source_) depth = depth_source_(camera, v.width, v.height, display);
@@ -481,6 +499,22 @@ void ModelerController::run_command(ModelerCommandType type) {
       case ModelerCommandType::LevelUp: model.set_level(model.level() + 1); break;
       case ModelerCommandType::LevelDown: model.set_level(model.level() - 1); break;
       case ModelerCommandType::Subdivide: model.subdivide(); break;
+      case ModelerCommandType::PlayPause:
+        if (model.animation()) model.set_playing(!model.animation()->playing);
+        break;
+      case ModelerCommandType::FramePrev:
+      case ModelerCommandType::FrameNext:
+      case ModelerCommandType::FrameFirst:
+      case ModelerCommandType::FrameLast:
+        if (const AnimationViewState* a = model.animation()) {  // Blender's arrows: a frame, Shift: an end
+          model.set_playing(false);
+          const double f = type == ModelerCommandType::FramePrev   ? std::ceil(a->frame) - 1.0
+                           : type == ModelerCommandType::FrameNext  ? std::floor(a->frame) + 1.0
+                           : type == ModelerCommandType::FrameFirst ? 0.0
+                                                                    : a->frames() - 1.0;
+          model.set_frame(f);
+        }
+        break;
       case ModelerCommandType::Undo: model.undo(); break;
       case ModelerCommandType::Redo: model.redo(); break;
       case ModelerCommandType::Save: save(default_save_path()); break;
@@ -866,6 +900,32 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
   } catch (const std::exception& e) {
     fail(e, "Compression: ");
   }
+  try {
+    if (r.animation_open) {
+      AnimationOptions o;
+      o.frames = r.animation_open->frames;
+      o.levels = r.animation_open->levels;
+      o.animation = r.animation_open->clip;
+      o.cyclic = r.animation_open->cyclic;
+      model.open_animation(r.animation_open->paths, o);
+      const AnimationViewState& a = *model.animation();
+      error.clear();
+      message = "Opened the animation " + r.animation_open->paths.front() + ": " + std::to_string(a.frames()) +
+                " frames as a space-time lattice (Space plays, Left/Right step a frame)";
+      pick_dirty_ = stats_dirty_ = true;
+      framed = false;
+    }
+    if (r.animation_frame) model.set_frame(*r.animation_frame);
+    if (r.animation_play) model.set_playing(*r.animation_play);
+    if (r.animation_ghosts) model.set_ghosts(*r.animation_ghosts);
+    if (r.animation_export) {
+      const std::vector<std::string> files = model.export_animation(*r.animation_export);
+      error.clear();
+      message = "Exported the animation: " + files.front() + (files.size() > 1 ? " .. " + files.back() : std::string());
+    }
+  } catch (const std::exception& e) {
+    fail(e, "Animation: ");
+  }
   if (r.open) open(*r.open);
   if (r.load_model) load_model(*r.load_model);
   if (r.export_model) {
@@ -1040,6 +1100,22 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     fill_compression_data(d.compression);
   }
   fill_ffd_data(d.ffd);
+  if (const AnimationViewState* a = model.has_session() ? model.animation() : nullptr) {
+    AnimationPanelData& p = d.animation;
+    p.on = true;
+    p.frames = a->frames();
+    p.base_steps = a->anim.st.base_steps;
+    p.levels = a->anim.st.levels();
+    p.cyclic = a->anim.st.cyclic;
+    p.playing = a->playing;
+    p.frame = a->frame;
+    p.fps = a->fps();
+    p.time = (a->anim.times.empty() ? 0.0 : a->anim.times.front()) + a->frame / p.fps;
+    p.ghosts = a->ghosts;
+    p.level = model.level();
+    p.layer = a->layer;
+    p.layer_frame = a->layer_frame(model.level(), a->layer);
+  }
   d.error = error;
   d.message = message;
   d.frame_ms = frame_ms;
@@ -1050,9 +1126,17 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
   std::snprintf(right, sizeof right, "resynthesis %.2f ms   frame %.2f ms", d.resynthesis_ms, frame_ms);
   std::string left = d.file_name + "   level " + std::to_string(d.level) + "/" + std::to_string(d.finest);
   if (model.has_session()) {
-    left += "   " + std::to_string(model.session().num_vertices(d.level)) + " control points   " +
-            std::to_string(model.limit_positions().size() / 3) + " limit vertices   " +
-            std::to_string(d.selected) + " selected";
+    if (const AnimationViewState* a = model.animation()) {  // one time: the layer's points, the frame's surface
+      char frame[32];
+      std::snprintf(frame, sizeof frame, "%.2f", a->frame);
+      left += "   frame " + std::string(frame) + "/" + std::to_string(a->frames() - 1) + "   " +
+              std::to_string(a->anim.st.surface_vertices(d.level)) + " control points   " +
+              std::to_string(model.limit_positions().size() / 3) + " surface vertices   " + std::to_string(d.selected) + " selected";
+    } else {
+      left += "   " + std::to_string(model.session().num_vertices(d.level)) + " control points   " +
+              std::to_string(model.limit_positions().size() / 3) + " limit vertices   " +
+              std::to_string(d.selected) + " selected";
+    }
     if (d.soft_radius > 0.0) {
       char soft[48];
       std::snprintf(soft, sizeof soft, "   soft %.3g", d.soft_radius);

@@ -71,6 +71,8 @@ class ModelerController {
   bool quit_confirmed() const { return quit_confirmed_; }
   /// Autosave when due; `now` in seconds.
   void tick(double now);
+  /// An animation is playing (the window then draws continuously).
+  bool playing() const { return model.has_session() && model.animation() && model.animation()->playing; }
   /// Removes the recovery file (clean exit).
   void clean_exit();
   /// Offers to recover an autosave left by a crash (interactive runs only).
@@ -162,6 +164,8 @@ class ModelerController {
   glm::dvec3 grab_anchor_{0.0};
   bool gain_active_ = false;
   PickIndex pick_;
+  long long pick_layer_ = -1;
+  double last_tick_ = -1.0;  // tick()'s last clock, for playback  // the animation layer the index was built for (-1: none)
   bool pick_dirty_ = true;
   glm::dmat4 pick_matrix_{0.0};
   glm::vec4 pick_clip_{0.0f};  // the clipping plane the pick index was built with; 0 = none

@@ -3,7 +3,9 @@
 # (only ui/'s plain-data headers), so it is built in every configuration: the sanitizer build
 # runs the modeler soak test and fuzzes modeler scripts through it (docs/fuzzing.md).
 add_library(sublift_modeler_state STATIC
+  ${CMAKE_CURRENT_LIST_DIR}/animation_view_state.cpp
   ${CMAKE_CURRENT_LIST_DIR}/basis_view_state.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/modeler_animation.cpp
   ${CMAKE_CURRENT_LIST_DIR}/modeler_state.cpp
   ${CMAKE_CURRENT_LIST_DIR}/modeler_tools.cpp
   ${CMAKE_CURRENT_LIST_DIR}/script_runner.cpp

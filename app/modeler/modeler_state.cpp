@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <numeric>
 #include <sstream>
 
 #include "core/analysis/wavelet_colour.h"
@@ -109,6 +110,7 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   warnings_ = std::move(warnings);
   clear_pin();  // a new model: the comparison belonged to the old one
   view_level_ = -1;
+  anim_.reset();  // a file of its own: the animation mode ends
   install_new_model(std::move(session));
   rebuild_offer_ = std::move(offer);
   input_order_ = std::move(order);
@@ -290,6 +292,7 @@ int ModelerState::shown_level() const {
 }
 
 void ModelerState::set_view_level(int level) {
+  if (level != -1) check_not_animation("a coarser viewport level");
   if (level < -1 || level > session_->finest_level())
     throw Error("viewport level " + std::to_string(level) + " is outside 0.." + std::to_string(session_->finest_level()) +
                 " (or -1: the finest)");
@@ -304,6 +307,7 @@ void ModelerState::set_view_level(int level) {
 }
 
 void ModelerState::rebuild_limit() {
+  if (anim_) return rebuild_animation_view();
   const Hierarchy& full = session_->hierarchy();
   const int V = shown_level();
   // A coarser viewport level: the limit of the hierarchy cut at V (its stencils are V's).
@@ -342,7 +346,11 @@ void ModelerState::after_operation() {
   }
   const int J = shown_level();  // the level whose limit is drawn
   const auto changed_fine = s.changed(J);
-  if (!changed_fine.empty()) {
+  if (anim_ && !changed_fine.empty()) {  // the frame shown: recomputed whole (one layer)
+    rebuild_animation_view();
+    update_.surface.resize(limit_.size() / 3);
+    std::iota(update_.surface.begin(), update_.surface.end(), 0u);
+  } else if (!changed_fine.empty()) {
     std::vector<std::uint32_t> moved;
     eval_limit_subset(stencils_, s.positions(J).data(), changed_fine, limit_.data(), moved);
     if (faces_.rows() > 0 && !moved.empty()) {
@@ -389,6 +397,7 @@ void ModelerState::refresh_basis() {
 }
 
 void ModelerState::set_scheme(Scheme scheme) {
+  check_not_animation("changing the scheme");
   ffd_check_free("changing the scheme");
   check_unlocked("changing the scheme");
   const Scheme from = session_->hierarchy().scheme;
@@ -421,11 +430,13 @@ void ModelerState::set_level(int level) {
   selection_.clear();
   active_ = -1;
   hover_ = -1;
+  if (anim_) rebuild_animation_view();  // that level's layer nearest the frame, its ghosts
   update_.topology = true;  // the function keeps its own level
   refresh_state();
 }
 
 void ModelerState::subdivide() {
+  check_not_animation("subdividing");
   ffd_check_free("subdividing the lattice");
   check_unlocked("subdividing");
   session_->subdivide();
@@ -499,7 +510,7 @@ void ModelerState::begin_drag(const std::string& label) {
   check_unlocked("moving control points");
   if (dragging_) end_drag();
   drag_undo_position_ = session_->undo_position();
-  drag_weights_ = soft_selection(session_->positions(level_), selection_, soft_radius_);
+  drag_weights_ = selection_weights();
   drag_total_[0] = drag_total_[1] = drag_total_[2] = 0.0;
   session_->begin_edit(label);
   dragging_ = true;
@@ -553,6 +564,7 @@ void ModelerState::select_all() {
   std::vector<unsigned> all(session_->num_vertices(level_));
   for (unsigned i = 0; i < all.size(); ++i) all[i] = i;
   selection_ = std::move(all);
+  clamp_selection();  // an animation's shown layer only
   refresh_state();
 }
 
@@ -571,19 +583,24 @@ double ModelerState::default_soft_radius() const { return 0.05 * model_size_; }
 
 void ModelerState::clamp_selection() {
   const unsigned n = session_->num_vertices(level_);
-  selection_.erase(std::remove_if(selection_.begin(), selection_.end(), [n](unsigned v) { return v >= n; }),
+  const std::vector<std::uint8_t>* shown = anim_ && anim_->on_layer.size() == n ? &anim_->on_layer : nullptr;
+  selection_.erase(std::remove_if(selection_.begin(), selection_.end(),
+                                  [&](unsigned v) { return v >= n || (shown && !(*shown)[v]); }),
                    selection_.end());
-  if (hover_ >= static_cast<long long>(n)) hover_ = -1;
+  if (hover_ >= static_cast<long long>(n) || (shown && hover_ >= 0 && !(*shown)[std::size_t(hover_)])) hover_ = -1;
 }
 
 void ModelerState::refresh_state() {
   const std::size_t n = session_->num_vertices(level_);
   net_soft_.assign(n, 0.0f);
   if (soft_radius_ > 0.0 && !selection_.empty()) {
-    const SoftWeights w = soft_selection(session_->positions(level_), selection_, soft_radius_);
+    const SoftWeights w = selection_weights();
     for (std::size_t k = 0; k < w.vertices.size(); ++k) net_soft_[w.vertices[k]] = static_cast<float>(w.weights[k]);
   }
   net_state_.assign(n, 0);
+  if (anim_)  // the level's other layers: other times, hidden
+    for (std::size_t v = 0; v < n && v < anim_->on_layer.size(); ++v)
+      if (!anim_->on_layer[v]) net_state_[v] = 3;
   flagged_.clear();
   refresh_flags();
 }
@@ -613,6 +630,15 @@ void ModelerState::refresh_colour() {
   colour_.clear();
   if (colour_level_ < 0) return;
   colour_ = wavelet_magnitude_field(session_->hierarchy(), session_->gains(), colour_level_);  // core/analysis/wavelet_colour.h
+  if (anim_) {  // the lattice's field on the finest layer nearest the frame shown
+    const SpaceTime& st = anim_->anim.st;
+    const int J = st.levels(), t = nearest_layer(st, J, anim_->frame);
+    const std::uint32_t nvs = st.surface_vertices(J);
+    std::vector<float> layer(nvs);
+    for (std::uint32_t p = 0; p < nvs; ++p) layer[p] = colour_[st.layer_vertices[std::size_t(J)][std::size_t(t) * nvs + p]];
+    colour_ = std::move(layer);
+    return;
+  }
   colour_.resize(session_->num_vertices(shown_level()));  // level V's vertices come first at every finer level
 }
 
@@ -628,6 +654,9 @@ ProjectExtras ModelerState::project_extras() const {
 }
 
 void ModelerState::save_project(const std::string& path) {
+  if (anim_)
+    throw Error("an animation is not saved as a project yet: export it (.gltf/.glb morph targets, or .obj/.ply frames) with "
+                "'Export animation'");
   write_project(path, session_->hierarchy(), project_extras());
   session_->mark_saved();
   project_path_ = path;
@@ -636,6 +665,10 @@ void ModelerState::save_project(const std::string& path) {
 void ModelerState::write_recovery(const std::string& path) const { write_project(path, session_->hierarchy(), project_extras()); }
 
 std::vector<std::string> ModelerState::export_shape(const std::string& path, bool finest) {
+  if (anim_) {  // the frame shown, as drawn
+    write_surface_with_normals(path, faces_, limit_, normals_);
+    return {"the frame shown (" + std::to_string(anim_->frame) + "); 'Export animation' writes every frame"};
+  }
   return export_level(path, finest ? -1 : level_);
 }
 
@@ -699,10 +732,12 @@ std::vector<LevelStats> ModelerState::level_rows() const {
 }
 
 const std::vector<std::uint32_t>& ModelerState::net_edges() const {
+  if (anim_) return anim_->net_edges;
   return session_->hierarchy().levels[static_cast<std::size_t>(level_)].edge_verts;
 }
 
 std::vector<std::uint8_t> ModelerState::net_edge_features() const {
+  if (anim_) return {};
   const Complex& c = session_->hierarchy().levels[static_cast<std::size_t>(level_)];
   std::vector<std::uint8_t> f(c.num_edges(), 0);
   if (c.edge_dim.size() != f.size()) return f;
@@ -711,6 +746,7 @@ std::vector<std::uint8_t> ModelerState::net_edge_features() const {
 }
 
 std::vector<std::uint8_t> ModelerState::net_vertex_features() const {
+  if (anim_) return {};
   const Complex& c = session_->hierarchy().levels[static_cast<std::size_t>(level_)];
   std::vector<std::uint8_t> f(c.num_vertices, 0);
   if (c.vertex_dim.size() != f.size()) return f;
@@ -729,6 +765,7 @@ void ModelerState::set_basis(const BasisSettings& settings_in) {
     basis_off();
     return;
   }
+  check_not_animation("the basis mode");
   if (shown_level() != session_->finest_level())
     throw Error("the basis mode shows the finest level: set the viewport level to the finest first");
   BasisSettings settings = settings_in;
@@ -799,6 +836,7 @@ void ModelerState::ffd_follow() {
 }
 
 void ModelerState::load_model(const std::string& path) {
+  check_not_animation("free-form deformation");
   const bool lattice = session_ && session_->dim() == 3;
   if (session_ && !lattice && session_->dirty()) {
     throw Error("the open " + std::string(session_->dim() == 2 ? "surface" : "curve") +
@@ -900,6 +938,7 @@ void ModelerState::refresh_compression_net() {
 
 void ModelerState::set_compression(double fraction) {
   if (!session_) throw Error("compression: no model is open");
+  check_not_animation("the compression view (sublift-cli animation --keep compresses an animation)");
   if (shown_level() != session_->finest_level())
     throw Error("the compression view shows the finest level: set the viewport level to the finest first");
   if (!(fraction >= 0.0 && fraction <= 1.0)) throw Error("compression: the kept fraction must be in 0..1");

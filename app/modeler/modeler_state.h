@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "app/modeler/animation_view_state.h"
 #include "app/modeler/basis_view_state.h"
 #include "app/modeler/ffd_view_state.h"
 #include "core/analysis/compress.h"
@@ -45,6 +46,7 @@ struct ViewUpdate {
   bool model_topology = false;         // FFD: a model was loaded or removed
   bool model = false;                  // FFD: the model's positions and normals changed
   bool fit_preview = false;            // the base a fit would start from, shown or cleared
+  bool ghosts = false;                 // animation: the ghost frames changed
 };
 
 /// The compression view's numbers (docs/compression.md).
@@ -362,6 +364,27 @@ class ModelerState {
   void export_model(const std::string& path) const;
   const FfdModelState* ffd() const { return ffd_.get(); }
 
+  // ---- animation (issue 22, app/modeler/animation_view_state.h) ------------------------------
+  /// Opens an animation (one glTF, or two or more OBJ/PLY/OFF frames) as a space-time lattice and
+  /// shows it at frame 0, edit level 0. Throws Error; on failure the current session stays.
+  void open_animation(std::span<const std::string> inputs, const AnimationOptions& options);
+  bool animation_on() const { return anim_ != nullptr; }
+  const AnimationViewState* animation() const { return anim_.get(); }
+  /// Shows finest frame `frame` (clamped; cyclic: wrapped): the surface there and the edit
+  /// level's nearest layer as the net (the selection is cleared when that layer changes).
+  void set_frame(double frame);
+  /// Ghost frames either side of the current one (0..8).
+  void set_ghosts(int count);
+  void set_playing(bool on);
+  /// Playback: moves the frame on by `seconds` at the animation's frame rate (a cyclic one
+  /// wraps, an open one stops at its last frame).
+  void advance(double seconds);
+  /// Writes the animation's frames (the finest level): .gltf/.glb morph targets, or .obj/.ply
+  /// one file per frame. Returns the files written.
+  std::vector<std::string> export_animation(const std::string& path) const;
+  /// Animation: 1 for the edit level's points that may be picked (the layer shown); else empty.
+  std::span<const std::uint8_t> net_pick_mask() const;
+
   /// Accumulated changes since the last call, for the GPU buffers.
   ViewUpdate take_view_update();
 
@@ -394,8 +417,13 @@ class ModelerState {
   void refresh_flags();   // the per-vertex state only (hover changes)
   void refresh_colour();
   void clamp_selection();
+  /// Soft selection of the edit level (the animation's layer only).
+  SoftWeights selection_weights() const;
+  void check_not_animation(const char* what) const;  // throws Error in the animation mode
+  void rebuild_animation_view();                     // limit, faces, normals, layer, ghosts
 
   std::unique_ptr<Session> session_;
+  std::unique_ptr<AnimationViewState> anim_;
   RebuildOffer rebuild_offer_;
   std::optional<FitPreview> fit_preview_;
   std::uint32_t file_vertices_ = 0;

@@ -17,6 +17,7 @@
 namespace sublift {
 
 std::string ModelerState::delete_higher_levels() {
+  check_not_animation("deleting levels");
   ffd_check_free("deleting levels");
   check_unlocked("deleting levels");
   if (dragging_) end_drag();
@@ -40,6 +41,7 @@ std::string ModelerState::delete_higher_levels() {
 }
 
 std::string ModelerState::delete_lower_levels() {
+  check_not_animation("deleting levels");
   ffd_check_free("deleting levels");
   check_unlocked("deleting levels");
   if (dragging_) end_drag();
@@ -128,6 +130,7 @@ void ModelerState::replace_session(std::unique_ptr<Session> next) {
 }
 
 std::string ModelerState::toggle_creases(std::optional<bool> on) {
+  check_not_animation("marking creases");
   ffd_check_free("marking creases");
   check_unlocked("marking creases");
   if (level_ != 0) throw Error("creases are a property of the base: mark them on level 0 (Shift+D goes coarser)");
@@ -153,6 +156,7 @@ void ModelerState::install_features(const FeatureTags& tags) {
 }
 
 std::string ModelerState::toggle_corners(std::optional<bool> on) {
+  check_not_animation("marking corners");
   ffd_check_free("marking corners");
   check_unlocked("marking corners");
   if (level_ != 0) throw Error("corners are a property of the base: mark them on level 0 (Shift+D goes coarser)");
@@ -203,6 +207,7 @@ void ModelerState::set_brush(const BrushSettings& b) {
 }
 
 void ModelerState::begin_stroke() {
+  check_not_animation("sculpting");
   begin_drag(std::string("Brush ") + brush_name(brush_.kind));
   if (brush_needs_normals(brush_.kind) && dim() != 2) {
     cancel_drag();
@@ -239,6 +244,7 @@ bool ModelerState::surface_hit(const glm::dvec3& origin, const glm::dvec3& dir, 
 
 std::string ModelerState::set_symmetry(int axis, bool on) {
   if (axis < 0 || axis > 2) throw Error("the mirror axis must be x, y or z");
+  if (on) check_not_animation("mirror editing");
   symmetry_[static_cast<std::size_t>(axis)] = on;
   return on && session_ ? mirror_map(axis).problem() : std::string();
 }

@@ -115,6 +115,14 @@ void ModelerView::sync(ModelerState& state) {
       fit_preview_.set_positions(p->positions);
     }
   }
+  if (u.ghosts || u.topology) {
+    const AnimationViewState* a = state.animation();
+    ghosts_on_ = a != nullptr && !a->ghost_edges.empty();
+    if (ghosts_on_) {
+      ghosts_.set_topology(a->ghost_edges, {}, {}, a->ghost_positions.size() / 3);
+      ghosts_.set_positions(a->ghost_positions);
+    }
+  }
   if (u.scalar && has_surface_) {
     colour_map_ = !state.colour_values().empty();
     surface_.set_scalar(state.colour_values());
@@ -218,6 +226,14 @@ void ModelerView::draw(const OrbitCamera& camera, const ViewportRect& rect, cons
     style.clip_plane = plane;
     style.colors.edge = glm::vec4(0.95f, 0.15f, 0.45f, 1.0f);
     basis_support_.draw(camera, style);
+  }
+  if (ghosts_on_) {  // the frames around the current one, faint and behind nothing
+    NetStyle style;
+    style.points = false;
+    style.clip = d.clip;
+    style.clip_plane = plane;
+    style.colors.edge = glm::vec4(0.25f, 0.45f, 0.85f, 0.35f);
+    ghosts_.draw(camera, style);
   }
   if (fit_preview_on_) {  // the base a fit would start from, over the mesh and through it
     NetStyle style;

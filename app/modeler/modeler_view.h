@@ -63,6 +63,9 @@ class ModelerView {
   // The base a fit would start from (docs/fit.md), drawn over the mesh.
   NetRenderer fit_preview_;
   bool fit_preview_on_ = false;
+  // An animation's ghost frames around the current one, as faint wireframes.
+  NetRenderer ghosts_;
+  bool ghosts_on_ = false;
 };
 
 }  // namespace sublift

@@ -96,6 +96,42 @@ void ffd(const Call& c) {
   c.step.reframe = true;
 }
 
+// animation open [cyclic] [levels J] [frames N] [clip A] [fps F] PATH... (paths without spaces;
+// one glTF or two or more OBJ/PLY/OFF frames) | frame F | ghosts N | play | pause | export PATH
+void animation(const Call& c) {
+  const std::vector<std::string>& w = c.w;
+  ModelerState& state = c.state;
+  if (w[1] == "open") {
+    AnimationOptions o;
+    std::vector<std::string> paths;
+    for (std::size_t i = 2; i < w.size(); ++i) {
+      const std::string& k = w[i];
+      const bool has_value = i + 1 < w.size();
+      if (k == "cyclic") o.cyclic = true;
+      else if (k == "levels" && has_value) o.levels = int(integer(w[++i], "J"));
+      else if (k == "frames" && has_value) o.frames = int(integer(w[++i], "N"));
+      else if (k == "clip" && has_value) o.animation = int(integer(w[++i], "A"));
+      else if (k == "fps" && has_value) o.fps = number(w[++i], "F");
+      else paths.push_back(k);
+    }
+    if (paths.empty()) c.usage_error();
+    if (o.levels < 1 || o.levels > 6) throw ScriptError("levels must be 1..6");
+    state.open_animation(paths, o);
+    c.step.reframe = true;
+    return;
+  }
+  if (!state.has_session()) throw ScriptError("no animation is open ('animation open PATH...')");
+  if (w[1] == "frame" && w.size() == 3) return state.set_frame(number(w[2], "F"));
+  if (w[1] == "ghosts" && w.size() == 3) return state.set_ghosts(int(integer(w[2], "N")));
+  if (w[1] == "play" && w.size() == 2) return state.set_playing(true);
+  if (w[1] == "pause" && w.size() == 2) return state.set_playing(false);
+  if (w[1] == "export" && w.size() >= 3) {
+    state.export_animation(c.raw.substr(c.raw.find("export") + 7));
+    return;
+  }
+  c.usage_error();
+}
+
 void colour(const Call& c) {
   if (c.w[1] == "off") return c.state.set_colour_level(-1);
   const long long l = integer(c.w[1], "LEVEL");
@@ -214,6 +250,10 @@ constexpr Command kCommands[] = {
     {"open", kPath, 0, "open PATH", [](const Call& c) { c.state.open(c.raw); c.step.reframe = true; }, false},
     {"model", kPath, 0, "model PATH", [](const Call& c) { c.state.load_model(c.raw); c.step.reframe = true; }, false},
     {"ffd", 1, kMany, "ffd box NX NY NZ [MARGIN] | ffd bind [nearest] | ffd unbind | ffd remove | ffd export PATH", ffd},
+    {"animation", 1, kMany,
+     "animation open [cyclic] [levels J] [frames N] [clip A] [fps F] PATH... | animation frame F | animation ghosts N | "
+     "animation play|pause | animation export PATH",
+     animation, false},
     {"scheme", 1, 1, "scheme linear|cubic|sqrt2|linear-tri|butterfly|loop", [](const Call& c) {
       c.state.set_scheme(script_scheme(c.w[1]));
     }},
@@ -269,7 +309,7 @@ constexpr Command kCommands[] = {
       if (l < 0 || l > finest) throw ScriptError("view-level " + c.w[1] + " is outside 0.." + std::to_string(finest) + " (or finest)");
       c.state.set_view_level(static_cast<int>(l));
     }},
-    {"select", 0, kMany, "select [INDEX...] | select all|none|invert|more|less|linked | select loop|ring A B [add]", [](const Call& c) {
+    {"select", 0, kMany, "select [INDEX...] (an animation: points of the layer shown) | select all|none|invert|more|less|linked | select loop|ring A B [add]", [](const Call& c) {
       using Op = ModelerState::SelectOp;
       static constexpr std::pair<const char*, Op> kOps[] = {
           {"invert", Op::Invert}, {"more", Op::More}, {"less", Op::Less}, {"linked", Op::Linked}};
@@ -291,14 +331,17 @@ constexpr Command kCommands[] = {
         return c.state.select_loop(static_cast<std::uint32_t>(e), c.w[1] == "ring", c.w.size() == 5);
       }
       std::vector<unsigned> sel;
-      const long long n = c.state.session().num_vertices(c.state.level());
+      // An animation numbers the points of the layer shown (the surface's vertices of the level).
+      const AnimationViewState* anim = c.state.animation();
+      const long long n = anim ? anim->anim.st.surface_vertices(c.state.level()) : c.state.session().num_vertices(c.state.level());
       for (std::size_t i = 1; i < c.w.size(); ++i) {
         const long long v = integer(c.w[i], "INDEX");
         if (v < 0 || v >= n) {
           throw ScriptError("vertex " + c.w[i] + " is outside 0.." + std::to_string(n - 1) + " of level " +
-                            std::to_string(c.state.level()));
+                            std::to_string(c.state.level()) + (anim ? "'s layer shown" : ""));
         }
-        sel.push_back(static_cast<unsigned>(v));
+        sel.push_back(anim ? anim->anim.st.layer_vertices[std::size_t(c.state.level())][std::size_t(anim->layer) * std::size_t(n) + std::size_t(v)]
+                           : static_cast<unsigned>(v));
       }
       c.state.set_selection(std::move(sel));
     }},

@@ -491,7 +491,8 @@ class BadAnimation : public ::testing::Test {
     const std::string path = write_json(dir, name, j);
     expect_error([&] { sample_gltf_animation(path, 0, frames, false); }, path, needles);
   }
-  TempDir dir{"sublift_anim_bad"};
+  // One folder per test: ctest runs them in parallel.
+  TempDir dir{std::string("sublift_anim_bad_") + ::testing::UnitTest::GetInstance()->current_test_info()->name()};
   nlohmann::json morph, skin;
 };
 

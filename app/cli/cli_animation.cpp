@@ -40,7 +40,8 @@ constexpr const char* kHelp =
     "  --animation A   the glTF animation's index (default: the first)\n"
     "  --frames N      glTF samples: an open animation takes 2^J K + 1 frames (K >= 1), a cyclic\n"
     "                  one 2^J K (K >= 3); default K = 4\n"
-    "  --fps F         a sequence's frame rate (default 24)\n"
+    "  --fps F         a sequence's frame rate (default 24); a glTF without --frames is sampled at\n"
+    "                  least this often (the count rounded up to one the levels take)\n"
     "  --levels J      space-time levels, 1..6 (default 2)\n"
     "  --scheme S      lattice wavelets, cubic (default) or linear\n"
     "  --cyclic        a periodic time axis: the last frame runs into the first (a loop);\n"
@@ -107,6 +108,7 @@ int run_animation(int argc, char** argv) {
     const auto v = parse_double(*f);
     if (!v || !(*v > 0) || *v > 1e6) throw UsageError("--fps must be a positive number, got '" + *f + "'");
     options.fps = *v;
+    options.sample_fps = *v;
   }
   if (const auto o = a.value("-o")) {
     const std::string ext = file_extension(*o);

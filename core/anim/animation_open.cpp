@@ -44,7 +44,23 @@ OpenedAnimation open_animation(std::span<const std::string> inputs, const Animat
   a.source = inputs[0];
   FrameSet set;
   if (gltf) {
-    const int frames = options.frames > 0 ? options.frames : space_time_frames(4, levels, options.cyclic);
+    int frames = options.frames > 0 ? options.frames : space_time_frames(4, levels, options.cyclic);
+    if (options.frames == 0 && options.sample_fps > 0) {
+      // At least sample_fps over the clip: its intervals rounded up to whole base steps.
+      const std::vector<GltfAnimationInfo> clips = gltf_animations(inputs[0]);
+      if (clips.empty()) throw InputError(inputs[0], 0, "the file has no animation");
+      const int index = options.animation < 0 ? 0 : options.animation;
+      if (index >= int(clips.size()))
+        throw InputError(inputs[0], 0, "animation " + std::to_string(index) + " does not exist (the file has " + std::to_string(clips.size()) + ")");
+      const double duration = clips[std::size_t(index)].end - clips[std::size_t(index)].start;
+      const double intervals = std::ceil(duration * options.sample_fps - 1e-9);
+      if (!(intervals < 1e6)) throw InputError(inputs[0], 0, "sampling at " + std::to_string(options.sample_fps) + " fps needs too many frames");
+      const int step = 1 << levels, least = options.cyclic ? 3 : 1;
+      const int k = std::max(least, int(std::ceil(std::max(intervals, 1.0) / step)));
+      frames = space_time_frames(k, levels, options.cyclic);
+      a.notes.push_back("sampled at " + std::to_string(frames) + " frames: at least " + std::to_string(options.sample_fps) +
+                        " fps over " + std::to_string(duration) + " s, rounded up to what " + std::to_string(levels) + " levels take");
+    }
     if (!space_time_base_steps(frames, levels, options.cyclic))
       throw InputError(inputs[0], 0, std::to_string(frames) + " frames do not fit " + std::to_string(levels) + " levels: " + kind +
                                          " animation takes " + rule + " (try " + valid_frame_counts(frames, levels, options.cyclic) + ")");
@@ -60,7 +76,7 @@ OpenedAnimation open_animation(std::span<const std::string> inputs, const Animat
     set = read_frame_sequence(inputs, options.fps);
   }
   a.load_ms = ms_since(t);
-  a.notes = set.notes;
+  a.notes.insert(a.notes.end(), set.notes.begin(), set.notes.end());
   a.times = set.times;
   const int n = int(set.num_frames());
   if (options.cyclic) a.loop_end = n > 1 ? set.times[std::size_t(n) - 1] + (set.times[1] - set.times[0]) : set.times[0] + 1;

@@ -14,7 +14,9 @@ namespace sublift {
 struct AnimationOptions {
   Scheme scheme = Scheme::Cubic;
   int levels = 2;
-  int frames = 0;        // glTF samples; 0: base_steps 4 (4 2^J + 1 frames, cyclic 4 2^J)
+  int frames = 0;        // glTF samples; 0: from sample_fps, else base_steps 4 (4 2^J + 1, cyclic 4 2^J)
+  double sample_fps = 0; // glTF, frames 0: sample at least this rate (the count rounded up to one
+                         // the levels take); 0: unset
   bool cyclic = false;   // a periodic time axis (the last frame joins the first)
   int animation = -1;    // glTF animation index (-1: the first)
   double fps = 24;       // a sequence's frame rate

@@ -110,6 +110,27 @@ TEST(CliAnimation, SequenceCompressionReportsEveryFrameAndTheBaseline) {
   for (const auto& e : c["errors"]) worst = std::max(worst, e["max"].get<double>());
   EXPECT_EQ(worst, c["max_error"].get<double>());
   EXPECT_GT(worst, 0.0);
+  // An error bound instead: every frame within it.
+  args.erase(args.end() - 3, args.end() - 1);  // --keep 0.1
+  args.insert(args.end() - 1, {"--linf", "0.002"});
+  const ProcessResult b = cli(args);
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const nlohmann::json jb = nlohmann::json::parse(b.out);
+  EXPECT_EQ(jb["compression"]["mode"], "linf");
+  for (const auto& e : jb["compression"]["errors"]) EXPECT_LE(e["max"].get<double>(), 0.002);
+  EXPECT_LT(jb["compression"]["kept"].get<std::size_t>(), jb["compression"]["wavelets"].get<std::size_t>());
+}
+
+// --fps on a glTF without --frames: the Fox's 0.708 s walk at 24 fps is 17 intervals, rounded up
+// to 5 base steps of 2^2: 21 frames.
+TEST(CliAnimation, GltfSampledAtAFrameRate) {
+  if (!fs::is_directory(kGltf)) GTEST_SKIP() << "glTF models not found at " << kGltf << " (../shared/data absent)";
+  const ProcessResult r = cli({"animation", (kGltf / "Fox" / "Fox.glb").string(), "--animation", "1", "--fps", "24", "--levels", "2", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["frames"], 21);
+  EXPECT_EQ(j["base_steps"], 5);
+  EXPECT_NEAR(j["times"][20].get<double>() - j["times"][0].get<double>(), 0.708333, 1e-5);
 }
 
 TEST(CliAnimation, EditsMoveOnlyTheirTimeSupport) {

@@ -4,8 +4,6 @@
 // drag change frame 8 and leave frame 16 (beyond its time support) as it was.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -25,30 +23,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kWidth = 960, kHeight = 640;
-constexpr int kPanelWidth = 330, kStatusHeight = 28;  // ui/panels.h PanelLayout
-
+using sublift::testing::changed_viewport_pixels;
+using sublift::testing::kGuiHeight;
+using sublift::testing::kGuiPanelWidth;
+using sublift::testing::kGuiStatusHeight;
+using sublift::testing::kGuiWidth;
 using sublift::testing::load_png;
 using sublift::testing::Png;
-using sublift::testing::quote;
-
-long changed_pixels(const Png& a, const Png& b, int threshold) {
-  long n = 0;
-  for (int y = 0; y < kHeight - kStatusHeight; ++y)
-    for (int x = kPanelWidth; x < kWidth; ++x) {
-      int d = 0;
-      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(a.channel(x, y, c) - b.channel(x, y, c)));
-      n += d > threshold;
-    }
-  return n;
-}
 
 // Viewport pixels of the ghosts' blue (NetRenderer edges 0.25, 0.45, 0.85 blended at 0.35 over
 // the background or the surface): clearly bluer than red.
 long blue_pixels(const Png& p) {
   long n = 0;
-  for (int y = 0; y < kHeight - kStatusHeight; ++y)
-    for (int x = kPanelWidth; x < kWidth; ++x) n += p.channel(x, y, 2) > p.channel(x, y, 0) + 40;
+  for (int y = 0; y < kGuiHeight - kGuiStatusHeight; ++y)
+    for (int x = kGuiPanelWidth; x < kGuiWidth; ++x) n += p.channel(x, y, 2) > p.channel(x, y, 0) + 40;
   return n;
 }
 
@@ -75,20 +63,15 @@ TEST(ModelerAnimationGuiTest, XvfbFoxWalkFramesGhostsAndADrag) {
                              "select none\n"
                              "screenshot f16_after.png\n";
   std::ofstream(dir / "animation.txt") << script;
-  const int server = 500 + static_cast<int>(::getpid() % 400);
-  const std::string command = "cd " + quote(dir.string()) + " && env SUBLIFT_RECOVERY_DIR=" + quote(dir.string()) +
-                              " timeout 90 xvfb-run -a -n " + std::to_string(server) +
-                              " -s '-screen 0 1280x800x24' " + quote(SUBLIFT_GUI_EXE) + " --size " +
-                              std::to_string(kWidth) + "x" + std::to_string(kHeight) + " --script animation.txt";
-  const auto r = sublift::testing::run_shell(command, dir / "stderr.txt");
+  const auto r = sublift::testing::run_gui_script(SUBLIFT_GUI_EXE, dir, "animation.txt");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Png f0 = load_png(dir / "f0.png"), f16 = load_png(dir / "f16.png"), f8 = load_png(dir / "f8.png"),
             ghosts = load_png(dir / "ghosts.png"), moved = load_png(dir / "moved.png"), f16_after = load_png(dir / "f16_after.png");
-  for (const Png* p : {&f0, &f16, &f8, &ghosts, &moved, &f16_after}) ASSERT_EQ(p->width, kWidth);
-  EXPECT_GT(changed_pixels(f0, f8, 40), 1500) << "the walk does not move between frames 0 and 8";
+  for (const Png* p : {&f0, &f16, &f8, &ghosts, &moved, &f16_after}) ASSERT_EQ(p->width, kGuiWidth);
+  EXPECT_GT(changed_viewport_pixels(f0, f8, 40), 1500) << "the walk does not move between frames 0 and 8";
   EXPECT_GT(blue_pixels(ghosts), blue_pixels(f8) + 1000) << "no ghost frames drawn";
-  EXPECT_GT(changed_pixels(f8, moved, 40), 300) << "the drag at frame 8 changed nothing on screen";
-  EXPECT_LT(changed_pixels(f16, f16_after, 24), 20) << "frame 16 is beyond the drag's time support but changed";
+  EXPECT_GT(changed_viewport_pixels(f8, moved, 40), 300) << "the drag at frame 8 changed nothing on screen";
+  EXPECT_LT(changed_viewport_pixels(f16, f16_after, 24), 20) << "frame 16 is beyond the drag's time support but changed";
 }
 
 }  // namespace

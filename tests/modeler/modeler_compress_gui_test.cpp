@@ -28,26 +28,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kWidth = 960, kHeight = 640;
-constexpr int kPanelWidth = 330, kStatusHeight = 28;  // ui/panels.h PanelLayout
-
+using sublift::testing::changed_viewport_pixels;
+using sublift::testing::kGuiWidth;
 using sublift::testing::load_png;
 using sublift::testing::Png;
-using sublift::testing::quote;
-
-int difference(const Png& a, const Png& b, int x, int y) {
-  int d = 0;
-  for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(a.channel(x, y, c) - b.channel(x, y, c)));
-  return d;
-}
-
-// Viewport pixels that differ by more than `threshold`.
-long changed_pixels(const Png& a, const Png& b, int threshold) {
-  long n = 0;
-  for (int y = 0; y < kHeight - kStatusHeight; ++y)
-    for (int x = kPanelWidth; x < kWidth; ++x) n += difference(a, b, x, y) > threshold;
-  return n;
-}
 
 TEST(ModelerCompressGuiTest, XvfbSliderFractionsOffApplyAndUndo) {
   const fs::path dir = fs::path(SUBLIFT_TEST_OUT_DIR) / "xvfb";
@@ -76,25 +60,20 @@ TEST(ModelerCompressGuiTest, XvfbSliderFractionsOffApplyAndUndo) {
       "undo\n"
       "screenshot undone.png\n";
   std::ofstream(dir / "compress.txt") << script;
-  const int server = 500 + static_cast<int>(::getpid() % 400);
-  const std::string command = "cd " + quote(dir.string()) + " && env SUBLIFT_RECOVERY_DIR=" + quote(dir.string()) +
-                              " timeout 90 xvfb-run -a -n " + std::to_string(server) +
-                              " -s '-screen 0 1280x800x24' " + quote(SUBLIFT_GUI_EXE) + " --size " +
-                              std::to_string(kWidth) + "x" + std::to_string(kHeight) + " --script compress.txt";
-  const auto r = sublift::testing::run_shell(command, dir / "stderr.txt");
+  const auto r = sublift::testing::run_gui_script(SUBLIFT_GUI_EXE, dir, "compress.txt");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Png full = load_png(dir / "full.png"), k01 = load_png(dir / "keep01.png"), k20 = load_png(dir / "keep20.png"),
             k100 = load_png(dir / "keep100.png"), off = load_png(dir / "off.png"),
             applied = load_png(dir / "applied.png"), undone = load_png(dir / "undone.png");
-  for (const Png* p : {&full, &k01, &k20, &k100, &off, &applied, &undone}) ASSERT_EQ(p->width, kWidth);
-  const long lost01 = changed_pixels(full, k01, 40), lost20 = changed_pixels(full, k20, 40);
+  for (const Png* p : {&full, &k01, &k20, &k100, &off, &applied, &undone}) ASSERT_EQ(p->width, kGuiWidth);
+  const long lost01 = changed_viewport_pixels(full, k01, 40), lost20 = changed_viewport_pixels(full, k20, 40);
   EXPECT_GT(lost01, 2000) << "1% of the wavelets looks like the full shape";
   EXPECT_GT(lost20, 100) << "20% of the wavelets looks exactly like the full shape";
   EXPECT_LT(lost20, lost01 / 2) << "20% is not closer to the full shape than 1%";
-  EXPECT_LT(changed_pixels(full, k100, 24), 20) << "100% is not the full shape";
-  EXPECT_LT(changed_pixels(full, off, 24), 20) << "Off does not restore the full shape";
-  EXPECT_LT(changed_pixels(k20, applied, 24), 40) << "Apply does not keep what the 20% view showed";
-  EXPECT_LT(changed_pixels(full, undone, 24), 20) << "Undo does not restore the full shape";
+  EXPECT_LT(changed_viewport_pixels(full, k100, 24), 20) << "100% is not the full shape";
+  EXPECT_LT(changed_viewport_pixels(full, off, 24), 20) << "Off does not restore the full shape";
+  EXPECT_LT(changed_viewport_pixels(k20, applied, 24), 40) << "Apply does not keep what the 20% view showed";
+  EXPECT_LT(changed_viewport_pixels(full, undone, 24), 20) << "Undo does not restore the full shape";
 }
 
 }  // namespace

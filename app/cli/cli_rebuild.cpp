@@ -63,7 +63,7 @@ int run_rebuild(int argc, char** argv) {
 
   const auto t0 = std::chrono::steady_clock::now();
   Shape fine = read_shape(fine_path);
-  fine.report.note_attributes_not_kept(fine.attributes);  // the rebuilt levels carry positions
+  if (fine.base.dim == 3) fine.report.note_attributes_not_kept(fine.attributes);  // lattices: positions only
   add_topology_warnings(fine.report, fine.base);
   std::cerr << fine.report.format(fine_path);
   if (fine.base.dim == 1) throw UsageError("rebuild takes surface meshes and volume lattices; " + fine_path + " is a curve");
@@ -78,7 +78,7 @@ int run_rebuild(int argc, char** argv) {
 
   Rebuilt r = lattice ? rebuild_volume_hierarchy(fine.base, fine.positions, scheme, levels, integer)
                       : rebuild_hierarchy(fine.base.num_vertices, fine.base.faces, fine.positions, scheme, levels, integer, disc,
-                                          derive_feature_tags(fine.base));
+                                          derive_feature_tags(fine.base), {}, fine.attributes);
   for (const std::string& why : r.features.dropped) std::cerr << fine_path << ": warning: feature tag dropped: " << why << "\n";
   // What the project does not keep, so synthesize cannot write back.
   std::vector<std::string> not_kept;
@@ -90,6 +90,7 @@ int run_rebuild(int argc, char** argv) {
   const DetectedLevels& d = r.detected;
   ProjectExtras extras;
   extras.input_order.level = d.levels;
+  if (!lattice) extras.attributes = attribute_names(fine.attributes);  // channels 3.. of the project
   extras.input_order.engine_vertex = std::move(r.engine_vertex);
   if (!lattice) extras.input_order.faces = fine.base.faces;
   write_project(out, r.hierarchy, extras);
@@ -115,6 +116,7 @@ int run_rebuild(int argc, char** argv) {
     nlohmann::json j = {{"input", fine_path},
                         {"output", out},
                         {"scheme", scheme_name(scheme)},
+                        {"attributes", attribute_list_json(extras.attributes)},
                         {"scheme_picked", automatic},
                         {"split", split},
                         {"integer", integer},

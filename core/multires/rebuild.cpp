@@ -86,9 +86,14 @@ namespace {
 // keep_going) finds the levels; base(r) builds the base complex from r.detected.
 template <class Detect, class Base>
 Rebuilt rebuild_stages(std::uint32_t num_vertices, std::span<const double> positions, Scheme scheme, int levels, bool integer,
-                       int disc, const RebuildProgress& progress, const std::string& what, Detect detect, Base base) {
+                       int disc, const RebuildProgress& progress, const std::string& what, Detect detect, Base base,
+                       std::span<const VertexAttribute> attributes) {
   if (positions.size() != 3 * static_cast<std::size_t>(num_vertices))
     throw Error("rebuild: " + std::to_string(positions.size()) + " coordinates for " + std::to_string(num_vertices) + " vertices");
+  for (const VertexAttribute& a : attributes)
+    if (a.values.size() != num_vertices)
+      throw Error("rebuild: attribute " + a.name + " has " + std::to_string(a.values.size()) + " values for " + std::to_string(num_vertices) + " vertices");
+  const std::size_t channels = 3 + attributes.size();
   // Shares of the time (bench_rebuild): detection about 3/4, the hierarchy and the analysis the rest.
   auto at = [&](const char* stage, double fraction) {
     if (progress && !progress(stage, fraction)) throw Cancelled("rebuild cancelled");
@@ -106,14 +111,17 @@ Rebuilt rebuild_stages(std::uint32_t num_vertices, std::span<const double> posit
   r.detect_ms = ms_since(t);
   at("building levels", 0.75);
   t = Clock::now();
-  r.hierarchy = make_hierarchy(base(r), d.levels, scheme, 3, integer, d.first_level, disc);
+  r.hierarchy = make_hierarchy(base(r), d.levels, scheme, int(channels), integer, d.first_level, disc);
   r.engine_vertex = engine_order(d, r.hierarchy.levels);
   r.build_ms = ms_since(t);
   at("analysing", 0.9);
   t = Clock::now();
-  std::vector<double> x(positions.size());  // the input's positions in the engine's order
-  for (std::size_t i = 0; i < r.engine_vertex.size(); ++i)
-    for (std::size_t k = 0; k < 3; ++k) x[3 * std::size_t(r.engine_vertex[i]) + k] = positions[3 * i + k];
+  std::vector<double> x(channels * num_vertices);  // the input's positions (and attributes) in the engine's order
+  for (std::size_t i = 0; i < r.engine_vertex.size(); ++i) {
+    double* to = &x[channels * std::size_t(r.engine_vertex[i])];
+    for (std::size_t k = 0; k < 3; ++k) to[k] = positions[3 * i + k];
+    for (std::size_t k = 0; k < attributes.size(); ++k) to[3 + k] = attributes[k].values[i];
+  }
   analyze(r.hierarchy, x);
   r.analysis_ms = ms_since(t);
   at("done", 1.0);
@@ -123,7 +131,8 @@ Rebuilt rebuild_stages(std::uint32_t num_vertices, std::span<const double> posit
 }  // namespace
 
 Rebuilt rebuild_hierarchy(std::uint32_t num_vertices, const Csr& faces, std::span<const double> positions, Scheme scheme,
-                          int levels, bool integer, int disc, const FeatureTags& fine_tags, const RebuildProgress& progress) {
+                          int levels, bool integer, int disc, const FeatureTags& fine_tags, const RebuildProgress& progress,
+                          std::span<const VertexAttribute> attributes) {
   const SplitKind split = rebuild_split(scheme);
   const char* what = split == SplitKind::Quads ? "the mesh, as a quad split,"
                      : split == SplitKind::Triangles ? "the mesh, as a triangle split,"
@@ -134,7 +143,8 @@ Rebuilt rebuild_hierarchy(std::uint32_t num_vertices, const Csr& faces, std::spa
       [&](Rebuilt& r) {
         r.features = carry_features_down(r.detected, fine_tags);
         return complex_from_polygons(r.detected.base_vertices, r.detected.base_faces, r.features.base);
-      });
+      },
+      attributes);
 }
 
 Rebuilt rebuild_volume_hierarchy(const Complex& fine, std::span<const double> positions, Scheme scheme, int levels,
@@ -143,7 +153,8 @@ Rebuilt rebuild_volume_hierarchy(const Complex& fine, std::span<const double> po
   return rebuild_stages(
       fine.num_vertices, positions, scheme, levels, integer, 2, progress, "the lattice, as a 1-to-8 split,",
       [&](int limit, const std::function<bool(double)>& go) { return detect_volume_levels(fine, limit, positions, go); },
-      [](Rebuilt& r) { return complex_from_cells(r.detected.base_vertices, r.detected.base_faces, r.detected.base_cells); });
+      [](Rebuilt& r) { return complex_from_cells(r.detected.base_vertices, r.detected.base_faces, r.detected.base_cells); },
+      {});
 }
 
 }  // namespace sublift

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/base/csr.h"
+#include "core/base/surface_mesh.h"
 #include "core/complex/complex_build.h"
 #include "core/complex/detect_levels.h"
 #include "core/multires/hierarchy.h"
@@ -50,9 +51,11 @@ using RebuildProgress = std::function<bool(const char* stage, double fraction)>;
 /// `fine_tags`: the input's creases and corners (input vertex numbers), carried to the base.
 /// `progress` (may be empty) is called between stages and levels; when it answers false the
 /// rebuild throws Cancelled.
+/// `attributes` (one value per input vertex each: colours, scalars) are analysed as channels 3..
+/// beside x, y, z.
 Rebuilt rebuild_hierarchy(std::uint32_t num_vertices, const Csr& faces, std::span<const double> positions, Scheme scheme,
                           int levels, bool integer = false, int disc = 2, const FeatureTags& fine_tags = {},
-                          const RebuildProgress& progress = {});
+                          const RebuildProgress& progress = {}, std::span<const VertexAttribute> attributes = {});
 
 /// The same for a volume lattice (`fine` with adjacency; linear or cubic scheme): the 1-to-8
 /// split of simple cells (detect_volume_levels). Feature tags of lattices are not carried.

@@ -138,6 +138,23 @@ TEST_F(GltfValidator, AnimationExportsHaveNoErrors) {
   }
 }
 
+// Issue 20: a level written as glTF carries the colours as COLOR_0 (BoxVertexColors subdivided),
+// and the validator accepts it.
+TEST_F(GltfValidator, SubdividedColouredBoxHasNoErrors) {
+  sublift::testing::TempDir dir("sublift_gltf_validator_colours");
+  const fs::path out = dir.path() / "box_colours.glb";
+  const sublift::testing::ProcessResult r = sublift::testing::run_process(
+      {SUBLIFT_CLI, "subdivide", (kGltf / "BoxVertexColors" / "BoxVertexColors.glb").string(), "--scheme", "loop", "--levels", "2",
+       "-o", out.string()},
+      60);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  int code = -1;
+  const nlohmann::json report = validate(out, &code);
+  EXPECT_EQ(code, 0) << report.dump();
+  EXPECT_EQ(report.value("errors", -1), 0) << report.dump(2);
+  EXPECT_EQ(report.value("warnings", -1), 0) << report.dump(2);
+}
+
 TEST_F(GltfValidator, TheValidatorReportsABrokenFile) {
   // The check above is only as good as the script: a known-invalid model must fail it.
   const fs::path bad = kGltf / "invalid" / "IndexOutOfRange.gltf";

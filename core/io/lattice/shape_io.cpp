@@ -1,5 +1,8 @@
 #include "core/io/lattice/shape_io.h"
 
+#include "core/complex/polygon_normal.h"
+#include "core/io/model/surface_export.h"
+
 #include <algorithm>
 
 #include "core/complex/complex_build.h"
@@ -11,13 +14,15 @@
 #include "core/io/mesh/mesh_export.h"
 #include "core/io/mesh/mesh_import.h"
 #include "core/io/model/model.h"
+#include "core/io/model/surface_export.h"
 #include "core/io/model/weld.h"
+#include "core/complex/polygon_normal.h"
 #include "core/io/lattice/vtk_format.h"
 
 namespace sublift {
 namespace {
 
-constexpr std::string_view kShapeFormats = ".obj, .off, .ply, .lattice, .ovm or .vtk";  // read and written
+constexpr std::string_view kShapeFormats = ".obj, .off, .ply, .gltf, .glb (surfaces), .lattice, .ovm or .vtk";  // read and written
 constexpr std::string_view kReadFormats = ".obj, .off, .ply, .gltf, .glb, .lattice, .ovm or .vtk";
 
 Shape shape_from_mesh(const std::string& name, LoadedMesh loaded) {
@@ -62,11 +67,29 @@ Shape shape_from_gltf(const std::string& path) {
   m.face_indices = weld.faces.items;
   for (std::size_t k = 0; k < weld.dropped; ++k) loaded.report.add("triangles whose corners welded together (dropped)", 0);
   for (const std::string& n : model.notes) loaded.report.add(n, 0);
+  if (!model.colors.empty()) {  // COLOR_0 as attributes red, green, blue (and alpha unless all 1), 0..1
+    bool alpha = false;
+    std::size_t parted = 0;
+    for (std::size_t v = 0; v < model.num_vertices(); ++v) {
+      alpha = alpha || model.colors[4 * v + 3] != 1.0f;
+      const std::uint32_t f = weld.first[weld.welded[v]];
+      parted += f != v && !std::equal(&model.colors[4 * v], &model.colors[4 * v] + 4, &model.colors[4 * std::size_t(f)]);
+    }
+    const char* names[4] = {"red", "green", "blue", "alpha"};
+    for (int k = 0; k < (alpha ? 4 : 3); ++k) {
+      VertexAttribute a{names[k], "float", {}};
+      for (std::uint32_t v : weld.first) a.values.push_back(model.colors[4 * std::size_t(v) + std::size_t(k)]);
+      m.attributes.push_back(std::move(a));
+    }
+    if (parted > 0)
+      loaded.report.note_not_kept(std::to_string(parted) + " glTF vertices whose COLOR_0 differs from another copy at the same position (the first copy's colour kept)", 0);
+  }
   if (m.positions.size() < model.num_vertices())
     loaded.report.add("glTF vertices welded by position: " + std::to_string(model.num_vertices()) + " into " +
                           std::to_string(m.positions.size()) + " (the file splits them at seams of normals and UVs)",
                       0);
-  loaded.report.note_not_kept("glTF meshes opened as one surface without their normals, UVs, colours, materials or nodes", 0);
+  loaded.report.note_not_kept(std::string("glTF meshes opened as one surface without their normals, UVs, ") +
+                                  (model.colors.empty() ? "colours, " : "") + "materials or nodes", 0);
   return shape_from_mesh(path, std::move(loaded));
 }
 
@@ -129,6 +152,8 @@ std::string shape_output_problem(const std::string& path, int dim) {
   const std::string what = dim == 3 ? "lattice" : dim == 2 ? "surface" : "curve";
   const bool volume_only = ext == "lattice" || ext == "ovm";
   if (ext == "vtk") return "";
+  if ((ext == "gltf" || ext == "glb") && dim != 2) return "a " + what + " cannot be written as ." + ext + "; use .obj or .vtk";
+  if (ext == "gltf" || ext == "glb") return "";
   if (!volume_only && ext != "obj" && ext != "off" && ext != "ply")
     return "cannot write '." + ext + "' (expected " + std::string(kShapeFormats) + ")";
   if (dim == 3 && !volume_only) return "a lattice cannot be written as ." + ext + "; use .lattice, .ovm or .vtk";
@@ -159,6 +184,14 @@ std::vector<std::string> write_shape(const std::string& path, const Complex& c, 
       notes.push_back(".ovm cannot hold feature tags: " + std::to_string(tags.feature_faces.size()) + " feature faces, " +
                       std::to_string(tags.crease_edges.size()) + " crease edges and " +
                       std::to_string(tags.corner_vertices.size()) + " corners not written (use .lattice or .vtk)");
+    return notes;
+  }
+  if (ext == "gltf" || ext == "glb") {  // a surface's net with area-weighted normals, colours as COLOR_0
+    const std::vector<double> normals = area_weighted_normals(c.faces, xyz);
+    write_surface_with_normals(path, c.faces, xyz, normals, attributes);
+    if (const FeatureTags tags = derive_feature_tags(c); !tags.crease_edges.empty() || !tags.corner_vertices.empty())
+      notes.push_back("." + ext + " cannot hold feature tags: " + std::to_string(tags.crease_edges.size()) + " crease edges and " +
+                      std::to_string(tags.corner_vertices.size()) + " corners not written (use .obj or .vtk)");
     return notes;
   }
   SurfaceMesh m;

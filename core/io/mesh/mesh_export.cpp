@@ -26,7 +26,8 @@ std::string attributes_not_written(const std::string& ext, std::span<const Verte
   const auto colours = std::count_if(attributes.begin(), attributes.end(), colour);
   std::string dropped;
   for (const VertexAttribute& a : attributes) {
-    if (ext == "ply" || (ext == "obj" && colour(a) && colours == 3)) continue;
+    // glTF: red, green, blue (alpha) as COLOR_0, the rest as "_NAME" attributes (surface_export.h).
+    if (ext == "ply" || ext == "gltf" || ext == "glb" || (ext == "obj" && colour(a) && colours == 3)) continue;
     dropped += (dropped.empty() ? "" : ", ") + a.name;
   }
   return dropped;

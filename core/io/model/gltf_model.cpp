@@ -306,6 +306,22 @@ Model import_gltf_model(const std::string& path, ModelFormat format) {
           std::copy(n.begin(), n.end(), orig_normals.begin() + std::ptrdiff_t(3 * r.first_vertex));
         }
       }
+      // COLOR_0 (glTF 2.0 sec. 3.7.2.1: float or normalised unsigned byte/short, VEC3 or VEC4), the
+      // first one of each POSITION accessor; RGBA, alpha 1 for VEC3.
+      const auto col = p.attributes.find("COLOR_0");
+      if (col != p.attributes.end() && !r.has_colors) {
+        const std::string crole = "COLOR_0 of " + prim_name(mesh, prim);
+        const tinygltf::Accessor* ca = col->second >= 0 && std::size_t(col->second) < g.accessors.size() ? &g.accessors[std::size_t(col->second)] : nullptr;
+        const int type = ca && ca->type == TINYGLTF_TYPE_VEC3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4;
+        const std::vector<double> c = read_numbers(g, col->second, type, {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}, crole, path);
+        const std::size_t width = type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+        if (c.size() != width * ps.count)
+          throw InputError(path, 0, "accessor " + std::to_string(col->second) + " (" + crole + "): " + str(c.size() / width) + " colours for " + str(ps.count) + " positions");
+        model.colors.resize(4 * model.num_vertices(), 1.0f);
+        for (std::size_t v = 0; v < ps.count; ++v)
+          for (std::size_t k = 0; k < width; ++k) model.colors[4 * (r.first_vertex + v) + k] = float(c[width * v + k]);
+        r.has_colors = true;
+      }
       const std::vector<std::uint32_t> idx = primitive_indices(g, p, mesh, prim, ps.count, path);
       if (mode >= TINYGLTF_MODE_TRIANGLES)
         add_triangles(model.faces, idx, mode, r.first_vertex, mesh, prim, path);
@@ -383,6 +399,7 @@ Model import_gltf_model(const std::string& path, ModelFormat format) {
     }
   }
   model.source = std::move(source);
+  if (!model.colors.empty()) model.colors.resize(4 * model.num_vertices(), 1.0f);  // ranges after the first colours: white
   return model;
 }
 

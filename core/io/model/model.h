@@ -47,6 +47,7 @@ struct ModelRange {
   std::vector<std::pair<int, int>> primitives;  // (mesh, primitive) pairs that use the accessor
   int node = -1;             // the node whose world matrix places the range (-1: no node, mesh space)
   bool skinned = false;      // the node has a skin: positions taken as stored
+  bool has_colors = false;   // a primitive gave it COLOR_0 (Model::colors)
   std::array<double, 16> world{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};  // column-major
 };
 
@@ -59,6 +60,9 @@ struct Model {
   std::vector<double> positions;  // world space, 3 per vertex
   std::vector<double> normals;    // world space, unit or zero, 3 per vertex
   Csr faces;                      // drawable polygons (glTF: triangles) over the vertices
+  // glTF COLOR_0 as read (RGBA, 0..1, 4 per vertex; vertices of ranges without one white);
+  // empty when no primitive has one. Carried by read_shape; FFD export leaves colours as stored.
+  std::vector<float> colors;
   std::vector<ModelRange> ranges;  // glTF only
   std::vector<std::string> notes;  // decisions and repairs the user should know about
   std::shared_ptr<const ModelSource> source;

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cctype>
 #include <cstring>
 #include <limits>
 #include <ostream>
@@ -26,8 +27,18 @@ struct Surface {
   const Csr& faces;
   std::span<const double> xyz;
   std::vector<double> normals;
+  std::span<const VertexAttribute> attributes;  // glTF only
   std::size_t num_vertices() const { return xyz.size() / 3; }
 };
+
+bool is_colour(const std::string& name) { return name == "red" || name == "green" || name == "blue" || name == "alpha"; }
+
+// "_QUALITY" for "quality": glTF's application-specific attribute semantics start with '_'.
+std::string custom_semantic(const std::string& name) {
+  std::string s = "_";
+  for (char c : name) s += std::isalnum(static_cast<unsigned char>(c)) ? char(std::toupper(static_cast<unsigned char>(c))) : '_';
+  return s;
+}
 
 Surface checked_surface(const std::string& path, const Csr& faces, std::span<const double> xyz,
                         std::span<const double> normals) {
@@ -47,7 +58,7 @@ Surface checked_surface(const std::string& path, const Csr& faces, std::span<con
       if (v >= nv) throw InputError(path, 0, "face " + std::to_string(f) + " names vertex " + std::to_string(v) + ", beyond " + std::to_string(nv));
   }
   check_writable_positions(path, xyz);
-  Surface s{faces, xyz, std::vector<double>(normals.begin(), normals.end())};
+  Surface s{faces, xyz, std::vector<double>(normals.begin(), normals.end()), {}};
   for (std::size_t v = 0; v < nv; ++v) {
     double* n = &s.normals[3 * v];
     if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2]))
@@ -183,6 +194,44 @@ std::string gltf_bytes(const std::string& path, const Surface& s, bool binary) {
   prim.attributes["POSITION"] = 0;
   prim.attributes["NORMAL"] = 1;
   prim.indices = 2;
+  // Attributes after the indices: COLOR_0 from red, green, blue (alpha), the rest as "_NAME".
+  auto append = [&](const std::vector<float>& values, int type, std::size_t count) {
+    tinygltf::Buffer& b = m.buffers[0];
+    const std::size_t at = b.data.size();
+    append_le(b.data, values);
+    m.bufferViews.push_back({});
+    tinygltf::BufferView& view = m.bufferViews.back();
+    view.buffer = 0;
+    view.byteOffset = at;
+    view.byteLength = 4 * values.size();
+    view.target = TINYGLTF_TARGET_ARRAY_BUFFER;
+    m.accessors.push_back(accessor(int(m.bufferViews.size()) - 1, TINYGLTF_COMPONENT_TYPE_FLOAT, type, count));
+    return int(m.accessors.size()) - 1;
+  };
+  const VertexAttribute* channel[4] = {nullptr, nullptr, nullptr, nullptr};
+  for (const VertexAttribute& a : s.attributes) {
+    const char* names[4] = {"red", "green", "blue", "alpha"};
+    for (int k = 0; k < 4; ++k)
+      if (a.name == names[k]) channel[k] = &a;
+  }
+  if (channel[0] && channel[1] && channel[2]) {
+    std::vector<float> rgba(4 * nv, 1.0f);
+    for (int k = 0; k < 4; ++k) {
+      if (!channel[k]) continue;
+      const double scale = channel[k]->type == "uchar" ? 1.0 / 255 : channel[k]->type == "ushort" ? 1.0 / 65535 : 1.0;
+      for (std::size_t v = 0; v < nv; ++v) rgba[4 * v + std::size_t(k)] = float(std::clamp(channel[k]->values[v] * scale, 0.0, 1.0));
+    }
+    prim.attributes["COLOR_0"] = append(rgba, TINYGLTF_TYPE_VEC4, nv);
+  }
+  for (const VertexAttribute& a : s.attributes) {
+    if (is_colour(a.name) && channel[0] && channel[1] && channel[2]) continue;
+    std::vector<float> values(nv);
+    for (std::size_t v = 0; v < nv; ++v) {
+      values[v] = float(a.values[v]);
+      if (!std::isfinite(values[v])) throw InputError(path, 0, "attribute " + a.name + " of vertex " + std::to_string(v) + " overflows float32");
+    }
+    prim.attributes[custom_semantic(a.name)] = append(values, TINYGLTF_TYPE_SCALAR, nv);
+  }
   tinygltf::Mesh mesh;
   mesh.name = "surface";
   mesh.primitives.push_back(prim);
@@ -212,11 +261,15 @@ bool surface_export_supported(const std::string& path) {
 }
 
 void write_surface_with_normals(const std::string& path, const Csr& faces, std::span<const double> xyz,
-                                std::span<const double> normals) {
+                                std::span<const double> normals, std::span<const VertexAttribute> attributes) {
   const std::string ext = file_extension(path);
   if (!surface_export_supported(path))
     throw InputError(path, 0, "cannot export a surface with normals to '." + ext + "' (expected .obj, .ply, .gltf or .glb)");
-  const Surface s = checked_surface(path, faces, xyz, normals);
+  Surface s = checked_surface(path, faces, xyz, normals);
+  for (const VertexAttribute& a : attributes)
+    if (a.values.size() != s.num_vertices())
+      throw InputError(path, 0, "attribute " + a.name + " has " + std::to_string(a.values.size()) + " values for " + std::to_string(s.num_vertices()) + " vertices");
+  s.attributes = attributes;
   if (ext == "obj") {
     write_file_atomic(path, [&](std::ostream& out) { write_obj(out, s); });
   } else if (ext == "ply") {

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "core/base/csr.h"
+#include "core/base/surface_mesh.h"
 
 namespace sublift {
 
@@ -21,8 +22,12 @@ namespace sublift {
 /// than 1e-12 are renormalised, a zero normal is written as (0, 0, 1). Throws InputError
 /// (unknown extension, sizes that do not match, a face of fewer than 3 corners or naming a
 /// missing vertex, no face at all, values not finite or beyond the supported magnitude) or IoError (write failure).
+/// glTF also takes per-vertex `attributes`: red, green, blue (and alpha) as COLOR_0 (float VEC4;
+/// uchar values / 255, everything clamped to 0..1, alpha 1 when absent), every other attribute
+/// as an application-specific float SCALAR attribute "_NAME" (upper case, other characters '_').
+/// OBJ and PLY ignore them (core/io/mesh writes a level's attributes).
 void write_surface_with_normals(const std::string& path, const Csr& faces, std::span<const double> xyz,
-                                std::span<const double> normals);
+                                std::span<const double> normals, std::span<const VertexAttribute> attributes = {});
 
 /// True for the extensions write_surface_with_normals accepts (".obj", ".ply", ".gltf", ".glb",
 /// any case).

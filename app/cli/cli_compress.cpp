@@ -53,6 +53,30 @@ double mode_value(const std::string& option, const std::string& text) {
   return *v;
 }
 
+// The channel groups of a hierarchy with attribute channels (none for x, y, z alone): x, y, z;
+// red, green, blue and alpha together as "colour"; every other attribute on its own.
+struct ChannelGroup {
+  std::string name;
+  std::vector<std::string> channels;
+  ChannelRange range;
+};
+
+std::vector<ChannelGroup> channel_groups(int channels, const std::vector<VertexAttribute>& attributes) {
+  if (channels <= 3 || attributes.size() != std::size_t(channels - 3)) return {};
+  std::vector<ChannelGroup> out{{"position", {"x", "y", "z"}, {0, 3}}};
+  const auto colour = [](const std::string& n) { return n == "red" || n == "green" || n == "blue" || n == "alpha"; };
+  for (std::size_t k = 0; k < attributes.size();) {
+    std::size_t end = k + 1;
+    if (colour(attributes[k].name))
+      while (end < attributes.size() && colour(attributes[end].name)) ++end;
+    ChannelGroup g{end > k + 1 ? "colour" : attributes[k].name, {}, {int(3 + k), int(end - k)}};
+    for (std::size_t i = k; i < end; ++i) g.channels.push_back(attributes[i].name);
+    out.push_back(std::move(g));
+    k = end;
+  }
+  return out;
+}
+
 }  // namespace
 
 int run_compress(int argc, char** argv) {
@@ -104,17 +128,40 @@ int run_compress(int argc, char** argv) {
   ImportReport topology;  // of the base whose wavelets are compressed
   add_topology_warnings(topology, h.levels.front());
   std::cerr << topology.format(in);
-  if (h.channels > 3)  // issue 20's ranking per channel group (an error for positions, another for colour) is still to come
-    std::cerr << in << ": warning: the wavelets are ranked by the magnitude over all " << h.channels
-              << " channels together: x, y, z and the attribute channels in their own units\n";
   const bool project_out = is_project_path(*a.value("-o"));
   const std::string out = output_option(a, project_out ? 0 : h.levels.front().dim);
   options.gains = extras.gains;
 
+  // Attribute channels are compressed by groups of their own (x, y, z; the colour; each other
+  // attribute), each ranked by its own magnitude and measured in its own range.
+  const std::vector<ChannelGroup> groups = channel_groups(h.channels, extras.attributes);
+  if (!groups.empty()) options.channels = groups.front().range;
   const auto t0 = std::chrono::steady_clock::now();
   const Compressor compressor(h, options);
   const auto t1 = std::chrono::steady_clock::now();
-  const Compression c = compressor.run(*mode, value);
+  Compression c = compressor.run(*mode, value);
+  nlohmann::json group_rows = nlohmann::json::array();
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const ChannelGroup& group = groups[g];
+    CompressOptions o = options;
+    o.channels = group.range;
+    Compression gc;
+    try {
+      gc = g == 0 ? c : Compressor(h, o).run(*mode, value);
+    } catch (const Error&) {  // a constant attribute: no range to measure against, nothing to drop
+      group_rows.push_back({{"name", group.name}, {"channels", group.channels}, {"constant", true}});
+      continue;
+    }
+    for (std::size_t v = 0; g > 0 && v < gc.coeffs.size(); v += std::size_t(h.channels))
+      std::copy_n(&gc.coeffs[v + std::size_t(group.range.first)], group.range.count, &c.coeffs[v + std::size_t(group.range.first)]);
+    group_rows.push_back({{"name", group.name},
+                          {"channels", group.channels},
+                          {"kept", gc.kept},
+                          {"total", gc.total},
+                          {"l2_error", gc.l2_error},
+                          {"linf_error", gc.linf_error}});
+  }
+  if (groups.size() > 1) c.finest = synthesize_coefficients(h, c.coeffs, options.gains, h.finest_level());
   const auto t2 = std::chrono::steady_clock::now();
 
   std::vector<std::string> notes;
@@ -153,6 +200,7 @@ int run_compress(int argc, char** argv) {
                         {"compress_ms", ms(t1, t2)},
                         {"warnings", report_json(topology)},
                         {"notes", notes}};
+    if (!groups.empty()) j["groups"] = group_rows;  // kept, l2_error, linf_error above: the first (x, y, z)
     if (project_out) {
       j["encoding"] = saved.encoding;
       j["bytes"] = saved.bytes;

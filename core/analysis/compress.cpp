@@ -38,6 +38,53 @@ void synthesize_step(const Hierarchy& h, std::span<const double> gains, int j, s
   synthesize_transition(h, j, x.data(), h.channels, h.integer, zero);
 }
 
+// The channels [first, first + count) a range names (count 0: all of them).
+std::pair<int, int> checked_range(const Hierarchy& h, ChannelRange r) {
+  if (r.count == 0) return {0, h.channels};
+  if (r.first < 0 || r.count < 0 || r.first + r.count > h.channels)
+    throw Error("compress: channels " + std::to_string(r.first) + ".." + std::to_string(r.first + r.count - 1) + " of a hierarchy of " +
+                std::to_string(h.channels));
+  return {r.first, r.count};
+}
+
+// The values whose error is measured: x, y, z (no group) or the group's channels.
+std::vector<double> measured_of(std::span<const double> x, int channels, ChannelRange r) {
+  if (r.count == 0) return xyz_of(x, channels);
+  const std::size_t n = x.size() / std::size_t(channels);
+  std::vector<double> out(n * std::size_t(r.count));
+  for (std::size_t v = 0; v < n; ++v)
+    std::copy_n(&x[v * std::size_t(channels) + std::size_t(r.first)], r.count, &out[v * std::size_t(r.count)]);
+  return out;
+}
+
+// RMS and max of |a_v - b_v| over vertices (width values each), / unit.
+ShapeError group_error(std::span<const double> a, std::span<const double> b, int width, double unit) {
+  if (width == 3) return shape_error(a, b, unit);
+  ShapeError e;
+  const std::size_t n = a.size() / std::size_t(width);
+  double sum = 0;
+  for (std::size_t v = 0; v < n; ++v) {
+    double d = 0;
+    for (int k = 0; k < width; ++k) d += (a[v * width + k] - b[v * width + k]) * (a[v * width + k] - b[v * width + k]);
+    sum += d;
+    e.max = std::max(e.max, std::sqrt(d) / unit);
+  }
+  e.rms = n ? std::sqrt(sum / double(n)) / unit : 0.0;
+  return e;
+}
+
+// The diagonal of the bounding box of n points of `width` values.
+double box_diagonal(std::span<const double> x, int width) {
+  if (width == 3) return bbox_diagonal(x);
+  double d = 0;
+  for (int k = 0; k < width; ++k) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (std::size_t i = std::size_t(k); i < x.size(); i += std::size_t(width)) lo = std::min(lo, x[i]), hi = std::max(hi, x[i]);
+    if (hi >= lo) d += (hi - lo) * (hi - lo);
+  }
+  return std::sqrt(d);
+}
+
 // llround(fraction x n), at most n: the one rounding of a kept fraction.
 std::size_t count_of_fraction(std::size_t n, double fraction) {
   if (!(fraction >= 0.0 && fraction <= 1.0)) throw Error("keep fraction must be in [0, 1], got " + std::to_string(fraction));
@@ -79,9 +126,11 @@ std::vector<double> wavelet_l2_norms(const Hierarchy& h) {
 }
 
 std::vector<RankedWavelet> rank_wavelets(const Hierarchy& h, std::span<const double> norms,
-                                         std::span<const double> gains, std::span<const std::uint8_t> candidates) {
+                                         std::span<const double> gains, std::span<const std::uint8_t> candidates,
+                                         ChannelRange channels) {
   check_gains(h, gains);
   const int J = h.finest_level(), ch = h.channels;
+  const auto [first, count] = checked_range(h, channels);
   const std::uint32_t nv0 = h.num_vertices(0);
   const std::size_t total = h.num_vertices(J) - nv0;
   if (!norms.empty() && norms.size() != total)
@@ -95,7 +144,7 @@ std::vector<RankedWavelet> rank_wavelets(const Hierarchy& h, std::span<const dou
     const double g = gains.empty() ? 1.0 : gains[static_cast<std::size_t>(j)];
     for (std::uint32_t v = h.num_vertices(j); v < h.num_vertices(j + 1); ++v) {
       if (!candidates.empty() && !candidates[v - nv0]) continue;
-      const double m = norm(&h.coeffs[std::size_t(v) * ch], ch) * std::abs(g);
+      const double m = norm(&h.coeffs[std::size_t(v) * ch + std::size_t(first)], count) * std::abs(g);
       all.push_back({norms.empty() ? m : m * norms[v - nv0], v});
     }
   }
@@ -195,15 +244,21 @@ Compressor::Compressor(const Hierarchy& h, CompressOptions options)
     }
   }
   reference_ = std::move(x);
-  reference_xyz_ = xyz_of(reference_, ch);
-  diagonal_ = bbox_diagonal(reference_xyz_);
+  checked_range(h, options_.channels);
+  const int width = options_.channels.count == 0 ? 3 : options_.channels.count;
+  reference_xyz_ = measured_of(reference_, ch, options_.channels);
+  diagonal_ = box_diagonal(reference_xyz_, width);
   if (!(diagonal_ > 0) || !std::isfinite(diagonal_))
-    throw Error("compress: the finest shape has no extent (bounding-box diagonal 0), so errors cannot be relative to it");
+    throw Error(options_.channels.count == 0
+                    ? "compress: the finest shape has no extent (bounding-box diagonal 0), so errors cannot be relative to it"
+                    : "compress: channels " + std::to_string(options_.channels.first) + ".." +
+                          std::to_string(options_.channels.first + options_.channels.count - 1) +
+                          " are constant on the finest level (no range), so errors cannot be relative to it");
 
   // The ranking, on the stored coefficients (coeffs_ is h.coeffs).
   const std::vector<RankedWavelet> all =
       rank_wavelets(h, options_.normalise ? std::span<const double>(norms) : std::span<const double>(), options_.gains,
-                    inside);
+                    inside, options_.channels);
   order_.reserve(all.size());
   magnitude_.reserve(all.size());
   for (const RankedWavelet& e : all) {
@@ -224,7 +279,8 @@ std::size_t Compressor::count_for_threshold(double threshold) const {
 
 double Compressor::linf_of(std::size_t keep) const {
   const std::vector<double> x = synthesize_coefficients(*h_, coefficients(keep), options_.gains, h_->finest_level());
-  return shape_error(xyz_of(x, h_->channels), reference_xyz_, diagonal_).max;
+  const int width = options_.channels.count == 0 ? 3 : options_.channels.count;
+  return group_error(measured_of(x, h_->channels, options_.channels), reference_xyz_, width, diagonal_).max;
 }
 
 std::size_t Compressor::count_for_linf(double tolerance) const {
@@ -258,8 +314,9 @@ std::size_t Compressor::count(CompressMode mode, double value) const {
 std::vector<double> Compressor::coefficients(std::size_t keep) const {
   std::vector<double> c = coeffs_;
   const int ch = h_->channels;
+  const auto [first, count] = checked_range(*h_, options_.channels);  // a group zeroes its own channels
   for (std::size_t k = std::min(keep, order_.size()); k < order_.size(); ++k)
-    std::fill_n(c.begin() + std::ptrdiff_t(std::size_t(order_[k]) * ch), ch, 0.0);
+    std::fill_n(c.begin() + std::ptrdiff_t(std::size_t(order_[k]) * ch + std::size_t(first)), count, 0.0);
   return c;
 }
 
@@ -270,7 +327,8 @@ Compression Compressor::evaluate(std::size_t keep) const {
   out.kept = total_ - order_.size() + out.keep;
   out.coeffs = coefficients(out.keep);
   out.finest = synthesize_coefficients(*h_, out.coeffs, options_.gains, h_->finest_level());
-  const ShapeError e = shape_error(xyz_of(out.finest, h_->channels), reference_xyz_, diagonal_);
+  const int width = options_.channels.count == 0 ? 3 : options_.channels.count;
+  const ShapeError e = group_error(measured_of(out.finest, h_->channels, options_.channels), reference_xyz_, width, diagonal_);
   out.l2_error = e.rms;
   out.linf_error = e.max;
   return out;

@@ -36,6 +36,13 @@
 
 namespace sublift {
 
+/// A group of channels compressed together (positions x, y, z; a colour's r, g, b, a; one
+/// scalar): channels [first, first + count). count 0: every channel, ranked together, with errors
+/// on x, y, z (the default, what a 3-channel hierarchy means).
+struct ChannelRange {
+  int first = 0, count = 0;
+};
+
 /// L2 norm of each wavelet, index v - nv_0 for the wavelet on fine vertex v: h.wavelet_norms when
 /// the scheme knows them exactly, else the area scaling 2^(-j dim / 2) of a level-j wavelet
 /// (sqrt2: 2^(-j / 2), each level halves the area). The one source of the norms the rankings
@@ -55,10 +62,11 @@ struct RankedWavelet {
 /// h.coeffs, gains per level 0..J-1 (empty: 1), norms one per wavelet (wavelet_l2_norms(h) for
 /// the normalised ranking; empty: the raw magnitude, no norm factor) — sorted largest first,
 /// ties to the lower index. `candidates`, when not empty, holds one flag per wavelet (index
-/// v - nv_0): only the flagged ones are ranked. Throws Error on sizes or gains.
+/// v - nv_0): only the flagged ones are ranked. `channels`: |w_v| over that group only. Throws
+/// Error on sizes, gains or a range outside the channels.
 std::vector<RankedWavelet> rank_wavelets(const Hierarchy& h, std::span<const double> norms,
                                          std::span<const double> gains = {},
-                                         std::span<const std::uint8_t> candidates = {});
+                                         std::span<const std::uint8_t> candidates = {}, ChannelRange channels = {});
 
 /// Keeps the first llround(fraction x ranking.size()) wavelets of `ranking` and zeroes the rest
 /// in h.coeffs (every channel); returns how many were kept. keep_largest(h, F) is
@@ -102,6 +110,11 @@ struct CompressOptions {
   bool normalise = true;          // false: rank by the raw magnitude (x gain), for experiments
   std::optional<Region> region;   // only wavelets inside are candidates for removal
   std::vector<double> gains;      // per level 0..J-1, as the session applies them (empty: all 1)
+  // A channel group (count > 0): ranked by its own magnitude, only its channels zeroed, its
+  // errors over its channels relative to the diagonal of their bounding box (for a colour, of
+  // the colours' range). Groups are disjoint, so compressing each on its own and merging the
+  // channels is the same as compressing them one after the other.
+  ChannelRange channels;
 };
 
 /// One compressed shape.
@@ -109,7 +122,7 @@ struct Compression {
   std::size_t keep = 0;        // candidates kept: the first `keep` of the ranking
   std::size_t kept = 0;        // wavelets kept, the ones that are not candidates included
   std::size_t total = 0;       // wavelets
-  double l2_error = 0.0;       // RMS over finest vertices of |p - p_full|, / diagonal
+  double l2_error = 0.0;       // RMS over finest vertices of |p - p_full|, / diagonal (p: x, y, z or the group)
   double linf_error = 0.0;     // max over finest vertices of |p - p_full|, / diagonal
   std::vector<double> coeffs;  // h.coeffs with the removed wavelets zero (stored values, no gains)
   std::vector<double> finest;  // its finest control net (channels per vertex, gains applied)
@@ -129,7 +142,8 @@ class Compressor {
   std::span<const std::uint32_t> order() const { return order_; }
   /// Their normalised magnitudes, in the same order (non-increasing).
   std::span<const double> magnitudes() const { return magnitude_; }
-  /// Bounding-box diagonal of the uncompressed finest shape (the unit of errors and thresholds).
+  /// Bounding-box diagonal of the uncompressed finest shape (the unit of errors and thresholds;
+  /// of the group's channels when options.channels names one).
   double diagonal() const { return diagonal_; }
   /// The uncompressed finest control net (channels per vertex, gains applied).
   std::span<const double> reference() const { return reference_; }

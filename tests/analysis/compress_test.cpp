@@ -361,3 +361,54 @@ TEST(Compress, ParsesRegions) {
   EXPECT_THROW(Compressor(h).count_for_fraction(1.5), Error);
   EXPECT_EQ(compress_mode_name(CompressMode::Linf), "linf");
 }
+
+// Issue 20: channel groups. A hierarchy with x, y, z and two attribute channels (a colour-like
+// pair with detail of its own): the position group ranks, keeps and measures exactly as the same
+// shape without the attributes, leaves the attribute channels bit for bit, and the attribute
+// group is ranked by its own magnitude and measured in its own range.
+TEST(Compress, ChannelGroupsRankAndMeasureOnTheirOwn) {
+  const Hierarchy xyz = detailed("torus_quad.obj", Scheme::Cubic, 2);
+  Hierarchy five = make_hierarchy(xyz.levels.front(), 2, Scheme::Cubic, 5);
+  const std::size_t n = xyz.coeffs.size() / 3;
+  for (std::size_t v = 0; v < n; ++v) {
+    std::copy_n(&xyz.coeffs[3 * v], 3, &five.coeffs[5 * v]);
+    // Attribute values in their own units (hundreds), with detail unlike the positions'.
+    five.coeffs[5 * v + 3] = 100.0 * std::sin(0.37 * double(v));
+    five.coeffs[5 * v + 4] = 50.0 * std::cos(0.11 * double(v * v % 97));
+  }
+  CompressOptions positions;
+  positions.channels = {0, 3};
+  const Compressor a(five, positions), b(xyz);
+  ASSERT_EQ(std::vector<std::uint32_t>(a.order().begin(), a.order().end()), std::vector<std::uint32_t>(b.order().begin(), b.order().end()));
+  for (const double keep : {0.05, 0.3}) {
+    const Compression ca = a.run(CompressMode::Keep, keep), cb = b.run(CompressMode::Keep, keep);
+    EXPECT_EQ(ca.kept, cb.kept);
+    EXPECT_EQ(ca.l2_error, cb.l2_error);
+    EXPECT_EQ(ca.linf_error, cb.linf_error);
+    for (std::size_t v = 0; v < n; ++v) {
+      for (int k = 0; k < 3; ++k) ASSERT_EQ(ca.coeffs[5 * v + k], cb.coeffs[3 * v + k]);
+      for (int k = 3; k < 5; ++k) ASSERT_EQ(ca.coeffs[5 * v + k], five.coeffs[5 * v + k]) << "an attribute channel changed";
+    }
+  }
+  CompressOptions attrs;
+  attrs.channels = {3, 2};
+  const Compressor c(five, attrs);
+  // Its ranking: |(w3, w4)| x ||psi||, recomputed here.
+  const std::vector<double> norms = wavelet_l2_norms(five);
+  const std::uint32_t nv0 = five.num_vertices(0);
+  for (std::size_t k = 0; k + 1 < c.order().size(); ++k) {
+    const auto mag = [&](std::uint32_t v) { return std::hypot(five.coeffs[5 * v + 3], five.coeffs[5 * v + 4]) * norms[v - nv0]; };
+    ASSERT_GE(mag(c.order()[k]), mag(c.order()[k + 1]));
+  }
+  EXPECT_NE(std::vector<std::uint32_t>(c.order().begin(), c.order().end()), std::vector<std::uint32_t>(a.order().begin(), a.order().end()));
+  const Compression cc = c.run(CompressMode::Keep, 0.2);
+  for (std::size_t v = 0; v < n; ++v)
+    for (int k = 0; k < 3; ++k) ASSERT_EQ(cc.coeffs[5 * v + k], five.coeffs[5 * v + k]) << "a position channel changed";
+  // Errors relative to the attributes' own range: the same at ten times the values.
+  Hierarchy scaled = five;
+  for (std::size_t v = 0; v < n; ++v) scaled.coeffs[5 * v + 3] *= 10, scaled.coeffs[5 * v + 4] *= 10;
+  const Compression cs = Compressor(scaled, attrs).run(CompressMode::Keep, 0.2);
+  EXPECT_NEAR(cs.l2_error, cc.l2_error, 1e-12);
+  EXPECT_GT(cc.l2_error, 0.0);
+  EXPECT_THROW(Compressor(five, CompressOptions{true, std::nullopt, {}, {4, 2}}), Error);
+}

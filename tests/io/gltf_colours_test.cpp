@@ -97,6 +97,32 @@ TEST(GltfColours, SubdivideRebuildSynthesizeRoundTrip) {
   }
 }
 
+// compress ranks and measures the colour on its own (cli_compress.cpp's channel groups): the JSON
+// has a row per group, x, y, z first (the top-level numbers), and the colour's error is in its
+// own range.
+TEST(GltfColours, CompressReportsPositionAndColourGroups) {
+  if (!fs::exists(kBox)) GTEST_SKIP() << kBox << " not found (../shared/data absent)";
+  TempDir dir("sublift_gltf_colours_compress");
+  auto r = testing::run_cli({"subdivide", kBox.string(), "--scheme", "linear-tri", "--levels", "3", "-o", dir.file("fine.ply")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = testing::run_cli({"analyze", dir.file("fine.ply"), "--scheme", "loop", "--levels", "3", "-o", dir.file("box.sublift")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = testing::run_cli({"compress", dir.file("box.sublift"), "--keep", "0.05", "-o", dir.file("small.sublift"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("ranked by the magnitude over all"), std::string::npos) << "the old mixed ranking's warning";
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["groups"].size(), 2u);
+  EXPECT_EQ(j["groups"][0]["name"], "position");
+  EXPECT_EQ(j["groups"][0]["l2_error"], j["l2_error"]);
+  EXPECT_EQ(j["groups"][1]["name"], "colour");
+  EXPECT_EQ(j["groups"][1]["channels"].size(), 4u);
+  // A linear split analysed with Loop has detail in both; 5 % of it loses some of each.
+  EXPECT_GT(j["groups"][0]["l2_error"].get<double>(), 0.0);
+  EXPECT_GT(j["groups"][1]["l2_error"].get<double>(), 0.0);
+  EXPECT_LT(j["groups"][1]["l2_error"].get<double>(), 0.5);
+  EXPECT_EQ(j["groups"][1]["kept"], j["groups"][0]["kept"]) << "the same fraction of each group";
+}
+
 TEST(GltfColours, CopiesOfAPositionWithOtherColoursAreNamed) {
   if (!fs::exists(kBox)) GTEST_SKIP() << kBox << " not found (../shared/data absent)";
   TempDir dir("sublift_gltf_colours_parted");

@@ -30,6 +30,12 @@ struct Complex {
   Csr face_edges;                        // edges per face, aligned with `faces`
   Csr cell_faces;                        // faces per cell
   std::vector<std::uint8_t> vertex_dim, edge_dim, face_dim;
+  // OpenSubdiv's semi-sharp features (docs/features.md), empty when there are none: the
+  // sharpness left at this level per edge and per vertex (0 none, +inf an infinitely sharp tag).
+  // An edge is a crease and a vertex a corner while it is >= 1; refine() (Catmull-Clark style)
+  // gives children s - 1 and derives their dims again, so a sharpness-s crease is sharp for
+  // floor(s) levels and smooth after.
+  std::vector<float> edge_sharpness, vertex_sharpness;
 
   // Derived by build_adjacency().
   Csr vertex_edges, vertex_faces, vertex_cells, edge_faces, edge_cells, face_cells;

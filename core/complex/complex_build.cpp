@@ -1,6 +1,7 @@
 #include "core/complex/complex_build.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <unordered_map>
 
@@ -76,10 +77,29 @@ std::uint8_t untagged_vertex_dim(const Complex& c, std::uint32_t v) {
   return curve_edges >= 3 ? 0 : curve_edges == 2 ? 1 : higher;
 }
 
+void apply_sharpness(Complex& c) {
+  if (c.edge_sharpness.empty() && c.vertex_sharpness.empty()) return;
+  c.edge_sharpness.resize(c.num_edges(), 0.0f);
+  c.vertex_sharpness.resize(c.num_vertices, 0.0f);
+  for (std::uint32_t e = 0; e < c.num_edges(); ++e) c.edge_dim[e] = c.edge_sharpness[e] >= 1.0f ? 1 : untagged_edge_dim(c, e);
+  for (std::uint32_t v = 0; v < c.num_vertices; ++v) c.vertex_dim[v] = c.vertex_sharpness[v] >= 1.0f ? 0 : untagged_vertex_dim(c, v);
+}
+
 void assign_feature_dims(Complex& c, const FeatureTags& tags) {
   build_adjacency(c);
+  c.edge_sharpness.clear();  // from these tags alone
+  c.vertex_sharpness.clear();
   std::vector<char> crease(c.num_edges(), 0);
+  const bool semi = std::any_of(tags.crease_sharpness.begin(), tags.crease_sharpness.end(), [](float s) { return std::isfinite(s); }) ||
+                    std::any_of(tags.corner_sharpness.begin(), tags.corner_sharpness.end(), [](float s) { return std::isfinite(s); });
+  if (semi && c.dim == 2) {  // per level (lattices and curves keep every tag sharp)
+    c.edge_sharpness.assign(c.num_edges(), 0.0f);
+    c.vertex_sharpness.assign(c.num_vertices, 0.0f);
+  }
+  std::size_t tag = 0;
   for (auto [a, b] : tags.crease_edges) {
+    const float s = tag < tags.crease_sharpness.size() ? tags.crease_sharpness[tag] : INFINITY;
+    ++tag;
     std::uint32_t found = UINT32_MAX;
     if (a < c.num_vertices && b < c.num_vertices)
       for (std::uint32_t e : c.vertex_edges.row(a))
@@ -87,7 +107,8 @@ void assign_feature_dims(Complex& c, const FeatureTags& tags) {
     if (found == UINT32_MAX)
       throw TopologyError("crease tag names vertices " + std::to_string(a) + " and " + std::to_string(b) +
                           ", which share no edge");
-    crease[found] = 1;
+    if (!c.edge_sharpness.empty()) c.edge_sharpness[found] = std::max(c.edge_sharpness[found], s);
+    crease[found] = !c.edge_sharpness.empty() ? c.edge_sharpness[found] >= 1.0f : 1;
   }
   std::vector<char> feature_face(c.num_faces(), 0);
   if (!tags.feature_faces.empty()) {
@@ -106,9 +127,12 @@ void assign_feature_dims(Complex& c, const FeatureTags& tags) {
   for (std::uint32_t e = 0; e < c.num_edges(); ++e) c.edge_dim[e] = crease[e] ? 1 : untagged_edge_dim(c, e);
   c.vertex_dim.resize(c.num_vertices);
   for (std::uint32_t v = 0; v < c.num_vertices; ++v) c.vertex_dim[v] = untagged_vertex_dim(c, v);
-  for (std::uint32_t v : tags.corner_vertices) {
+  for (std::size_t k = 0; k < tags.corner_vertices.size(); ++k) {
+    const std::uint32_t v = tags.corner_vertices[k];
     if (v >= c.num_vertices) throw TopologyError("corner tag names missing vertex " + std::to_string(v));
-    c.vertex_dim[v] = 0;
+    const float s = k < tags.corner_sharpness.size() ? tags.corner_sharpness[k] : INFINITY;
+    if (!c.vertex_sharpness.empty()) c.vertex_sharpness[v] = std::max(c.vertex_sharpness[v], s);
+    if (c.vertex_sharpness.empty() || c.vertex_sharpness[v] >= 1.0f) c.vertex_dim[v] = 0;
   }
 }
 
@@ -132,15 +156,22 @@ FeatureTags feature_tags_from_obj(const std::vector<MeshTag>& tags, ImportReport
         report.add(t.name + " with sharpness 0 ignored", t.line);
         continue;
       }
-      // OpenSubdiv's semi-sharp features (0 < s < 10) soften after s levels; Sublift's tags are
-      // sharp at every level, which the user is told (issue 20 plans the per-level rule).
-      if (s < 10.0)
-        report.add("semi-sharp " + t.name + " tags (sharpness below 10) taken as infinitely sharp: Sublift's features stay sharp at every level",
+      // OpenSubdiv: 10 and above is infinitely sharp; below, the feature softens after s levels
+      // (docs/features.md). Its blend of a fractional part is not modelled: said once per tag.
+      const float sharp = s >= 10.0 ? INFINITY : float(s);
+      if (s < 10.0 && s != std::floor(s))
+        report.add("semi-sharp " + t.name + " tags with a fractional sharpness: sharp for floor(s) levels, the fraction not blended",
                    t.line);
-      if (crease)
+      if (s < 10.0)
+        report.add("semi-sharp " + t.name + " tags: sharp for s levels with the linear and cubic schemes, at every level with the others",
+                   t.line);
+      if (crease) {
         out.crease_edges.emplace_back(static_cast<std::uint32_t>(t.ints[i]), static_cast<std::uint32_t>(t.ints[i + 1]));
-      else
+        out.crease_sharpness.push_back(sharp);
+      } else {
         out.corner_vertices.push_back(static_cast<std::uint32_t>(t.ints[i]));
+        out.corner_sharpness.push_back(sharp);
+      }
     }
   }
   return out;

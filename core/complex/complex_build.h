@@ -19,10 +19,14 @@ struct FeatureTags {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> crease_edges;  // dim 1 edges
   std::vector<std::uint32_t> corner_vertices;                          // dim 0 vertices
   std::vector<std::vector<std::uint32_t>> feature_faces;               // dim 2 faces (lattices)
+  // OpenSubdiv sharpness per crease edge / corner (empty: all infinitely sharp); finite values
+  // make semi-sharp features (Complex::edge_sharpness).
+  std::vector<float> crease_sharpness, corner_sharpness;
 };
 
-/// Reads OpenSubdiv `t crease` (sharpness > 0, chains allowed) and `t corner` tags; other tags
-/// and zero-sharpness ones are itemised in `report` and ignored.
+/// Reads OpenSubdiv `t crease` (sharpness > 0, chains allowed) and `t corner` tags, sharpness
+/// 10 and above as infinitely sharp, below as semi-sharp; other tags and zero-sharpness ones are
+/// itemised in `report` and ignored, fractional sharpness named (the fraction is not blended).
 FeatureTags feature_tags_from_obj(const std::vector<MeshTag>& tags, ImportReport& report);
 
 /// A surface complex (dim 2) from polygons. Throws TopologyError for a face of fewer than 3
@@ -51,7 +55,13 @@ std::uint8_t untagged_edge_dim(const Complex& c, std::uint32_t e);
 std::uint8_t untagged_vertex_dim(const Complex& c, std::uint32_t v);
 
 /// Sets edge/face/vertex feature dims from topology and tags (see docs/features.md); called by
-/// the builders above, public for code that edits features.
+/// the builders above, public for code that edits features. Semi-sharp tags fill
+/// c.edge_sharpness / c.vertex_sharpness.
 void assign_feature_dims(Complex& c, const FeatureTags& tags);
+
+/// Derives the edge and vertex dims of a surface again from its sharpness (an edge a crease and
+/// a vertex a corner while >= 1; otherwise by topology), as refine() does for each new level.
+/// Needs the derived rows. Does nothing without sharpness.
+void apply_sharpness(Complex& c);
 
 }  // namespace sublift

@@ -23,6 +23,19 @@ FeatureTags derive_feature_tags(const Complex& in) {
       auto r = c.faces.row(f);
       tags.feature_faces.emplace_back(r.begin(), r.end());
     }
+  if (!c.edge_sharpness.empty() || !c.vertex_sharpness.empty()) {  // semi-sharp: every tag with its sharpness
+    for (std::uint32_t e = 0; e < c.num_edges() && e < c.edge_sharpness.size(); ++e)
+      if (c.edge_sharpness[e] > 0) {
+        tags.crease_edges.emplace_back(c.edge_verts[2 * e], c.edge_verts[2 * e + 1]);
+        tags.crease_sharpness.push_back(c.edge_sharpness[e]);
+      }
+    for (std::uint32_t v = 0; v < c.num_vertices && v < c.vertex_sharpness.size(); ++v)
+      if (c.vertex_sharpness[v] > 0) {
+        tags.corner_vertices.push_back(v);
+        tags.corner_sharpness.push_back(c.vertex_sharpness[v]);
+      }
+    return tags;
+  }
   for (std::uint32_t e = 0; e < c.num_edges(); ++e)
     if (c.edge_dim[e] < untagged_edge_dim(c, e)) tags.crease_edges.emplace_back(c.edge_verts[2 * e], c.edge_verts[2 * e + 1]);
   for (std::uint32_t v = 0; v < c.num_vertices; ++v)

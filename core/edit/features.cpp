@@ -1,6 +1,7 @@
 #include "core/edit/features.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/base/errors.h"
 #include "core/edit/selection.h"
@@ -23,10 +24,17 @@ FeatureTags with_creases(const Complex& c, FeatureTags tags, std::span<const std
   std::vector<std::pair<std::uint32_t, std::uint32_t>> chosen;
   for (const std::uint32_t e : edges) chosen.push_back(key(c.edge_verts[2 * std::size_t(e)], c.edge_verts[2 * std::size_t(e) + 1]));
   std::sort(chosen.begin(), chosen.end());
-  for (const auto& [a, b] : tags.crease_edges)
-    if (!std::binary_search(chosen.begin(), chosen.end(), key(a, b))) keep.push_back(key(a, b));
+  std::vector<float> sharpness;  // kept aligned with the edges; a crease marked here is infinitely sharp
+  for (std::size_t k = 0; k < tags.crease_edges.size(); ++k) {
+    const auto [a, b] = tags.crease_edges[k];
+    if (std::binary_search(chosen.begin(), chosen.end(), key(a, b))) continue;
+    keep.push_back(key(a, b));
+    sharpness.push_back(k < tags.crease_sharpness.size() ? tags.crease_sharpness[k] : INFINITY);
+  }
   if (on) keep.insert(keep.end(), chosen.begin(), chosen.end());
+  if (on) sharpness.insert(sharpness.end(), chosen.size(), INFINITY);
   tags.crease_edges = std::move(keep);
+  tags.crease_sharpness = std::move(sharpness);
   return tags;
 }
 
@@ -34,10 +42,17 @@ FeatureTags with_corners(FeatureTags tags, std::span<const unsigned> vertices, b
   std::vector<std::uint32_t> chosen(vertices.begin(), vertices.end());
   std::sort(chosen.begin(), chosen.end());
   std::vector<std::uint32_t> keep;
-  for (const std::uint32_t v : tags.corner_vertices)
-    if (!std::binary_search(chosen.begin(), chosen.end(), v)) keep.push_back(v);
+  std::vector<float> sharpness;
+  for (std::size_t k = 0; k < tags.corner_vertices.size(); ++k) {
+    const std::uint32_t v = tags.corner_vertices[k];
+    if (std::binary_search(chosen.begin(), chosen.end(), v)) continue;
+    keep.push_back(v);
+    sharpness.push_back(k < tags.corner_sharpness.size() ? tags.corner_sharpness[k] : INFINITY);
+  }
   if (on) keep.insert(keep.end(), chosen.begin(), chosen.end());
+  if (on) sharpness.insert(sharpness.end(), chosen.size(), INFINITY);
   tags.corner_vertices = std::move(keep);
+  tags.corner_sharpness = std::move(sharpness);
   return tags;
 }
 

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/complex/complex_build.h"
 
 #include "core/base/errors.h"
@@ -141,17 +143,23 @@ TEST(ImportObj, ReadsOpenSubdivTags) {
   EXPECT_EQ(find_warning(m.report, "malformed")->first_lines, std::vector<std::size_t>{10});
 }
 
-// Issue 20: OpenSubdiv's semi-sharp creases (0 < sharpness < 10) were taken as infinitely sharp
-// without a word; they still are (per-level sharpness is to come), and the user is told once.
-TEST(ImportObj, SemiSharpCreasesAreNamedAsTakenSharp) {
-  const LoadedMesh m = load("t.obj", kSquare + "t crease 2/1/0 0 1 2.5\nt crease 2/1/0 1 2 10\nt crease 2/1/0 2 3 0.5\n");
+// Issue 20: OpenSubdiv's semi-sharp creases (0 < sharpness < 10) keep their sharpness (10 and
+// above: infinitely sharp); a fractional one is named once (the fraction is not blended), and
+// every semi-sharp tag is named with which schemes honour it per level.
+TEST(ImportObj, SemiSharpCreasesKeepTheirSharpness) {
+  const LoadedMesh m = load("t.obj", kSquare + "t crease 2/1/0 0 1 2.5\nt crease 2/1/0 1 2 10\nt crease 2/1/0 2 3 0.5\nt corner 1/1/0 3 2\n");
   ImportReport report;
   const FeatureTags tags = feature_tags_from_obj(m.mesh.tags, report);
-  EXPECT_EQ(tags.crease_edges.size(), 3u);
-  ASSERT_EQ(report.warnings.size(), 1u);
-  EXPECT_EQ(report.warnings[0].count, 2u);  // the 2.5 and the 0.5; 10 is OpenSubdiv's infinitely sharp
-  EXPECT_EQ(report.warnings[0].first_lines, (std::vector<std::size_t>{6, 8}));
-  EXPECT_NE(report.warnings[0].what.find("semi-sharp crease tags"), std::string::npos) << report.warnings[0].what;
+  ASSERT_EQ(tags.crease_edges.size(), 3u);
+  EXPECT_EQ(tags.crease_sharpness, (std::vector<float>{2.5f, INFINITY, 0.5f}));
+  EXPECT_EQ(tags.corner_sharpness, (std::vector<float>{2.0f}));
+  const ImportWarning* fraction = find_warning(report, "fractional sharpness");
+  ASSERT_NE(fraction, nullptr);
+  EXPECT_EQ(fraction->first_lines, (std::vector<std::size_t>{6, 8}));
+  const ImportWarning* per_level = find_warning(report, "semi-sharp crease tags: sharp for s levels with the linear and cubic schemes");
+  ASSERT_NE(per_level, nullptr);
+  EXPECT_EQ(per_level->count, 2u);  // 2.5 and 0.5 (10 is infinitely sharp)
+  EXPECT_NE(find_warning(report, "semi-sharp corner tags: sharp for s levels"), nullptr);
 }
 
 TEST(ImportObj, ReportsIgnoredStatements) {

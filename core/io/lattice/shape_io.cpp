@@ -4,6 +4,7 @@
 #include "core/io/model/surface_export.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/complex/complex_build.h"
 #include "core/base/errors.h"
@@ -204,9 +205,14 @@ std::vector<std::string> write_shape(const std::string& path, const Complex& c, 
     curve_polylines(c, m);
   }
   const FeatureTags tags = derive_feature_tags(c);
-  // Sharpness 10: what OpenSubdiv treats as infinitely sharp; any sharpness > 0 is a crease here.
-  for (auto [a, b] : tags.crease_edges) m.tags.push_back({"crease", {a, b}, {10.0}, {}, 0});
-  for (std::uint32_t v : tags.corner_vertices) m.tags.push_back({"corner", {v}, {10.0}, {}, 0});
+  // Sharpness 10: what OpenSubdiv treats as infinitely sharp; semi-sharp tags keep their value.
+  const auto sharpness = [](const std::vector<float>& s, std::size_t k) {
+    return k < s.size() && std::isfinite(s[k]) ? double(s[k]) : 10.0;
+  };
+  for (std::size_t k = 0; k < tags.crease_edges.size(); ++k)
+    m.tags.push_back({"crease", {tags.crease_edges[k].first, tags.crease_edges[k].second}, {sharpness(tags.crease_sharpness, k)}, {}, 0});
+  for (std::size_t k = 0; k < tags.corner_vertices.size(); ++k)
+    m.tags.push_back({"corner", {tags.corner_vertices[k]}, {sharpness(tags.corner_sharpness, k)}, {}, 0});
   if (ext != "obj" && !m.tags.empty()) {
     notes.push_back("." + ext + " cannot hold feature tags: " + std::to_string(tags.crease_edges.size()) +
                     " crease edges and " + std::to_string(tags.corner_vertices.size()) +

@@ -24,6 +24,30 @@ namespace {
 
 constexpr std::string_view kMagic = "sublift-project";
 constexpr std::size_t kMaxHeader = std::size_t(1) << 20;
+
+// The header's "sharpness": {"edges": [[edge, s], ...], "vertices": [[vertex, s], ...]} onto the
+// base (s > 0; 10 and above infinitely sharp), each entry checked.
+void read_sharpness(const std::string& file, const nlohmann::json& j, Complex& c) {
+  if (!j.is_object()) throw InputError(file, 2, "header 'sharpness' is not an object");
+  if (c.dim != 2) throw InputError(file, 2, "header 'sharpness' on a base of dimension " + std::to_string(c.dim) + " (surfaces only)");
+  c.edge_sharpness.assign(c.num_edges(), 0.0f);
+  c.vertex_sharpness.assign(c.num_vertices, 0.0f);
+  for (const char* key : {"edges", "vertices"}) {
+    const bool edges = key[0] == 'e';
+    const std::uint64_t bound = edges ? c.num_edges() : c.num_vertices;
+    if (!j.contains(key) || !j.at(key).is_array()) throw InputError(file, 2, std::string("header 'sharpness' has no '") + key + "' list");
+    for (const nlohmann::json& item : j.at(key)) {
+      if (!item.is_array() || item.size() != 2 || !item[0].is_number_unsigned() || !item[1].is_number())
+        throw InputError(file, 2, std::string("header 'sharpness' ") + key + ": entries are [index, sharpness]");
+      const std::uint64_t i = item[0].get<std::uint64_t>();
+      const double s = item[1].get<double>();
+      if (i >= bound || !(s > 0) || !std::isfinite(s))
+        throw InputError(file, 2, std::string("header 'sharpness' ") + key + ": [" + std::to_string(i) + ", " + format_shortest(s) +
+                                      "] is no index below " + std::to_string(bound) + " with a sharpness > 0");
+      (edges ? c.edge_sharpness : c.vertex_sharpness)[i] = s >= 10.0 ? INFINITY : float(s);
+    }
+  }
+}
 constexpr int kVersion = 2;  // 2: coefficients dense, sparse or quantized (coefficient_codec.h); 1: dense
 
 template <class T>
@@ -164,6 +188,17 @@ SavedProject write_project(const std::string& path, const Hierarchy& h, const Pr
   }
   if (const FitSource& fs = extras.fit_source; !fs.empty())
     j["fit_source"] = {{"mesh", fs.mesh}, {"mesh_vertices", fs.mesh_vertices}, {"base_vertex", fs.base_vertex}};
+  if (!b.edge_sharpness.empty() || !b.vertex_sharpness.empty()) {
+    // The base's semi-sharp features (OpenSubdiv sharpness; 10: infinitely sharp): the levels'
+    // feature dims follow from them (Complex::edge_sharpness).
+    nlohmann::json edges = nlohmann::json::array(), vertices = nlohmann::json::array();
+    const auto value = [](float s) { return std::isfinite(s) ? double(s) : 10.0; };
+    for (std::size_t e = 0; e < b.edge_sharpness.size(); ++e)
+      if (b.edge_sharpness[e] > 0) edges.push_back({e, value(b.edge_sharpness[e])});
+    for (std::size_t v = 0; v < b.vertex_sharpness.size(); ++v)
+      if (b.vertex_sharpness[v] > 0) vertices.push_back({v, value(b.vertex_sharpness[v])});
+    j["sharpness"] = {{"edges", edges}, {"vertices", vertices}};
+  }
   j["payload"] =
       "little-endian u32 edge_verts[2*edges] face_offsets[faces+1] face_verts[face_corners] "
       "face_edges[face_corners] cell_offsets[cells+1] cell_faces[cell_faces]; u8 vertex_dim[vertices] "
@@ -386,6 +421,7 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   check_extras(extras, levels, static_cast<std::size_t>(V), [&](const std::string& why) { throw InputError(file, 2, why); });
   const std::string_view coeff_payload = bytes.substr(pos, coeff_bytes);
   pos += coeff_bytes;
+  if (j.contains("sharpness")) read_sharpness(file, j.at("sharpness"), c);
   Hierarchy h;
   try {
     h = make_hierarchy(std::move(c), levels, scheme, channels, integer, 0, disc);

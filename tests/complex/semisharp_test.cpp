@@ -1,0 +1,108 @@
+// Semi-sharp creases and corners (issue 20; docs/features.md): a crease of sharpness s is a
+// feature for floor(s) levels and smooth after, the dims of every level derived from the
+// sharpness left; the transform stays exact; projects and OBJ keep the sharpness; other
+// schemes keep such tags sharp at every level. (Against OpenSubdiv: tests/schemes/peer_osd_test.)
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "core/complex/complex_build.h"
+#include "core/io/lattice/shape_io.h"
+#include "core/io/project/project_io.h"
+#include "core/multires/hierarchy.h"
+#include "tests/cli_run.h"
+#include "tests/io_test_util.h"
+#include "tests/mesh_fixtures.h"
+#include "tests/test_shapes.h"
+
+namespace sublift {
+namespace {
+
+namespace fx = fixtures;
+
+// The torus with the ring j = 0 tagged at `s` and vertex 9 a corner of sharpness `c`.
+Complex tagged_torus(float s, float c) {
+  const fx::Polygons m = fx::torus(8, 8);
+  FeatureTags tags;
+  for (std::uint32_t i = 0; i < 8; ++i) {
+    tags.crease_edges.emplace_back(i, (i + 1) % 8);
+    tags.crease_sharpness.push_back(s);
+  }
+  tags.corner_vertices.push_back(9);
+  tags.corner_sharpness.push_back(c);
+  return complex_from_polygons(m.num_vertices, m.faces, tags);
+}
+
+std::size_t creases(const Complex& c) {
+  std::size_t n = 0;
+  for (std::uint8_t d : c.edge_dim) n += d == 1;
+  return n;
+}
+
+TEST(SemiSharp, CreasesSoftenAfterTheirSharpness) {
+  const Hierarchy h = make_hierarchy(tagged_torus(2.0f, 1.0f), 4, Scheme::Cubic, 3);
+  EXPECT_EQ(creases(h.levels[0]), 8u);
+  EXPECT_EQ(creases(h.levels[1]), 16u);  // each crease edge halved, still sharp (s = 1 left)
+  EXPECT_EQ(creases(h.levels[2]), 0u);   // s = 0: smooth from level 2 on
+  EXPECT_EQ(creases(h.levels[4]), 0u);
+  EXPECT_EQ(h.levels[0].vertex_dim[9], 0);  // the corner, sharpness 1: a corner at level 0 only
+  EXPECT_EQ(h.levels[1].vertex_dim[9], 2);
+  EXPECT_EQ(h.levels[0].vertex_dim[0], 1);  // on the crease while it is sharp
+  EXPECT_EQ(h.levels[2].vertex_dim[0], 2);
+  // Infinitely sharp stays sharp.
+  const Hierarchy sharp = make_hierarchy(tagged_torus(INFINITY, INFINITY), 3, Scheme::Cubic, 3);
+  EXPECT_EQ(creases(sharp.levels[3]), 64u);
+  EXPECT_EQ(sharp.levels[3].vertex_dim[9], 0);
+  // Below 1: never sharp, but kept (OpenSubdiv would blend it at the first level).
+  const Complex faint = tagged_torus(0.5f, 0.5f);
+  EXPECT_EQ(creases(faint), 0u);
+  EXPECT_EQ(faint.edge_sharpness[0] > 0.0f, true);
+}
+
+TEST(SemiSharp, PerfectReconstructionAndTheProjectKeepsTheSharpness) {
+  Hierarchy h = make_hierarchy(tagged_torus(2.0f, 1.0f), 3, Scheme::Cubic, 3);
+  const std::vector<double> coeffs = testing::random_values(h.coeffs.size(), 11);
+  h.coeffs = coeffs;
+  const std::vector<double> fine = synthesize(h, 3);
+  Hierarchy back = h;
+  analyze(back, fine);
+  double worst = 0;
+  for (std::size_t i = 0; i < coeffs.size(); ++i) worst = std::max(worst, std::abs(back.coeffs[i] - coeffs[i]));
+  EXPECT_LT(worst, 1e-12);
+  testing::TempDir dir("sublift_semisharp_project");
+  write_project(dir.file("p.sublift"), h);
+  const Hierarchy read = read_project(dir.file("p.sublift"));
+  EXPECT_EQ(read.levels[0].edge_sharpness, h.levels[0].edge_sharpness);
+  for (int l = 0; l <= 3; ++l) EXPECT_EQ(read.levels[std::size_t(l)].edge_dim, h.levels[std::size_t(l)].edge_dim) << "level " << l;
+  EXPECT_EQ(synthesize(read, 3), fine);
+}
+
+TEST(SemiSharp, ObjTagsRoundTripWithTheirSharpness) {
+  testing::TempDir dir("sublift_semisharp_obj");
+  const fx::Polygons m = fx::torus(8, 8);
+  std::ofstream obj(dir.file("t.obj"));
+  for (std::size_t v = 0; v < m.positions.size(); v += 3) obj << "v " << m.positions[v] << " " << m.positions[v + 1] << " " << m.positions[v + 2] << "\n";
+  for (std::size_t f = 0; f < m.faces.rows(); ++f) {
+    obj << "f";
+    for (std::uint32_t v : m.faces.row(f)) obj << " " << v + 1;
+    obj << "\n";
+  }
+  obj << "t crease 2/1/0 0 1 3\nt crease 2/1/0 1 2 10\n";
+  obj.close();
+  const Shape s = read_shape(dir.file("t.obj"));
+  ASSERT_EQ(s.base.edge_sharpness.size(), s.base.num_edges());
+  const auto r = testing::run_cli({"subdivide", dir.file("t.obj"), "--scheme", "cubic", "--levels", "0", "-o", dir.file("back.obj")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(dir.file("back.obj"));
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(text.find("t crease 2/1/0 0 1 3"), std::string::npos) << text.substr(text.size() > 400 ? text.size() - 400 : 0);
+  EXPECT_NE(text.find("t crease 2/1/0 1 2 10"), std::string::npos);
+  // Another scheme's refinement keeps the tags sharp at every level (the old rule), as said.
+  const Hierarchy loop = make_hierarchy(tagged_torus(1.0f, 1.0f), 2, Scheme::Sqrt2, 3);
+  EXPECT_GT(creases(loop.levels[2]), 0u);
+}
+
+}  // namespace
+}  // namespace sublift

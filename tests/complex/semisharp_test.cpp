@@ -77,6 +77,15 @@ TEST(SemiSharp, PerfectReconstructionAndTheProjectKeepsTheSharpness) {
   EXPECT_EQ(read.levels[0].edge_sharpness, h.levels[0].edge_sharpness);
   for (int l = 0; l <= 3; ++l) EXPECT_EQ(read.levels[std::size_t(l)].edge_dim, h.levels[std::size_t(l)].edge_dim) << "level " << l;
   EXPECT_EQ(synthesize(read, 3), fine);
+  // A header naming an edge beyond the base, or a sharpness <= 0, is refused naming the entry.
+  std::ifstream in(dir.file("p.sublift"), std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  const std::size_t at = bytes.find("\"edges\":[[");
+  ASSERT_NE(at, std::string::npos);
+  std::string bad = bytes;
+  bad.replace(at, 10, "\"edges\":[[9999999,1.0],[");
+  const std::string why = testing::input_error([&] { read_project_from_memory("bad.sublift", bad); });
+  EXPECT_NE(why.find("header 'sharpness' edges: [9999999, 1]"), std::string::npos) << why;
 }
 
 TEST(SemiSharp, ObjTagsRoundTripWithTheirSharpness) {

@@ -4,6 +4,7 @@
 // that differs between two copies of a position is named.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -121,6 +122,27 @@ TEST(GltfColours, CompressReportsPositionAndColourGroups) {
   EXPECT_GT(j["groups"][1]["l2_error"].get<double>(), 0.0);
   EXPECT_LT(j["groups"][1]["l2_error"].get<double>(), 0.5);
   EXPECT_EQ(j["groups"][1]["kept"], j["groups"][0]["kept"]) << "the same fraction of each group";
+}
+
+// A scalar attribute goes out as the application-specific glTF attribute "_QUALITY" and comes
+// back in as "quality" (float, the same values to float precision).
+TEST(GltfColours, ScalarAttributesRoundTripAsCustomAttributes) {
+  TempDir dir("sublift_gltf_custom");
+  std::ofstream(dir.file("q.ply")) << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                                      "property float quality\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+                                      "0 0 0 0.25\n1 0 0 0.5\n1 1 0 0.75\n0 1 0 1.5\n3 0 1 2\n3 0 2 3\n";
+  const auto r = testing::run_cli({"subdivide", dir.file("q.ply"), "--scheme", "linear-tri", "--levels", "1", "-o", dir.file("q.glb")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("cannot hold the vertex attributes"), std::string::npos) << r.err;
+  const Shape s = read_shape(dir.file("q.glb"));
+  const VertexAttribute* q = attribute(s, "quality");
+  ASSERT_NE(q, nullptr);
+  ASSERT_EQ(q->values.size(), s.positions.size() / 3);
+  for (std::size_t v = 0; v < 4; ++v) EXPECT_EQ(q->values[v], (std::array<double, 4>{0.25, 0.5, 0.75, 1.5})[v]);
+  // An edge midpoint of the linear split: the mean of its ends (0.25 and 0.5, or another pair).
+  bool mean = false;
+  for (std::size_t v = 4; v < q->values.size(); ++v) mean = mean || q->values[v] == 0.375;
+  EXPECT_TRUE(mean);
 }
 
 TEST(GltfColours, CopiesOfAPositionWithOtherColoursAreNamed) {

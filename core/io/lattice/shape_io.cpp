@@ -4,6 +4,7 @@
 #include "core/io/model/surface_export.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include "core/complex/complex_build.h"
@@ -84,6 +85,13 @@ Shape shape_from_gltf(const std::string& path) {
     }
     if (parted > 0)
       loaded.report.note_not_kept(std::to_string(parted) + " glTF vertices whose COLOR_0 differs from another copy at the same position (the first copy's colour kept)", 0);
+  }
+  for (const auto& [semantic, values] : model.custom) {  // "_QUALITY" -> attribute "quality"
+    VertexAttribute a{"", "float", {}};
+    for (std::size_t i = 1; i < semantic.size(); ++i) a.name += char(std::tolower(static_cast<unsigned char>(semantic[i])));
+    if (a.name.empty()) a.name = "custom";
+    for (std::uint32_t v : weld.first) a.values.push_back(values[v]);
+    m.attributes.push_back(std::move(a));
   }
   if (m.positions.size() < model.num_vertices())
     loaded.report.add("glTF vertices welded by position: " + std::to_string(model.num_vertices()) + " into " +

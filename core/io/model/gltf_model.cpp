@@ -322,6 +322,27 @@ Model import_gltf_model(const std::string& path, ModelFormat format) {
           for (std::size_t k = 0; k < width; ++k) model.colors[4 * (r.first_vertex + v) + k] = float(c[width * v + k]);
         r.has_colors = true;
       }
+      // Application-specific attributes ("_NAME", glTF 2.0 sec. 3.7.2.1): float SCALARs are read,
+      // the first of each name per POSITION accessor; others are named as not read.
+      for (const auto& [semantic, index] : p.attributes) {
+        if (semantic.empty() || semantic[0] != '_') continue;
+        const tinygltf::Accessor* acc = index >= 0 && std::size_t(index) < g.accessors.size() ? &g.accessors[std::size_t(index)] : nullptr;
+        if (!acc || acc->type != TINYGLTF_TYPE_SCALAR || acc->componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || acc->normalized) {
+          model.notes.push_back(prim_name(mesh, prim) + ": attribute " + printable(semantic, 64) + " is not a float SCALAR: not read");
+          continue;
+        }
+        auto it = std::find_if(model.custom.begin(), model.custom.end(), [&](const auto& c) { return c.first == semantic; });
+        if (it == model.custom.end()) {
+          model.custom.emplace_back(semantic, std::vector<float>());
+          it = model.custom.end() - 1;
+        }
+        if (it->second.size() >= r.first_vertex + ps.count) continue;  // this range has it already
+        const std::vector<double> x = read_numbers(g, index, TINYGLTF_TYPE_SCALAR, {}, semantic + " of " + prim_name(mesh, prim), path);
+        if (x.size() != ps.count)
+          throw InputError(path, 0, "accessor " + std::to_string(index) + " (" + semantic + "): " + str(x.size()) + " values for " + str(ps.count) + " positions");
+        it->second.resize(r.first_vertex + ps.count, 0.0f);
+        for (std::size_t v = 0; v < ps.count; ++v) it->second[r.first_vertex + v] = float(x[v]);
+      }
       const std::vector<std::uint32_t> idx = primitive_indices(g, p, mesh, prim, ps.count, path);
       if (mode >= TINYGLTF_MODE_TRIANGLES)
         add_triangles(model.faces, idx, mode, r.first_vertex, mesh, prim, path);
@@ -400,6 +421,7 @@ Model import_gltf_model(const std::string& path, ModelFormat format) {
   }
   model.source = std::move(source);
   if (!model.colors.empty()) model.colors.resize(4 * model.num_vertices(), 1.0f);  // ranges after the first colours: white
+  for (auto& [name, values] : model.custom) values.resize(model.num_vertices(), 0.0f);
   return model;
 }
 

@@ -63,6 +63,9 @@ struct Model {
   // glTF COLOR_0 as read (RGBA, 0..1, 4 per vertex; vertices of ranges without one white);
   // empty when no primitive has one. Carried by read_shape; FFD export leaves colours as stored.
   std::vector<float> colors;
+  // glTF application-specific SCALAR float attributes ("_QUALITY"), one value per vertex each
+  // (vertices of ranges without one 0), in the order first met; read_shape carries them.
+  std::vector<std::pair<std::string, std::vector<float>>> custom;
   std::vector<ModelRange> ranges;  // glTF only
   std::vector<std::string> notes;  // decisions and repairs the user should know about
   std::shared_ptr<const ModelSource> source;

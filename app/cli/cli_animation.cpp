@@ -19,6 +19,7 @@
 #include "core/base/text_lines.h"
 #include "core/edit/session.h"
 #include "core/io/model/animation_export.h"
+#include "core/io/project/project_io.h"
 #include "core/schemes/registry.h"
 
 namespace sublift::cli {
@@ -34,7 +35,8 @@ constexpr const char* kHelp =
     "  and analysed, so the animation's detail in space and in time becomes wavelets. Edits move\n"
     "  a control point of any level at one frame; the change spreads over the frames its time\n"
     "  support covers, with the finer motion kept.\n"
-    "  IN              one .gltf/.glb (an animation of morph-target weights, a skin or node\n"
+    "  IN              an animation's .sublift project, or one .gltf/.glb (an animation of\n"
+    "                  morph-target weights, a skin or node\n"
     "                  transforms, sampled at --frames uniform times), or two or more OBJ/PLY/OFF\n"
     "                  files of the same connectivity, one frame each, in the order given\n"
     "  --animation A   the glTF animation's index (default: the first)\n"
@@ -54,6 +56,8 @@ constexpr const char* kHelp =
     "  -o OUT          .gltf/.glb: the frames as morph targets keyed in time (LINEAR); .obj,\n"
     "                  .ply: one file per frame, '#...#' in the name replaced by the frame number\n"
     "                  (otherwise _0000 before the extension). The finest level's frames.\n"
+    "                  .sublift: the animation's project (the lattice's coefficients and the\n"
+    "                  frames' times), which IN, the modeler and its recovery open again\n"
     "  --json          prints frames, counts, the fit's errors, time and space wavelets, the\n"
     "                  edits, compression with the error per frame and the sizes against the raw\n"
     "                  frames and against per-frame compression with the surface wavelets, and\n"
@@ -112,15 +116,23 @@ int run_animation(int argc, char** argv) {
   }
   if (const auto o = a.value("-o")) {
     const std::string ext = file_extension(*o);
-    if (ext != "gltf" && ext != "glb" && ext != "obj" && ext != "ply")
-      throw UsageError("OUT must be .gltf, .glb (morph targets) or .obj, .ply (one file per frame): " + *o);
+    if (ext != "gltf" && ext != "glb" && ext != "obj" && ext != "ply" && ext != "sublift")
+      throw UsageError("OUT must be .gltf, .glb (morph targets), .obj, .ply (one file per frame) or .sublift (the animation's project): " + *o);
   }
   const std::optional<double> keep = a.value("--keep") ? std::optional(fraction_option(a, "--keep")) : std::nullopt;
   const std::optional<double> linf = a.value("--linf") ? std::optional(fraction_option(a, "--linf")) : std::nullopt;
   std::vector<AnimationEdit> edits;
   if (const auto e = a.value("--edits")) edits = read_animation_edits(*e);
 
-  OpenedAnimation anim = open_animation(a.positional, options);
+  // A project of an animation (written by -o OUT.sublift or the modeler) opens as it was saved.
+  const bool project_in = a.positional.size() == 1 && file_extension(a.positional[0]) == "sublift";
+  OpenedAnimation anim = [&] {
+    if (!project_in) return open_animation(a.positional, options);
+    ProjectExtras x;
+    const Hierarchy h = read_project(a.positional[0], &x);
+    if (x.animation.empty()) throw InputError(a.positional[0], 0, "is not an animation's project (no 'animation' in its header)");
+    return reopen_animation(a.positional[0], h, x.animation);
+  }();
   SpaceTime& st = anim.st;
   const int J = st.levels(), n = st.layers(J);
   std::vector<std::uint32_t> edit_vertices;
@@ -184,6 +196,7 @@ int run_animation(int argc, char** argv) {
                    {"compress_ms", compress_ms},
                    {"per_frame_ms", per_frame_ms}};
     finest = r.finest;
+    st.lattice.coeffs = r.coeffs;  // what a project output keeps
   }
 
   // Output: the finest level's layers, each on the surface's finest level.
@@ -198,7 +211,12 @@ int run_animation(int argc, char** argv) {
     }
     const Csr& faces = st.surface_levels.levels[std::size_t(J)].faces;
     const std::string ext = file_extension(*o);
-    if (ext == "gltf" || ext == "glb") {
+    if (ext == "sublift") {
+      ProjectExtras x;
+      x.animation = animation_extras(anim);
+      write_project(*o, st.lattice, x);
+      written.push_back(*o);
+    } else if (ext == "gltf" || ext == "glb") {
       write_animation_gltf(*o, faces, frames, anim.times, st.cyclic, anim.loop_end);
       written.push_back(*o);
     } else {

@@ -13,9 +13,14 @@
 namespace sublift {
 
 void ModelerState::open_animation(std::span<const std::string> inputs, const AnimationOptions& options) {
+  install_animation(sublift::open_animation(inputs, options), inputs[0], {}, 0, {});  // may throw: nothing changed yet
+}
+
+void ModelerState::install_animation(OpenedAnimation opened, const std::string& path, std::string project, int level,
+                                     std::vector<double> gains) {
   auto next = std::make_unique<AnimationViewState>();
-  next->anim = sublift::open_animation(inputs, options);  // may throw: nothing changed yet
-  auto session = std::make_unique<Session>(next->anim.st.lattice);
+  next->anim = std::move(opened);
+  auto session = std::make_unique<Session>(next->anim.st.lattice, std::move(gains));
   std::vector<std::string> warnings;
   for (const std::string& n : next->anim.notes) warnings.push_back(n);
   warnings.push_back("animation: " + std::to_string(next->frames()) + " frames, " + std::to_string(next->anim.st.base_steps) +
@@ -25,13 +30,13 @@ void ModelerState::open_animation(std::span<const std::string> inputs, const Ani
   basis_off();
   ffd_.reset();
   anim_ = std::move(next);
-  file_path_ = inputs[0];
+  file_path_ = path;
   file_vertices_ = session->num_vertices(0);
-  project_path_.clear();
+  project_path_ = std::move(project);
   warnings_ = std::move(warnings);
   clear_pin();
   view_level_ = -1;
-  level_ = 0;
+  level_ = std::clamp(level, 0, session->finest_level());
   selection_.clear();
   active_ = -1;
   install_new_model(std::move(session));  // rebuild_limit() draws the animation's frame 0

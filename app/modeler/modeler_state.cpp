@@ -58,6 +58,8 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   if (is_project_file(path)) {
     ProjectExtras extras;
     Hierarchy h = read_project(path, &extras);
+    if (!extras.animation.empty())  // an animation's project opens in the animation mode
+      return install_animation(reopen_animation(path, h, extras.animation), path, path, extras.current_level, extras.gains);
     ImportReport topology;  // of the base the session subdivides and edits
     add_topology_warnings(topology, h.levels.front());
     std::istringstream in(topology.format(std::filesystem::path(path).filename().string()));
@@ -650,13 +652,11 @@ ProjectExtras ModelerState::project_extras() const {
   if (!input_order_.empty() && input_order_.level <= session_->finest_level()) extras.input_order = input_order_;
   // (A session never changes level 0; the check keeps a map of another base out of the file.)
   if (fit_source_.base_vertex.size() == session_->num_vertices(0)) extras.fit_source = fit_source_;
+  if (anim_) extras.animation = animation_extras(anim_->anim);  // reopens as the animation
   return extras;
 }
 
 void ModelerState::save_project(const std::string& path) {
-  if (anim_)
-    throw Error("an animation is not saved as a project yet: export it (.gltf/.glb morph targets, or .obj/.ply frames) with "
-                "'Export animation'");
   write_project(path, session_->hierarchy(), project_extras());
   session_->mark_saved();
   project_path_ = path;

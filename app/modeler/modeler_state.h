@@ -421,6 +421,9 @@ class ModelerState {
   SoftWeights selection_weights() const;
   void check_not_animation(const char* what) const;  // throws Error in the animation mode
   void rebuild_animation_view();                     // limit, faces, normals, layer, ghosts
+  // Installs an opened animation (from files, or a project: its path, edit level and gains).
+  void install_animation(OpenedAnimation opened, const std::string& path, std::string project, int level,
+                         std::vector<double> gains);
 
   std::unique_ptr<Session> session_;
   std::unique_ptr<AnimationViewState> anim_;

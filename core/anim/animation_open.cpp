@@ -99,4 +99,51 @@ OpenedAnimation open_animation(std::span<const std::string> inputs, const Animat
   return a;
 }
 
+AnimationExtras animation_extras(const OpenedAnimation& a) {
+  AnimationExtras x;
+  x.base_steps = a.st.base_steps;
+  x.cyclic = a.st.cyclic;
+  x.surface_vertices = a.st.surface.num_vertices;
+  x.surface_faces = a.st.surface.num_faces();
+  x.times = a.times;
+  x.loop_end = a.loop_end;
+  return x;
+}
+
+OpenedAnimation reopen_animation(const std::string& file, const Hierarchy& lattice, const AnimationExtras& x) {
+  const Complex& base = lattice.levels.front();
+  if (base.dim != 3 || x.surface_vertices > base.num_vertices || x.surface_faces > base.num_faces())
+    throw InputError(file, 2, "header 'animation' does not describe this lattice (its surface is larger than the base)");
+  Csr faces;  // the first layer's faces: sweep_lattice lists them first
+  for (std::uint32_t f = 0; f < x.surface_faces; ++f) {
+    for (std::uint32_t v : base.faces.row(f)) {
+      if (v >= x.surface_vertices) throw InputError(file, 2, "header 'animation': face " + std::to_string(f) + " is not on the first layer");
+      faces.items.push_back(v);
+    }
+    faces.offsets.push_back(std::uint32_t(faces.items.size()));
+  }
+  OpenedAnimation a;
+  a.source = file;
+  try {
+    a.st = make_space_time(complex_from_polygons(x.surface_vertices, faces), x.base_steps, x.cyclic, lattice.finest_level(), lattice.scheme);
+  } catch (const Error& e) {
+    throw InputError(file, 2, std::string("header 'animation': ") + e.what());
+  }
+  const Complex& swept = a.st.lattice.levels.front();
+  if (swept.num_vertices != base.num_vertices || swept.edge_verts != base.edge_verts || swept.faces.items != base.faces.items ||
+      swept.cell_faces.items != base.cell_faces.items || lattice.channels != 3)
+    throw InputError(file, 2, "header 'animation' does not describe this lattice: its sweep gives another complex");
+  if (x.times.size() != std::size_t(a.st.layers(a.st.levels())))
+    throw InputError(file, 2, "header 'animation' has " + std::to_string(x.times.size()) + " frame times for " +
+                                  std::to_string(a.st.layers(a.st.levels())) + " frames");
+  a.st.lattice.coeffs = lattice.coeffs;
+  a.times = x.times;
+  a.loop_end = x.loop_end;
+  const std::vector<double> finest = synthesize(a.st.lattice, a.st.levels());
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (std::size_t i = 0; i < finest.size(); ++i) lo[i % 3] = std::min(lo[i % 3], finest[i]), hi[i % 3] = std::max(hi[i % 3], finest[i]);
+  a.diagonal = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  return a;
+}
+
 }  // namespace sublift

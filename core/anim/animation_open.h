@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/anim/spacetime.h"
+#include "core/io/project/project_io.h"
 
 namespace sublift {
 
@@ -44,5 +45,13 @@ std::string valid_frame_counts(int frames, int levels, bool cyclic);
 /// InputError (files, a frame count that does not fit the levels, naming the counts that do) or
 /// Error.
 OpenedAnimation open_animation(std::span<const std::string> inputs, const AnimationOptions& options);
+
+/// What a project keeps of an opened animation beside the lattice's hierarchy.
+AnimationExtras animation_extras(const OpenedAnimation& a);
+
+/// The animation of a project (read_project's hierarchy and its `animation` extras): the surface
+/// taken from the lattice's first layer, swept again and checked to be the project's lattice,
+/// the coefficients the project's. Throws InputError naming `file` when they do not fit.
+OpenedAnimation reopen_animation(const std::string& file, const Hierarchy& lattice, const AnimationExtras& extras);
 
 }  // namespace sublift

@@ -159,6 +159,34 @@ TEST(CliAnimation, EditsMoveOnlyTheirTimeSupport) {
   }
 }
 
+// -o OUT.sublift keeps the animation: as IN it gives the same frames (and takes more edits).
+TEST(CliAnimation, AProjectOfTheAnimationOpensAgain) {
+  TempDir dir("sublift_cli_animation_project");
+  const std::vector<std::string> files = cube_sequence(dir, 9);
+  write_text(dir.file("edits.txt"), "0 4 3 0 0.2 0\n");
+  std::vector<std::string> args{"animation"};
+  args.insert(args.end(), files.begin(), files.end());
+  args.insert(args.end(), {"--levels", "2", "--edits", dir.file("edits.txt"), "-o", dir.file("anim.sublift")});
+  ASSERT_EQ(cli(args).exit_code, 0);
+  args.back() = dir.file("direct.obj");
+  ASSERT_EQ(cli(args).exit_code, 0);
+  const ProcessResult r = cli({"animation", dir.file("anim.sublift"), "-o", dir.file("again.obj"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["frames"], 9);
+  for (int f = 0; f < 9; ++f) {
+    char a[32], b[32];
+    std::snprintf(a, sizeof a, "direct_%04d.obj", f);
+    std::snprintf(b, sizeof b, "again_%04d.obj", f);
+    EXPECT_EQ(obj_positions(dir.file(a)), obj_positions(dir.file(b))) << "frame " << f;
+  }
+  // A project that is no animation is refused, naming it.
+  ASSERT_EQ(cli({"subdivide", files[0], "--scheme", "cubic", "--levels", "1", "-o", dir.file("plain.obj")}).exit_code, 0);
+  ASSERT_EQ(cli({"analyze", dir.file("plain.obj"), "--base", files[0], "--scheme", "cubic", "--levels", "1", "-o", dir.file("plain.sublift")}).exit_code, 0);
+  const ProcessResult bad = cli({"animation", dir.file("plain.sublift")});
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("is not an animation's project"), std::string::npos) << bad.err;
+}
+
 TEST(CliAnimation, RefusesWhatDoesNotFit) {
   TempDir dir("sublift_cli_animation_bad");
   const std::vector<std::string> files = cube_sequence(dir, 6);

@@ -188,6 +188,9 @@ SavedProject write_project(const std::string& path, const Hierarchy& h, const Pr
   }
   if (const FitSource& fs = extras.fit_source; !fs.empty())
     j["fit_source"] = {{"mesh", fs.mesh}, {"mesh_vertices", fs.mesh_vertices}, {"base_vertex", fs.base_vertex}};
+  if (const AnimationExtras& an = extras.animation; !an.empty())
+    j["animation"] = {{"base_steps", an.base_steps},           {"cyclic", an.cyclic},   {"surface_vertices", an.surface_vertices},
+                      {"surface_faces", an.surface_faces},     {"times", an.times},     {"loop_end", an.loop_end}};
   if (!b.edge_sharpness.empty() || !b.vertex_sharpness.empty()) {
     // The base's semi-sharp features (OpenSubdiv sharpness; 10: infinitely sharp): the levels'
     // feature dims follow from them (Complex::edge_sharpness).
@@ -324,6 +327,27 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
         if (!x.is_number_unsigned()) throw InputError(file, 2, "fit_source base_vertex holds something other than a vertex number");
         fs.base_vertex.push_back(static_cast<std::uint32_t>(std::min<std::uint64_t>(x.get<std::uint64_t>(), 0xffffffffu)));
       }
+    }
+    if (const auto it = j.find("animation"); it != j.end()) {
+      if (!it->is_object()) throw InputError(file, 2, "header 'animation' is not an object");
+      AnimationExtras& an = extras.animation;
+      const std::int64_t steps = header_integer(file, *it, "base_steps");
+      if (steps < 1 || steps > (1 << 20)) throw InputError(file, 2, "animation base_steps " + std::to_string(steps) + " outside 1..2^20");
+      an.base_steps = int(steps);
+      an.cyclic = it->at("cyclic").get<bool>();
+      const std::uint64_t sv = header_count(file, *it, "surface_vertices"), sf = header_count(file, *it, "surface_faces");
+      if (sv == 0 || sf == 0 || sv > 0xfffffffeu || sf > 0xfffffffeu) throw InputError(file, 2, "animation surface counts out of range");
+      an.surface_vertices = std::uint32_t(sv);
+      an.surface_faces = std::uint32_t(sf);
+      const auto& t = it->at("times");
+      if (!t.is_array() || t.size() > (std::size_t(1) << 24)) throw InputError(file, 2, "animation 'times' is not an array of times");
+      for (const auto& x : t) {
+        if (!x.is_number() || !std::isfinite(x.get<double>()) || (!an.times.empty() && !(x.get<double>() > an.times.back())))
+          throw InputError(file, 2, "animation 'times' must be finite and increasing");
+        an.times.push_back(x.get<double>());
+      }
+      an.loop_end = it->at("loop_end").get<double>();
+      if (!std::isfinite(an.loop_end)) throw InputError(file, 2, "animation 'loop_end' is not finite");
     }
     if (const auto it = j.find("attributes"); it != j.end()) {
       if (!it->is_array()) throw InputError(file, 2, "header 'attributes' is not an array");

@@ -50,6 +50,18 @@ struct FitSource {
 
 /// Session state a project keeps beside the hierarchy. Defaults are what a version-1 file
 /// without the optional header keys means.
+/// A space-time lattice's animation (core/anim/spacetime.h; docs/animation.md): the lattice is the
+/// base surface (the lattice's first `surface_vertices` vertices and first `surface_faces` faces,
+/// as sweep_lattice numbers them) swept over `base_steps` steps; the frames' times in seconds.
+struct AnimationExtras {
+  int base_steps = 0;  // 0: not an animation
+  bool cyclic = false;
+  std::uint32_t surface_vertices = 0, surface_faces = 0;
+  std::vector<double> times;  // one per finest layer, increasing
+  double loop_end = 0;        // cyclic: when the loop returns to frame 0
+  bool empty() const { return base_steps == 0; }
+};
+
 struct ProjectExtras {
   int current_level = 0;      // edit level the modeler shows, 0..J
   std::vector<double> gains;  // detail gain per level 0..J-1; empty means all 1
@@ -59,6 +71,8 @@ struct ProjectExtras {
   /// What channels 3.. hold beyond x, y, z (a file's colours and scalars): name and PLY type
   /// each, `values` empty. Header key `attributes`; as many as the channels after the third.
   std::vector<VertexAttribute> attributes;
+  /// Header key `animation` when the hierarchy is a swept space-time lattice.
+  AnimationExtras animation;
 };
 
 /// Level `order.level`'s complex numbered as the file: a surface with the file's faces (in the

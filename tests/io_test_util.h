@@ -4,6 +4,7 @@
 // complexes that do not depend on edge or face numbering.
 #include <algorithm>
 #include <filesystem>
+#include <unistd.h>
 #include <functional>
 #include <map>
 #include <random>
@@ -17,10 +18,12 @@
 
 namespace sublift::testing {
 
-/// A fresh folder under the system temp folder, removed by the destructor.
+/// A fresh folder under the system temp folder, removed by the destructor; the process id in
+/// its name keeps two test runs on one machine (a CI job beside a developer's) out of each other.
 class TempDir {
  public:
-  explicit TempDir(const std::string& name) : path_(std::filesystem::temp_directory_path() / name) {
+  explicit TempDir(const std::string& name)
+      : path_(std::filesystem::temp_directory_path() / (name + "_" + std::to_string(::getpid()))) {
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }

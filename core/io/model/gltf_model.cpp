@@ -331,7 +331,8 @@ Model import_gltf_model(const std::string& path, ModelFormat format) {
           model.notes.push_back(prim_name(mesh, prim) + ": attribute " + printable(semantic, 64) + " is not a float SCALAR: not read");
           continue;
         }
-        auto it = std::find_if(model.custom.begin(), model.custom.end(), [&](const auto& c) { return c.first == semantic; });
+        const std::string& name = semantic;  // a structured binding cannot be captured before C++20's P1091 (clang 14)
+        auto it = std::find_if(model.custom.begin(), model.custom.end(), [&](const auto& c) { return c.first == name; });
         if (it == model.custom.end()) {
           model.custom.emplace_back(semantic, std::vector<float>());
           it = model.custom.end() - 1;

@@ -9,6 +9,7 @@
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
 #include "core/multires/hierarchy.h"
+#include "core/multires/level_uv.h"
 #include "core/io/project/project_io.h"
 #include "core/io/lattice/shape_io.h"
 
@@ -61,6 +62,17 @@ int run_analyze(int argc, char** argv) {
   analyze(h, with_attributes(fine.positions, fine.attributes));
   ProjectExtras extras;
   extras.attributes = attribute_names(fine.attributes);
+  // UVs: BASE's when it has them (FINE's are then not needed), else FINE's coarsened.
+  std::vector<std::string> not_kept;
+  if (!base.uv.empty() && !uv_refinement_problem(scheme).empty()) {
+    not_kept.push_back("texture coordinates: " + uv_refinement_problem(scheme));
+  } else if (!base.uv.empty()) {
+    extras.uv = base.uv;
+    if (!fine.uv.empty() || !fine.texture.empty()) not_kept.push_back("FINE's texture coordinates and texture (BASE's UVs are used)");
+  } else {
+    extras.uv = project_uv(h, fine, nullptr, not_kept);
+  }
+  for (const std::string& s : not_kept) std::cerr << fine_path << ": warning: not kept in the project: " << s << "\n";
   write_project(out, h, extras);
   if (a.has("--json")) {
     nlohmann::json stats = nlohmann::json::array();
@@ -71,6 +83,7 @@ int run_analyze(int argc, char** argv) {
                         {"disc", h.disc},
                         {"vertices", h.num_vertices(levels)}, {"per_level", stats},
                         {"attributes", attribute_list_json(extras.attributes)},
+                        {"uv_points", extras.uv.num_points()}, {"not_kept", not_kept},
                         {"warnings", report_json(fine.report)}, {"base_warnings", report_json(base.report)}};
     std::cout << j.dump(2) << "\n";
   }

@@ -178,7 +178,7 @@ int run_compress(int argc, char** argv) {
       quantized_linf /= compressor.diagonal();
     }
   } else {
-    notes = write_level(out, h, h.finest_level(), c.finest, h.channels, extras.input_order, extras.attributes);
+    notes = write_level(out, h, h.finest_level(), c.finest, h.channels, extras.input_order, extras.attributes, &extras.uv);
   }
   for (const std::string& n : notes) std::cerr << out << ": warning: " << n << "\n";
   const auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };

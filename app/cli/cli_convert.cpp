@@ -30,7 +30,7 @@ int run_convert(int argc, char** argv) {
     const Shape shape = read_shape(a.positional[0]);
     std::cerr << shape.report.format(a.positional[0]);
     if (const std::string why = shape_output_problem(*out, shape.base.dim); !why.empty()) throw UsageError(why);
-    const auto notes = write_shape(*out, shape.base, shape.positions);
+    const auto notes = write_shape(*out, shape.base, shape.positions, shape.attributes, &shape.uv, &shape.texture);
     for (const std::string& n : notes) std::cerr << *out << ": warning: " << n << "\n";
     if (a.has("--json")) {
       nlohmann::json j = {{"input", a.positional[0]}, {"output", *out}, {"dim", shape.base.dim},

@@ -282,7 +282,7 @@ int run_edit(int argc, char** argv) {
     write_project(out, session.hierarchy(), extras);
   } else {
     const int J = session.finest_level();
-    notes = write_level(out, session.hierarchy(), J, session.positions(J), 3, extras.input_order);
+    notes = write_level(out, session.hierarchy(), J, session.positions(J), 3, extras.input_order, {}, &extras.uv);
   }
   for (const std::string& n : notes) std::cerr << out << ": warning: " << n << "\n";
   if (a.has("--json")) {

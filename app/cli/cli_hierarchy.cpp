@@ -10,6 +10,8 @@
 #include "core/complex/level_counts.h"
 #include "core/io/project/project_io.h"
 #include "core/io/lattice/shape_io.h"
+#include "core/complex/face_varying.h"
+#include "core/multires/level_uv.h"
 
 namespace sublift::cli {
 
@@ -78,13 +80,55 @@ bool is_project_path(const std::string& path) {
 }
 
 std::vector<std::string> write_level(const std::string& out, const Hierarchy& h, int L, std::span<const double> x,
-                                     int channels, const InputOrder& order, std::span<const VertexAttribute> names) {
+                                     int channels, const InputOrder& order, std::span<const VertexAttribute> names,
+                                     const FaceVaryingUV* base_uv) {
   const auto attributes = [&](std::span<const double> values) {
     return channels == 3 + static_cast<int>(names.size()) ? attributes_of(values, channels, names) : std::vector<VertexAttribute>{};
   };
-  if (order.level != L) return write_shape(out, h.levels[static_cast<std::size_t>(L)], xyz_of(x, channels), attributes(x));
+  const Complex& level = h.levels[static_cast<std::size_t>(L)];
+  std::vector<std::string> notes;
+  FaceVaryingUV uv;
+  if (base_uv && !base_uv->empty()) {
+    if (const std::string why = uv_refinement_problem(h.scheme); !why.empty())
+      notes.push_back("texture coordinates not written: " + why);
+    else
+      uv = uv_at_level(h, *base_uv, L);
+  }
+  const auto add = [&](std::vector<std::string> more) {
+    notes.insert(notes.end(), more.begin(), more.end());
+    return notes;
+  };
+  if (order.level != L) return add(write_shape(out, level, xyz_of(x, channels), attributes(x), &uv));
   const std::vector<double> ordered = in_input_order(order, x, channels);
-  return write_shape(out, in_input_order(order, h.levels[static_cast<std::size_t>(L)]), xyz_of(ordered, channels), attributes(ordered));
+  const Complex file_level = in_input_order(order, level);
+  if (!uv.empty()) {  // the file's faces over the engine's vertices, corner for corner
+    Csr engine_faces = order.faces;
+    for (std::uint32_t& v : engine_faces.items) v = order.engine_vertex[v];
+    uv = uv_for_faces(level.faces, uv, engine_faces);
+  }
+  return add(write_shape(out, file_level, xyz_of(ordered, channels), attributes(ordered), &uv));
+}
+
+FaceVaryingUV project_uv(const Hierarchy& h, const Shape& fine, const std::vector<std::uint32_t>* engine_vertex,
+                         std::vector<std::string>& not_kept) {
+  if (!fine.texture.empty())
+    not_kept.push_back("the texture image '" + fine.texture.name + "' (a project keeps the UVs, not the image: give it to render --texture)");
+  if (fine.uv.empty()) return {};
+  FaceVaryingUV at_finest = fine.uv;
+  std::string why;
+  try {
+    if (engine_vertex) {
+      Csr faces = fine.base.faces;
+      for (std::uint32_t& v : faces.items) v = (*engine_vertex)[v];
+      at_finest = uv_for_faces(faces, fine.uv, h.levels.back().faces);
+    }
+    FaceVaryingUV base = coarsen_uv(h, at_finest, &why);
+    if (!base.empty()) return base;
+  } catch (const TopologyError& e) {
+    why = e.what();
+  }
+  not_kept.push_back("texture coordinates (" + std::to_string(fine.uv.num_points()) + " UV points): " + why);
+  return {};
 }
 
 std::vector<double> with_attributes(std::span<const double> xyz, std::span<const VertexAttribute> attributes) {

@@ -10,6 +10,7 @@
 #include "app/cli/cli_args.h"
 #include "core/base/channels.h"
 #include "core/complex/complex.h"
+#include "core/complex/shape.h"
 #include "core/io/project/project_io.h"
 #include "core/multires/hierarchy.h"
 
@@ -41,8 +42,18 @@ bool is_project_path(const std::string& path);
 /// Writes the control net `x` of level L (`channels` per vertex) to `out`; in the vertex and
 /// face order of the file the project was rebuilt from when `order` is of that level. Channels
 /// 3.. are the attributes `names` (ProjectExtras::attributes), written where the format can.
+/// `base_uv` (ProjectExtras::uv) gives the level its texture coordinates by the linear rule; a
+/// scheme that cannot carry them is named in the notes.
 std::vector<std::string> write_level(const std::string& out, const Hierarchy& h, int L, std::span<const double> x,
-                                     int channels, const InputOrder& order, std::span<const VertexAttribute> names = {});
+                                     int channels, const InputOrder& order, std::span<const VertexAttribute> names = {},
+                                     const FaceVaryingUV* base_uv = nullptr);
+
+/// The base UVs of a project analysed from `fine` (its finest level): FINE's UVs carried to the
+/// finest level's faces (through `engine_vertex`, file vertex -> engine vertex, when the file is
+/// in its own order) and coarsened (level_uv.h). What cannot be kept (the scheme, UVs that are not
+/// a linear refinement, the texture image) is added to `not_kept`.
+FaceVaryingUV project_uv(const Hierarchy& h, const Shape& fine, const std::vector<std::uint32_t>* engine_vertex,
+                         std::vector<std::string>& not_kept);
 
 /// x, y, z and the attributes' values interleaved: 3 + attributes.size() values per vertex.
 std::vector<double> with_attributes(std::span<const double> xyz, std::span<const VertexAttribute> attributes);

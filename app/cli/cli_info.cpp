@@ -64,6 +64,7 @@ int run_info(int argc, char** argv) {
     nlohmann::json j = mesh_stats_json(s);
     j["file"] = file;
     j["tags"] = tags;
+    j["uv_points"] = loaded.mesh.uv.num_points();
     j["warnings"] = report_json(loaded.report);
     std::cout << j.dump(2) << "\n";
     return 0;
@@ -87,6 +88,7 @@ int run_info(int argc, char** argv) {
             << "components:            " << s.components << "\n"
             << "Euler characteristic:  " << s.euler_characteristic << "\n";
   if (auto g = genus(s)) std::cout << "genus:                 " << *g << "\n";
+  if (!loaded.mesh.uv.empty()) std::cout << "texture coordinates:   " << loaded.mesh.uv.num_points() << " UV points\n";
   std::cout << "bounding box:          [" << point(s.bbox_min) << "] .. [" << point(s.bbox_max) << "]\n";
   if (!tags.empty()) {
     std::cout << "tags:                  ";

@@ -63,6 +63,7 @@ int info_project(const std::string& file, bool json) {
                       {"faces", base.num_faces()},
                       {"cells", base.num_cells()},
                       {"finest_vertices", h.num_vertices(J)},
+                      {"uv_points", extras.uv.num_points()},
                       {"per_level", per_level},
                       {"feature_dims", {{"vertices", dims_json(base.vertex_dim)},
                                         {"edges", dims_json(base.edge_dim)},
@@ -82,6 +83,7 @@ int info_project(const std::string& file, bool json) {
             << "base:                  " << base.num_vertices << " vertices, " << base.num_edges() << " edges, "
             << base.num_faces() << " faces, " << base.num_cells() << " cells\n"
             << "levels:                " << J << " (finest: " << h.num_vertices(J) << " vertices)\n";
+  if (!extras.uv.empty()) std::cout << "texture coordinates:   " << extras.uv.num_points() << " UV points on the base's corners\n";
   for (const auto& s : per_level)
     std::cout << "  level " << s["level"].get<int>() << ": " << s["vertices"].get<std::uint64_t>() << " vertices, "
               << s["wavelets"].get<std::uint64_t>() << " wavelets, max " << format_double(s["wavelet_max"].get<double>())
@@ -112,6 +114,8 @@ int info_shape(const std::string& file, bool json) {
   j["cell_face_counts"] = sizes;
   j["feature_dims"] = {{"vertices", dims_json(c.vertex_dim)}, {"edges", dims_json(c.edge_dim)}, {"faces", dims_json(c.face_dim)}};
   j["bbox"] = {{"min", {lo[0], lo[1], lo[2]}}, {"max", {hi[0], hi[1], hi[2]}}};
+  j["uv_points"] = shape.uv.num_points();
+  j["texture"] = shape.texture.empty() ? nlohmann::json(nullptr) : nlohmann::json({{"name", shape.texture.name}, {"mime_type", shape.texture.mime_type}, {"bytes", shape.texture.bytes.size()}});
   j["warnings"] = report_json(shape.report);
   if (json) {
     std::cout << j.dump(2) << "\n";
@@ -132,6 +136,8 @@ int info_shape(const std::string& file, bool json) {
             << "bounding box:          [" << format_double(lo[0]) << " " << format_double(lo[1]) << " "
             << format_double(lo[2]) << "] .. [" << format_double(hi[0]) << " " << format_double(hi[1]) << " "
             << format_double(hi[2]) << "]\n";
+  if (!shape.uv.empty()) std::cout << "texture coordinates:   " << shape.uv.num_points() << " UV points\n";
+  if (!shape.texture.empty()) std::cout << "texture:               " << shape.texture.name << " (" << shape.texture.mime_type << ", " << shape.texture.bytes.size() << " bytes)\n";
   return 0;
 }
 

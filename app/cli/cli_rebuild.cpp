@@ -86,9 +86,10 @@ int run_rebuild(int argc, char** argv) {
   if (lattice)
     if (const std::size_t n = lattice_feature_count(fine.base); n > 0)
       not_kept.push_back(std::to_string(n) + " lattice feature tags (faces, edges or vertices marked as features)");
+  ProjectExtras extras;
+  if (!lattice) extras.uv = project_uv(r.hierarchy, fine, &r.engine_vertex, not_kept);
   for (const std::string& s : not_kept) std::cerr << fine_path << ": warning: not kept in the project (nor written back): " << s << "\n";
   const DetectedLevels& d = r.detected;
-  ProjectExtras extras;
   extras.input_order.level = d.levels;
   if (!lattice) extras.attributes = attribute_names(fine.attributes);  // channels 3.. of the project
   extras.input_order.engine_vertex = std::move(r.engine_vertex);
@@ -117,6 +118,7 @@ int run_rebuild(int argc, char** argv) {
                         {"output", out},
                         {"scheme", scheme_name(scheme)},
                         {"attributes", attribute_list_json(extras.attributes)},
+                        {"uv_points", extras.uv.num_points()},
                         {"scheme_picked", automatic},
                         {"split", split},
                         {"integer", integer},

@@ -196,7 +196,7 @@ int run_set(int argc, char** argv) {
     extras.local_frames = session->detail_frames() == DetailFrames::Local;
     write_project(out, session->hierarchy(), extras);
   } else {
-    for (const std::string& n : write_level(out, session->hierarchy(), J, session->positions(J), 3, extras.input_order))
+    for (const std::string& n : write_level(out, session->hierarchy(), J, session->positions(J), 3, extras.input_order, {}, &extras.uv))
       notes.push_back(n);
   }
   for (const std::string& n : notes) std::cerr << out << ": note: " << n << "\n";

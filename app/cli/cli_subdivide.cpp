@@ -6,6 +6,7 @@
 #include "app/cli/cli_hierarchy.h"
 #include "app/cli/cli_json.h"
 #include "core/multires/hierarchy.h"
+#include "core/multires/level_uv.h"
 #include "core/io/lattice/shape_io.h"
 
 namespace sublift::cli {
@@ -23,7 +24,9 @@ constexpr const char* kHelp =
     "  and loop (Lounsbery, DeRose & Warren) split triangle meshes 1-to-4 (0..12; old vertices,\n"
     "  then one per edge). IN: .obj/.off/.ply surfaces, .obj with only 'l' polylines\n"
     "  (curves), .lattice, .ovm and .vtk lattices. OUT by extension: .obj/.off/.ply for surfaces,\n"
-    "  .obj for curves, .lattice for lattices, .vtk for any. --integer rounds every lifting\n"
+    "  .obj for curves, .lattice for lattices, .vtk for any. Texture coordinates (OBJ vt, glTF\n"
+    "  TEXCOORD_0) are refined linearly inside each face, seams kept, and written to .obj/.gltf/.glb\n"
+    "  with the texture they map (not by sqrt2). --integer rounds every lifting\n"
     "  term (lossless integer transform). Requests beyond 50 million vertices are refused.\n";
 
 }  // namespace
@@ -51,7 +54,17 @@ int run_subdivide(int argc, char** argv) {
   set_base(h, with_attributes(shape.positions, shape.attributes));
   const std::vector<double> x = synthesize(h, levels);
   const Complex& fine = h.levels.back();
-  const auto notes = write_shape(out, fine, xyz_of(x, channels), attributes_of(x, channels, shape.attributes));
+  // Face-varying UVs by the linear rule (face_varying.h), with the texture they map.
+  std::vector<std::string> notes;
+  FaceVaryingUV uv;
+  if (!shape.uv.empty()) {
+    if (const std::string why = uv_refinement_problem(scheme); !why.empty())
+      notes.push_back("texture coordinates not written: " + why);
+    else
+      uv = uv_at_level(h, shape.uv, levels);
+  }
+  for (std::string& n : write_shape(out, fine, xyz_of(x, channels), attributes_of(x, channels, shape.attributes), &uv, &shape.texture))
+    notes.push_back(std::move(n));
   for (const std::string& n : notes) std::cerr << out << ": warning: " << n << "\n";
   if (a.has("--json")) {
     nlohmann::json j = {{"input", in},       {"output", out},
@@ -59,6 +72,7 @@ int run_subdivide(int argc, char** argv) {
                         {"levels", levels},  {"base", base_counts},
                         {"finest", complex_counts_json(fine)}, {"vertices", fine.num_vertices},
                         {"attributes", attribute_list_json(shape.attributes)},
+                        {"uv_points", uv.num_points()}, {"texture", shape.texture.empty() || uv.empty() ? "" : shape.texture.name},
                         {"warnings", report_json(shape.report)}, {"notes", notes}};
     std::cout << j.dump(2) << "\n";
   }

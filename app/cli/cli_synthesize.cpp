@@ -11,6 +11,7 @@
 #include "core/analysis/limit_surface.h"
 #include "core/io/model/surface_export.h"
 #include "core/multires/hierarchy.h"
+#include "core/multires/level_uv.h"
 #include "core/io/project/project_io.h"
 #include "core/io/lattice/shape_io.h"
 #include "core/base/errors.h"
@@ -92,10 +93,17 @@ int run_synthesize(int argc, char** argv) {
   if (limit) {
     if (h.channels != 3) throw Error(in + ": --limit needs a project of positions (3 channels), this one has " + std::to_string(h.channels));
     const LimitSurface surface = finest_limit_surface(h, x);  // core/analysis/limit_surface.h
-    if (surface_out && surface.faces.rows() > 0)
-      write_surface_with_normals(out, surface.faces, surface.positions, surface.normals);
-    else
-      notes = write_level(out, h, L, surface.positions, 3, extras.input_order);
+    if (surface_out && surface.faces.rows() > 0) {
+      // The limit surface has level L's faces: its UVs are the level's.
+      FaceVaryingUV uv;
+      if (!extras.uv.empty() && uv_refinement_problem(h.scheme).empty() && surface.faces.items == h.levels[std::size_t(L)].faces.items)
+        uv = uv_at_level(h, extras.uv, L);
+      else if (!extras.uv.empty())
+        notes.push_back("texture coordinates not written with the limit surface (" + std::string(uv_refinement_problem(h.scheme).empty() ? "its faces are not the level's" : uv_refinement_problem(h.scheme)) + ")");
+      write_surface_with_normals(out, surface.faces, surface.positions, surface.normals, {}, &uv);
+    } else {
+      notes = write_level(out, h, L, surface.positions, 3, extras.input_order, {}, &extras.uv);
+    }
   } else if (every) {
     // Each level's net: the finest one is synthesised already, the coarser ones are its prefix
     // levels' syntheses (the same gains and kept wavelets).
@@ -103,12 +111,12 @@ int run_synthesize(int argc, char** argv) {
     for (int l = 0; l <= h.finest_level(); ++l) {
       const std::string file = (p.parent_path() / (p.stem().string() + "_L" + std::to_string(l) + p.extension().string())).string();
       const std::vector<double> xl = l == L ? x : synthesize_in_range(h, l);
-      for (const std::string& n : write_level(file, h, l, xl, h.channels, extras.input_order, extras.attributes))
+      for (const std::string& n : write_level(file, h, l, xl, h.channels, extras.input_order, extras.attributes, &extras.uv))
         notes.push_back(file + ": " + n);
       written.push_back(file);
     }
   } else {
-    notes = write_level(out, h, L, x, h.channels, extras.input_order, extras.attributes);
+    notes = write_level(out, h, L, x, h.channels, extras.input_order, extras.attributes, &extras.uv);
   }
   for (const std::string& n : notes) std::cerr << out << ": warning: " << n << "\n";
   if (a.has("--json")) {

@@ -10,7 +10,8 @@
 // has at least 2 vertices, every index < num_vertices(), no vertex twice in a row and no segment
 // used twice (in this polyline or an earlier one); first == last closes it.
 // `tags` keeps OpenSubdiv-style `t` lines (crease, corner, ...) with 0-based vertex indices;
-// `attributes` the per-vertex values beside positions (colours, scalars).
+// `attributes` the per-vertex values beside positions (colours, scalars); `uv` the texture
+// coordinates of the face corners.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -30,6 +31,31 @@ struct VertexAttribute {
   std::vector<double> values;  // one per vertex, in the file's units (uchar colours 0..255)
 };
 
+/// Face-varying texture coordinates (OBJ `vt`, glTF TEXCOORD_0): `points` holds u, v per UV
+/// point, `corners` one index into the points per face corner, laid out as the faces' corners
+/// (face_indices; a Complex's faces.items). Two faces meeting at a vertex with different indices
+/// there have a seam between them. Empty: the surface has none.
+struct FaceVaryingUV {
+  std::vector<double> points;          // 2 per UV point
+  std::vector<std::uint32_t> corners;  // one per face corner
+  bool empty() const { return corners.empty(); }
+  std::size_t num_points() const { return points.size() / 2; }
+};
+
+/// The base-colour texture a surface's UVs map (glTF baseColorTexture): the image file's bytes
+/// as read, undecoded, its media type, and the material and sampler values that go with it
+/// (glTF's numbers, so a glTF written back looks as the source did). Empty bytes: none.
+struct SurfaceTexture {
+  std::string mime_type;  // "image/png", "image/jpeg"
+  std::string bytes;
+  std::string name;       // the image's file name or name ("" if none), for messages and file names
+  double base_colour[4] = {1, 1, 1, 1};
+  double metallic = 1.0, roughness = 1.0;
+  int mag_filter = -1, min_filter = -1, wrap_s = 10497, wrap_t = 10497;  // -1: unset; 10497 REPEAT
+  bool double_sided = false;
+  bool empty() const { return bytes.empty(); }
+};
+
 /// One OpenSubdiv-style tag line: `t name ni/nf/ns ints... floats... strings...`.
 struct MeshTag {
   std::string name;
@@ -47,6 +73,7 @@ struct SurfaceMesh {
   std::vector<std::uint32_t> line_indices;
   std::vector<MeshTag> tags;
   std::vector<VertexAttribute> attributes;  // each with one value per vertex
+  FaceVaryingUV uv;                         // texture coordinates per face corner (or none)
 
   std::size_t num_vertices() const { return positions.size(); }
   std::size_t num_faces() const { return face_offsets.size() - 1; }

@@ -8,8 +8,12 @@
 
 namespace sublift {
 
-void FaceBuilder::add(std::span<const std::int64_t> corners, std::size_t line) {
+void FaceBuilder::add(std::span<const std::int64_t> corners, std::size_t line, std::span<const std::int64_t> uvs) {
   indices_.insert(indices_.end(), corners.begin(), corners.end());
+  if (uvs.size() == corners.size())
+    uvs_.insert(uvs_.end(), uvs.begin(), uvs.end());
+  else
+    uvs_.insert(uvs_.end(), corners.size(), -1);
   offsets_.push_back(indices_.size());
   lines_.push_back(line);
 }
@@ -26,8 +30,10 @@ void FaceBuilder::finish(SurfaceMesh& mesh, ImportReport& report) const {
   // Pass 1: validate and repair each face into flat arrays (no allocation per face: hostile
   // files have hundreds of thousands of faces); remember each face's canonical loop.
   std::vector<std::uint32_t> kept, canon;
+  std::vector<std::int64_t> kept_uv;  // parallel to kept
   std::vector<std::size_t> kept_offsets{0}, kept_lines;
   std::vector<std::uint32_t> face, sorted;
+  std::vector<std::int64_t> face_uv;
   for (std::size_t f = 0; f < lines_.size(); ++f) {
     const std::size_t line = lines_[f];
     std::span<const std::int64_t> raw(indices_.data() + offsets_[f], offsets_[f + 1] - offsets_[f]);
@@ -43,11 +49,17 @@ void FaceBuilder::finish(SurfaceMesh& mesh, ImportReport& report) const {
       report.add("face dropped: uses an unreadable vertex", line);
       continue;
     }
-    face.assign(raw.begin(), raw.end());
-    // A vertex written twice in a row (1 2 2 3) is a harmless export artefact: collapse it.
-    const std::size_t before = face.size();
-    face.erase(std::unique(face.begin(), face.end()), face.end());
-    while (face.size() > 1 && face.front() == face.back()) face.pop_back();
+    // A vertex written twice in a row (1 2 2 3) is a harmless export artefact: collapse it (the
+    // first copy's UV is kept).
+    face.clear();
+    face_uv.clear();
+    for (std::size_t k = 0; k < raw.size(); ++k)
+      if (face.empty() || face.back() != std::uint32_t(raw[k])) {
+        face.push_back(std::uint32_t(raw[k]));
+        face_uv.push_back(uvs_[offsets_[f] + k]);
+      }
+    const std::size_t before = raw.size();
+    while (face.size() > 1 && face.front() == face.back()) face.pop_back(), face_uv.pop_back();
     if (face.size() < 3) {
       report.add("face dropped: fewer than 3 distinct vertices", line);
       continue;
@@ -60,6 +72,7 @@ void FaceBuilder::finish(SurfaceMesh& mesh, ImportReport& report) const {
     }
     if (face.size() != before) report.add("face repaired: repeated consecutive vertex removed", line);
     kept.insert(kept.end(), face.begin(), face.end());
+    kept_uv.insert(kept_uv.end(), face_uv.begin(), face_uv.end());
     append_canonical_loop(face, canon);
     kept_offsets.push_back(kept.size());
     kept_lines.push_back(line);
@@ -98,12 +111,27 @@ void FaceBuilder::finish(SurfaceMesh& mesh, ImportReport& report) const {
       }
     run = end;
   }
+  const bool with_uv = !mesh.uv.points.empty();
+  const auto num_uv = static_cast<std::int64_t>(mesh.uv.num_points());
+  std::size_t uv_fault_line = 0;
+  const char* uv_fault = nullptr;
   for (std::size_t i = 0; i < n; ++i) {
     if (duplicate[i]) {
       report.add("face dropped: duplicate of an earlier face (same vertices, either orientation)", kept_lines[i]);
       continue;
     }
     mesh.add_face(std::span<const std::uint32_t>(kept.data() + kept_offsets[i], kept_offsets[i + 1] - kept_offsets[i]));
+    if (!with_uv || uv_fault) continue;
+    for (std::size_t k = kept_offsets[i]; k < kept_offsets[i + 1] && !uv_fault; ++k) {
+      if (kept_uv[k] < 0) uv_fault = "a face without them";
+      else if (kept_uv[k] >= num_uv) uv_fault = "a texture-coordinate index out of range";
+      else mesh.uv.corners.push_back(std::uint32_t(kept_uv[k]));
+    }
+    if (uv_fault) uv_fault_line = kept_lines[i];
+  }
+  if (uv_fault) {
+    report.not_kept.push_back({std::string("texture coordinates (vt): ") + uv_fault + " (a UV set must cover every face corner)", 1, {uv_fault_line}});
+    mesh.uv = {};
   }
 }
 

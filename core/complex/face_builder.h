@@ -13,8 +13,9 @@ namespace sublift {
 
 class FaceBuilder {
  public:
-  /// Records one face; indices are 0-based (invalid ones are caught in finish()).
-  void add(std::span<const std::int64_t> corners, std::size_t line);
+  /// Records one face; indices are 0-based (invalid ones are caught in finish()). `uvs`, when
+  /// not empty, gives each corner's 0-based texture-coordinate index (-1: the corner has none).
+  void add(std::span<const std::int64_t> corners, std::size_t line, std::span<const std::int64_t> uvs = {});
   /// Records a face that could not even be parsed (dropped with `reason`).
   void add_unreadable(std::size_t line, ImportReport& report, const char* reason);
   /// Faces that use vertex v are dropped (v stands for an unreadable vertex line).
@@ -23,12 +24,16 @@ class FaceBuilder {
   /// Validates every face against `mesh.num_vertices()` and appends the good ones to `mesh`:
   /// out-of-range indices, fewer than 3 corners, repeated vertices and duplicate faces are
   /// dropped (consecutive repeats are collapsed first), each itemised in `report`.
+  /// When `mesh.uv.points` is not empty the kept faces' UV indices go to `mesh.uv.corners`; if a
+  /// kept face has a corner without one, or one beyond the points, the UVs are dropped and named
+  /// in `report` with that face's line (a UV set must cover every corner).
   void finish(SurfaceMesh& mesh, ImportReport& report) const;
   /// Vertices marked with mark_unusable_vertex().
   std::span<const std::size_t> unusable() const { return unusable_; }
 
  private:
   std::vector<std::int64_t> indices_;
+  std::vector<std::int64_t> uvs_;  // parallel to indices_, -1 where a corner has no UV
   std::vector<std::size_t> offsets_{0};
   std::vector<std::size_t> lines_;
   std::vector<std::size_t> unusable_;

@@ -1,7 +1,7 @@
 #pragma once
 // Shape: what a curve, surface or lattice file gives the engine — a base complex, its vertex
 // positions (x, y, z per vertex, in the complex's vertex order, which is the file's order), the
-// file's per-vertex attributes (colours, scalars) and the import report of repaired or ignored
+// file's per-vertex attributes (colours, scalars), face-varying UVs and their texture, and the import report of repaired or ignored
 // elements.
 #include <vector>
 
@@ -14,6 +14,8 @@ struct Shape {
   Complex base;
   std::vector<double> positions;  // 3 per vertex
   std::vector<VertexAttribute> attributes;  // per-vertex values beside positions (surface files)
+  FaceVaryingUV uv;                         // texture coordinates per corner of base.faces (surfaces)
+  SurfaceTexture texture;                   // the image the UVs map (glTF), or none
   ImportReport report;
 };
 

@@ -157,11 +157,15 @@ TEST(GltfSurface, SharedBoxesOpenWeldedAndClosed) {
     EXPECT_EQ(s.base.num_edges(), 18u);  // closed: V - E + F = 2
     const std::string r = s.report.format(f.string());
     EXPECT_NE(r.find("welded by position: 24 into 8"), std::string::npos) << r;
-    // BoxVertexColors' COLOR_0 is kept as channels (gltf_colours_test.cpp); the rest is named.
-    const bool coloured = f.filename() == "BoxVertexColors.glb";
+    // BoxVertexColors' COLOR_0 is kept as channels (gltf_colours_test.cpp), the UVs of both
+    // textured boxes and BoxTextured's texture too (uv_test.cpp); the rest is named.
+    const bool coloured = f.filename() == "BoxVertexColors.glb", textured_box = f == textured;
     EXPECT_EQ(s.attributes.size(), coloured ? 4u : 0u);
-    EXPECT_NE(s.report.not_kept_summary().find(coloured ? "normals, UVs, materials" : "normals, UVs, colours"), std::string::npos)
-        << s.report.not_kept_summary();
+    EXPECT_EQ(s.uv.empty(), !coloured && !textured_box);
+    const std::string lost = coloured ? "without their normals, materials or nodes"
+                             : textured_box ? "without their normals, colours or nodes"
+                                            : "without their normals, UVs, colours, materials or nodes";
+    EXPECT_NE(s.report.not_kept_summary().find(lost), std::string::npos) << s.report.not_kept_summary();
   }
   // Subdivided from the CLI like any mesh (the limit of a closed cube: no boundary).
   TempDir dir("sublift_gltf_surface");

@@ -155,6 +155,25 @@ TEST_F(GltfValidator, SubdividedColouredBoxHasNoErrors) {
   EXPECT_EQ(report.value("warnings", -1), 0) << report.dump(2);
 }
 
+// Issue 20: BoxTextured subdivided keeps TEXCOORD_0 and its texture (embedded in the .glb, in
+// the buffer of the .gltf), and the validator accepts both.
+TEST_F(GltfValidator, SubdividedTexturedBoxHasNoErrors) {
+  sublift::testing::TempDir dir("sublift_gltf_validator_textured");
+  for (const char* name : {"box_textured.glb", "box_textured.gltf"}) {
+    const fs::path out = dir.path() / name;
+    const sublift::testing::ProcessResult r = sublift::testing::run_process(
+        {SUBLIFT_CLI, "subdivide", (kGltf / "BoxTextured" / "BoxTextured.gltf").string(), "--scheme", "cubic", "--levels", "2",
+         "-o", out.string()},
+        60);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    int code = -1;
+    const nlohmann::json report = validate(out, &code);
+    EXPECT_EQ(code, 0) << report.dump();
+    EXPECT_EQ(report.value("errors", -1), 0) << name << ": " << report.dump(2);
+    EXPECT_EQ(report.value("warnings", -1), 0) << name << ": " << report.dump(2);
+  }
+}
+
 TEST_F(GltfValidator, TheValidatorReportsABrokenFile) {
   // The check above is only as good as the script: a known-invalid model must fail it.
   const fs::path bad = kGltf / "invalid" / "IndexOutOfRange.gltf";

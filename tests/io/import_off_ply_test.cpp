@@ -189,7 +189,9 @@ TEST(ImportNotKept, PlyPropertiesAndOffColoursAreNamed) {
   EXPECT_EQ(off.report.not_kept_summary(), "3 vertex colours or normals (OFF), 1 face colours (OFF)");
   const LoadedMesh obj = sublift::testing::load("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvn 0 0 1\nf 1/1/1 2/2/1 3/1/1\n");
   EXPECT_TRUE(obj.report.empty());
-  EXPECT_EQ(obj.report.not_kept_summary(), "2 texture coordinates (vt), 1 normals (vn)");
+  EXPECT_EQ(obj.report.not_kept_summary(), "1 normals (vn)");  // the vt are kept (uv_test.cpp)
+  EXPECT_EQ(obj.mesh.uv.points, (std::vector<double>{0, 0, 1, 0}));
+  EXPECT_EQ(obj.mesh.uv.corners, (std::vector<std::uint32_t>{0, 1, 0}));
 }
 
 }  // namespace

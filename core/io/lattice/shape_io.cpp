@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 
 #include "core/complex/complex_build.h"
+#include "core/complex/face_varying.h"
 #include "core/base/errors.h"
 #include "core/complex/feature_tags.h"
 #include "core/base/file_io.h"
@@ -24,6 +26,8 @@
 namespace sublift {
 namespace {
 
+namespace fs = std::filesystem;
+
 constexpr std::string_view kShapeFormats = ".obj, .off, .ply, .gltf, .glb (surfaces), .lattice, .ovm or .vtk";  // read and written
 constexpr std::string_view kReadFormats = ".obj, .off, .ply, .gltf, .glb, .lattice, .ovm or .vtk";
 
@@ -31,6 +35,7 @@ Shape shape_from_mesh(const std::string& name, LoadedMesh loaded) {
   Shape shape;
   shape.report = std::move(loaded.report);
   shape.attributes = std::move(loaded.mesh.attributes);
+  shape.uv = std::move(loaded.mesh.uv);
   const SurfaceMesh& m = loaded.mesh;
   shape.positions.reserve(3 * m.num_vertices());
   for (const glm::dvec3& p : m.positions) shape.positions.insert(shape.positions.end(), {p.x, p.y, p.z});
@@ -93,13 +98,57 @@ Shape shape_from_gltf(const std::string& path) {
     for (std::uint32_t v : weld.first) a.values.push_back(values[v]);
     m.attributes.push_back(std::move(a));
   }
+  // TEXCOORD_0 as face-varying UVs, one UV point per glTF vertex, v up as OBJ has it (glTF's t
+  // runs down the image: v = 1 - t); the split of the file's vertices at seams is kept this way.
+  const bool uvs = !model.texcoords.empty();
+  SurfaceTexture texture;
+  if (uvs) {
+    m.uv.points.resize(2 * model.num_vertices());
+    for (std::size_t v = 0; v < model.num_vertices(); ++v) {
+      m.uv.points[2 * v] = double(model.texcoords[2 * v]);
+      m.uv.points[2 * v + 1] = 1.0 - double(model.texcoords[2 * v + 1]);
+    }
+    m.uv.corners.reserve(m.face_indices.size());
+    for (std::uint32_t t : weld.source)
+      for (std::uint32_t v : model.faces.row(t)) m.uv.corners.push_back(v);
+    std::vector<std::string> notes;
+    texture = gltf_surface_texture(model, notes);
+    for (const std::string& n : notes) loaded.report.note_not_kept(n, 0);
+  }
   if (m.positions.size() < model.num_vertices())
     loaded.report.add("glTF vertices welded by position: " + std::to_string(model.num_vertices()) + " into " +
                           std::to_string(m.positions.size()) + " (the file splits them at seams of normals and UVs)",
                       0);
-  loaded.report.note_not_kept(std::string("glTF meshes opened as one surface without their normals, UVs, ") +
-                                  (model.colors.empty() ? "colours, " : "") + "materials or nodes", 0);
-  return shape_from_mesh(path, std::move(loaded));
+  std::vector<std::string> lost{"normals"};
+  if (!uvs) lost.push_back("UVs");
+  if (model.colors.empty()) lost.push_back("colours");
+  if (texture.empty()) lost.push_back("materials");
+  lost.push_back("nodes");
+  std::string what = "glTF meshes opened as one surface without their ";
+  for (std::size_t k = 0; k < lost.size(); ++k) what += (k == 0 ? "" : k + 1 == lost.size() ? " or " : ", ") + lost[k];
+  loaded.report.note_not_kept(what, 0);
+  Shape shape = shape_from_mesh(path, std::move(loaded));
+  shape.texture = std::move(texture);
+  return shape;
+}
+
+// OUT.mtl naming the texture, written beside OUT.obj as OUT_<name> (the image's bytes as read);
+// returns the library's file name for `mtllib`.
+std::string write_obj_material(const std::string& obj_path, const SurfaceTexture& t) {
+  const fs::path out(obj_path);
+  const std::string stem = out.stem().string();
+  std::string image = t.name;
+  for (char& ch : image)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '.' && ch != '-' && ch != '_') ch = '_';
+  if (image.empty() || image.find('.') == std::string::npos) image += t.mime_type == "image/jpeg" ? ".jpg" : ".png";
+  image = stem + "_" + image;
+  const std::string mtl = stem + ".mtl";
+  write_file_atomic((out.parent_path() / image).string(), [&](std::ostream& o) { o.write(t.bytes.data(), std::streamsize(t.bytes.size())); }, true);
+  write_file_atomic((out.parent_path() / mtl).string(), [&](std::ostream& o) {
+    o << "# written by Sublift\nnewmtl texture\nKd " << format_double(t.base_colour[0]) << ' ' << format_double(t.base_colour[1]) << ' '
+      << format_double(t.base_colour[2]) << "\nmap_Kd " << image << '\n';
+  });
+  return mtl;
 }
 
 // Polylines covering every edge of a curve once: maximal chains through vertices on exactly
@@ -172,12 +221,22 @@ std::string shape_output_problem(const std::string& path, int dim) {
 }
 
 std::vector<std::string> write_shape(const std::string& path, const Complex& c, std::span<const double> xyz,
-                                     std::span<const VertexAttribute> attributes) {
+                                     std::span<const VertexAttribute> attributes, const FaceVaryingUV* uv,
+                                     const SurfaceTexture* texture) {
   const std::string ext = file_extension(path);
   std::vector<std::string> notes;
   if (xyz.size() != 3 * static_cast<std::size_t>(c.num_vertices))
     throw InputError(path, 0, "positions do not match the vertex count");
   if (const std::string why = shape_output_problem(path, c.dim); !why.empty()) throw InputError(path, 0, why);
+  if (uv && uv->empty()) uv = nullptr;
+  if (texture && (texture->empty() || !uv)) texture = nullptr;
+  if (uv)
+    if (const std::string why = uv_problem(c, *uv); !why.empty()) throw InputError(path, 0, "texture coordinates: " + why);
+  const bool uv_format = ext == "obj" || ext == "gltf" || ext == "glb";
+  if (uv && !uv_format) {
+    notes.push_back("." + ext + " cannot hold texture coordinates: " + std::to_string(uv->num_points()) + " UV points not written (use .obj, .gltf or .glb)");
+    if (texture) notes.push_back("." + ext + " cannot hold a texture: '" + texture->name + "' not written (use .obj, .gltf or .glb)");
+  }
   // What the format cannot hold of the attributes is named (PLY holds them all, OBJ colours).
   if (const std::string dropped = attributes_not_written(ext, attributes); !dropped.empty())
     notes.push_back("." + ext + " cannot hold the vertex attributes " + dropped + ": not written (use .ply" +
@@ -197,7 +256,7 @@ std::vector<std::string> write_shape(const std::string& path, const Complex& c, 
   }
   if (ext == "gltf" || ext == "glb") {  // a surface's net with area-weighted normals, colours as COLOR_0
     const std::vector<double> normals = area_weighted_normals(c.faces, xyz);
-    write_surface_with_normals(path, c.faces, xyz, normals, attributes);
+    write_surface_with_normals(path, c.faces, xyz, normals, attributes, uv, texture);
     if (const FeatureTags tags = derive_feature_tags(c); !tags.crease_edges.empty() || !tags.corner_vertices.empty())
       notes.push_back("." + ext + " cannot hold feature tags: " + std::to_string(tags.crease_edges.size()) + " crease edges and " +
                       std::to_string(tags.corner_vertices.size()) + " corners not written (use .obj or .vtk)");
@@ -228,7 +287,12 @@ std::vector<std::string> write_shape(const std::string& path, const Complex& c, 
     m.tags.clear();
   }
   m.attributes.assign(attributes.begin(), attributes.end());
-  write_surface_mesh(path, m);
+  std::string mtllib;
+  if (uv && ext == "obj") {
+    m.uv = *uv;
+    if (texture) mtllib = write_obj_material(path, *texture);
+  }
+  write_surface_mesh(path, m, mtllib);
   return notes;
 }
 

@@ -23,10 +23,15 @@ Shape read_shape_from_memory(const std::string& name, const std::string& bytes);
 /// dim 2 to .obj (faces, `t crease`/`t corner` tags that reproduce its features), .off or .ply
 /// (faces only); dim 1 to .obj (`l` polylines, `t corner` tags); dim 3 to .lattice; any dim to
 /// .vtk. `attributes` (one value per vertex each) go to .ply as properties, and red, green and
-/// blue to .obj as `v x y z r g b`. Returns notes on what the format could not hold (empty when
-/// nothing was lost). Throws InputError (extension that cannot hold this dimension) or IoError.
+/// blue to .obj as `v x y z r g b`. `uv` (per corner of c.faces, a surface's) goes to .obj as
+/// `vt` and to .gltf/.glb as TEXCOORD_0; `texture` (the image the UVs map) to .gltf/.glb as the
+/// material, to .obj as a material library and the image file beside it (OUT.mtl,
+/// OUT_<image name>). Returns notes on what the format could not hold (empty when nothing was
+/// lost). Throws InputError (extension that cannot hold this dimension, UVs that do not fit the
+/// faces) or IoError.
 std::vector<std::string> write_shape(const std::string& path, const Complex& c, std::span<const double> xyz,
-                                     std::span<const VertexAttribute> attributes = {});
+                                     std::span<const VertexAttribute> attributes = {}, const FaceVaryingUV* uv = nullptr,
+                                     const SurfaceTexture* texture = nullptr);
 
 /// Empty when write_shape can write a complex of dimension `dim` to `path`; else the reason.
 std::string shape_output_problem(const std::string& path, int dim);

@@ -57,8 +57,9 @@ std::string attribute_text(const VertexAttribute& a, std::size_t v) {
   return format_double(a.values[v]);
 }
 
-void write_obj(std::ostream& out, const SurfaceMesh& m) {
+void write_obj(std::ostream& out, const SurfaceMesh& m, const std::string& mtllib) {
   out << "# written by Sublift\n";
+  if (!mtllib.empty()) out << "mtllib " << mtllib << '\n';
   const VertexAttribute *r = find_attribute(m, "red"), *g = find_attribute(m, "green"), *b = find_attribute(m, "blue");
   for (std::size_t v = 0; v < m.num_vertices(); ++v) {
     if (r && g && b) {  // `v x y z r g b`, colours 0..1 as OBJ readers expect them (PLY's uchar ones are 0..255)
@@ -70,9 +71,17 @@ void write_obj(std::ostream& out, const SurfaceMesh& m) {
       write_xyz_line(out, "v ", &m.positions[v].x);
     }
   }
+  const bool uv = !m.uv.empty();
+  if (uv)
+    for (std::size_t k = 0; k < m.uv.num_points(); ++k)
+      out << "vt " << format_double(m.uv.points[2 * k]) << ' ' << format_double(m.uv.points[2 * k + 1]) << '\n';
+  if (!mtllib.empty()) out << "usemtl texture\n";
   for (std::size_t f = 0; f < m.num_faces(); ++f) {
     out << 'f';
-    for (std::uint32_t v : m.face(f)) out << ' ' << v + 1;
+    for (std::uint32_t k = m.face_offsets[f]; k < m.face_offsets[f + 1]; ++k) {
+      out << ' ' << m.face_indices[k] + 1;
+      if (uv) out << '/' << m.uv.corners[k] + 1;
+    }
     out << '\n';
   }
   for (std::size_t l = 0; l < m.num_polylines(); ++l) {
@@ -108,12 +117,12 @@ void write_points_and_faces(std::ostream& out, const SurfaceMesh& m, bool attrib
   }
 }
 
-void write_off(std::ostream& out, const SurfaceMesh& m) {
+void write_off(std::ostream& out, const SurfaceMesh& m, const std::string&) {
   out << "OFF\n" << m.num_vertices() << ' ' << m.num_faces() << " 0\n";
   write_points_and_faces(out, m, false);
 }
 
-void write_ply(std::ostream& out, const SurfaceMesh& m) {
+void write_ply(std::ostream& out, const SurfaceMesh& m, const std::string&) {
   out << "ply\nformat ascii 1.0\ncomment written by Sublift\nelement vertex " << m.num_vertices()
       << "\nproperty double x\nproperty double y\nproperty double z\n";
   for (const VertexAttribute& a : m.attributes) out << "property " << a.type << ' ' << a.name << '\n';
@@ -123,9 +132,9 @@ void write_ply(std::ostream& out, const SurfaceMesh& m) {
 
 }  // namespace
 
-void write_surface_mesh(const std::string& path, const SurfaceMesh& mesh) {
+void write_surface_mesh(const std::string& path, const SurfaceMesh& mesh, const std::string& mtllib) {
   const std::string ext = file_extension(path);
-  void (*writer)(std::ostream&, const SurfaceMesh&) = nullptr;
+  void (*writer)(std::ostream&, const SurfaceMesh&, const std::string&) = nullptr;
   if (ext == "obj") writer = write_obj;
   else if (ext == "off") writer = write_off;
   else if (ext == "ply") writer = write_ply;
@@ -141,7 +150,11 @@ void write_surface_mesh(const std::string& path, const SurfaceMesh& mesh) {
       throw InputError(path, 0, "vertex attribute '" + a.name + "' of vertex " + std::to_string(*i) + " " +
                                     out_of_range_text(a.values[*i]) + "; nothing written");
   }
-  write_file_atomic(path, [&](std::ostream& out) { writer(out, mesh); });
+  if (!mesh.uv.empty() && mesh.uv.corners.size() != mesh.face_indices.size())
+    throw InputError(path, 0, std::to_string(mesh.uv.corners.size()) + " UV corners for " + std::to_string(mesh.face_indices.size()) + " face corners");
+  for (std::uint32_t t : mesh.uv.corners)
+    if (t >= mesh.uv.num_points()) throw InputError(path, 0, "UV index " + std::to_string(t) + " beyond the UV points");
+  write_file_atomic(path, [&](std::ostream& out) { writer(out, mesh, mtllib); });
 }
 
 }  // namespace sublift

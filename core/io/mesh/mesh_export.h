@@ -12,7 +12,9 @@ namespace sublift {
 
 /// Writes `mesh` to `path` in the format of its extension. Throws IoError or InputError
 /// (unsupported extension, or a curve without faces to .off/.ply). OFF and PLY keep faces only.
-void write_surface_mesh(const std::string& path, const SurfaceMesh& mesh);
+/// OBJ writes `mesh.uv` as `vt` lines and `f v/vt` corners, and, with `mtllib` given, refers to
+/// that material library and uses its material "texture" for every face.
+void write_surface_mesh(const std::string& path, const SurfaceMesh& mesh, const std::string& mtllib = "");
 
 /// Formats a double with 17 significant digits (shortest exact form is not required).
 std::string format_double(double v);

@@ -1,4 +1,4 @@
-// Wavefront OBJ: `v`, `f` (v, v/vt, v//vn, v/vt/vn; negative = relative), `l` polylines (v, v/vt),
+// Wavefront OBJ: `v`, `vt` (face-varying UVs), `f` (v, v/vt, v//vn, v/vt/vn; negative = relative), `l` polylines (v, v/vt),
 // OpenSubdiv `t` tags.
 // Everything else that OBJ allows is skipped; unknown statements are reported.
 #include <algorithm>
@@ -68,19 +68,31 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
   PolylineBuilder polylines;
   std::vector<std::size_t> vertex_lines;
   std::vector<std::string_view> tok;
-  std::vector<std::int64_t> corners;
+  std::vector<std::int64_t> corners, corner_uvs;  // vertex and vt index of each corner (-1: no vt)
   std::vector<double> colours;           // r g b per vertex (`v x y z r g b`, the common extension)
   std::size_t coloured = 0, first_colour_line = 0;
+  std::size_t uv_broken_line = 0;        // first unreadable `vt` line (the UVs are then not kept)
   LineReader lines(bytes, file, limits.max_line_length);
   // The vertices of an `f` or `l` line into `corners` (v, v/vt, v//vn, v/vt/vn; negative:
   // relative to here); false when there are more than the size limit or one is unreadable or 0.
   auto read_corners = [&] {
     corners.clear();
+    corner_uvs.clear();
     if (tok.size() > limits.max_face_size + 1) return false;
+    const auto num_uv = static_cast<std::int64_t>(mesh.uv.num_points());
     for (std::size_t k = 1; k < tok.size(); ++k) {
-      const auto idx = parse_int(tok[k].substr(0, tok[k].find('/')));
+      const std::size_t slash = tok[k].find('/');
+      const auto idx = parse_int(tok[k].substr(0, slash));
       if (!idx || *idx == 0) return false;
       corners.push_back(*idx > 0 ? *idx - 1 : static_cast<std::int64_t>(mesh.positions.size()) + *idx);
+      std::int64_t uv = -1;  // v//vn and v have none; an unreadable one counts as none
+      if (slash != std::string_view::npos) {
+        const std::string_view rest = tok[k].substr(slash + 1);
+        if (const auto t = parse_int(rest.substr(0, rest.find('/'))); t && *t != 0)
+          uv = *t > 0 ? *t - 1 : num_uv + *t;
+        if (uv < 0) uv = -1;
+      }
+      corner_uvs.push_back(uv);
     }
     return true;
   };
@@ -123,7 +135,7 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
       vertex_lines.push_back(ln);
     } else if (key == "f") {
       if (read_corners())
-        faces.add(corners, ln);
+        faces.add(corners, ln, corner_uvs);
       else
         faces.add_unreadable(ln, report, tok.size() > limits.max_face_size + 1
                                              ? "more corners than the face-size limit"
@@ -141,8 +153,14 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
         report.add(tok.size() > limits.max_face_size + 1 ? "polyline dropped: more vertices than the size limit"
                                                          : "polyline dropped: unreadable or zero vertex index",
                    ln);
-    } else if (key == "vt" || key == "vn" || key == "usemtl") {
-      report.note_not_kept(key == "vt" ? "texture coordinates (vt)" : key == "vn" ? "normals (vn)" : "materials (usemtl)", ln);
+    } else if (key == "vt") {  // u [v [w]]: u and v kept (w, for 3D textures, is not)
+      const auto u = tok.size() >= 2 ? parse_double(tok[1]) : std::nullopt;
+      const auto v = tok.size() >= 3 ? parse_double(tok[2]) : std::optional<double>(0.0);
+      const bool ok = u && v && std::isfinite(*u) && std::isfinite(*v) && std::abs(*u) <= kMaxCoordinate && std::abs(*v) <= kMaxCoordinate;
+      if (!ok && !uv_broken_line) uv_broken_line = ln;
+      mesh.uv.points.insert(mesh.uv.points.end(), {ok ? *u : 0.0, ok ? *v : 0.0});
+    } else if (key == "vn" || key == "usemtl") {
+      report.note_not_kept(key == "vn" ? "normals (vn)" : "materials (usemtl)", ln);
     } else if (key == "p") {
       report.add("point element ignored (not a face or polyline)", ln);
     } else if (!ignorable_statement(key)) {
@@ -161,6 +179,10 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
     report.not_kept.push_back({"vertex colours (on " + std::to_string(coloured) + " of " + std::to_string(mesh.num_vertices()) +
                                    " vertices: a colour channel needs all)",
                                coloured, {first_colour_line}});
+  }
+  if (uv_broken_line) {
+    report.not_kept.push_back({"texture coordinates (vt): an unreadable 'vt u [v [w]]' line", 1, {uv_broken_line}});
+    mesh.uv = {};
   }
   faces.finish(mesh, report);
   polylines.finish(mesh, faces.unusable(), report);

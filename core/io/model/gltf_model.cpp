@@ -322,6 +322,22 @@ Model import_gltf_model(const std::string& path, ModelFormat format) {
           for (std::size_t k = 0; k < width; ++k) model.colors[4 * (r.first_vertex + v) + k] = float(c[width * v + k]);
         r.has_colors = true;
       }
+      // TEXCOORD_0 (sec. 3.7.2.1: float or normalised unsigned byte/short VEC2), the first one of
+      // each POSITION accessor.
+      const auto tex = p.attributes.find("TEXCOORD_0");
+      if (tex != p.attributes.end() && !r.has_texcoords) {
+        const std::string trole = "TEXCOORD_0 of " + prim_name(mesh, prim);
+        const std::vector<double> t = read_numbers(g, tex->second, TINYGLTF_TYPE_VEC2, {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}, trole, path);
+        if (t.size() != 2 * ps.count)
+          throw InputError(path, 0, "accessor " + std::to_string(tex->second) + " (" + trole + "): " + str(t.size() / 2) + " texture coordinates for " + str(ps.count) + " positions");
+        model.texcoords.resize(2 * model.num_vertices(), 0.0f);
+        for (std::size_t k = 0; k < 2 * ps.count; ++k) {
+          model.texcoords[2 * r.first_vertex + k] = float(t[k]);
+          if (!std::isfinite(model.texcoords[2 * r.first_vertex + k]))
+            throw InputError(path, 0, "accessor " + std::to_string(tex->second) + " (" + trole + "): a texture coordinate that is not finite");
+        }
+        r.has_texcoords = true;
+      }
       // Application-specific attributes ("_NAME", glTF 2.0 sec. 3.7.2.1): float SCALARs are read,
       // the first of each name per POSITION accessor; others are named as not read.
       for (const auto& [semantic, index] : p.attributes) {
@@ -422,6 +438,7 @@ Model import_gltf_model(const std::string& path, ModelFormat format) {
   }
   model.source = std::move(source);
   if (!model.colors.empty()) model.colors.resize(4 * model.num_vertices(), 1.0f);  // ranges after the first colours: white
+  if (!model.texcoords.empty()) model.texcoords.resize(2 * model.num_vertices(), 0.0f);
   for (auto& [name, values] : model.custom) values.resize(model.num_vertices(), 0.0f);
   return model;
 }

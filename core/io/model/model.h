@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "core/base/csr.h"
+#include "core/base/surface_mesh.h"
 
 namespace sublift {
 
@@ -48,6 +49,7 @@ struct ModelRange {
   int node = -1;             // the node whose world matrix places the range (-1: no node, mesh space)
   bool skinned = false;      // the node has a skin: positions taken as stored
   bool has_colors = false;   // a primitive gave it COLOR_0 (Model::colors)
+  bool has_texcoords = false;  // a primitive gave it TEXCOORD_0 (Model::texcoords)
   std::array<double, 16> world{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};  // column-major
 };
 
@@ -66,6 +68,9 @@ struct Model {
   // glTF application-specific SCALAR float attributes ("_QUALITY"), one value per vertex each
   // (vertices of ranges without one 0), in the order first met; read_shape carries them.
   std::vector<std::pair<std::string, std::vector<float>>> custom;
+  // glTF TEXCOORD_0 as stored (s, t with t running down the image; 2 per vertex, vertices of
+  // ranges without one 0); empty when no primitive has one. read_shape carries them as UVs.
+  std::vector<float> texcoords;
   std::vector<ModelRange> ranges;  // glTF only
   std::vector<std::string> notes;  // decisions and repairs the user should know about
   std::shared_ptr<const ModelSource> source;
@@ -88,6 +93,12 @@ Model import_model(const std::string& path);
 /// replaced atomically. Throws InputError (format change, sizes, non-finite or unrepresentable
 /// values) or IoError.
 void export_model(const Model& model, std::span<const double> world_positions, const std::string& path);
+
+/// The base-colour texture of a glTF's triangles (read_shape carries it with the UVs): when
+/// every triangle primitive uses one material whose baseColorTexture reads TEXCOORD_0, its image
+/// bytes as stored (a file beside the model, a data URI or a buffer view), media type, sampler
+/// and factors; else empty, and why is added to `notes` (nothing said for an untextured model).
+SurfaceTexture gltf_surface_texture(const Model& model, std::vector<std::string>& notes);
 
 /// Unit world-space display normals of the model at `world_positions`: area-weighted over
 /// `faces`, glTF vertices split at UV seams (same original position and normal) smoothed together

@@ -9,6 +9,7 @@
 #include <limits>
 #include <ostream>
 #include <sstream>
+#include <unordered_map>
 #include <vector>
 
 #include <tiny_gltf.h>
@@ -17,6 +18,7 @@
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
 #include "core/base/magnitude.h"
+#include "core/complex/face_varying.h"
 #include "core/io/mesh/mesh_export.h"
 
 namespace sublift {
@@ -28,6 +30,8 @@ struct Surface {
   std::span<const double> xyz;
   std::vector<double> normals;
   std::span<const VertexAttribute> attributes;  // glTF only
+  std::span<const double> texcoords;             // glTF only: u, v per vertex (v up), or empty
+  const SurfaceTexture* texture = nullptr;       // glTF only
   std::size_t num_vertices() const { return xyz.size() / 3; }
 };
 
@@ -75,14 +79,22 @@ Surface checked_surface(const std::string& path, const Csr& faces, std::span<con
   return s;
 }
 
-void write_obj(std::ostream& out, const Surface& s) {
+void write_obj(std::ostream& out, const Surface& s, const FaceVaryingUV* uv) {
   out << "# written by Sublift\n";
   const std::size_t nv = s.num_vertices();
   for (std::size_t v = 0; v < nv; ++v) write_xyz_line(out, "v ", &s.xyz[3 * v]);
+  if (uv)
+    for (std::size_t k = 0; k < uv->num_points(); ++k)
+      out << "vt " << format_double(uv->points[2 * k]) << ' ' << format_double(uv->points[2 * k + 1]) << '\n';
   for (std::size_t v = 0; v < nv; ++v) write_xyz_line(out, "vn ", &s.normals[3 * v]);
   for (std::size_t f = 0; f < s.faces.rows(); ++f) {
     out << 'f';
-    for (std::uint32_t v : s.faces.row(f)) out << ' ' << v + 1 << "//" << v + 1;
+    for (std::uint32_t k = s.faces.offsets[f]; k < s.faces.offsets[f + 1]; ++k) {
+      const std::uint32_t v = s.faces.items[k];
+      out << ' ' << v + 1 << '/';
+      if (uv) out << uv->corners[k] + 1;
+      out << '/' << v + 1;
+    }
     out << '\n';
   }
 }
@@ -232,6 +244,47 @@ std::string gltf_bytes(const std::string& path, const Surface& s, bool binary) {
     }
     prim.attributes[custom_semantic(a.name)] = append(values, TINYGLTF_TYPE_SCALAR, nv);
   }
+  if (!s.texcoords.empty()) {  // glTF's t runs down the image
+    std::vector<float> st(2 * nv);
+    for (std::size_t v = 0; v < nv; ++v) {
+      st[2 * v] = float(s.texcoords[2 * v]);
+      st[2 * v + 1] = float(1.0 - s.texcoords[2 * v + 1]);
+      if (!std::isfinite(st[2 * v]) || !std::isfinite(st[2 * v + 1])) throw InputError(path, 0, "texture coordinate of vertex " + std::to_string(v) + " overflows float32");
+    }
+    prim.attributes["TEXCOORD_0"] = append(st, TINYGLTF_TYPE_VEC2, nv);
+  }
+  if (s.texture && !s.texture->empty() && !s.texcoords.empty()) {  // the image in the buffer (4-byte aligned)
+    const SurfaceTexture& t = *s.texture;
+    tinygltf::Buffer& b = m.buffers[0];
+    const std::size_t at = b.data.size();
+    b.data.insert(b.data.end(), t.bytes.begin(), t.bytes.end());
+    b.data.resize((b.data.size() + 3) / 4 * 4, 0);
+    m.bufferViews.push_back({});
+    m.bufferViews.back().buffer = 0;
+    m.bufferViews.back().byteOffset = at;
+    m.bufferViews.back().byteLength = t.bytes.size();
+    tinygltf::Image image;
+    image.name = t.name;
+    image.mimeType = t.mime_type;
+    image.bufferView = int(m.bufferViews.size()) - 1;
+    m.images.push_back(image);
+    tinygltf::Sampler sampler;
+    sampler.magFilter = t.mag_filter, sampler.minFilter = t.min_filter, sampler.wrapS = t.wrap_s, sampler.wrapT = t.wrap_t;
+    m.samplers.push_back(sampler);
+    tinygltf::Texture texture;
+    texture.sampler = 0;
+    texture.source = 0;
+    m.textures.push_back(texture);
+    tinygltf::Material mat;
+    mat.name = "texture";
+    mat.pbrMetallicRoughness.baseColorTexture.index = 0;
+    mat.pbrMetallicRoughness.baseColorFactor.assign(t.base_colour, t.base_colour + 4);
+    mat.pbrMetallicRoughness.metallicFactor = t.metallic;
+    mat.pbrMetallicRoughness.roughnessFactor = t.roughness;
+    mat.doubleSided = t.double_sided;
+    m.materials.push_back(mat);
+    prim.material = 0;
+  }
   tinygltf::Mesh mesh;
   mesh.name = "surface";
   mesh.primitives.push_back(prim);
@@ -260,8 +313,46 @@ bool surface_export_supported(const std::string& path) {
   return ext == "obj" || ext == "ply" || ext == "gltf" || ext == "glb";
 }
 
+namespace {
+
+// The surface with one vertex per (vertex, UV point) pair its corners use, in the order first
+// met, so glTF's per-vertex TEXCOORD_0 holds face-varying UVs: positions, normals and attributes
+// copied to each part, faces renumbered.
+struct SplitSurface {
+  Csr faces;
+  std::vector<double> xyz, normals, texcoords;
+  std::vector<VertexAttribute> attributes;
+};
+
+SplitSurface split_surface(const Surface& s, const FaceVaryingUV& uv) {
+  UvVertexSplit split = split_at_uv_seams(s.faces, uv, s.num_vertices());
+  SplitSurface out;
+  out.faces = std::move(split.faces);
+  out.texcoords = std::move(split.texcoords);
+  const std::vector<std::uint32_t>& source = split.source;
+  for (std::uint32_t v : source) {
+    out.xyz.insert(out.xyz.end(), &s.xyz[3 * v], &s.xyz[3 * v] + 3);
+    out.normals.insert(out.normals.end(), &s.normals[3 * v], &s.normals[3 * v] + 3);
+  }
+  for (const VertexAttribute& a : s.attributes) {
+    VertexAttribute b{a.name, a.type, std::vector<double>(source.size())};
+    for (std::size_t i = 0; i < source.size(); ++i) b.values[i] = a.values[source[i]];
+    out.attributes.push_back(std::move(b));
+  }
+  return out;
+}
+
+void check_uv(const std::string& path, const Csr& faces, const FaceVaryingUV& uv) {
+  if (uv.corners.size() != faces.items.size())
+    throw InputError(path, 0, std::to_string(uv.corners.size()) + " UV corners for " + std::to_string(faces.items.size()) + " face corners");
+  for (std::uint32_t t : uv.corners)
+    if (t >= uv.num_points()) throw InputError(path, 0, "UV index " + std::to_string(t) + " beyond the " + std::to_string(uv.num_points()) + " UV points");
+}
+}  // namespace
+
 void write_surface_with_normals(const std::string& path, const Csr& faces, std::span<const double> xyz,
-                                std::span<const double> normals, std::span<const VertexAttribute> attributes) {
+                                std::span<const double> normals, std::span<const VertexAttribute> attributes,
+                                const FaceVaryingUV* uv, const SurfaceTexture* texture) {
   const std::string ext = file_extension(path);
   if (!surface_export_supported(path))
     throw InputError(path, 0, "cannot export a surface with normals to '." + ext + "' (expected .obj, .ply, .gltf or .glb)");
@@ -270,12 +361,20 @@ void write_surface_with_normals(const std::string& path, const Csr& faces, std::
     if (a.values.size() != s.num_vertices())
       throw InputError(path, 0, "attribute " + a.name + " has " + std::to_string(a.values.size()) + " values for " + std::to_string(s.num_vertices()) + " vertices");
   s.attributes = attributes;
+  if (uv && uv->empty()) uv = nullptr;
+  if (uv) check_uv(path, faces, *uv);
   if (ext == "obj") {
-    write_file_atomic(path, [&](std::ostream& out) { write_obj(out, s); });
+    write_file_atomic(path, [&](std::ostream& out) { write_obj(out, s, uv); });
   } else if (ext == "ply") {
     write_file_atomic(path, [&](std::ostream& out) { write_ply(out, s); }, true);
   } else {
-    const std::string bytes = gltf_bytes(path, s, ext == "glb");  // before the file is touched
+    std::string bytes;  // made before the file is touched
+    if (uv) {
+      const SplitSurface split = split_surface(s, *uv);
+      bytes = gltf_bytes(path, Surface{split.faces, split.xyz, split.normals, split.attributes, split.texcoords, texture}, ext == "glb");
+    } else {
+      bytes = gltf_bytes(path, s, ext == "glb");
+    }
     write_file_atomic(path, [&](std::ostream& out) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); }, true);
   }
 }

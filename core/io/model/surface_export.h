@@ -26,8 +26,14 @@ namespace sublift {
 /// uchar values / 255, everything clamped to 0..1, alpha 1 when absent), every other attribute
 /// as an application-specific float SCALAR attribute "_NAME" (upper case, other characters '_').
 /// OBJ and PLY ignore them (core/io/mesh writes a level's attributes).
+/// `uv` (one index per corner of `faces`), when given, goes to OBJ as `vt` and `f v/vt/vn` and to
+/// glTF as TEXCOORD_0 (t = 1 - v), the glTF vertices split wherever a vertex has corners with
+/// different UVs (normals, colours and attributes copied to each part); PLY ignores it. `texture`
+/// (glTF only, with uv) becomes the primitive's material: the image embedded in the buffer, its
+/// sampler and factors as read.
 void write_surface_with_normals(const std::string& path, const Csr& faces, std::span<const double> xyz,
-                                std::span<const double> normals, std::span<const VertexAttribute> attributes = {});
+                                std::span<const double> normals, std::span<const VertexAttribute> attributes = {},
+                                const FaceVaryingUV* uv = nullptr, const SurfaceTexture* texture = nullptr);
 
 /// True for the extensions write_surface_with_normals accepts (".obj", ".ply", ".gltf", ".glb",
 /// any case).

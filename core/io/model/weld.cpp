@@ -27,6 +27,7 @@ PositionWeld weld_by_position(std::span<const double> positions, const Csr& tria
       continue;
     }
     w.faces.items.insert(w.faces.items.end(), tri, tri + 3);
+    w.source.push_back(static_cast<std::uint32_t>(f));
     w.faces.offsets.push_back(static_cast<std::uint32_t>(w.faces.items.size()));
   }
   return w;

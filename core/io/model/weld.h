@@ -17,6 +17,7 @@ struct PositionWeld {
   std::vector<std::uint32_t> welded;  // input vertex -> welded vertex
   std::vector<std::uint32_t> first;   // welded vertex -> the first input vertex with its position
   Csr faces;                          // the triangles over welded vertices, in input order
+  std::vector<std::uint32_t> source;  // faces row -> the input triangle it came from
   std::size_t dropped = 0;            // triangles whose corners welded together (not in faces)
 };
 

@@ -15,6 +15,7 @@
 #include "core/base/file_io.h"
 #include "core/base/magnitude.h"
 #include "core/complex/complex_build.h"
+#include "core/complex/face_varying.h"
 #include "core/complex/connectivity_match.h"
 #include "core/complex/level_counts.h"
 #include "core/io/project/coefficient_codec.h"
@@ -191,6 +192,10 @@ SavedProject write_project(const std::string& path, const Hierarchy& h, const Pr
   if (const AnimationExtras& an = extras.animation; !an.empty())
     j["animation"] = {{"base_steps", an.base_steps},           {"cyclic", an.cyclic},   {"surface_vertices", an.surface_vertices},
                       {"surface_faces", an.surface_faces},     {"times", an.times},     {"loop_end", an.loop_end}};
+  if (!extras.uv.empty()) {
+    if (const std::string why = uv_problem(b, extras.uv); !why.empty()) throw Error(path + ": cannot save project: texture coordinates: " + why);
+    j["uv"] = {{"points", extras.uv.points}, {"corners", extras.uv.corners}};
+  }
   if (!b.edge_sharpness.empty() || !b.vertex_sharpness.empty()) {
     // The base's semi-sharp features (OpenSubdiv sharpness; 10: infinitely sharp): the levels'
     // feature dims follow from them (Complex::edge_sharpness).
@@ -357,6 +362,20 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
         extras.attributes.push_back({a.at("name").get<std::string>(), a.at("type").get<std::string>(), {}});
       }
     }
+    if (const auto it = j.find("uv"); it != j.end()) {  // checked against the base below
+      const auto& p = it->at("points");
+      const auto& k = it->at("corners");
+      if (!p.is_array() || !k.is_array() || p.size() > (std::size_t(1) << 27) || k.size() > (std::size_t(1) << 27))
+        throw InputError(file, 2, "header 'uv' needs 'points' and 'corners' arrays");
+      for (const auto& x : p) {
+        if (!x.is_number() || !std::isfinite(x.get<double>())) throw InputError(file, 2, "header 'uv' points must be finite numbers");
+        extras.uv.points.push_back(x.get<double>());
+      }
+      for (const auto& x : k) {
+        if (!x.is_number_unsigned() || x.get<std::uint64_t>() > 0xffffffffu) throw InputError(file, 2, "header 'uv' corners must be UV point indices");
+        extras.uv.corners.push_back(x.get<std::uint32_t>());
+      }
+    }
     if (const auto it = j.find("local_frames"); it != j.end()) {
       if (!it->is_boolean()) throw InputError(file, 2, "header 'local_frames' is not true or false");
       extras.local_frames = it->get<bool>();
@@ -446,6 +465,8 @@ Hierarchy read_project_from_memory(const std::string& file, const std::string& b
   const std::string_view coeff_payload = bytes.substr(pos, coeff_bytes);
   pos += coeff_bytes;
   if (j.contains("sharpness")) read_sharpness(file, j.at("sharpness"), c);
+  if (!extras.uv.empty())
+    if (const std::string why = uv_problem(c, extras.uv); !why.empty()) throw InputError(file, 2, "header 'uv': " + why);
   Hierarchy h;
   try {
     h = make_hierarchy(std::move(c), levels, scheme, channels, integer, 0, disc);

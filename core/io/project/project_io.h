@@ -73,6 +73,9 @@ struct ProjectExtras {
   std::vector<VertexAttribute> attributes;
   /// Header key `animation` when the hierarchy is a swept space-time lattice.
   AnimationExtras animation;
+  /// The base's face-varying texture coordinates (per corner of levels[0].faces), header key
+  /// `uv`; every level's follow by the linear rule (core/multires/level_uv.h).
+  FaceVaryingUV uv;
 };
 
 /// Level `order.level`'s complex numbered as the file: a surface with the file's faces (in the

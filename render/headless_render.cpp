@@ -46,20 +46,18 @@ Image render_mesh_headless(const SurfaceMesh& mesh, int width, int height,
   return Image{width, height, target.read_rgba()};
 }
 
-Image render_coloured_surface_headless(std::span<const double> xyz, std::span<const double> normals, const Csr& faces,
-                                       std::span<const float> scalar01, int width, int height,
-                                       const HeadlessRenderSettings& settings) {
+namespace {
+
+void check_size(int width, int height) {
   constexpr int kMaxSide = 16384;
   if (width < 1 || height < 1 || width > kMaxSide || height > kMaxSide)
     throw RenderError("render size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1x1.." +
                       std::to_string(kMaxSide) + "x" + std::to_string(kMaxSide));
-  HeadlessContext context;
-  OffscreenTarget target(width, height, settings.samples);
-  BackgroundRenderer background;
-  LimitSurfaceRenderer surface;
-  surface.set_topology(faces.offsets, faces.items, xyz.size() / 3);
-  surface.set_positions_normals(xyz, normals);
-  surface.set_scalar(scalar01);
+}
+
+// Frames the surface as the default camera does and draws it on the viewport gradient.
+Image draw_surface(LimitSurfaceRenderer& surface, BackgroundRenderer& background, OffscreenTarget& target, int width,
+                   int height, const HeadlessRenderSettings& settings, SurfaceStyle style) {
   OrbitCamera camera;
   camera.set_viewport(width, height);
   camera.set_view(settings.view);
@@ -71,11 +69,45 @@ Image render_coloured_surface_headless(std::span<const double> xyz, std::span<co
   glDepthMask(GL_TRUE);
   glClear(GL_DEPTH_BUFFER_BIT);
   background.draw();
-  SurfaceStyle style;
-  style.color_map = true;
   style.wireframe = settings.display.wireframe;
+  style.smooth = settings.smooth;
   surface.draw(camera, style);
   return Image{width, height, target.read_rgba()};
+}
+
+}  // namespace
+
+Image render_coloured_surface_headless(std::span<const double> xyz, std::span<const double> normals, const Csr& faces,
+                                       std::span<const float> scalar01, int width, int height,
+                                       const HeadlessRenderSettings& settings) {
+  check_size(width, height);
+  HeadlessContext context;
+  OffscreenTarget target(width, height, settings.samples);
+  BackgroundRenderer background;
+  LimitSurfaceRenderer surface;
+  surface.set_topology(faces.offsets, faces.items, xyz.size() / 3);
+  surface.set_positions_normals(xyz, normals);
+  surface.set_scalar(scalar01);
+  SurfaceStyle style;
+  style.color_map = true;
+  return draw_surface(surface, background, target, width, height, settings, style);
+}
+
+Image render_textured_surface_headless(std::span<const double> xyz, std::span<const double> normals, const Csr& faces,
+                                       std::span<const float> texcoords, const Image& texture, int width, int height,
+                                       const HeadlessRenderSettings& settings, int wrap_s, int wrap_t) {
+  check_size(width, height);
+  HeadlessContext context;
+  OffscreenTarget target(width, height, settings.samples);
+  BackgroundRenderer background;
+  LimitSurfaceRenderer surface;
+  surface.set_topology(faces.offsets, faces.items, xyz.size() / 3);
+  surface.set_positions_normals(xyz, normals);
+  surface.set_texcoords(texcoords);
+  surface.set_texture(texture.rgba, texture.width, texture.height, wrap_s, wrap_t);
+  SurfaceStyle style;
+  style.textured = true;
+  return draw_surface(surface, background, target, width, height, settings, style);
 }
 
 }  // namespace sublift

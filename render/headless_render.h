@@ -25,6 +25,7 @@ struct HeadlessRenderSettings {
   UpAxis up_axis = UpAxis::Y;
   DisplayOptions display;
   int samples = 4;  // MSAA samples (0 = none)
+  bool smooth = true;  // surfaces: per-vertex normals; false: flat faces (coloured and textured renders)
 };
 
 /// Renders `mesh` shaded with wireframe from the default 3/4 view, framed to fit, on the
@@ -42,6 +43,14 @@ Image render_mesh_headless(const SurfaceMesh& mesh, int width, int height,
 Image render_coloured_surface_headless(std::span<const double> xyz, std::span<const double> normals, const Csr& faces,
                                        std::span<const float> scalar01, int width, int height,
                                        const HeadlessRenderSettings& settings = {});
+
+/// A surface with a texture (`texcoords`: u, v per vertex, v up; `texture`: the decoded image,
+/// top-down RGBA8) from the same default view, lit as the colour map: what `sublift-cli render
+/// --textured` draws. Face-varying UVs need the vertices split at seams first. `wrap_s`/`wrap_t`
+/// as glTF's sampler numbers them.
+Image render_textured_surface_headless(std::span<const double> xyz, std::span<const double> normals, const Csr& faces,
+                                       std::span<const float> texcoords, const Image& texture, int width, int height,
+                                       const HeadlessRenderSettings& settings = {}, int wrap_s = 10497, int wrap_t = 10497);
 
 /// The camera render_mesh_headless uses for these arguments (no GL needed).
 OrbitCamera headless_camera(const SurfaceMesh& mesh, int width, int height,

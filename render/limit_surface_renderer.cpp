@@ -50,6 +50,7 @@ LimitSurfaceRenderer::LimitSurfaceRenderer()
   scalar_vbo_ = buffers[2];
   triangle_ebo_ = buffers[3];
   edge_ebo_ = buffers[4];
+  glGenBuffers(1, &texcoord_vbo_);
   glGenVertexArrays(1, &fill_vao_);
   glGenVertexArrays(1, &wire_vao_);
   for (const GLuint vao : {fill_vao_, wire_vao_}) {
@@ -64,6 +65,9 @@ LimitSurfaceRenderer::LimitSurfaceRenderer()
     glBindBuffer(GL_ARRAY_BUFFER, scalar_vbo_);
     glEnableVertexAttribArray(2);
     glVertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glBindBuffer(GL_ARRAY_BUFFER, texcoord_vbo_);
+    glEnableVertexAttribArray(3);
+    glVertexAttribPointer(3, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
   }
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
@@ -72,6 +76,8 @@ LimitSurfaceRenderer::LimitSurfaceRenderer()
 LimitSurfaceRenderer::~LimitSurfaceRenderer() {
   const GLuint buffers[] = {position_vbo_, normal_vbo_, scalar_vbo_, triangle_ebo_, edge_ebo_};
   glDeleteBuffers(5, buffers);
+  glDeleteBuffers(1, &texcoord_vbo_);
+  if (texture_) glDeleteTextures(1, &texture_);
   const GLuint vaos[] = {fill_vao_, wire_vao_};
   glDeleteVertexArrays(2, vaos);
 }
@@ -151,6 +157,9 @@ void LimitSurfaceRenderer::set_topology(std::span<const std::uint32_t> face_offs
   glBindBuffer(GL_ARRAY_BUFFER, scalar_vbo_);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(num_vertices * sizeof(float)), zeros.data(),
                GL_STATIC_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, texcoord_vbo_);
+  const std::vector<float> uv_zeros(2 * num_vertices, 0.0f);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(uv_zeros.size() * sizeof(float)), uv_zeros.data(), GL_STATIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
@@ -208,6 +217,36 @@ void LimitSurfaceRenderer::set_scalar(std::span<const float> value01) {
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
+void LimitSurfaceRenderer::set_texcoords(std::span<const float> uv) {
+  if (!uv.empty() && uv.size() != 2 * num_vertices_)
+    throw Error("limit surface: " + std::to_string(uv.size() / 2) + " texture coordinates for " + std::to_string(num_vertices_) + " vertices");
+  const std::vector<float> zeros(uv.empty() ? 2 * num_vertices_ : 0, 0.0f);
+  glBindBuffer(GL_ARRAY_BUFFER, texcoord_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(2 * num_vertices_ * sizeof(float)), uv.empty() ? zeros.data() : uv.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+void LimitSurfaceRenderer::set_texture(std::span<const std::uint8_t> rgba, int width, int height, int wrap_s, int wrap_t) {
+  if (width < 1 || height < 1 || rgba.size() != 4 * std::size_t(width) * std::size_t(height))
+    throw Error("limit surface: a texture of " + std::to_string(rgba.size()) + " bytes for " + std::to_string(width) + "x" + std::to_string(height));
+  const auto wrap = [](int w) { return w == 33071 ? GL_CLAMP_TO_EDGE : w == 33648 ? GL_MIRRORED_REPEAT : GL_REPEAT; };
+  if (!texture_) glGenTextures(1, &texture_);
+  glBindTexture(GL_TEXTURE_2D, texture_);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  // Rows go up from the bottom in GL: the image's top row is at v = 1, as OBJ's v runs.
+  std::vector<std::uint8_t> flipped(rgba.size());
+  const std::size_t row = 4 * std::size_t(width);
+  for (int y = 0; y < height; ++y)
+    std::copy_n(rgba.data() + row * std::size_t(height - 1 - y), row, flipped.data() + row * std::size_t(y));
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, flipped.data());
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap(wrap_s));
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap(wrap_t));
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
 void LimitSurfaceRenderer::draw(const OrbitCamera& camera, const SurfaceStyle& style) const {
   if (num_vertices_ == 0 || triangle_index_count_ == 0) return;
   const glm::mat4 model_view(camera.view() * glm::translate(glm::dmat4(1.0), center_));
@@ -220,6 +259,13 @@ void LimitSurfaceRenderer::draw(const OrbitCamera& camera, const SurfaceStyle& s
   program_->set("u_orthographic", camera.orthographic ? 1.0f : 0.0f);
   program_->set("u_smooth", style.smooth ? 1.0f : 0.0f);
   program_->set("u_color_map", style.color_map ? 1.0f : 0.0f);
+  const bool textured = style.textured && texture_;
+  program_->set("u_textured", textured ? 1.0f : 0.0f);
+  if (textured) {
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, texture_);
+    program_->set("u_texture", 0);
+  }
   program_->set("u_front_color", kClayColor);
   program_->set("u_back_color", kBackColor);
   if (style.clip) glEnable(GL_CLIP_DISTANCE0);
@@ -249,6 +295,7 @@ void LimitSurfaceRenderer::draw(const OrbitCamera& camera, const SurfaceStyle& s
     glDisable(GL_BLEND);
   }
   glDisable(GL_CLIP_DISTANCE0);
+  if (textured) glBindTexture(GL_TEXTURE_2D, 0);
   glBindVertexArray(0);
   glUseProgram(0);
 }

@@ -34,6 +34,7 @@ struct SurfaceStyle {
   bool smooth = true;      // per-vertex normals; false: flat faces
   bool wireframe = false;  // polygon edges on top (fades when edges are a few pixels long)
   bool color_map = false;  // per-vertex scalar through viridis instead of clay
+  bool textured = false;   // the texture at the per-vertex texture coordinates instead of clay
   bool clip = false;
   glm::vec4 clip_plane{0, 0, 1, 0};  // keeps dot(plane, (x, y, z, 1)) >= 0, world coordinates
 };
@@ -62,6 +63,12 @@ class LimitSurfaceRenderer {
               std::span<const std::uint32_t> changed_vertices);
   /// Per-vertex value in [0, 1] for the colour map (clamped in the shader); empty: all 0.
   void set_scalar(std::span<const float> value01);
+  /// Per-vertex texture coordinates (u, v with v up, 2 floats per vertex; empty: zeros). Face-
+  /// varying UVs need the vertices split at seams first (one vertex per vertex-and-UV pair).
+  void set_texcoords(std::span<const float> uv);
+  /// The texture drawn when SurfaceStyle::textured: top-down rows of RGBA8, mipmapped; wrap
+  /// modes as glTF's sampler numbers them (10497 repeat, 33071 clamp, 33648 mirrored repeat).
+  void set_texture(std::span<const std::uint8_t> rgba, int width, int height, int wrap_s = 10497, int wrap_t = 10497);
   /// Draws into the bound framebuffer with depth testing (and writing).
   void draw(const OrbitCamera& camera, const SurfaceStyle& style) const;
   /// Bounds of the positions (set_positions_normals, grown by update), for framing.
@@ -75,6 +82,7 @@ class LimitSurfaceRenderer {
   std::unique_ptr<ShaderProgram> program_;
   unsigned fill_vao_ = 0, wire_vao_ = 0;
   unsigned position_vbo_ = 0, normal_vbo_ = 0, scalar_vbo_ = 0, triangle_ebo_ = 0, edge_ebo_ = 0;
+  unsigned texcoord_vbo_ = 0, texture_ = 0;
   std::size_t num_vertices_ = 0, triangle_index_count_ = 0, edge_index_count_ = 0;
   glm::dvec3 center_{0.0};
   double mean_edge_length_ = 0.0;  // world units (sampled), for fading dense wireframes

@@ -104,6 +104,10 @@ void ShaderProgram::set(const char* name, float value) const {
   glUniform1f(glGetUniformLocation(program_, name), value);
 }
 
+void ShaderProgram::set(const char* name, int value) const {
+  glUniform1i(glGetUniformLocation(program_, name), value);
+}
+
 void ShaderProgram::set(const char* name, const glm::vec3& value) const {
   glUniform3fv(glGetUniformLocation(program_, name), 1, glm::value_ptr(value));
 }

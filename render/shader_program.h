@@ -26,6 +26,7 @@ class ShaderProgram {
   void use() const;
   /// Sets a uniform of the current program (this one must be in use); unknown names are ignored.
   void set(const char* name, float value) const;
+  void set(const char* name, int value) const;  // samplers: the texture unit
   void set(const char* name, const glm::vec3& value) const;
   void set(const char* name, const glm::vec4& value) const;
   void set(const char* name, const glm::mat3& value) const;

@@ -1,13 +1,16 @@
-// Limit surface: two-sided clay (as mesh.frag) or a viridis colour map, smooth or flat; also the
+// Limit surface: two-sided clay (as mesh.frag), a viridis colour map or a texture, smooth or flat; also the
 // flat-coloured wireframe pass (u_wire = 1).
 in vec3 v_position_view;
 in vec3 v_normal_view;
 in float v_scalar;
+in vec2 v_texcoord;
 
 uniform float u_wire;
 uniform vec4 u_wire_color;
 uniform float u_smooth;
 uniform float u_color_map;
+uniform float u_textured;
+uniform sampler2D u_texture;
 uniform vec3 u_front_color;
 uniform vec3 u_back_color;
 uniform float u_orthographic;
@@ -47,7 +50,11 @@ void main() {
   vec3 half_vector = normalize(light + to_eye);
   float highlight = pow(max(dot(n, half_vector), 0.0), 48.0);
   vec3 color;
-  if (u_color_map > 0.5) {
+  if (u_textured > 0.5) {  // the texture lit gently, as the colour map, so its colours stay readable
+    vec3 base = texture(u_texture, v_texcoord).rgb;
+    if (!gl_FrontFacing) base *= 0.75;
+    color = base * (0.55 + 0.30 * diffuse + 0.20 * fill) + vec3(0.05 * highlight);
+  } else if (u_color_map > 0.5) {
     vec3 base = viridis(clamp(v_scalar, 0.0, 1.0));
     if (!gl_FrontFacing) base *= 0.75;
     color = base * (0.55 + 0.30 * diffuse + 0.20 * fill) + vec3(0.05 * highlight);

@@ -86,6 +86,6 @@ gtest_discover_tests(modeler_compress_gui_test DISCOVERY_MODE PRE_TEST PROPERTIE
 add_executable(cli_render_test ${CMAKE_CURRENT_LIST_DIR}/render/cli_render_test.cpp)
 target_link_libraries(cli_render_test PRIVATE sublift_core sublift_testing PkgConfig::STB GTest::gtest_main)
 target_compile_definitions(cli_render_test PRIVATE SUBLIFT_ASSETS_DIR="${PROJECT_SOURCE_DIR}/assets"
-  SUBLIFT_CLI="$<TARGET_FILE:sublift-cli>")
+  SUBLIFT_SHARED_DATA="${SUBLIFT_SHARED_DATA}" SUBLIFT_CLI="$<TARGET_FILE:sublift-cli>")
 add_dependencies(cli_render_test sublift-cli)
 gtest_discover_tests(cli_render_test DISCOVERY_MODE PRE_TEST PROPERTIES TIMEOUT 120)

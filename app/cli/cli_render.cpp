@@ -19,7 +19,10 @@
 #ifdef SUBLIFT_HAVE_RENDER
 #include "render/headless_render.h"
 #include "render/offscreen_target.h"
+#include <stb_image.h>
 #endif
+#include "core/complex/face_varying.h"
+#include "core/complex/polygon_normal.h"
 
 namespace sublift::cli {
 
@@ -67,12 +70,45 @@ SurfaceMesh mesh_to_render(const std::string& file, int level) {
   return loaded.mesh;
 }
 
+#ifdef SUBLIFT_HAVE_RENDER
+// FILE's surface drawn with its texture: its UVs (OBJ vt, glTF TEXCOORD_0) split at seams into
+// per-vertex texture coordinates, the image its glTF material names or `image_path` (any
+// PNG/JPEG), normals area-weighted over the faces (smooth across UV seams).
+Image render_textured(const std::string& file, const std::optional<std::string>& image_path, int w, int h, bool flat) {
+  const Shape shape = read_shape(file);
+  std::cerr << shape.report.format(file);
+  if (shape.base.dim != 2) throw Error(file + ": --textured needs a surface");
+  if (shape.uv.empty()) throw Error(file + ": --textured needs texture coordinates (OBJ vt or glTF TEXCOORD_0); the file has none");
+  std::string bytes = image_path ? read_file_bytes(*image_path) : shape.texture.bytes;
+  if (bytes.empty()) throw Error(file + ": no texture to draw (the file's material names none): give one with --texture IMAGE");
+  int iw = 0, ih = 0, channels = 0;
+  unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()), int(bytes.size()), &iw, &ih, &channels, 4);
+  if (!pixels) throw InputError(image_path ? *image_path : file, 0, std::string("texture image cannot be decoded: ") + stbi_failure_reason());
+  Image texture{iw, ih, std::vector<std::uint8_t>(pixels, pixels + 4 * std::size_t(iw) * std::size_t(ih))};
+  stbi_image_free(pixels);
+  const std::vector<double> normals = area_weighted_normals(shape.base.faces, shape.positions);
+  const UvVertexSplit split = split_at_uv_seams(shape.base.faces, shape.uv, shape.base.num_vertices);
+  std::vector<double> xyz, nrm;
+  for (std::uint32_t v : split.source) {
+    xyz.insert(xyz.end(), &shape.positions[3 * v], &shape.positions[3 * v] + 3);
+    nrm.insert(nrm.end(), &normals[3 * v], &normals[3 * v] + 3);
+  }
+  const std::vector<float> uv(split.texcoords.begin(), split.texcoords.end());
+  const bool own = !image_path;  // the file's sampler wraps as it says; a given image repeats
+  HeadlessRenderSettings settings;
+  settings.display.wireframe = false;  // the texture is what is looked at
+  settings.smooth = !flat;
+  return render_textured_surface_headless(xyz, nrm, split.faces, uv, texture, w, h, settings, own ? shape.texture.wrap_s : 10497,
+                                          own ? shape.texture.wrap_t : 10497);
+}
+#endif
+
 }  // namespace
 
 int run_render(int argc, char** argv) {
-  const Args a = parse_args(argc, argv, 2, {"-o", "--size", "--colour", "--color", "--level"}, {"--json", "--help"});
+  const Args a = parse_args(argc, argv, 2, {"-o", "--size", "--colour", "--color", "--level", "--texture"}, {"--json", "--help", "--textured", "--flat"});
   if (a.has("--help")) {
-    std::cout << "usage: sublift-cli render FILE -o PNG [--size WxH] [--level L] [--colour L] [--json]\n"
+    std::cout << "usage: sublift-cli render FILE -o PNG [--size WxH] [--level L] [--colour L] [--textured [--texture IMAGE] [--flat]] [--json]\n"
                  "  Renders FILE shaded with its wireframe from the default 3/4 view, without a\n"
                  "  display (EGL surfaceless), and writes a PNG. Default size 800x600. FILE: a mesh\n"
                  "  (.obj .off .ply .gltf .glb), a lattice (.lattice .ovm .vtk: its outward boundary) or a .sublift\n"
@@ -80,7 +116,10 @@ int run_render(int argc, char** argv) {
                  "  --level L   a project's limit surface of level L instead of the finest (the modeler's\n"
                  "              viewport level)\n"
                  "  --colour L  a project's surface coloured by the magnitude of level L's wavelets\n"
-                 "              (viridis, as the modeler's Colour by |w| of level)\n";
+                 "              (viridis, as the modeler's Colour by |w| of level)\n"
+                 "  --textured  a surface with UVs (OBJ vt, glTF TEXCOORD_0) drawn with its glTF material's\n"
+                 "              base-colour texture, or with --texture IMAGE (PNG or JPEG); --flat shades\n"
+                 "              each face flat (normals averaged over a box's corners bend its light)\n";
     return 0;
   }
   if (a.positional.size() != 1) throw UsageError("expected exactly one FILE");
@@ -100,7 +139,11 @@ int run_render(int argc, char** argv) {
   if (!colour) colour = a.value("--color");
 #ifdef SUBLIFT_HAVE_RENDER
   Image img;
-  if (colour) {
+  const bool textured = a.has("--textured") || a.value("--texture");
+  if (textured && (colour || view_level >= 0)) throw UsageError("--textured draws a mesh file as it is; it does not take --colour or --level");
+  if (textured) {
+    img = render_textured(a.positional[0], a.value("--texture"), w, h, a.has("--flat"));
+  } else if (colour) {
     const std::string& in = a.positional[0];
     if (!is_project_path(in)) throw UsageError("--colour needs a .sublift project (its wavelets), got '" + in + "'");
     const auto l = parse_int(*colour);
@@ -120,7 +163,8 @@ int run_render(int argc, char** argv) {
   write_png(*out, img.width, img.height, img.rgba);
   if (a.has("--json"))
     std::cout << nlohmann::json{{"input", a.positional[0]}, {"output", *out}, {"width", w}, {"height", h},
-                                {"colour_level", colour ? nlohmann::json(std::stoi(*colour)) : nlohmann::json(nullptr)}}
+                                {"colour_level", colour ? nlohmann::json(std::stoi(*colour)) : nlohmann::json(nullptr)},
+                                {"textured", textured}}
                      .dump(2)
               << "\n";
   return 0;

@@ -114,19 +114,9 @@ FaceVaryingUV project_uv(const Hierarchy& h, const Shape& fine, const std::vecto
   if (!fine.texture.empty())
     not_kept.push_back("the texture image '" + fine.texture.name + "' (a project keeps the UVs, not the image: give it to render --texture)");
   if (fine.uv.empty()) return {};
-  FaceVaryingUV at_finest = fine.uv;
   std::string why;
-  try {
-    if (engine_vertex) {
-      Csr faces = fine.base.faces;
-      for (std::uint32_t& v : faces.items) v = (*engine_vertex)[v];
-      at_finest = uv_for_faces(faces, fine.uv, h.levels.back().faces);
-    }
-    FaceVaryingUV base = coarsen_uv(h, at_finest, &why);
-    if (!base.empty()) return base;
-  } catch (const TopologyError& e) {
-    why = e.what();
-  }
+  FaceVaryingUV base = coarsen_file_uv(h, fine.base.faces, fine.uv, engine_vertex ? std::span<const std::uint32_t>(*engine_vertex) : std::span<const std::uint32_t>(), &why);
+  if (!base.empty()) return base;
   not_kept.push_back("texture coordinates (" + std::to_string(fine.uv.num_points()) + " UV points): " + why);
   return {};
 }

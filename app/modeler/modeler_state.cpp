@@ -19,6 +19,8 @@
 #include "core/base/errors.h"
 #include "core/ffd/ffd_scene.h"
 #include "core/io/project/project_io.h"
+#include "core/complex/face_varying.h"
+#include "core/multires/level_uv.h"
 #include "core/io/lattice/shape_io.h"
 #include "core/complex/polygon_normal.h"
 #include "core/io/model/surface_export.h"
@@ -55,6 +57,8 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   RebuildOffer offer;
   InputOrder order;
   FitSource source;
+  FaceVaryingUV base_uv, file_uv;  // the opened base's UVs; a mesh file's own, for rebuild
+  SurfaceTexture texture;
   if (is_project_file(path)) {
     ProjectExtras extras;
     Hierarchy h = read_project(path, &extras);
@@ -67,6 +71,7 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
       if (!line.empty()) warnings.push_back(line);
     order = std::move(extras.input_order);
     source = std::move(extras.fit_source);
+    base_uv = std::move(extras.uv);
     session = std::make_unique<Session>(std::move(h), extras.gains);
     if (extras.local_frames) session->set_detail_frames(DetailFrames::Local);
     level = extras.current_level;
@@ -74,6 +79,13 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   } else {
     Shape shape = read_shape(path);
     shape.report.note_attributes_not_kept(shape.attributes);  // the modeler edits x, y, z only (so far)
+    if (!shape.texture.empty())  // exports carry it; a project keeps the UVs only
+      shape.report.note_not_kept("the texture image '" + shape.texture.name + "' in a saved project (exported levels carry it)", 0);
+    if (!shape.uv.empty() && !uv_refinement_problem(scheme).empty())
+      warnings.push_back("texture coordinates: " + uv_refinement_problem(scheme));
+    base_uv = shape.uv;
+    file_uv = std::move(shape.uv);
+    texture = std::move(shape.texture);
     add_topology_warnings(shape.report, shape.base);  // non-manifold or misoriented: said before it surprises
     if (!shape.report.empty()) {
       std::istringstream in(shape.report.format(std::filesystem::path(path).filename().string()));
@@ -117,6 +129,10 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   rebuild_offer_ = std::move(offer);
   input_order_ = std::move(order);
   fit_source_ = std::move(source);
+  uv_bases_.clear();
+  remember_uv(session_->hierarchy().levels.front(), std::move(base_uv));
+  file_uv_ = std::move(file_uv);
+  texture_ = std::move(texture);
   level_ = std::clamp(level, 0, session_->finest_level());
   selection_.clear();
   active_ = -1;
@@ -225,6 +241,8 @@ std::string ModelerState::install_fit(PreparedFit p) {
                         " corner tags (the fitted creases come from the feature angle)");
   if (const std::uint32_t folded = limit ? f.limit_folded : f.levels.empty() ? 0 : f.levels.back().folded; folded > 0)
     warnings_.push_back(std::to_string(folded) + " folded faces in the fitted surface (docs/fit.md)");
+  if (!file_uv_.empty())
+    warnings_.push_back("texture coordinates not kept by the fit: the fitted base is a new mesh, its corners are not the file's");
   install_new_model(std::make_unique<Session>(std::move(p.fitted.hierarchy)));
   fit_source_ = std::move(p.source);
   rebuild_offer_ = {};
@@ -254,7 +272,11 @@ void ModelerState::install_rebuild(PreparedRebuild p) {
   order.level = r.hierarchy.finest_level();
   order.engine_vertex = std::move(r.engine_vertex);
   order.faces = std::move(p.faces);
+  std::string why;
+  FaceVaryingUV uv = coarsen_file_uv(r.hierarchy, order.faces, file_uv_, order.engine_vertex, &why);
+  if (!file_uv_.empty() && uv.empty()) warnings_.push_back("texture coordinates not kept by the rebuild: " + why);
   install_new_model(std::make_unique<Session>(std::move(r.hierarchy)));
+  remember_uv(session_->hierarchy().levels.front(), std::move(uv));
   rebuild_offer_ = {};
   input_order_ = std::move(order);
   level_ = 0;
@@ -411,6 +433,8 @@ void ModelerState::set_scheme(Scheme scheme) {
   session->mark_unsaved();
   const int edit_level = std::min(level_under_scheme(level_, from, scheme), session->finest_level());
   replace_session(std::move(session));  // same refinement: the same levels, so a rebuilt file's order still holds
+  if (!base_uv().empty() && !uv_refinement_problem(scheme).empty())
+    warnings_.push_back("texture coordinates are not saved or exported under this scheme: " + uv_refinement_problem(scheme));
   level_ = edit_level;
   clamp_selection();
   if (!next.kept_detail) {
@@ -653,6 +677,7 @@ ProjectExtras ModelerState::project_extras() const {
   // (A session never changes level 0; the check keeps a map of another base out of the file.)
   if (fit_source_.base_vertex.size() == session_->num_vertices(0)) extras.fit_source = fit_source_;
   if (anim_) extras.animation = animation_extras(anim_->anim);  // reopens as the animation
+  if (uv_refinement_problem(session_->hierarchy().scheme).empty()) extras.uv = base_uv();
   return extras;
 }
 
@@ -678,13 +703,16 @@ std::vector<std::string> ModelerState::export_level(const std::string& path, int
   const bool finest = net_level < 0;
   const int level = finest ? h.finest_level() : net_level;
   const Complex& c = h.levels[static_cast<std::size_t>(level)];
+  // The level's UVs (and the texture they map) where the faces written are the level's own.
+  FaceVaryingUV uv = c.dim == 2 ? level_uv(level) : FaceVaryingUV{};
+  const SurfaceTexture* texture = texture_.empty() ? nullptr : &texture_;
   if (surface_export_supported(path) && c.dim >= 2) {
     if (finest) {
       if (shown_level() == h.finest_level()) {
-        write_surface_with_normals(path, faces_, limit_, normals_);
+        write_surface_with_normals(path, faces_, limit_, normals_, {}, faces_.items == c.faces.items ? &uv : nullptr, texture);
       } else {  // the viewport shows a coarser level: the export is still the finest limit
         const LimitSurface s = finest_limit_surface(h, session_->positions(h.finest_level()));
-        write_surface_with_normals(path, s.faces, s.positions, s.normals);
+        write_surface_with_normals(path, s.faces, s.positions, s.normals, {}, s.faces.items == c.faces.items ? &uv : nullptr, texture);
       }
       return {};
     }
@@ -696,10 +724,11 @@ std::vector<std::string> ModelerState::export_level(const std::string& path, int
     // OBJ keeps a net's feature tags (write_shape: no normals); the other formats cannot.
     const FeatureTags tags = c.dim == 2 ? derive_feature_tags(c) : FeatureTags{};
     const bool tagged = !tags.crease_edges.empty() || !tags.corner_vertices.empty();
-    if (tagged && file_extension(path) == "obj" && !file_order) return write_shape(path, c, session_->positions(level));
+    if (tagged && file_extension(path) == "obj" && !file_order) return write_shape(path, c, session_->positions(level), {}, &uv, texture);
     const Csr faces = file_order ? input_order_.faces : boundary_faces(c, xyz);
+    if (file_order && !uv.empty()) uv = uv_in_file_order(uv, c);
     const std::vector<double> normals = area_weighted_normals(faces, xyz);
-    write_surface_with_normals(path, faces, xyz, normals);
+    write_surface_with_normals(path, faces, xyz, normals, {}, c.dim == 2 ? &uv : nullptr, texture);
     if (tagged)
       return {"feature tags not written: " + std::to_string(tags.crease_edges.size()) + " crease edges and " +
               std::to_string(tags.corner_vertices.size()) + " corners (." + file_extension(path) +
@@ -710,12 +739,14 @@ std::vector<std::string> ModelerState::export_level(const std::string& path, int
     throw Error(path + ": " + problem);
   }
   if (finest) {
-    if (shown_level() == h.finest_level()) return write_shape(path, c, limit_);
-    return write_shape(path, c, finest_limit_surface(h, session_->positions(h.finest_level())).positions);
+    if (shown_level() == h.finest_level()) return write_shape(path, c, limit_, {}, &uv, texture);
+    return write_shape(path, c, finest_limit_surface(h, session_->positions(h.finest_level())).positions, {}, &uv, texture);
   }
-  if (level == input_order_.level)  // a rebuilt mesh's level: in the order of its file
-    return write_shape(path, in_input_order(input_order_, c), in_input_order(input_order_, session_->positions(level), 3));
-  return write_shape(path, c, session_->positions(level));
+  if (level == input_order_.level) {  // a rebuilt mesh's level: in the order of its file
+    if (!uv.empty()) uv = uv_in_file_order(uv, c);
+    return write_shape(path, in_input_order(input_order_, c), in_input_order(input_order_, session_->positions(level), 3), {}, &uv, texture);
+  }
+  return write_shape(path, c, session_->positions(level), {}, &uv, texture);
 }
 
 std::vector<LevelStats> ModelerState::level_rows() const {

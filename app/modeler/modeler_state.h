@@ -142,6 +142,10 @@ class ModelerState {
   const InputOrder& input_order() const { return input_order_; }
   /// The mesh a fitted model was fitted to (empty otherwise); saved with the project.
   const FitSource& fit_source() const { return fit_source_; }
+  /// The texture coordinates of level `level` (the base's, refined by the linear rule; saved and
+  /// exported with the levels), empty when the model has none or its scheme cannot carry them
+  /// (modeler_uv.cpp). The base's UVs follow Delete Lower and rebuild; a fit starts without.
+  FaceVaryingUV level_uv(int level) const;
   void set_level(int level);
   /// Blender's separate viewport level: the surface drawn (and brushed, and picked) is the limit
   /// of level `level` (-1: the finest, the default, which follows subdivide); edits, the history,
@@ -432,6 +436,15 @@ class ModelerState {
   std::uint32_t file_vertices_ = 0;
   InputOrder input_order_;
   FitSource fit_source_;
+  // Texture coordinates of every base this model has had (undo brings a base back), each with
+  // the base's faces it belongs to; the opened file's own UVs, for rebuild; its texture (exports).
+  std::vector<std::pair<Csr, FaceVaryingUV>> uv_bases_;
+  FaceVaryingUV file_uv_;
+  SurfaceTexture texture_;
+  void remember_uv(const Complex& base, FaceVaryingUV uv);
+  FaceVaryingUV base_uv() const;
+  /// `uv` of `level` (the rebuilt file's level) per corner of the file's faces.
+  FaceVaryingUV uv_in_file_order(const FaceVaryingUV& uv, const Complex& level) const;
   std::string file_path_, project_path_;
   std::vector<std::string> warnings_;
   int level_ = 0;

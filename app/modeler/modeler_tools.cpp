@@ -52,7 +52,9 @@ std::string ModelerState::delete_lower_levels() {
   auto session = std::make_unique<Session>(delete_lower(session_->hierarchy(), L, net), std::move(gains));
   if (session_->detail_frames() == DetailFrames::Local) session->set_detail_frames(DetailFrames::Local);
   session->mark_unsaved();
+  FaceVaryingUV uv = level_uv(L);  // level L's UVs are the new base's
   replace_session(std::move(session));  // the selection: old level L's vertices are the new level 0's
+  remember_uv(session_->hierarchy().levels.front(), std::move(uv));
   level_ = 0;
   clamp_selection();
   std::string note = "level " + std::to_string(L) + " is the new base; levels 0.." + std::to_string(L - 1) +

@@ -27,6 +27,20 @@ FaceVaryingUV uv_at_level(const Hierarchy& h, const FaceVaryingUV& base, int lev
   return uv;
 }
 
+FaceVaryingUV coarsen_file_uv(const Hierarchy& h, const Csr& file_faces, const FaceVaryingUV& file_uv,
+                              std::span<const std::uint32_t> engine_vertex, std::string* why) {
+  if (file_uv.empty()) return {};
+  try {
+    if (engine_vertex.empty()) return coarsen_uv(h, file_uv, why);
+    Csr faces = file_faces;
+    for (std::uint32_t& v : faces.items) v = engine_vertex[v];
+    return coarsen_uv(h, uv_for_faces(faces, file_uv, h.levels.back().faces), why);
+  } catch (const TopologyError& e) {
+    if (why) *why = e.what();
+    return {};
+  }
+}
+
 FaceVaryingUV coarsen_uv(const Hierarchy& h, const FaceVaryingUV& finest, std::string* why) {
   const auto fail = [&](const std::string& w) {
     if (why) *why = w;

@@ -1,6 +1,7 @@
 #pragma once
 // A surface's face-varying UVs at every level of its hierarchy (face_varying.h's linear rule,
 // applied once per level by the scheme's refinement).
+#include <span>
 #include <string>
 
 #include "core/base/surface_mesh.h"
@@ -22,5 +23,12 @@ FaceVaryingUV uv_at_level(const Hierarchy& h, const FaceVaryingUV& base, int lev
 /// scheme, the fit, or the largest difference (beyond 1e-6 of the UVs' range: float32 files
 /// round). Returns an empty set on failure.
 FaceVaryingUV coarsen_uv(const Hierarchy& h, const FaceVaryingUV& finest, std::string* why = nullptr);
+
+/// coarsen_uv of a file's UVs: `file_uv` per corner of `file_faces` (the file's faces over its
+/// own vertices), carried to the finest level's faces through `engine_vertex` (file vertex ->
+/// engine vertex; empty: the file is in the engine's order already). Empty on failure, `*why`
+/// saying what failed (a face that is not the finest level's, or coarsen_uv's reason).
+FaceVaryingUV coarsen_file_uv(const Hierarchy& h, const Csr& file_faces, const FaceVaryingUV& file_uv,
+                              std::span<const std::uint32_t> engine_vertex, std::string* why = nullptr);
 
 }  // namespace sublift

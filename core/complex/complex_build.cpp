@@ -77,6 +77,35 @@ std::uint8_t untagged_vertex_dim(const Complex& c, std::uint32_t v) {
   return curve_edges >= 3 ? 0 : curve_edges == 2 ? 1 : higher;
 }
 
+Complex inherit_sharpness(const Complex& p, Complex c, bool adjacency) {
+  if (p.edge_sharpness.empty() && p.vertex_sharpness.empty()) {
+    if (adjacency) build_adjacency(c);
+    return c;
+  }
+  const auto less = [](float s) { return s > 1.0f ? s - 1.0f : 0.0f; };  // inf stays inf
+  const std::uint32_t ne = p.num_edges(), nv = p.num_vertices;
+  c.edge_sharpness.assign(c.edge_dim.size(), 0.0f);
+  for (std::uint32_t e = 0; e < ne && e < p.edge_sharpness.size(); ++e) c.edge_sharpness[2 * e] = c.edge_sharpness[2 * e + 1] = less(p.edge_sharpness[e]);
+  c.vertex_sharpness.assign(c.num_vertices, 0.0f);
+  for (std::uint32_t v = 0; v < nv && v < p.vertex_sharpness.size(); ++v) c.vertex_sharpness[v] = less(p.vertex_sharpness[v]);
+  build_adjacency(c);
+  apply_sharpness(c);
+  if (adjacency) return c;
+  Complex bare;  // what the caller asked for: the derived rows left empty
+  bare.dim = c.dim;
+  bare.num_vertices = c.num_vertices;
+  bare.edge_verts = std::move(c.edge_verts);
+  bare.faces = std::move(c.faces);
+  bare.face_edges = std::move(c.face_edges);
+  bare.cell_faces = std::move(c.cell_faces);
+  bare.vertex_dim = std::move(c.vertex_dim);
+  bare.edge_dim = std::move(c.edge_dim);
+  bare.face_dim = std::move(c.face_dim);
+  bare.edge_sharpness = std::move(c.edge_sharpness);
+  bare.vertex_sharpness = std::move(c.vertex_sharpness);
+  return bare;
+}
+
 void apply_sharpness(Complex& c) {
   if (c.edge_sharpness.empty() && c.vertex_sharpness.empty()) return;
   c.edge_sharpness.resize(c.num_edges(), 0.0f);
@@ -163,7 +192,7 @@ FeatureTags feature_tags_from_obj(const std::vector<MeshTag>& tags, ImportReport
         report.add("semi-sharp " + t.name + " tags with a fractional sharpness: sharp for floor(s) levels, the fraction not blended",
                    t.line);
       if (s < 10.0)
-        report.add("semi-sharp " + t.name + " tags: sharp for s levels with the linear and cubic schemes, at every level with the others",
+        report.add("semi-sharp " + t.name + " tags: sharp for s levels (sqrt2: at every level)",
                    t.line);
       if (crease) {
         out.crease_edges.emplace_back(static_cast<std::uint32_t>(t.ints[i]), static_cast<std::uint32_t>(t.ints[i + 1]));

@@ -64,4 +64,11 @@ void assign_feature_dims(Complex& c, const FeatureTags& tags);
 /// Needs the derived rows. Does nothing without sharpness.
 void apply_sharpness(Complex& c);
 
+/// The refinement step's semi-sharp rule, shared by refine() and refine_tri() (their child
+/// numbering agrees where it matters: the halves of parent edge e are edges 2e and 2e + 1, old
+/// vertex v stays v): the halves of an edge of sharpness s get s - 1, a vertex keeps s - 1, new
+/// edges and vertices 0, and `child`'s dims are derived again (apply_sharpness). Returns `child`
+/// as is when `parent` has no sharpness; with `adjacency` false its derived rows are dropped again.
+Complex inherit_sharpness(const Complex& parent, Complex child, bool adjacency);
+
 }  // namespace sublift

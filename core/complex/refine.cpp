@@ -127,31 +127,7 @@ Complex refine(const Complex& p, bool adjacency) {
   c.face_edges.offsets = c.faces.offsets;
   // Semi-sharp features: children of a sharp edge (and the vertex itself) one level less sharp,
   // the dims derived again from that (Complex::edge_sharpness; OpenSubdiv's uniform rule).
-  if (!p.edge_sharpness.empty() && p.dim == 2) {
-    const auto less = [](float s) { return s > 1.0f ? s - 1.0f : 0.0f; };  // inf stays inf
-    c.edge_sharpness.assign(c.edge_dim.size(), 0.0f);
-    for (std::uint32_t e = 0; e < ne; ++e) c.edge_sharpness[2 * e] = c.edge_sharpness[2 * e + 1] = less(p.edge_sharpness[e]);
-    c.vertex_sharpness.assign(c.num_vertices, 0.0f);
-    for (std::uint32_t v = 0; v < nv && v < p.vertex_sharpness.size(); ++v) c.vertex_sharpness[v] = less(p.vertex_sharpness[v]);
-    build_adjacency(c);
-    apply_sharpness(c);
-    if (!adjacency) {  // what the caller asked for: the derived rows left empty
-      Complex bare;
-      bare.dim = c.dim;
-      bare.num_vertices = c.num_vertices;
-      bare.edge_verts = std::move(c.edge_verts);
-      bare.faces = std::move(c.faces);
-      bare.face_edges = std::move(c.face_edges);
-      bare.cell_faces = std::move(c.cell_faces);
-      bare.vertex_dim = std::move(c.vertex_dim);
-      bare.edge_dim = std::move(c.edge_dim);
-      bare.face_dim = std::move(c.face_dim);
-      bare.edge_sharpness = std::move(c.edge_sharpness);
-      bare.vertex_sharpness = std::move(c.vertex_sharpness);
-      return bare;
-    }
-    return c;
-  }
+  if ((!p.edge_sharpness.empty() || !p.vertex_sharpness.empty()) && p.dim == 2) return inherit_sharpness(p, std::move(c), adjacency);
   if (adjacency) build_adjacency(c);
   return c;
 }

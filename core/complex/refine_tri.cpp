@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/base/errors.h"
+#include "core/complex/complex_build.h"
 
 namespace sublift {
 
@@ -96,6 +97,8 @@ Complex refine_tri(const Complex& p, bool adjacency) {
     std::fill_n(&c.face_dim[4 * std::size_t(f)], 4, dim);
   }
   c.face_edges.offsets = c.faces.offsets;
+  // Semi-sharp features as refine() has them (the halves of edge e are 2e and 2e + 1 here too).
+  if (!p.edge_sharpness.empty() || !p.vertex_sharpness.empty()) return inherit_sharpness(p, std::move(c), adjacency);
   if (adjacency) build_adjacency(c);
   return c;
 }

@@ -472,7 +472,12 @@ TEST(RefineTri, EqualsOpenSubdivLoopSplitOnSharedLoopShapes) {
       continue;
     }
     expect_equal_to_osd(s.base, path.filename().string());
-    expect_inherited_dims(s.base, refine_tri(s.base));
+    // Dims are inherited; semi-sharp tags soften instead (tests/complex/semisharp_test.cpp), so
+    // they are checked here without their sharpness.
+    Complex plain = s.base;
+    plain.edge_sharpness.clear();
+    plain.vertex_sharpness.clear();
+    expect_inherited_dims(plain, refine_tri(plain));
     ++compared;
   }
   EXPECT_GE(compared, 10);

@@ -1,7 +1,7 @@
 // Semi-sharp creases and corners (issue 20; docs/features.md): a crease of sharpness s is a
 // feature for floor(s) levels and smooth after, the dims of every level derived from the
-// sharpness left; the transform stays exact; projects and OBJ keep the sharpness; other
-// schemes keep such tags sharp at every level. (Against OpenSubdiv: tests/schemes/peer_osd_test.)
+// sharpness left, for the Catmull-Clark-style and the triangle splits alike; the transform stays
+// exact; projects and OBJ keep the sharpness; sqrt(2) keeps such tags sharp at every level. (Against OpenSubdiv: tests/schemes/peer_osd_test.)
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -108,9 +108,47 @@ TEST(SemiSharp, ObjTagsRoundTripWithTheirSharpness) {
   const std::string text((std::istreambuf_iterator<char>(in)), {});
   EXPECT_NE(text.find("t crease 2/1/0 0 1 3"), std::string::npos) << text.substr(text.size() > 400 ? text.size() - 400 : 0);
   EXPECT_NE(text.find("t crease 2/1/0 1 2 10"), std::string::npos);
-  // Another scheme's refinement keeps the tags sharp at every level (the old rule), as said.
-  const Hierarchy loop = make_hierarchy(tagged_torus(1.0f, 1.0f), 2, Scheme::Sqrt2, 3);
-  EXPECT_GT(creases(loop.levels[2]), 0u);
+  // sqrt(2) keeps the tags sharp at every level (the old rule), as said.
+  const Hierarchy sqrt2 = make_hierarchy(tagged_torus(1.0f, 1.0f), 2, Scheme::Sqrt2, 3);
+  EXPECT_GT(creases(sqrt2.levels[2]), 0u);
+}
+
+// The torus of tagged_torus split into triangles (each quad along its 0-2 diagonal), the same
+// ring tagged at `s`: the triangle schemes soften it as refine() does (1-to-4 splits give the
+// halves of edge e the numbers 2e and 2e + 1 too), and their transforms stay exact.
+Complex tagged_tri_torus(float s) {
+  const fx::Polygons m = fx::torus(8, 8);
+  Csr tris;
+  for (std::size_t f = 0; f < m.faces.rows(); ++f) {
+    const auto r = m.faces.row(f);
+    fx::push_row(tris, {r[0], r[1], r[2]});
+    fx::push_row(tris, {r[0], r[2], r[3]});
+  }
+  FeatureTags tags;
+  for (std::uint32_t i = 0; i < 8; ++i) {
+    tags.crease_edges.emplace_back(i, (i + 1) % 8);
+    tags.crease_sharpness.push_back(s);
+  }
+  return complex_from_polygons(m.num_vertices, tris, tags);
+}
+
+TEST(SemiSharp, TriangleSchemesSoftenTooAndStayExact) {
+  for (const Scheme scheme : {Scheme::LinearTri, Scheme::Butterfly, Scheme::Loop}) {
+    SCOPED_TRACE(scheme_name(scheme));
+    Hierarchy h = make_hierarchy(tagged_tri_torus(2.0f), 3, scheme, 3);
+    EXPECT_EQ(creases(h.levels[0]), 8u);
+    EXPECT_EQ(creases(h.levels[1]), 16u);
+    EXPECT_EQ(creases(h.levels[2]), 0u);
+    EXPECT_EQ(creases(h.levels[3]), 0u);
+    const std::vector<double> coeffs = testing::random_values(h.coeffs.size(), 5);
+    h.coeffs = coeffs;
+    const std::vector<double> fine = synthesize(h, 3);
+    Hierarchy back = h;
+    analyze(back, fine);
+    double worst = 0;
+    for (std::size_t i = 0; i < coeffs.size(); ++i) worst = std::max(worst, std::abs(back.coeffs[i] - coeffs[i]));
+    EXPECT_LT(worst, 1e-10);
+  }
 }
 
 }  // namespace

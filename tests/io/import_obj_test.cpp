@@ -156,7 +156,7 @@ TEST(ImportObj, SemiSharpCreasesKeepTheirSharpness) {
   const ImportWarning* fraction = find_warning(report, "fractional sharpness");
   ASSERT_NE(fraction, nullptr);
   EXPECT_EQ(fraction->first_lines, (std::vector<std::size_t>{6, 8}));
-  const ImportWarning* per_level = find_warning(report, "semi-sharp crease tags: sharp for s levels with the linear and cubic schemes");
+  const ImportWarning* per_level = find_warning(report, "semi-sharp crease tags: sharp for s levels (sqrt2: at every level)");
   ASSERT_NE(per_level, nullptr);
   EXPECT_EQ(per_level->count, 2u);  // 2.5 and 0.5 (10 is infinitely sharp)
   EXPECT_NE(find_warning(report, "semi-sharp corner tags: sharp for s levels"), nullptr);

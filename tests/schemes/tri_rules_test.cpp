@@ -326,17 +326,30 @@ struct OsdVertex {
   }
 };
 
-// Far's refiner for m's faces with every dim-1 edge and every dim-0 vertex infinitely sharp.
+// Far's refiner for m's faces with every dim-1 edge and every dim-0 vertex infinitely sharp, or
+// as sharp as the complex's semi-sharp sharpness says where it has one.
 std::unique_ptr<Far::TopologyRefiner> osd_loop(const Complex& c, int levels) {
   std::vector<int> sizes(c.num_faces(), 3);
   const std::vector<Far::Index> corners(c.faces.items.begin(), c.faces.items.end());
   std::vector<Far::Index> crease_pairs, corner_verts;
+  std::vector<float> crease_w, corner_w;
+  const auto weight = [](const std::vector<float>& s, std::uint32_t k) {
+    return k < s.size() && std::isfinite(s[k]) ? s[k] : float(Sdc::Crease::SHARPNESS_INFINITE);
+  };
   for (std::uint32_t e = 0; e < c.num_edges(); ++e)
-    if (c.edge_dim[e] == 1) crease_pairs.insert(crease_pairs.end(), {Far::Index(c.edge_verts[2 * e]), Far::Index(c.edge_verts[2 * e + 1])});
+    if (c.edge_dim[e] == 1 || (e < c.edge_sharpness.size() && c.edge_sharpness[e] > 0)) {
+      crease_pairs.insert(crease_pairs.end(), {Far::Index(c.edge_verts[2 * e]), Far::Index(c.edge_verts[2 * e + 1])});
+      const bool semi = e < c.edge_sharpness.size() && c.edge_sharpness[e] > 0;  // else a crease by topology or tag
+      crease_w.push_back(semi ? weight(c.edge_sharpness, e) : float(Sdc::Crease::SHARPNESS_INFINITE));
+    }
+  // Corners: with semi-sharp tags only the tagged ones (vertex_sharpness, infinite for sharp
+  // tags), since a vertex on three creases is a corner only while they last; else every dim-0 one.
+  const bool semi = !c.vertex_sharpness.empty() || !c.edge_sharpness.empty();
   for (std::uint32_t v = 0; v < c.num_vertices; ++v)
-    if (c.vertex_dim[v] == 0) corner_verts.push_back(Far::Index(v));
-  const std::vector<float> crease_w(crease_pairs.size() / 2, Sdc::Crease::SHARPNESS_INFINITE);
-  const std::vector<float> corner_w(corner_verts.size(), Sdc::Crease::SHARPNESS_INFINITE);
+    if (semi ? v < c.vertex_sharpness.size() && c.vertex_sharpness[v] > 0 : c.vertex_dim[v] == 0) {
+      corner_verts.push_back(Far::Index(v));
+      corner_w.push_back(semi ? weight(c.vertex_sharpness, v) : float(Sdc::Crease::SHARPNESS_INFINITE));
+    }
   Far::TopologyDescriptor desc;
   desc.numVertices = static_cast<int>(c.num_vertices);
   desc.numFaces = static_cast<int>(sizes.size());
@@ -357,7 +370,7 @@ std::unique_ptr<Far::TopologyRefiner> osd_loop(const Complex& c, int levels) {
 }
 
 // `levels` Loop steps of ours against Far's, vertex for vertex through Far's parent-child tables.
-double loop_vs_osd(Mesh m, int levels, const std::string& name) {
+double loop_vs_osd(Mesh m, int levels, const std::string& name, bool expect_equal = true) {
   SCOPED_TRACE(name);
   const auto r = osd_loop(m.c, levels);
   if (!r) {
@@ -396,12 +409,16 @@ double loop_vs_osd(Mesh m, int levels, const std::string& name) {
     for (std::uint32_t v = 0; v < m.c.num_vertices; ++v)
       for (int k = 0; k < 3; ++k) {
         const double d = std::abs(m.xyz[3 * v + k] - next[static_cast<std::size_t>(child[v])].p[k]) / scale;
-        if (d > 1e-12 && worst <= 1e-12)  // the first bad vertex only
+        if (expect_equal && d > 1e-12 && worst <= 1e-12)  // the first bad vertex only
           ADD_FAILURE() << "vertex " << v << (v < map.size() ? " (old)" : " (new)") << " differs by " << d;
         worst = std::max(worst, d);
       }
     peer = std::move(next);
     map = std::move(child);
+  }
+  if (!expect_equal) {  // measured, not compared (a documented difference)
+    std::printf("[ osd loop ] %-32s %d step(s): differs by %.3g (relative), as documented\n", name.c_str(), levels, worst);
+    return worst;
   }
   EXPECT_LT(worst, 1e-12);
   g_worst_osd = std::max(g_worst_osd, worst);
@@ -656,10 +673,32 @@ TEST(TriRules, LoopEqualsOpenSubdiv) {
   std::printf("[ osd loop ] worst so far %.3g\n", g_worst_osd);
 }
 
+// Semi-sharp creases (issue 20): an edge of integer sharpness s is a crease for s levels, then
+// smooth (refine_tri's children get s - 1, as refine()'s do), which is OpenSubdiv's uniform rule.
+// A crease ring, an open chain (darts at its ends) and a semi-sharp corner on a wobbled torus,
+// at sharpness 1, 2 and 3, four steps.
+TEST(TriRules, LoopEqualsOpenSubdivAtIntegerSharpness) {
+  for (const float s : {1.0f, 2.0f, 3.0f})
+    for (const bool ring : {true, false}) {
+      Mesh m = tri_torus(8, 6, false);
+      wobble(m.xyz, 0.02);
+      FeatureTags tags;
+      for (std::uint32_t i = 0; i < (ring ? 8u : 4u); ++i) {
+        tags.crease_edges.emplace_back(i, (i + 1) % 8);
+        tags.crease_sharpness.push_back(s);
+      }
+      tags.corner_vertices.push_back(8 * 3 + 4);  // off the crease
+      tags.corner_sharpness.push_back(s);
+      m.c = complex_from_polygons(m.c.num_vertices, m.c.faces, tags);
+      ASSERT_FALSE(m.c.edge_sharpness.empty());
+      loop_vs_osd(m, 4, std::string(ring ? "ring" : "chain") + " at sharpness " + std::to_string(int(s)));
+    }
+}
+
 TEST(TriRules, LoopEqualsOpenSubdivOnSharedShapes) {
   const auto dir = shared_dir("control_meshes/opensubdiv_shapes");
   if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no third-party data at " << dir << " (SUBLIFT_SHARED_DATA)";
-  int compared = 0, tagged = 0;
+  int compared = 0, tagged = 0, measured = 0;
   std::vector<std::filesystem::path> paths = loop_shapes();
   paths.push_back(shared_dir("scans/bunny_npm_lowres.obj"));
   for (const auto& path : paths) {
@@ -678,8 +717,17 @@ TEST(TriRules, LoopEqualsOpenSubdivOnSharedShapes) {
       continue;
     }
     Mesh m{s.base, s.positions};
-    loop_vs_osd(m, 1, name);
-    loop_vs_osd(m, 2, name);
+    // A fractional sharpness is floored here (docs/features.md) where OpenSubdiv blends it: those
+    // shapes are measured, the others must agree.
+    bool fractional = false;
+    for (const std::vector<float>* sharp : {&m.c.edge_sharpness, &m.c.vertex_sharpness})
+      for (float x : *sharp) fractional = fractional || (std::isfinite(x) && x > 0 && x != std::floor(x));
+    loop_vs_osd(m, 1, name, !fractional);
+    loop_vs_osd(m, 2, name, !fractional);
+    if (fractional) {
+      ++measured;
+      continue;
+    }
     ++compared;
     bool creased = false;
     for (std::uint32_t e = 0; e < m.c.num_edges(); ++e) creased |= m.c.edge_dim[e] == 1 && m.c.edge_faces.size(e) == 2;
@@ -687,6 +735,9 @@ TEST(TriRules, LoopEqualsOpenSubdivOnSharedShapes) {
   }
   EXPECT_GE(compared, 15);
   EXPECT_GE(tagged, 4);
+  // loop_cube_creases0 and loop_cubes_semisharp (agree all the same), loop_cube_creases1 (a crease
+  // of 0.2: 2.5 % of the size apart) and loop_fvar_bound2 (corners 0.1 .. 4.5: 2.8 %).
+  EXPECT_EQ(measured, 4);
   std::printf("[ osd loop ] %d shared meshes compared (%d with creases); worst so far %.3g\n", compared, tagged, g_worst_osd);
 }
 

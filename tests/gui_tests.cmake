@@ -54,11 +54,13 @@ target_compile_definitions(modeler_controller_test PRIVATE SUBLIFT_ASSETS_DIR="$
   SUBLIFT_SHARED_DATA="${SUBLIFT_SHARED_DATA}")
 gtest_discover_tests(modeler_controller_test DISCOVERY_MODE PRE_TEST)
 
-# The modeler keeps a textured model's UVs (issue 20), on ModelerState without a window.
-add_executable(modeler_uv_test ${CMAKE_CURRENT_LIST_DIR}/modeler/modeler_uv_test.cpp)
-target_link_libraries(modeler_uv_test PRIVATE sublift_modeler GTest::gtest_main)
-target_compile_definitions(modeler_uv_test PRIVATE SUBLIFT_SHARED_DATA="${SUBLIFT_SHARED_DATA}")
-gtest_discover_tests(modeler_uv_test DISCOVERY_MODE PRE_TEST)
+# The modeler keeps a model's UVs and attribute channels (issue 20), on ModelerState without a window.
+add_executable(modeler_channels_test ${CMAKE_CURRENT_LIST_DIR}/modeler/modeler_channels_test.cpp)
+target_link_libraries(modeler_channels_test PRIVATE sublift_modeler sublift_testing GTest::gtest_main)
+target_compile_definitions(modeler_channels_test PRIVATE SUBLIFT_SHARED_DATA="${SUBLIFT_SHARED_DATA}"
+  SUBLIFT_CLI="$<TARGET_FILE:sublift-cli>")
+add_dependencies(modeler_channels_test sublift-cli)
+gtest_discover_tests(modeler_channels_test DISCOVERY_MODE PRE_TEST)
 
 # The modeler's animation mode (docs/animation.md) on ModelerState, without a window.
 add_executable(modeler_animation_test ${CMAKE_CURRENT_LIST_DIR}/modeler/modeler_animation_test.cpp)

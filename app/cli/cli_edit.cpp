@@ -6,6 +6,7 @@
 #include <charconv>
 #include <chrono>
 #include <iostream>
+#include <optional>
 #include <numbers>
 
 #include "app/cli/cli_args.h"
@@ -13,6 +14,7 @@
 #include "app/cli/cli_json.h"
 #include "app/cli/cli_hierarchy.h"
 #include "core/io/project/project_io.h"
+#include "core/edit/attribute_channels.h"
 #include "core/edit/session.h"
 #include "core/base/errors.h"
 #include "core/edit/brush.h"
@@ -183,6 +185,12 @@ int run_edit(int argc, char** argv) {
   const std::string& in = a.positional[0];
   ProjectExtras extras;
   Hierarchy h = read_project(in, &extras);
+  // Attribute channels (colours, scalars) stay as they are: the session moves x, y, z.
+  std::optional<Hierarchy> attributes;
+  if (h.channels > 3) {
+    attributes = channel_range(h, 3, h.channels - 3);
+    h = channel_range(h, 0, 3);
+  }
   ImportReport topology;  // of the base the edit moves
   add_topology_warnings(topology, h.levels.front());
   std::cerr << topology.format(in);
@@ -279,7 +287,20 @@ int run_edit(int argc, char** argv) {
     extras.current_level = level;
     extras.gains.assign(session.gains().begin(), session.gains().end());
     extras.local_frames = session.detail_frames() == DetailFrames::Local;
-    write_project(out, session.hierarchy(), extras);
+    write_project(out, attributes ? merge_channels(session.hierarchy(), *attributes) : session.hierarchy(), extras);
+  } else if (attributes) {  // the level with its attributes, the project's gains on every channel
+    const int J = session.finest_level();
+    Hierarchy shown = *attributes;
+    apply_gains(shown, session.gains());
+    const std::vector<double> values = synthesize(shown, J);
+    const auto xyz = session.positions(J);
+    const std::size_t ch = 3 + std::size_t(attributes->channels);
+    std::vector<double> x(std::size_t(session.num_vertices(J)) * ch);
+    for (std::size_t v = 0; v < session.num_vertices(J); ++v) {
+      std::copy_n(&xyz[3 * v], 3, &x[v * ch]);
+      std::copy_n(&values[v * (ch - 3)], ch - 3, &x[v * ch + 3]);
+    }
+    notes = write_level(out, merge_channels(session.hierarchy(), *attributes), J, x, int(ch), extras.input_order, extras.attributes, &extras.uv);
   } else {
     const int J = session.finest_level();
     notes = write_level(out, session.hierarchy(), J, session.positions(J), 3, extras.input_order, {}, &extras.uv);

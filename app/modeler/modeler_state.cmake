@@ -9,6 +9,7 @@ add_library(sublift_modeler_state STATIC
   ${CMAKE_CURRENT_LIST_DIR}/modeler_state.cpp
   ${CMAKE_CURRENT_LIST_DIR}/modeler_tools.cpp
   ${CMAKE_CURRENT_LIST_DIR}/modeler_uv.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/modeler_attributes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/script_runner.cpp
 )
 target_include_directories(sublift_modeler_state PUBLIC ${PROJECT_SOURCE_DIR})

@@ -21,6 +21,7 @@
 #include "core/io/project/project_io.h"
 #include "core/complex/face_varying.h"
 #include "core/multires/level_uv.h"
+#include "core/edit/attribute_channels.h"
 #include "core/io/lattice/shape_io.h"
 #include "core/complex/polygon_normal.h"
 #include "core/io/model/surface_export.h"
@@ -58,6 +59,8 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   InputOrder order;
   FitSource source;
   FaceVaryingUV base_uv, file_uv;  // the opened base's UVs; a mesh file's own, for rebuild
+  std::optional<Hierarchy> attributes;  // channels 3.. (colours, scalars), beside the session
+  std::vector<VertexAttribute> attribute_names;
   SurfaceTexture texture;
   if (is_project_file(path)) {
     ProjectExtras extras;
@@ -72,13 +75,21 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
     order = std::move(extras.input_order);
     source = std::move(extras.fit_source);
     base_uv = std::move(extras.uv);
+    if (h.channels > 3) {  // the session moves x, y, z; the attributes stay
+      attributes = channel_range(h, 3, h.channels - 3);
+      attribute_names = extras.attributes;
+      if (attribute_names.size() != std::size_t(h.channels - 3)) {
+        attribute_names.clear();
+        for (int k = 3; k < h.channels; ++k) attribute_names.push_back({"channel " + std::to_string(k), "float", {}});
+      }
+      h = channel_range(h, 0, 3);
+    }
     session = std::make_unique<Session>(std::move(h), extras.gains);
     if (extras.local_frames) session->set_detail_frames(DetailFrames::Local);
     level = extras.current_level;
     project = true;
   } else {
     Shape shape = read_shape(path);
-    shape.report.note_attributes_not_kept(shape.attributes);  // the modeler edits x, y, z only (so far)
     if (!shape.texture.empty())  // exports carry it; a project keeps the UVs only
       shape.report.note_not_kept("the texture image '" + shape.texture.name + "' in a saved project (exported levels carry it)", 0);
     if (!shape.uv.empty() && !uv_refinement_problem(scheme).empty())
@@ -114,6 +125,14 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
     // A dense mesh is its own finest level already: refine it only while the finest level stays
     // within kMaxOpenVertices (a million-vertex scan opens without the 16 M-vertex levels).
     while (levels > 0 && predicted_level_counts(shape.base, levels, scheme).back() > kMaxOpenVertices) --levels;
+    if (!shape.attributes.empty()) {  // colours and scalars: their own channels over the same levels
+      attributes = make_hierarchy(shape.base, levels, scheme, int(shape.attributes.size()));
+      std::vector<double> values(shape.attributes.size() * shape.base.num_vertices);
+      for (std::size_t k = 0; k < shape.attributes.size(); ++k)
+        for (std::size_t v = 0; v < shape.base.num_vertices; ++v) values[v * shape.attributes.size() + k] = shape.attributes[k].values[v];
+      set_base(*attributes, values);
+      for (const VertexAttribute& a : shape.attributes) attribute_names.push_back({a.name, a.type, {}});
+    }
     Hierarchy h = make_hierarchy(std::move(shape.base), levels, scheme, 3);
     set_base(h, shape.positions);
     session = std::make_unique<Session>(std::move(h));
@@ -131,6 +150,8 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   fit_source_ = std::move(source);
   uv_bases_.clear();
   remember_uv(session_->hierarchy().levels.front(), std::move(base_uv));
+  attributes_ = std::move(attributes);
+  attribute_names_ = std::move(attribute_names);
   file_uv_ = std::move(file_uv);
   texture_ = std::move(texture);
   level_ = std::clamp(level, 0, session_->finest_level());
@@ -678,16 +699,21 @@ ProjectExtras ModelerState::project_extras() const {
   if (fit_source_.base_vertex.size() == session_->num_vertices(0)) extras.fit_source = fit_source_;
   if (anim_) extras.animation = animation_extras(anim_->anim);  // reopens as the animation
   if (uv_refinement_problem(session_->hierarchy().scheme).empty()) extras.uv = base_uv();
+  if (attributes_ && attributes_for(*attributes_, session_->hierarchy())) extras.attributes = attribute_names_;
   return extras;
 }
 
 void ModelerState::save_project(const std::string& path) {
-  write_project(path, session_->hierarchy(), project_extras());
+  std::string why;
+  const Hierarchy saved = saved_hierarchy(&why);
+  if (!why.empty())
+    warnings_.push_back("vertex attributes " + attribute_list() + " not saved: " + why);
+  write_project(path, saved, project_extras());
   session_->mark_saved();
   project_path_ = path;
 }
 
-void ModelerState::write_recovery(const std::string& path) const { write_project(path, session_->hierarchy(), project_extras()); }
+void ModelerState::write_recovery(const std::string& path) const { write_project(path, saved_hierarchy(nullptr), project_extras()); }
 
 std::vector<std::string> ModelerState::export_shape(const std::string& path, bool finest) {
   if (anim_) {  // the frame shown, as drawn
@@ -706,15 +732,27 @@ std::vector<std::string> ModelerState::export_level(const std::string& path, int
   // The level's UVs (and the texture they map) where the faces written are the level's own.
   FaceVaryingUV uv = c.dim == 2 ? level_uv(level) : FaceVaryingUV{};
   const SurfaceTexture* texture = texture_.empty() ? nullptr : &texture_;
-  if (surface_export_supported(path) && c.dim >= 2) {
+  // Colours and scalars: the level's net values (a limit export takes the finest net's).
+  std::vector<VertexAttribute> attrs = attributes_at(level);
+  const std::string ext = file_extension(path);
+  const bool gltf = ext == "gltf" || ext == "glb";
+  // OBJ and PLY take a net's attributes through write_shape (no normals); glTF through either.
+  const bool net_with_attributes = !finest && !attrs.empty() && !gltf && c.dim == 2;
+  if (surface_export_supported(path) && c.dim >= 2 && !net_with_attributes) {
     if (finest) {
+      std::vector<std::string> notes;
+      if (!attrs.empty() && !gltf)
+        notes.push_back("vertex attributes " + attribute_list() + " not written with the limit surface to ." + ext +
+                        " (its normals format has no place for them; export the net, or use .gltf/.glb)");
       if (shown_level() == h.finest_level()) {
-        write_surface_with_normals(path, faces_, limit_, normals_, {}, faces_.items == c.faces.items ? &uv : nullptr, texture);
+        write_surface_with_normals(path, faces_, limit_, normals_, faces_.items == c.faces.items ? attrs : std::vector<VertexAttribute>{},
+                                   faces_.items == c.faces.items ? &uv : nullptr, texture);
       } else {  // the viewport shows a coarser level: the export is still the finest limit
         const LimitSurface s = finest_limit_surface(h, session_->positions(h.finest_level()));
-        write_surface_with_normals(path, s.faces, s.positions, s.normals, {}, s.faces.items == c.faces.items ? &uv : nullptr, texture);
+        write_surface_with_normals(path, s.faces, s.positions, s.normals, s.faces.items == c.faces.items ? attrs : std::vector<VertexAttribute>{},
+                                   s.faces.items == c.faces.items ? &uv : nullptr, texture);
       }
-      return {};
+      return notes;
     }
     // The control net of the current level, with area-weighted face normals; a rebuilt mesh's
     // level in the order of its file.
@@ -724,11 +762,14 @@ std::vector<std::string> ModelerState::export_level(const std::string& path, int
     // OBJ keeps a net's feature tags (write_shape: no normals); the other formats cannot.
     const FeatureTags tags = c.dim == 2 ? derive_feature_tags(c) : FeatureTags{};
     const bool tagged = !tags.crease_edges.empty() || !tags.corner_vertices.empty();
-    if (tagged && file_extension(path) == "obj" && !file_order) return write_shape(path, c, session_->positions(level), {}, &uv, texture);
+    if (tagged && file_extension(path) == "obj" && !file_order) return write_shape(path, c, session_->positions(level), attrs, &uv, texture);
     const Csr faces = file_order ? input_order_.faces : boundary_faces(c, xyz);
     if (file_order && !uv.empty()) uv = uv_in_file_order(uv, c);
+    if (file_order)
+      for (VertexAttribute& a : attrs) a.values = in_input_order(input_order_, a.values, 1);
+    if (c.dim != 2) attrs.clear();  // a lattice's boundary: not written (named below)
     const std::vector<double> normals = area_weighted_normals(faces, xyz);
-    write_surface_with_normals(path, faces, xyz, normals, {}, c.dim == 2 ? &uv : nullptr, texture);
+    write_surface_with_normals(path, faces, xyz, normals, attrs, c.dim == 2 ? &uv : nullptr, texture);
     if (tagged)
       return {"feature tags not written: " + std::to_string(tags.crease_edges.size()) + " crease edges and " +
               std::to_string(tags.corner_vertices.size()) + " corners (." + file_extension(path) +
@@ -739,14 +780,15 @@ std::vector<std::string> ModelerState::export_level(const std::string& path, int
     throw Error(path + ": " + problem);
   }
   if (finest) {
-    if (shown_level() == h.finest_level()) return write_shape(path, c, limit_, {}, &uv, texture);
-    return write_shape(path, c, finest_limit_surface(h, session_->positions(h.finest_level())).positions, {}, &uv, texture);
+    if (shown_level() == h.finest_level()) return write_shape(path, c, limit_, attrs, &uv, texture);
+    return write_shape(path, c, finest_limit_surface(h, session_->positions(h.finest_level())).positions, attrs, &uv, texture);
   }
   if (level == input_order_.level) {  // a rebuilt mesh's level: in the order of its file
     if (!uv.empty()) uv = uv_in_file_order(uv, c);
-    return write_shape(path, in_input_order(input_order_, c), in_input_order(input_order_, session_->positions(level), 3), {}, &uv, texture);
+    for (VertexAttribute& a : attrs) a.values = in_input_order(input_order_, a.values, 1);
+    return write_shape(path, in_input_order(input_order_, c), in_input_order(input_order_, session_->positions(level), 3), attrs, &uv, texture);
   }
-  return write_shape(path, c, session_->positions(level), {}, &uv, texture);
+  return write_shape(path, c, session_->positions(level), attrs, &uv, texture);
 }
 
 std::vector<LevelStats> ModelerState::level_rows() const {

@@ -441,6 +441,16 @@ class ModelerState {
   std::vector<std::pair<Csr, FaceVaryingUV>> uv_bases_;
   FaceVaryingUV file_uv_;
   SurfaceTexture texture_;
+  // A model's attribute channels (colours, scalars): the session edits x, y, z and these stay,
+  // merged back on saving and written with exports (modeler_attributes.cpp).
+  std::optional<Hierarchy> attributes_;
+  std::vector<VertexAttribute> attribute_names_;  // name and type of each, values empty
+  /// The hierarchy a save writes: the session's, with the attribute channels when they still fit
+  /// its base and levels (else `*why` says why not and the session's alone is returned).
+  Hierarchy saved_hierarchy(std::string* why) const;
+  /// Level `level`'s attribute values (the saved gains applied), empty when there are none.
+  std::vector<VertexAttribute> attributes_at(int level) const;
+  std::string attribute_list() const;  // "red, green, blue"
   void remember_uv(const Complex& base, FaceVaryingUV uv);
   FaceVaryingUV base_uv() const;
   /// `uv` of `level` (the rebuilt file's level) per corner of the file's faces.

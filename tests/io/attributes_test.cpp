@@ -141,6 +141,40 @@ TEST(Attributes, AnalyzeAndSynthesizeRoundTripTheChannels) {
             std::string::npos);
 }
 
+// Edits move positions; the attributes stay (issue 20): `edit` on a project with colour and
+// quality channels moves a base vertex, and every level's attribute values are what they were,
+// bit for bit, in the project it writes and in the level it exports.
+TEST(Attributes, EditsMovePositionsAndKeepTheAttributes) {
+  TempDir dir("sublift_attr_edit");
+  write_text(dir.file("sq.ply"), kSquarePly);
+  ASSERT_EQ(run_cli({"subdivide", dir.file("sq.ply"), "--scheme", "cubic", "--levels", "2", "-o", dir.file("fine.ply")}).exit_code, 0);
+  ASSERT_EQ(run_cli({"analyze", dir.file("fine.ply"), "--base", dir.file("sq.ply"), "--scheme", "cubic", "--levels", "2", "-o",
+                     dir.file("p.sublift")}).exit_code, 0);
+  ProcessResult r = run_cli({"edit", dir.file("p.sublift"), "--level", "0", "--vertex", "2", "--delta", "0", "0", "0.5", "-o", dir.file("e.sublift")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ProjectExtras x, y;
+  const Hierarchy before = read_project(dir.file("p.sublift"), &x), after = read_project(dir.file("e.sublift"), &y);
+  ASSERT_EQ(after.channels, 7);
+  EXPECT_EQ(y.attributes.size(), 4u);
+  for (int l = 0; l <= 2; ++l) {
+    const std::vector<double> a = synthesize(before, l), b = synthesize(after, l);
+    bool moved = false;
+    for (std::size_t v = 0; v < a.size() / 7; ++v)
+      for (int k = 0; k < 7; ++k) {
+        if (k >= 3) EXPECT_EQ(b[7 * v + std::size_t(k)], a[7 * v + std::size_t(k)]) << "level " << l << " vertex " << v << " channel " << k;
+        moved = moved || b[7 * v + std::size_t(k)] != a[7 * v + std::size_t(k)];
+      }
+    EXPECT_TRUE(moved) << "level " << l;
+  }
+  // Written as a level, the attributes go with the moved positions.
+  r = run_cli({"edit", dir.file("p.sublift"), "--level", "0", "--vertex", "2", "--delta", "0", "0", "0.5", "-o", dir.file("e.ply")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Shape fine = read_shape(dir.file("fine.ply")), edited = read_shape(dir.file("e.ply"));
+  ASSERT_EQ(edited.attributes.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_EQ(edited.attributes[k].values, fine.attributes[k].values) << fine.attributes[k].name;
+  EXPECT_NE(edited.positions, fine.positions);
+}
+
 // Issue 20: a glTF opens as a surface: its triangles in world space, welded where the file split
 // them at seams, what it does not keep named.
 TEST(GltfSurface, SharedBoxesOpenWeldedAndClosed) {

@@ -1,9 +1,11 @@
-// The modeler keeps a textured model's UVs (issue 20) on ModelerState, without a window: every
-// level's UVs are the base's refined (uv_at_level), saved in the project and back on reopening,
-// written with exported levels (and the glTF texture with them), carried to the new base by
-// Delete Lower and back by undo, and named when a scheme cannot carry them.
+// The modeler keeps what a model carries beside its positions (issue 20), on ModelerState without
+// a window. UVs: every level's are the base's refined (uv_at_level), saved in the project and back
+// on reopening, written with exported levels (and the glTF texture with them), carried to the new
+// base by Delete Lower and back by undo, named when a scheme cannot carry them. Attribute
+// channels: kept beside the session through drags, saves, exports and Subdivide.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -13,6 +15,7 @@
 #include "core/io/lattice/shape_io.h"
 #include "core/io/project/project_io.h"
 #include "core/multires/level_uv.h"
+#include "tests/cli_run.h"
 #include "tests/io_test_util.h"
 
 namespace sublift {
@@ -91,6 +94,62 @@ TEST(ModelerUv, ATexturedGltfExportsWithItsTexture) {
   bool said = false;
   for (const std::string& w : m.import_warnings()) said = said || w.find("the texture image") != std::string::npos;
   EXPECT_TRUE(said);
+}
+
+// A PLY's colours and quality open as channels beside the session: a drag moves the positions,
+// the saved project keeps every attribute value as the file's subdivision has it, an exported
+// net carries them, and a Subdivide afterwards gives them a level of zero detail.
+TEST(ModelerAttributes, KeptThroughEditsSavesAndExports) {
+  testing::TempDir dir("sublift_modeler_attributes");
+  {
+    std::ofstream(dir.file("sq.ply"))
+        << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+           "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty float quality\n"
+           "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+           "0 0 0 255 0 0 0.5\n1 0 0 0 255 0 0.25\n1 1 0 0 0 255 1\n0 1 0 255 255 255 0\n4 0 1 2 3\n";
+  }
+  ModelerState m;
+  m.open(dir.file("sq.ply"), 2, Scheme::Cubic);
+  for (const std::string& w : m.import_warnings()) EXPECT_EQ(w.find("vertex attributes"), std::string::npos) << w;
+  m.set_level(0);
+  m.set_selection({2});
+  m.begin_drag("Move");
+  const double d[3] = {0, 0, 0.5};
+  m.drag_to(d);
+  m.end_drag();
+  m.save_project(dir.file("sq.sublift"));
+  ProjectExtras x;
+  const Hierarchy saved = read_project(dir.file("sq.sublift"), &x);
+  ASSERT_EQ(saved.channels, 7);
+  ASSERT_EQ(x.attributes.size(), 4u);
+  EXPECT_EQ(x.attributes[0].name, "red");
+  // The attributes as the file's base subdivided gives them (positions moved, colours not); the
+  // PLY `subdivide` writes rounds the uchar channels, so within half a unit of it, exactly the
+  // float quality.
+  ASSERT_EQ(testing::run_cli({"subdivide", dir.file("sq.ply"), "--scheme", "cubic", "--levels", "2", "-o", dir.file("fine.ply")}).exit_code, 0);
+  const Shape fine = read_shape(dir.file("fine.ply"));
+  const std::vector<double> values = synthesize(saved, 2);
+  for (std::size_t k = 0; k < 4; ++k)
+    for (std::size_t v = 0; v < fine.attributes[k].values.size(); ++v) {
+      if (k < 3)
+        EXPECT_EQ(std::round(values[7 * v + 3 + k]), fine.attributes[k].values[v]) << x.attributes[k].name << " of " << v;
+      else
+        EXPECT_EQ(float(values[7 * v + 3 + k]), float(fine.attributes[k].values[v])) << "quality of " << v;
+    }
+  EXPECT_NE(values[7 * 2 + 2], fine.positions[3 * 2 + 2]);  // the drag moved vertex 2
+  // An exported net carries its level's attributes.
+  m.set_level(1);
+  m.export_shape(dir.file("net1.ply"), false);
+  const Shape net = read_shape(dir.file("net1.ply"));
+  ASSERT_EQ(net.attributes.size(), 4u);
+  const std::vector<double> l1 = synthesize(saved, 1);
+  for (std::size_t v = 0; v < net.attributes[0].values.size(); ++v) EXPECT_EQ(net.attributes[0].values[v], std::round(l1[7 * v + 3])) << v;
+  // Subdivide: a level of zero detail for the attributes too.
+  m.subdivide();
+  m.save_project(dir.file("sq3.sublift"));
+  const Hierarchy three = read_project(dir.file("sq3.sublift"));
+  ASSERT_EQ(three.channels, 7);
+  ASSERT_EQ(three.finest_level(), 3);
 }
 
 }  // namespace

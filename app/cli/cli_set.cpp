@@ -3,10 +3,13 @@
 // The session state the modeler's panel sets, on a project: what the Scheme menu, Subdivide
 // (Ctrl+D), the level gains, World/Local and the edit level do, in that order.
 #include <iostream>
+#include <optional>
 
 #include "app/cli/cli_args.h"
 #include "app/cli/cli_commands.h"
 #include "app/cli/cli_hierarchy.h"
+#include "core/edit/attribute_channels.h"
+#include "core/multires/level_uv.h"
 #include "app/cli/cli_json.h"
 #include "core/base/errors.h"
 #include "core/base/text_lines.h"
@@ -88,6 +91,12 @@ int run_set(int argc, char** argv) {
   if (h.integer) throw Error(in + ": an integer project has no session to set (gains, frames and edits need real coefficients)");
 
   std::vector<std::string> notes;
+  // Attribute channels stay beside the session (attribute_channels.h), fitted to it at the end.
+  std::optional<Hierarchy> attributes;
+  if (h.channels > 3) {
+    attributes = channel_range(h, 3, h.channels - 3);
+    h = channel_range(h, 0, 3);
+  }
   auto session = std::make_unique<Session>(std::move(h), extras.gains);
   if (extras.local_frames) session->set_detail_frames(DetailFrames::Local);
   int level = extras.current_level;
@@ -105,6 +114,10 @@ int run_set(int argc, char** argv) {
     session = std::make_unique<Session>(std::move(next.hierarchy));
     if (was_local) session->set_detail_frames(DetailFrames::Local);
     level = level_under_scheme(level, from, *scheme);
+    if (!extras.uv.empty() && !uv_refinement_problem(*scheme).empty()) {
+      notes.push_back("texture coordinates not kept: " + uv_refinement_problem(*scheme));
+      extras.uv = {};
+    }
   }
   for (int i = 0; i < subdivide; ++i) session->subdivide();
   // Level deletions (core/edit/level_ops.h), as the modeler's Delete higher / Delete lower.
@@ -135,6 +148,19 @@ int run_set(int argc, char** argv) {
     if (L > 0 && !extras.fit_source.empty()) {
       notes.push_back("the fit's map from the old base to the mesh it was fitted to is not kept");
       extras.fit_source = {};
+    }
+    if (!extras.uv.empty()) extras.uv = uv_at_level(session->hierarchy(), extras.uv, L);  // level L's are the new base's
+    if (attributes) {  // level L's attribute net becomes their base too
+      std::string why;
+      if (std::optional<Hierarchy> fitted = attributes_for(*attributes, session->hierarchy(), &why)) {
+        Hierarchy shown = *fitted;
+        apply_gains(shown, session->gains());
+        attributes = delete_lower(*fitted, L, synthesize(shown, L));
+      } else {
+        notes.push_back("vertex attributes not kept: " + why);
+        attributes.reset();
+        extras.attributes.clear();
+      }
     }
     replace(delete_lower(session->hierarchy(), L, session->positions(L)),
             std::vector<double>(session->gains().begin() + L, session->gains().end()));
@@ -190,11 +216,26 @@ int run_set(int argc, char** argv) {
   level = std::min(level, session->finest_level());
 
   const int J = session->finest_level();
+  std::optional<Hierarchy> merged;  // the session with the attribute channels fitted to it
+  if (attributes) {
+    std::string why;
+    if (const std::optional<Hierarchy> fitted = attributes_for(*attributes, session->hierarchy(), &why)) {
+      merged = merge_channels(session->hierarchy(), *fitted);
+    } else {
+      notes.push_back("vertex attributes not kept: " + why);
+      extras.attributes.clear();
+    }
+  }
   if (is_project_path(out)) {
     extras.current_level = level;
     extras.gains.assign(session->gains().begin(), session->gains().end());
     extras.local_frames = session->detail_frames() == DetailFrames::Local;
-    write_project(out, session->hierarchy(), extras);
+    write_project(out, merged ? *merged : session->hierarchy(), extras);
+  } else if (merged) {
+    Hierarchy shown = *merged;
+    apply_gains(shown, session->gains());
+    for (const std::string& n : write_level(out, *merged, J, synthesize(shown, J), merged->channels, extras.input_order, extras.attributes, &extras.uv))
+      notes.push_back(n);
   } else {
     for (const std::string& n : write_level(out, session->hierarchy(), J, session->positions(J), 3, extras.input_order, {}, &extras.uv))
       notes.push_back(n);

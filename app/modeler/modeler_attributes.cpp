@@ -5,15 +5,25 @@
 
 namespace sublift {
 
+std::optional<Hierarchy> ModelerState::fitted_attributes(std::string* why) const {
+  const Complex& base = session_->hierarchy().levels.front();
+  for (auto it = attribute_sets_.rbegin(); it != attribute_sets_.rend(); ++it) {
+    const Complex& b = it->levels.front();
+    if (b.num_vertices == base.num_vertices && b.faces.offsets == base.faces.offsets && b.faces.items == base.faces.items)
+      return attributes_for(*it, session_->hierarchy(), why);
+  }
+  if (why && !attribute_sets_.empty()) *why = "the base changed";
+  return std::nullopt;
+}
+
 Hierarchy ModelerState::saved_hierarchy(std::string* why) const {
-  if (!attributes_) return session_->hierarchy();
-  const std::optional<Hierarchy> fitted = attributes_for(*attributes_, session_->hierarchy(), why);
+  const std::optional<Hierarchy> fitted = attribute_sets_.empty() ? std::nullopt : fitted_attributes(why);
   return fitted ? merge_channels(session_->hierarchy(), *fitted) : session_->hierarchy();
 }
 
 std::vector<VertexAttribute> ModelerState::attributes_at(int level) const {
-  if (!attributes_) return {};
-  std::optional<Hierarchy> fitted = attributes_for(*attributes_, session_->hierarchy());
+  if (attribute_sets_.empty()) return {};
+  std::optional<Hierarchy> fitted = fitted_attributes();
   if (!fitted) return {};
   apply_gains(*fitted, session_->gains());
   const std::vector<double> values = synthesize(*fitted, level);

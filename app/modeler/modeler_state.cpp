@@ -150,7 +150,8 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   fit_source_ = std::move(source);
   uv_bases_.clear();
   remember_uv(session_->hierarchy().levels.front(), std::move(base_uv));
-  attributes_ = std::move(attributes);
+  attribute_sets_.clear();
+  if (attributes) attribute_sets_.push_back(std::move(*attributes));
   attribute_names_ = std::move(attribute_names);
   file_uv_ = std::move(file_uv);
   texture_ = std::move(texture);
@@ -181,9 +182,12 @@ ModelerState::PreparedRebuild ModelerState::prepare_rebuild(const std::string& f
   if (shape.base.dim == 3)  // lattices keep their vertex order only (no face rows)
     return {rebuild_volume_hierarchy(shape.base, shape.positions, offer.levels > 0 ? offer.scheme : Scheme::Cubic, levels, false, progress), Csr{}};
   const Scheme scheme = offer.levels > 0 ? offer.scheme : rebuild_auto_scheme(shape.base.faces);
+  // The file's colours and scalars are rebuilt with it, as channels after x, y, z.
+  std::vector<VertexAttribute> names;
+  for (const VertexAttribute& a : shape.attributes) names.push_back({a.name, a.type, {}});
   return {rebuild_hierarchy(shape.base.num_vertices, shape.base.faces, shape.positions, scheme, levels, false, 2,
-                            derive_feature_tags(shape.base), progress),
-          std::move(shape.base.faces)};
+                            derive_feature_tags(shape.base), progress, shape.attributes),
+          std::move(shape.base.faces), std::move(names)};
 }
 
 void ModelerState::check_fit() {
@@ -264,6 +268,10 @@ std::string ModelerState::install_fit(PreparedFit p) {
     warnings_.push_back(std::to_string(folded) + " folded faces in the fitted surface (docs/fit.md)");
   if (!file_uv_.empty())
     warnings_.push_back("texture coordinates not kept by the fit: the fitted base is a new mesh, its corners are not the file's");
+  if (!attribute_sets_.empty()) {
+    warnings_.push_back("vertex attributes " + attribute_list() + " not kept by the fit: the fitted base is a new mesh");
+    attribute_sets_.clear();
+  }
   install_new_model(std::make_unique<Session>(std::move(p.fitted.hierarchy)));
   fit_source_ = std::move(p.source);
   rebuild_offer_ = {};
@@ -296,8 +304,17 @@ void ModelerState::install_rebuild(PreparedRebuild p) {
   std::string why;
   FaceVaryingUV uv = coarsen_file_uv(r.hierarchy, order.faces, file_uv_, order.engine_vertex, &why);
   if (!file_uv_.empty() && uv.empty()) warnings_.push_back("texture coordinates not kept by the rebuild: " + why);
+  std::optional<Hierarchy> attributes;
+  if (r.hierarchy.channels > 3) {  // the file's attributes, beside the session
+    attributes = channel_range(r.hierarchy, 3, r.hierarchy.channels - 3);
+    r.hierarchy = channel_range(r.hierarchy, 0, 3);
+  }
   install_new_model(std::make_unique<Session>(std::move(r.hierarchy)));
   remember_uv(session_->hierarchy().levels.front(), std::move(uv));
+  if (attributes && p.attribute_names.size() == std::size_t(attributes->channels)) {
+    attribute_sets_.push_back(std::move(*attributes));
+    attribute_names_ = std::move(p.attribute_names);
+  }
   rebuild_offer_ = {};
   input_order_ = std::move(order);
   level_ = 0;
@@ -699,7 +716,7 @@ ProjectExtras ModelerState::project_extras() const {
   if (fit_source_.base_vertex.size() == session_->num_vertices(0)) extras.fit_source = fit_source_;
   if (anim_) extras.animation = animation_extras(anim_->anim);  // reopens as the animation
   if (uv_refinement_problem(session_->hierarchy().scheme).empty()) extras.uv = base_uv();
-  if (attributes_ && attributes_for(*attributes_, session_->hierarchy())) extras.attributes = attribute_names_;
+  if (!attribute_sets_.empty() && fitted_attributes()) extras.attributes = attribute_names_;
   return extras;
 }
 

@@ -101,6 +101,7 @@ class ModelerState {
   struct PreparedRebuild {
     Rebuilt rebuilt;
     Csr faces;  // the file's faces, in file order
+    std::vector<VertexAttribute> attribute_names;  // channels 3.. of rebuilt.hierarchy (values empty)
   };
   void check_rebuild();
   /// Fitting a coarse base and levels to the opened mesh (docs/fit.md), in the same three parts
@@ -443,8 +444,12 @@ class ModelerState {
   SurfaceTexture texture_;
   // A model's attribute channels (colours, scalars): the session edits x, y, z and these stay,
   // merged back on saving and written with exports (modeler_attributes.cpp).
-  std::optional<Hierarchy> attributes_;
+  // One set per base the model has had (Delete Lower and Rebuild make new ones; undo brings an
+  // old base back, and its set with it).
+  std::vector<Hierarchy> attribute_sets_;
   std::vector<VertexAttribute> attribute_names_;  // name and type of each, values empty
+  /// The attributes fitted to the session (attributes_for), if a set belongs to its base.
+  std::optional<Hierarchy> fitted_attributes(std::string* why = nullptr) const;
   /// The hierarchy a save writes: the session's, with the attribute channels when they still fit
   /// its base and levels (else `*why` says why not and the session's alone is returned).
   Hierarchy saved_hierarchy(std::string* why) const;

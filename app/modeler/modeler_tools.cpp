@@ -53,8 +53,15 @@ std::string ModelerState::delete_lower_levels() {
   if (session_->detail_frames() == DetailFrames::Local) session->set_detail_frames(DetailFrames::Local);
   session->mark_unsaved();
   FaceVaryingUV uv = level_uv(L);  // level L's UVs are the new base's
+  std::optional<Hierarchy> attributes = fitted_attributes();  // and level L's attribute net theirs
+  if (attributes) {
+    Hierarchy shown = *attributes;
+    apply_gains(shown, session_->gains());
+    attributes = delete_lower(*attributes, L, synthesize(shown, L));
+  }
   replace_session(std::move(session));  // the selection: old level L's vertices are the new level 0's
   remember_uv(session_->hierarchy().levels.front(), std::move(uv));
+  if (attributes) attribute_sets_.push_back(std::move(*attributes));
   level_ = 0;
   clamp_selection();
   std::string note = "level " + std::to_string(L) + " is the new base; levels 0.." + std::to_string(L - 1) +

@@ -46,23 +46,27 @@ std::optional<Hierarchy> attributes_for(const Hierarchy& attributes, const Hiera
     return std::nullopt;
   };
   const Complex &a0 = attributes.levels.front(), &t0 = target.levels.front();
-  if (a0.num_vertices != t0.num_vertices || a0.faces.offsets != t0.faces.offsets || a0.faces.items != t0.faces.items ||
-      a0.edge_dim != t0.edge_dim || a0.vertex_dim != t0.vertex_dim)
-    return fail("the base or its features changed");
+  if (a0.num_vertices != t0.num_vertices || a0.faces.offsets != t0.faces.offsets || a0.faces.items != t0.faces.items)
+    return fail("the base changed");
+  // Levels first (zero detail added, or cut), as the session's Subdivide and Delete Higher did;
+  // then the finest values kept and analysed again on the target's base (its features) and
+  // scheme, as a scheme switch or a crease change does for the positions.
   Hierarchy h = attributes;
-  if (h.scheme != target.scheme) {
-    if (scheme_info(h.scheme).refinement != scheme_info(target.scheme).refinement)
-      return fail(scheme_name(target.scheme) + " refines differently from " + scheme_name(h.scheme));
-    const std::vector<double> fine = synthesize(h, h.finest_level());
-    Hierarchy again = make_hierarchy(h.levels.front(), h.finest_level(), target.scheme, h.channels, false, h.first_level, target.disc);
-    analyze(again, fine);
-    h = std::move(again);
-  }
-  while (h.finest_level() < target.finest_level()) {  // zero detail, as Session::subdivide adds
+  if (scheme_info(h.scheme).refinement != scheme_info(target.scheme).refinement)
+    return fail(scheme_name(target.scheme) + " refines differently from " + scheme_name(h.scheme));
+  while (h.finest_level() < target.finest_level()) {
     append_level(h, false);
     h.coeffs.resize(std::size_t(h.levels.back().num_vertices) * std::size_t(h.channels), 0.0);
   }
   if (h.finest_level() > target.finest_level()) h = delete_higher(h, target.finest_level());
+  const bool features = a0.edge_dim != t0.edge_dim || a0.vertex_dim != t0.vertex_dim || a0.edge_sharpness != t0.edge_sharpness ||
+                        a0.vertex_sharpness != t0.vertex_sharpness;
+  if (h.scheme != target.scheme || features || h.disc != target.disc) {
+    const std::vector<double> fine = synthesize(h, h.finest_level());
+    Hierarchy again = make_hierarchy(t0, h.finest_level(), target.scheme, h.channels, false, target.first_level, target.disc);
+    analyze(again, fine);
+    h = std::move(again);
+  }
   return h;
 }
 

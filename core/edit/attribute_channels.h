@@ -18,10 +18,10 @@ Hierarchy channel_range(const Hierarchy& h, int first, int count);
 Hierarchy merge_channels(const Hierarchy& a, const Hierarchy& b);
 
 /// `attributes` (a hierarchy of attribute channels) made to fit `target`'s levels: the same base
-/// (vertex count and faces) is required; a scheme of the same refinement is taken by analysing
-/// the attributes' finest values again under it; missing finest levels are added with zero
-/// detail (a subdivide), extra ones cut (Delete Higher). Empty, with `*why`, when the base
-/// differs or the refinement changed.
+/// (vertex count and faces) is required; other features or a scheme of the same refinement are
+/// taken by analysing the attributes' finest values again on the target's base and scheme;
+/// missing finest levels are added with zero detail (a subdivide), extra ones cut (Delete
+/// Higher). Empty, with `*why`, when the base differs or the refinement changed.
 std::optional<Hierarchy> attributes_for(const Hierarchy& attributes, const Hierarchy& target, std::string* why = nullptr);
 
 }  // namespace sublift

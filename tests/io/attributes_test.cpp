@@ -175,6 +175,52 @@ TEST(Attributes, EditsMovePositionsAndKeepTheAttributes) {
   EXPECT_NE(edited.positions, fine.positions);
 }
 
+// `set` keeps them too: a level of zero detail on --subdivide, the finest values through a crease
+// change (analysed again on the new features), level L's values as the new base's on
+// --delete-lower; the project's UVs follow --delete-lower as well.
+TEST(Attributes, SetKeepsThemThroughSubdivideCreasesAndDeleteLower) {
+  TempDir dir("sublift_attr_set");
+  write_text(dir.file("sq.ply"), kSquarePly);
+  ASSERT_EQ(run_cli({"subdivide", dir.file("sq.ply"), "--scheme", "cubic", "--levels", "1", "-o", dir.file("fine.ply")}).exit_code, 0);
+  ASSERT_EQ(run_cli({"analyze", dir.file("fine.ply"), "--base", dir.file("sq.ply"), "--scheme", "cubic", "--levels", "1", "-o",
+                     dir.file("p.sublift")}).exit_code, 0);
+  const Hierarchy p = read_project(dir.file("p.sublift"));
+  const std::vector<double> p1 = synthesize(p, 1);
+  ProcessResult r = run_cli({"set", dir.file("p.sublift"), "--subdivide", "1", "--crease", "0", "1", "-o", dir.file("s.sublift"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("not kept"), std::string::npos) << r.err;
+  ProjectExtras x;
+  const Hierarchy s = read_project(dir.file("s.sublift"), &x);
+  ASSERT_EQ(s.channels, 7);
+  EXPECT_EQ(x.attributes.size(), 4u);
+  EXPECT_EQ(s.levels[0].edge_dim[0], 1);  // the new crease
+  // The finest values are kept through the crease change: those of the project subdivided alone.
+  ASSERT_EQ(run_cli({"set", dir.file("p.sublift"), "--subdivide", "1", "-o", dir.file("e.sublift")}).exit_code, 0);
+  const std::vector<double> s2 = synthesize(s, 2), e2 = synthesize(read_project(dir.file("e.sublift")), 2);
+  ASSERT_EQ(s2.size(), e2.size());
+  for (std::size_t v = 0; v < s2.size() / 7; ++v)
+    for (int k = 3; k < 7; ++k) EXPECT_NEAR(s2[7 * v + std::size_t(k)], e2[7 * v + std::size_t(k)], 1e-9) << v << " " << k;
+  r = run_cli({"set", dir.file("p.sublift"), "--delete-lower", "1", "-o", dir.file("d.sublift")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Hierarchy d = read_project(dir.file("d.sublift"));
+  ASSERT_EQ(d.channels, 7);
+  const std::vector<double> d0 = synthesize(d, 0);
+  ASSERT_EQ(d0.size(), p1.size());
+  for (std::size_t i = 0; i < d0.size(); ++i) EXPECT_NEAR(d0[i], p1[i], 1e-12) << i;
+  // UVs: a textured quad's project keeps level 1's UVs as the new base's.
+  write_text(dir.file("q.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
+  ASSERT_EQ(run_cli({"subdivide", dir.file("q.obj"), "--scheme", "cubic", "--levels", "1", "-o", dir.file("q1.obj")}).exit_code, 0);
+  ASSERT_EQ(run_cli({"analyze", dir.file("q1.obj"), "--base", dir.file("q.obj"), "--scheme", "cubic", "--levels", "1", "-o",
+                     dir.file("q.sublift")}).exit_code, 0);
+  r = run_cli({"set", dir.file("q.sublift"), "--delete-lower", "1", "-o", dir.file("q0.sublift")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ProjectExtras qx;
+  read_project(dir.file("q0.sublift"), &qx);
+  const Shape q1 = read_shape(dir.file("q1.obj"));
+  EXPECT_EQ(qx.uv.points, q1.uv.points);
+  EXPECT_EQ(qx.uv.corners, q1.uv.corners);
+}
+
 // Issue 20: a glTF opens as a surface: its triangles in world space, welded where the file split
 // them at seams, what it does not keep named.
 TEST(GltfSurface, SharedBoxesOpenWeldedAndClosed) {

@@ -150,6 +150,39 @@ TEST(ModelerAttributes, KeptThroughEditsSavesAndExports) {
   const Hierarchy three = read_project(dir.file("sq3.sublift"));
   ASSERT_EQ(three.channels, 7);
   ASSERT_EQ(three.finest_level(), 3);
+  // Delete Lower: level 1's attribute net is the new base's; undo brings the old base's back.
+  m.set_level(1);
+  m.delete_lower_levels();
+  m.save_project(dir.file("lower.sublift"));
+  const Hierarchy lower = read_project(dir.file("lower.sublift"));
+  ASSERT_EQ(lower.channels, 7);
+  const std::vector<double> base = synthesize(lower, 0);
+  for (std::size_t v = 0; v < lower.num_vertices(0); ++v) EXPECT_EQ(base[7 * v + 3], l1[7 * v + 3]) << v;
+  ASSERT_TRUE(m.undo());
+  m.save_project(dir.file("undone.sublift"));
+  EXPECT_EQ(read_project(dir.file("undone.sublift")).channels, 7);
+}
+
+// Rebuild in the modeler carries a file's attributes as rebuild on the CLI does.
+TEST(ModelerAttributes, RebuildCarriesThem) {
+  testing::TempDir dir("sublift_modeler_attributes_rebuild");
+  {
+    std::ofstream(dir.file("sq.ply"))
+        << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+           "property float quality\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+           "0 0 0 0.5\n1 0 0 0.25\n1 1 0 1\n0 1 0 0\n4 0 1 2 3\n";
+  }
+  ASSERT_EQ(testing::run_cli({"subdivide", dir.file("sq.ply"), "--scheme", "cubic", "--levels", "2", "-o", dir.file("fine.ply")}).exit_code, 0);
+  ModelerState m;
+  m.open(dir.file("fine.ply"), 0, Scheme::Cubic);
+  m.rebuild_levels(-1);
+  ASSERT_EQ(m.session().finest_level(), 2);
+  m.save_project(dir.file("r.sublift"));
+  ProjectExtras x;
+  const Hierarchy r = read_project(dir.file("r.sublift"), &x);
+  ASSERT_EQ(r.channels, 4);
+  ASSERT_EQ(x.attributes.size(), 1u);
+  EXPECT_EQ(x.attributes[0].name, "quality");
 }
 
 }  // namespace

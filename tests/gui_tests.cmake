@@ -81,6 +81,16 @@ add_executable(modeler_compress_test ${CMAKE_CURRENT_LIST_DIR}/modeler/modeler_c
 target_link_libraries(modeler_compress_test PRIVATE sublift_modeler GTest::gtest_main)
 target_compile_definitions(modeler_compress_test PRIVATE SUBLIFT_ASSETS_DIR="${PROJECT_SOURCE_DIR}/assets")
 gtest_discover_tests(modeler_compress_test DISCOVERY_MODE PRE_TEST)
+# A model's attribute channel shown as colour, `sublift --script` under Xvfb (issue 20).
+add_executable(modeler_channels_gui_test ${CMAKE_CURRENT_LIST_DIR}/modeler/modeler_channels_gui_test.cpp)
+target_link_libraries(modeler_channels_gui_test PRIVATE PkgConfig::STB GTest::gtest_main)
+target_compile_definitions(modeler_channels_gui_test PRIVATE
+  SUBLIFT_GUI_EXE="$<TARGET_FILE:sublift>"
+  SUBLIFT_SHARED_DATA="${SUBLIFT_SHARED_DATA}"
+  SUBLIFT_TEST_OUT_DIR="${CMAKE_CURRENT_BINARY_DIR}/modeler_channels_gui_out")
+add_dependencies(modeler_channels_gui_test sublift)
+gtest_discover_tests(modeler_channels_gui_test DISCOVERY_MODE PRE_TEST PROPERTIES TIMEOUT 120 LABELS gui)
+
 add_executable(modeler_compress_gui_test ${CMAKE_CURRENT_LIST_DIR}/modeler/modeler_compress_gui_test.cpp)
 target_link_libraries(modeler_compress_gui_test PRIVATE sublift_core PkgConfig::STB GTest::gtest_main)
 target_compile_definitions(modeler_compress_gui_test PRIVATE

@@ -227,14 +227,24 @@ void draw_detail_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
     ImGui::SetTooltip("Detail turns with the surface (surfaces only); off: world axes");
   }
-  ImGui::TextColored(kMuted, "Colour by |w| of level");
-  int colour = d.colour_level + 1;
+  ImGui::TextColored(kMuted, d.channels.empty() ? "Colour by |w| of level" : "Colour by |w| of level or a channel");
+  // Entries: off, the wavelet levels, then the attribute channels.
+  const int channel_entry = 1 + d.finest;
+  int colour = d.colour_channel >= 0 ? channel_entry + d.colour_channel : d.colour_level + 1;
   std::vector<std::string> names{"off (clay)"};
   for (int l = 0; l < d.finest; ++l) names.push_back("level " + std::to_string(l));
+  for (const std::string& c : d.channels) names.push_back("channel " + c);
   ImGui::SetNextItemWidth(140.0f);
-  if (ImGui::BeginCombo("##colour", names[static_cast<std::size_t>(std::clamp(colour, 0, d.finest))].c_str())) {
+  if (ImGui::BeginCombo("##colour", names[static_cast<std::size_t>(std::clamp(colour, 0, int(names.size()) - 1))].c_str())) {
     for (int i = 0; i < static_cast<int>(names.size()); ++i) {
-      if (ImGui::Selectable(names[static_cast<std::size_t>(i)].c_str(), i == colour)) r.colour_level = i - 1;
+      if (ImGui::Selectable(names[static_cast<std::size_t>(i)].c_str(), i == colour)) {
+        if (i >= channel_entry) {
+          r.colour_channel = i - channel_entry;
+        } else {
+          r.colour_level = i - 1;
+          if (d.colour_channel >= 0) r.colour_channel = -1;
+        }
+      }
     }
     ImGui::EndCombo();
   }

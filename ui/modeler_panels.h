@@ -130,6 +130,8 @@ struct ModelerPanelData {
   bool sculpt = false;                // sculpt mode: left drags are brush strokes
   BrushSettings brush;
   int colour_level = -1;
+  std::vector<std::string> channels;  // attribute channels the surface can be coloured by
+  int colour_channel = -1;
   bool dirty = false;
   std::vector<std::string> recent;    // recently opened files, newest first
   BasisPanelData basis;
@@ -161,7 +163,7 @@ struct AnimationOpenRequest {
 
 /// What the user asked for this frame.
 struct ModelerPanelRequests {
-  std::optional<int> scheme, level, colour_level, view_level;
+  std::optional<int> scheme, level, colour_level, view_level, colour_channel;
   std::optional<std::size_t> history_jump;
   std::optional<bool> local_frames;
   int gain_level = -1;                // a gain slider moved: level and value

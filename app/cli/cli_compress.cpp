@@ -2,6 +2,7 @@
 //             [--bits B] -o OUT [--json]
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -21,7 +22,7 @@ namespace {
 
 constexpr const char* kHelp =
     "usage: sublift-cli compress PROJECT (--keep F | --threshold T | --linf E) [--region SPEC] [--raw]\n"
-    "                            [--bits B] -o OUT [--json]\n"
+    "                            [--group NAME] [--bits B] -o OUT [--json]\n"
     "  Drops the wavelet coefficients of a .sublift project that contribute least and writes the\n"
     "  result (docs/compression.md). Wavelets are ranked by normalised magnitude |w| x ||psi||_2\n"
     "  (the wavelet's L2 norm; the level's detail gain applied); exactly one mode:\n"
@@ -36,6 +37,9 @@ constexpr const char* kHelp =
     "                 or sphere:cx,cy,cz,r (position on the level the wavelet lives on); F then\n"
     "                 counts the wavelets inside\n"
     "  --raw          rank by the raw magnitude |w| instead (for experiments)\n"
+    "  --group NAME   a project with attribute channels: compress one channel group alone (position,\n"
+    "                 colour, or an attribute's name), every other channel kept exactly; without it\n"
+    "                 each group is compressed by its own ranking\n"
     "  --bits B       a project OUT stores the kept wavelets quantized to B bits (8, 16 or 32; a\n"
     "                 step per level and channel): smaller, lossy; the error is reported.\n"
     "                 Without it the project is exact, the dropped wavelets a bit each\n"
@@ -80,7 +84,7 @@ std::vector<ChannelGroup> channel_groups(int channels, const std::vector<VertexA
 }  // namespace
 
 int run_compress(int argc, char** argv) {
-  const Args a = parse_args(argc, argv, 2, {"-o", "--keep", "--threshold", "--linf", "--region", "--bits"},
+  const Args a = parse_args(argc, argv, 2, {"-o", "--keep", "--threshold", "--linf", "--region", "--bits", "--group"},
                             {"--json", "--help", "--raw"});
   if (a.has("--help")) {
     std::cout << kHelp;
@@ -135,7 +139,18 @@ int run_compress(int argc, char** argv) {
   // Attribute channels are compressed by groups of their own (x, y, z; the colour; each other
   // attribute), each ranked by its own magnitude and measured in its own range.
   const std::vector<ChannelGroup> groups = channel_groups(h.channels, extras.attributes);
-  if (!groups.empty()) options.channels = groups.front().range;
+  const std::optional<std::string> only = a.value("--group");  // one group alone, the rest exact
+  std::size_t only_group = groups.size();
+  if (only) {
+    std::string names;
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      if (groups[g].name == *only) only_group = g;
+      names += (g ? ", " : "") + groups[g].name;
+    }
+    if (groups.empty()) throw UsageError("--group: " + in + " has no attribute channels (its only group is x, y, z)");
+    if (only_group == groups.size()) throw UsageError("--group " + *only + ": the project's groups are " + names);
+  }
+  if (!groups.empty()) options.channels = groups[only ? only_group : 0].range;
   const auto t0 = std::chrono::steady_clock::now();
   const Compressor compressor(h, options);
   const auto t1 = std::chrono::steady_clock::now();
@@ -143,16 +158,20 @@ int run_compress(int argc, char** argv) {
   nlohmann::json group_rows = nlohmann::json::array();
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const ChannelGroup& group = groups[g];
+    if (only && g != only_group) {  // kept exactly: the run above zeroed only the chosen group
+      group_rows.push_back({{"name", group.name}, {"channels", group.channels}, {"untouched", true}});
+      continue;
+    }
     CompressOptions o = options;
     o.channels = group.range;
     Compression gc;
     try {
-      gc = g == 0 ? c : Compressor(h, o).run(*mode, value);
+      gc = g == 0 || only ? c : Compressor(h, o).run(*mode, value);
     } catch (const Error&) {  // a constant attribute: no range to measure against, nothing to drop
       group_rows.push_back({{"name", group.name}, {"channels", group.channels}, {"constant", true}});
       continue;
     }
-    for (std::size_t v = 0; g > 0 && v < gc.coeffs.size(); v += std::size_t(h.channels))
+    for (std::size_t v = 0; g > 0 && !only && v < gc.coeffs.size(); v += std::size_t(h.channels))
       std::copy_n(&gc.coeffs[v + std::size_t(group.range.first)], group.range.count, &c.coeffs[v + std::size_t(group.range.first)]);
     group_rows.push_back({{"name", group.name},
                           {"channels", group.channels},
@@ -161,7 +180,7 @@ int run_compress(int argc, char** argv) {
                           {"l2_error", gc.l2_error},
                           {"linf_error", gc.linf_error}});
   }
-  if (groups.size() > 1) c.finest = synthesize_coefficients(h, c.coeffs, options.gains, h.finest_level());
+  if (groups.size() > 1 && !only) c.finest = synthesize_coefficients(h, c.coeffs, options.gains, h.finest_level());
   const auto t2 = std::chrono::steady_clock::now();
 
   std::vector<std::string> notes;
@@ -200,7 +219,8 @@ int run_compress(int argc, char** argv) {
                         {"compress_ms", ms(t1, t2)},
                         {"warnings", report_json(topology)},
                         {"notes", notes}};
-    if (!groups.empty()) j["groups"] = group_rows;  // kept, l2_error, linf_error above: the first (x, y, z)
+    if (!groups.empty()) j["groups"] = group_rows;  // kept, l2_error, linf_error above: the first (x, y, z), or --group's
+    if (only) j["group"] = *only;
     if (project_out) {
       j["encoding"] = saved.encoding;
       j["bytes"] = saved.bytes;

@@ -3,6 +3,8 @@
 #include "app/modeler/modeler_state.h"
 #include "core/edit/attribute_channels.h"
 
+#include <algorithm>
+
 namespace sublift {
 
 std::optional<Hierarchy> ModelerState::fitted_attributes(std::string* why) const {
@@ -33,6 +35,21 @@ std::vector<VertexAttribute> ModelerState::attributes_at(int level) const {
     out[k].values.resize(n);
     for (std::size_t v = 0; v < n; ++v) out[k].values[v] = values[v * out.size() + k];
   }
+  return out;
+}
+
+std::vector<float> ModelerState::channel_colour(int k) const {
+  const std::vector<VertexAttribute> at = attributes_at(shown_level());
+  if (k < 0 || std::size_t(k) >= at.size()) return {};
+  const VertexAttribute& a = at[std::size_t(k)];
+  double lo = 0.0, hi = a.type == "uchar" || a.type == "char" ? 255.0 : a.type == "ushort" ? 65535.0 : 0.0;
+  if (hi == 0.0 && !a.values.empty()) {  // the channel's own range
+    lo = *std::min_element(a.values.begin(), a.values.end());
+    hi = *std::max_element(a.values.begin(), a.values.end());
+  }
+  std::vector<float> out(a.values.size(), 0.5f);
+  if (hi > lo)
+    for (std::size_t v = 0; v < out.size(); ++v) out[v] = float(std::clamp((a.values[v] - lo) / (hi - lo), 0.0, 1.0));
   return out;
 }
 

@@ -839,6 +839,7 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
     if (r.redo) model.redo();
     if (r.history_jump) model.jump_to(*r.history_jump);
     if (r.local_frames) model.set_local_frames(*r.local_frames);
+    if (r.colour_channel) model.set_colour_channel(*r.colour_channel);
     if (r.colour_level) model.set_colour_level(*r.colour_level);
     if (r.soft_radius) model.set_soft_radius(*r.soft_radius);
     if (r.pivot) model.set_pivot(static_cast<Pivot>(*r.pivot));
@@ -1095,6 +1096,9 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     d.sculpt = sculpt_;
     d.brush = model.brush();
     d.colour_level = model.colour_level();
+    d.colour_channel = model.colour_channel();
+    d.channels.clear();
+    for (const VertexAttribute& a : model.attribute_names()) d.channels.push_back(a.name);
     d.dirty = s.dirty();
     fill_basis_data(d.basis);
     fill_compression_data(d.compression);

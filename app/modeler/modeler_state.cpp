@@ -152,6 +152,7 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   remember_uv(session_->hierarchy().levels.front(), std::move(base_uv));
   attribute_sets_.clear();
   if (attributes) attribute_sets_.push_back(std::move(*attributes));
+  colour_channel_ = -1;
   attribute_names_ = std::move(attribute_names);
   file_uv_ = std::move(file_uv);
   texture_ = std::move(texture);
@@ -686,12 +687,26 @@ void ModelerState::refresh_flags() {
 
 void ModelerState::set_colour_level(int level) {
   colour_level_ = level < 0 || level >= session_->finest_level() ? -1 : level;
+  if (colour_level_ >= 0) colour_channel_ = -1;
+  refresh_colour();
+}
+
+void ModelerState::set_colour_channel(int channel) {
+  if (channel >= int(attribute_names_.size()))
+    throw Error("channel " + std::to_string(channel) + ": the model has " + std::to_string(attribute_names_.size()) + " attribute channels");
+  check_not_animation("colouring by a channel");
+  colour_channel_ = channel < 0 ? -1 : channel;
+  if (colour_channel_ >= 0) colour_level_ = -1;
   refresh_colour();
 }
 
 void ModelerState::refresh_colour() {
   update_.scalar = true;
   colour_.clear();
+  if (colour_channel_ >= 0 && !anim_) {
+    colour_ = channel_colour(colour_channel_);
+    return;
+  }
   if (colour_level_ < 0) return;
   colour_ = wavelet_magnitude_field(session_->hierarchy(), session_->gains(), colour_level_);  // core/analysis/wavelet_colour.h
   if (anim_) {  // the lattice's field on the finest layer nearest the frame shown

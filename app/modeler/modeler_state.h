@@ -308,6 +308,13 @@ class ModelerState {
   /// Wavelet level shown as colour (-1: clay). Values 0..1 per finest vertex.
   int colour_level() const { return colour_level_; }
   void set_colour_level(int level);
+  /// Colour the surface by attribute channel `channel` (an index into attribute_names(); -1: off)
+  /// through viridis: PLY uchar/ushort values over their type's range, others over the channel's
+  /// own minimum to maximum. Replaces the colouring by a level's wavelets, and back.
+  void set_colour_channel(int channel);
+  int colour_channel() const { return colour_channel_; }
+  /// The model's attribute channels (name and type; values empty), in channel order.
+  const std::vector<VertexAttribute>& attribute_names() const { return attribute_names_; }
   const std::vector<float>& colour_values() const { return colour_; }
 
   /// Basis-function mode (issue 5, app/modeler/basis_view_state.h): computes the function of
@@ -456,6 +463,9 @@ class ModelerState {
   /// Level `level`'s attribute values (the saved gains applied), empty when there are none.
   std::vector<VertexAttribute> attributes_at(int level) const;
   std::string attribute_list() const;  // "red, green, blue"
+  /// Channel `k`'s values on the shown level's vertices, in 0..1 (set_colour_channel's scale);
+  /// empty when the attributes no longer fit the session.
+  std::vector<float> channel_colour(int k) const;
   void remember_uv(const Complex& base, FaceVaryingUV uv);
   FaceVaryingUV base_uv() const;
   /// `uv` of `level` (the rebuilt file's level) per corner of the file's faces.
@@ -510,6 +520,7 @@ class ModelerState {
   std::vector<float> net_soft_;
   std::vector<unsigned> flagged_;  // vertices with a non-zero state
   int colour_level_ = -1;
+  int colour_channel_ = -1;
   std::vector<float> colour_;
   ViewUpdate update_;
   BasisSettings basis_settings_;

@@ -133,7 +133,20 @@ void animation(const Call& c) {
 }
 
 void colour(const Call& c) {
-  if (c.w[1] == "off") return c.state.set_colour_level(-1);
+  if (c.w[1] == "off") {
+    c.state.set_colour_channel(-1);
+    return c.state.set_colour_level(-1);
+  }
+  if (c.w[1] == "channel") {  // colour channel NAME: an attribute channel through viridis
+    if (c.w.size() != 3) throw ScriptError("colour channel NAME needs the channel's name");
+    const auto& names = c.state.attribute_names();
+    std::string all;
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      if (names[k].name == c.w[2]) return c.state.set_colour_channel(int(k));
+      all += (k ? ", " : "") + names[k].name;
+    }
+    throw ScriptError("no attribute channel '" + c.w[2] + "'" + (all.empty() ? " (the model has none)" : " (the model's: " + all + ")"));
+  }
   const long long l = integer(c.w[1], "LEVEL");
   const int top = c.state.session().finest_level() - 1;
   if (l < 0 || l > top) throw ScriptError("colour level " + c.w[1] + " is outside 0.." + std::to_string(top));
@@ -483,8 +496,8 @@ constexpr Command kCommands[] = {
     {"apply-base", 0, 0, "apply-base", [](const Call&) {}},  // nothing to do in Sublift (ModelerState::apply_base_note)
     {"screenshot", kPath, 0, "screenshot PATH",
      [](const Call& c) { c.step.kind = ScriptStep::Kind::Screenshot; c.step.path = c.raw; }},
-    {"colour", 1, 1, "colour LEVEL|off", colour},
-    {"color", 1, 1, "colour LEVEL|off", colour},
+    {"colour", 1, 2, "colour LEVEL|off|channel NAME", colour},
+    {"color", 1, 2, "colour LEVEL|off|channel NAME", colour},
     {"basis", 1, kMany,
      "basis scaling|wavelet INDEX [dual] | basis height SCALE|off | basis slice x|y|z FRACTION | basis slice off | "
      "basis iso FRACTION|off | basis follow on|off | basis pin | basis unpin | basis off",

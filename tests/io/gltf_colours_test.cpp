@@ -14,6 +14,7 @@
 
 #include "core/base/surface_mesh.h"
 #include "core/io/lattice/shape_io.h"
+#include "core/io/project/project_io.h"
 #include "tests/cli_run.h"
 #include "tests/io_test_util.h"
 
@@ -122,6 +123,25 @@ TEST(GltfColours, CompressReportsPositionAndColourGroups) {
   EXPECT_GT(j["groups"][1]["l2_error"].get<double>(), 0.0);
   EXPECT_LT(j["groups"][1]["l2_error"].get<double>(), 0.5);
   EXPECT_EQ(j["groups"][1]["kept"], j["groups"][0]["kept"]) << "the same fraction of each group";
+  // --group colour compresses the colour alone: the positions' coefficients are kept bit for bit,
+  // the colour loses what it lost above.
+  r = testing::run_cli({"compress", dir.file("box.sublift"), "--keep", "0.05", "--group", "colour", "-o", dir.file("colour.sublift"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json c = nlohmann::json::parse(r.out);
+  EXPECT_EQ(c["group"], "colour");
+  EXPECT_EQ(c["groups"][0]["untouched"], true);
+  EXPECT_EQ(c["groups"][1]["l2_error"], j["groups"][1]["l2_error"]);
+  EXPECT_EQ(c["l2_error"], j["groups"][1]["l2_error"]);
+  const Hierarchy full = read_project(dir.file("box.sublift")), colour = read_project(dir.file("colour.sublift"));
+  std::size_t zeroed = 0;
+  for (std::size_t i = 0; i < full.coeffs.size(); ++i) {
+    if (i % 7 < 3) EXPECT_EQ(colour.coeffs[i], full.coeffs[i]) << i;
+    zeroed += i % 7 >= 3 && colour.coeffs[i] == 0.0 && full.coeffs[i] != 0.0;
+  }
+  EXPECT_GT(zeroed, 0u);
+  r = testing::run_cli({"compress", dir.file("box.sublift"), "--keep", "0.05", "--group", "hue", "-o", dir.file("x.sublift")});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--group hue: the project's groups are position, colour"), std::string::npos) << r.err;
 }
 
 // A scalar attribute goes out as the application-specific glTF attribute "_QUALITY" and comes

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "app/modeler/modeler_state.h"
+#include "core/base/errors.h"
 #include "core/base/file_io.h"
 #include "core/io/lattice/shape_io.h"
 #include "core/io/project/project_io.h"
@@ -161,6 +162,34 @@ TEST(ModelerAttributes, KeptThroughEditsSavesAndExports) {
   ASSERT_TRUE(m.undo());
   m.save_project(dir.file("undone.sublift"));
   EXPECT_EQ(read_project(dir.file("undone.sublift")).channels, 7);
+}
+
+// A channel shown as colour (the panel's "Colour by" list and `colour channel NAME`): the shown
+// level's values through viridis, a uchar channel over 0..255, a float one over its own range.
+TEST(ModelerAttributes, AChannelShownAsColour) {
+  testing::TempDir dir("sublift_modeler_channel_colour");
+  {
+    std::ofstream(dir.file("sq.ply"))
+        << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+           "property uchar red\nproperty float quality\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+           "0 0 0 255 0.5\n1 0 0 0 0.25\n1 1 0 51 1\n0 1 0 255 0\n4 0 1 2 3\n";
+  }
+  ModelerState m;
+  m.open(dir.file("sq.ply"), 0, Scheme::Linear);  // level 0 only: the values are the file's
+  ASSERT_EQ(m.attribute_names().size(), 2u);
+  m.set_colour_level(-1);
+  m.set_colour_channel(0);
+  EXPECT_EQ(m.colour_values(), (std::vector<float>{1.0f, 0.0f, 0.2f, 1.0f}));  // red / 255
+  m.set_colour_channel(1);
+  EXPECT_EQ(m.colour_values(), (std::vector<float>{0.5f, 0.25f, 1.0f, 0.0f}));  // quality over 0..1, its range
+  // One value per vertex of the level shown after a subdivide, still in 0..1.
+  m.subdivide();
+  ASSERT_EQ(m.colour_values().size(), m.session().num_vertices(1));
+  for (float v : m.colour_values()) EXPECT_TRUE(v >= 0.0f && v <= 1.0f) << v;
+  EXPECT_EQ(m.colour_values()[0], 0.5f);  // the linear scheme keeps the base values
+  EXPECT_THROW(m.set_colour_channel(2), Error);
+  m.set_colour_channel(-1);
+  EXPECT_TRUE(m.colour_values().empty());
 }
 
 // Rebuild in the modeler carries a file's attributes as rebuild on the CLI does.

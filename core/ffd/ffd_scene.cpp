@@ -12,6 +12,7 @@ Shape read_ffd_lattice(const std::string& path) {
     throw InputError(path, 0, "not a volume lattice (a " + std::string(s.base.dim == 1 ? "curve" : "surface") +
                                   "); FFD needs cells (.lattice, .ovm or .vtk)");
   }
+  s.report.note_attributes_not_kept(s.attributes);  // a deforming lattice is its positions
   return s;
 }
 

@@ -221,6 +221,38 @@ TEST(Attributes, SetKeepsThemThroughSubdivideCreasesAndDeleteLower) {
   EXPECT_EQ(qx.uv.corners, q1.uv.corners);
 }
 
+// A lattice's material values (VTK POINT_DATA, OVM vertex properties) are channels like a
+// surface's: linear subdivision gives the cell centre the mean of its 8 corners, analyze and
+// synthesize give the finest level back, and .ovm carries them as well; .lattice names them.
+TEST(Attributes, LatticeMaterialValuesAreChannels) {
+  TempDir dir("sublift_attr_lattice");
+  write_text(dir.file("cell.vtk"),
+             "# vtk DataFile Version 3.0\ncell\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+             "POINTS 8 double\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+             "CELLS 1 9\n8 0 1 2 3 4 5 6 7\nCELL_TYPES 1\n12\n"
+             "POINT_DATA 8\nSCALARS density double 1\nLOOKUP_TABLE default\n1 2 3 4 5 6 7 8\n");
+  ProcessResult r = run_cli({"subdivide", dir.file("cell.vtk"), "--scheme", "linear", "--levels", "1", "-o", dir.file("fine.vtk")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Shape fine = read_shape(dir.file("fine.vtk"));
+  ASSERT_EQ(fine.attributes.size(), 1u);
+  EXPECT_EQ(fine.attributes[0].name, "density");
+  ASSERT_EQ(fine.attributes[0].values.size(), 27u);
+  EXPECT_EQ(fine.attributes[0].values.back(), 4.5);  // the cell vertex, last in [v | e | f | c]
+  r = run_cli({"subdivide", dir.file("cell.vtk"), "--scheme", "cubic", "--levels", "2", "-o", dir.file("cubic.vtk")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cli({"analyze", dir.file("cubic.vtk"), "--base", dir.file("cell.vtk"), "--scheme", "cubic", "--levels", "2", "-o", dir.file("p.sublift")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(read_project(dir.file("p.sublift")).channels, 4);
+  ASSERT_EQ(run_cli({"synthesize", dir.file("p.sublift"), "-o", dir.file("back.vtk")}).exit_code, 0);
+  EXPECT_EQ(read_file_bytes(dir.file("back.vtk")), read_file_bytes(dir.file("cubic.vtk")));
+  r = run_cli({"convert", dir.file("cell.vtk"), "-o", dir.file("cell.ovm")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_shape(dir.file("cell.ovm")).attributes.at(0).values, (std::vector<double>{1, 2, 3, 4, 5, 6, 7, 8}));
+  r = run_cli({"convert", dir.file("cell.vtk"), "-o", dir.file("cell.lattice")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find(".lattice cannot hold the vertex attributes density: not written (use .vtk or .ovm)"), std::string::npos) << r.err;
+}
+
 // Issue 20: a glTF opens as a surface: its triangles in world space, welded where the file split
 // them at seams, what it does not keep named.
 TEST(GltfSurface, SharedBoxesOpenWeldedAndClosed) {

@@ -126,13 +126,20 @@ TEST(OvmFormat, HeaderlessFilesAndCommentsAndCaseAreAccepted) {
   EXPECT_EQ(read_ovm(replace(kCube, "OVM ASCII", "OVM"), "t.ovm").base.num_cells(), 1u);  // NonManifold.ovm's header
 }
 
-TEST(OvmFormat, PropertyBlocksAreNamedAsNotKept) {
+// A vertex property of one number per vertex is a material value, kept as an attribute channel
+// (issue 20); other blocks are named as not kept.
+TEST(OvmFormat, VertexPropertiesAreChannelsOtherBlocksAreNamedAsNotKept) {
   std::string text = kCube + "vprop double \"density of the foam\"\n";
   for (int v = 0; v < 8; ++v) text += std::to_string(v) + ".5\n";
-  text += "cprop int \"material\"\n7\n";
+  text += "cprop int \"material\"\n7\nvprop vec3d \"flow\"\n";
+  for (int v = 0; v < 8; ++v) text += "1 2 3\n";
   const Shape s = read_ovm(text, "t.ovm");
   EXPECT_EQ(s.base.num_cells(), 1u);
-  EXPECT_EQ(s.report.not_kept_summary(), "1 vertex property \"density of the foam\" (double), 1 cell property \"material\" (int)");
+  ASSERT_EQ(s.attributes.size(), 1u);
+  EXPECT_EQ(s.attributes[0].name, "density of the foam");
+  EXPECT_EQ(s.attributes[0].values, (std::vector<double>{0.5, 1.5, 2.5, 3.5, 4.5, 5.5, 6.5, 7.5}));
+  EXPECT_EQ(s.report.not_kept_summary(), "1 cell property \"material\" (int), 1 vertex property \"flow\" (vec3d)");
+  expect_error(kCube + "vprop double \"d\"\n1\n2 3\n", 39, "vertex property \"d\": value 1 is not one finite number");
   expect_error(kCube + "vprop double \"d\"\n1\n2\n", 37, "vertex property \"d\" needs 8 values; the file ends after 2");
   expect_error(kCube + "vprop double d\n", 37, "a property's name is written in double quotes");
   expect_error(kCube + "Junk here\n", 37, "expected a property block");

@@ -152,6 +152,9 @@ TEST(VtkFormat, ReadsBinaryBigEndian) {
   const Shape s = read_vtk(text, "b.vtk");
   EXPECT_EQ(s.base.num_cells(), 1u);
   EXPECT_EQ(s.positions[23], 1.0 / 3.0);
+  // The cell data end too early: named as not read, the grid kept.
+  EXPECT_NE(s.report.not_kept_summary().find("CELL_DATA and what follows it (unreadable: b.vtk:13: unexpected end of file"), std::string::npos)
+      << s.report.not_kept_summary();
   // Truncated inside the POINTS block.
   std::size_t line = 0;
   const std::string e = error_of(text.substr(0, 120), &line);
@@ -304,6 +307,45 @@ TEST(VtkFormat, SharedGmshCubeLoadsWithItsFeatures) {
   EXPECT_EQ(corners, 8u);   // the cube's corners (Gmsh points)
   EXPECT_EQ(creases, 60u);  // its 12 edges, 5 segments each (Gmsh lines)
   EXPECT_NO_THROW(validate(s.base));
+  // Its CELL_DATA (Gmsh's CellEntityIds) is cell values, not vertex channels: named, not dropped silently.
+  EXPECT_EQ(s.report.not_kept_summary(), "1 CELL_DATA scalars 'CellEntityIds'");
+}
+
+// Issue 20: a lattice's material values. POINT_DATA scalars (a channel per component), vectors
+// and colours become attributes, in order; a FIELD array of one tuple per point too; normals,
+// texture coordinates and cell data are named as not kept; a write/read round trip is exact; a
+// count that does not match the points, or an unreadable value, is refused with its line.
+TEST(VtkFormat, PointDataAreAttributeChannels) {
+  const std::string cube = grid(kCubePoints, "CELLS 1 9\n8 0 1 2 3 4 5 6 7\n", "CELL_TYPES 1\n12\n");  // 17 lines
+  const std::string text = cube +
+                           "POINT_DATA 8\nSCALARS density float\nLOOKUP_TABLE default\n0 1 2 3 4 5 6 7\n"
+                           "SCALARS pair double 2\nLOOKUP_TABLE default\n0 10 1 11 2 12 3 13 4 14 5 15 6 16 7 17\n"
+                           "NORMALS n float\n0 0 1 0 0 1 0 0 1 0 0 1 0 0 1 0 0 1 0 0 1 0 0 1\n"
+                           "FIELD data 1\nheat 1 8 double\n8 7 6 5 4 3 2 1\n"
+                           "CELL_DATA 1\nSCALARS material int 1\nLOOKUP_TABLE default\n3\n";
+  const Shape s = read_vtk(text, "t.vtk");
+  ASSERT_EQ(s.attributes.size(), 4u);
+  EXPECT_EQ(s.attributes[0].name, "density");
+  EXPECT_EQ(s.attributes[0].type, "float");
+  EXPECT_EQ(s.attributes[0].values, (std::vector<double>{0, 1, 2, 3, 4, 5, 6, 7}));
+  EXPECT_EQ(s.attributes[1].name, "pair_0");
+  EXPECT_EQ(s.attributes[2].name, "pair_1");
+  EXPECT_EQ(s.attributes[2].values, (std::vector<double>{10, 11, 12, 13, 14, 15, 16, 17}));
+  EXPECT_EQ(s.attributes[3].name, "heat");
+  EXPECT_EQ(s.attributes[3].values[0], 8.0);
+  EXPECT_EQ(s.report.not_kept_summary(), "1 POINT_DATA normals 'n' (they follow from the shape), 1 CELL_DATA scalars 'material'");
+  // Written as POINT_DATA in double and read back: the same values.
+  TempDir dir("sublift_vtk_point_data");
+  write_vtk(dir.file("out.vtk"), s.base, s.positions, s.attributes);
+  const Shape back = read_vtk(read_file_bytes(dir.file("out.vtk")), "out.vtk");
+  ASSERT_EQ(back.attributes.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(back.attributes[k].name, s.attributes[k].name);
+    EXPECT_EQ(back.attributes[k].values, s.attributes[k].values);
+  }
+  expect_error(cube + "POINT_DATA 7\n", 18, "POINT_DATA 7 does not match the 8 points");
+  expect_error(cube + "POINT_DATA 8\nSCALARS d float\nLOOKUP_TABLE default\n0 1 2 x 4 5 6 7\n", 21, "'x' is not a number");
+  expect_error(cube + "POINT_DATA 8\nGLYPHS d\n", 19, "unknown keyword 'GLYPHS' in POINT_DATA");
 }
 
 // Issue 18: the VTK reader builds its cells through the same checks as .lattice: a hexahedron

@@ -196,11 +196,26 @@ class OvmReader {
       const std::string name(rest.substr(q0 + 1, q1 - q0 - 1)), type = to_lower(tok_[1]);
       const std::int64_t n = key == "vprop" ? nv : key == "eprop" ? ne : key == "heprop" ? 2 * ne : key == "fprop" ? nf
                            : key == "hfprop" ? 2 * nf : key == "cprop" ? nc : 1;
-      for (std::int64_t i = 0; i < n; ++i)
+      // A vertex property of one number per vertex is a material value: an attribute channel.
+      const bool scalar = key == "vprop" && (type == "double" || type == "float" || type == "int" || type == "uint" ||
+                                             type == "short" || type == "ushort" || type == "char" || type == "uchar");
+      VertexAttribute a{name, type, {}};
+      if (scalar) a.values.reserve(std::size_t(n));
+      for (std::int64_t i = 0; i < n; ++i) {
         if (!next_tokens(lines_, tok_))
           throw InputError(file_, line, std::string(kind->name) + " property \"" + printable(name) + "\" needs " + std::to_string(n) +
                                             " values; the file ends after " + std::to_string(i));
-      shape_.report.note_not_kept(std::string(kind->name) + " property \"" + printable(name) + "\" (" + printable(type) + ")", line);
+        if (!scalar) continue;
+        const auto x = tok_.size() == 1 ? parse_double(tok_[0]) : std::nullopt;
+        if (!x || !std::isfinite(*x) || std::abs(*x) > kMaxCoordinate)
+          throw InputError(file_, ln(), "vertex property \"" + printable(name) + "\": value " + std::to_string(i) + " is not one finite number within " +
+                                            max_coordinate_text());
+        a.values.push_back(*x);
+      }
+      if (scalar)
+        shape_.attributes.push_back(std::move(a));
+      else
+        shape_.report.note_not_kept(std::string(kind->name) + " property \"" + printable(name) + "\" (" + printable(type) + ")", line);
     }
   }
 
@@ -225,7 +240,7 @@ class OvmReader {
 
 Shape read_ovm(std::string_view bytes, const std::string& file) { return OvmReader(bytes, file).read(); }
 
-void write_ovm(const std::string& path, const Complex& c, std::span<const double> xyz) {
+void write_ovm(const std::string& path, const Complex& c, std::span<const double> xyz, std::span<const VertexAttribute> attributes) {
   if (c.dim != 3) throw InputError(path, 0, "a .ovm holds volumes; this shape has dimension " + std::to_string(c.dim));
   if (xyz.size() != 3 * static_cast<std::size_t>(c.num_vertices))
     throw InputError(path, 0, "positions do not match the vertex count");
@@ -254,6 +269,12 @@ void write_ovm(const std::string& path, const Complex& c, std::span<const double
         out << ' ' << 2 * faces[i] + (outward_as_stored ? 1 : 0);
       }
       out << '\n';
+    }
+    for (const VertexAttribute& a : attributes) {  // material values: vertex properties in double
+      std::string name = a.name;
+      std::replace(name.begin(), name.end(), '"', '\'');
+      out << "vprop double \"" << name << "\"\n";
+      for (double x : a.values) out << format_double(x) << '\n';
     }
   });
 }

@@ -13,10 +13,11 @@
 //
 // The reader is strict (an InputError names file and line), checks every count against the
 // bytes left before reserving anything, and accepts cells whose half-faces are not consistently
-// oriented (Sublift orients cells from their geometry) with a warning naming them. Property
-// blocks are read past and named in the report's not-kept list: lattices carry no attribute
-// channels yet. The writer prints 17 significant digits, gives every cell its inward half-faces
-// and replaces the file atomically.
+// oriented (Sublift orients cells from their geometry) with a warning naming them. A vertex
+// property of one number per vertex (double, float or an integer type) is a material value and
+// becomes an attribute channel; other property blocks are read past and named in the report's
+// not-kept list. The writer prints 17 significant digits, gives every cell its inward half-faces,
+// writes attributes as `vprop double` blocks and replaces the file atomically.
 #include <span>
 #include <string>
 #include <string_view>
@@ -30,6 +31,7 @@ Shape read_ovm(std::string_view bytes, const std::string& file);
 
 /// Writes a volume complex (dim 3) and its positions (3 per vertex). Throws InputError (not a
 /// volume) or IoError.
-void write_ovm(const std::string& path, const Complex& c, std::span<const double> xyz);
+void write_ovm(const std::string& path, const Complex& c, std::span<const double> xyz,
+               std::span<const VertexAttribute> attributes = {});
 
 }  // namespace sublift

@@ -239,14 +239,17 @@ std::vector<std::string> write_shape(const std::string& path, const Complex& c, 
   }
   // What the format cannot hold of the attributes is named (PLY holds them all, OBJ colours).
   if (const std::string dropped = attributes_not_written(ext, attributes); !dropped.empty())
-    notes.push_back("." + ext + " cannot hold the vertex attributes " + dropped + ": not written (use .ply" +
-                    (ext == "obj" ? "; .obj holds red, green and blue as 'v x y z r g b')" : ")"));
+    notes.push_back("." + ext + " cannot hold the vertex attributes " + dropped + ": not written (use " +
+                    (c.dim == 3 ? std::string(".vtk or .ovm)") : ".ply" + std::string(ext == "obj" ? "; .obj holds red, green and blue as 'v x y z r g b')" : ")")));
   if (ext == "vtk" || ext == "lattice") {
-    (ext == "vtk" ? write_vtk : write_lattice)(path, c, xyz);
+    if (ext == "vtk")
+      write_vtk(path, c, xyz, attributes);
+    else
+      write_lattice(path, c, xyz);
     return notes;
   }
   if (ext == "ovm") {
-    write_ovm(path, c, xyz);
+    write_ovm(path, c, xyz, attributes);
     if (const FeatureTags tags = derive_feature_tags(c);
         !tags.feature_faces.empty() || !tags.crease_edges.empty() || !tags.corner_vertices.empty())
       notes.push_back(".ovm cannot hold feature tags: " + std::to_string(tags.feature_faces.size()) + " feature faces, " +

@@ -1,5 +1,6 @@
 #include "core/io/lattice/vtk_format.h"
 
+#include <cctype>
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -191,6 +192,8 @@ struct Grid {
   std::vector<std::int64_t> types;
   std::vector<std::size_t> type_lines;
   bool have_types = false;
+  std::vector<VertexAttribute> point_attributes;            // POINT_DATA scalars, vectors, colours, fields
+  std::vector<std::pair<std::string, std::size_t>> not_kept;  // what the data sections hold that is not kept, and its line
 };
 
 // Reads `n` numbers: ASCII tokens (doubles, or integers for an integer T, whatever `type` says),
@@ -254,6 +257,110 @@ void skip_field(Scanner& s, bool binary, const std::string& file) {
       for (std::int64_t i = 0; i < n; ++i) s.need("field value");
     }
   }
+}
+
+std::string to_upper(std::string s) {
+  for (char& c : s) c = char(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// The type a VTK data type is written back as (the attribute's `type`).
+std::string attribute_type(const std::string& vtk_type) {
+  if (vtk_type == "unsigned_char") return "uchar";
+  if (vtk_type == "char") return "char";
+  if (vtk_type == "unsigned_short") return "ushort";
+  if (vtk_type == "short") return "short";
+  if (vtk_type == "int" || vtk_type == "vtktypeint32") return "int";
+  if (vtk_type == "unsigned_int" || vtk_type == "vtktypeuint32") return "uint";
+  if (vtk_type == "float") return "float";
+  return "double";
+}
+
+// Reads the sections of one POINT_DATA or CELL_DATA block (`n` tuples) up to the end of the file
+// or the next block, whose keyword it returns ("" at the end). Point data (`into` not null) become
+// attributes: SCALARS (a channel per component), VECTORS (name_x, _y, _z), COLOR_SCALARS (red,
+// green, blue, alpha), FIELD arrays of n tuples; what is not kept (normals, texture coordinates,
+// tensors, lookup tables, cell data) is read past and named in `not_kept` with its line.
+std::string read_data_block(Scanner& s, bool binary, std::int64_t n, bool cells, const std::string& file,
+                            std::vector<VertexAttribute>* into, std::vector<std::pair<std::string, std::size_t>>& not_kept) {
+  const std::string where = cells ? "CELL_DATA" : "POINT_DATA";
+  const auto add = [&](const std::string& name, const std::string& type, const std::vector<double>& v, std::int64_t comps,
+                       const std::vector<std::string>& names) {
+    for (double x : v)
+      if (std::abs(x) > kMaxCoordinate)
+        throw InputError(file, s.line(), where + " '" + printable(name) + "': a value exceeds the supported magnitude " + max_coordinate_text());
+    for (std::int64_t k = 0; k < comps; ++k) {
+      VertexAttribute a{names.empty() ? (comps == 1 ? name : name + "_" + std::to_string(k)) : names[std::size_t(k)], type, {}};
+      a.values.resize(std::size_t(n));
+      for (std::int64_t i = 0; i < n; ++i) a.values[std::size_t(i)] = v[std::size_t(i * comps + k)];
+      into->push_back(std::move(a));
+    }
+  };
+  const auto drop = [&](const std::string& what, std::size_t line) { not_kept.emplace_back(where + " " + what, line); };
+  while (const auto t = s.token()) {
+    const std::string key = to_lower(*t);
+    const std::size_t ln = s.line();
+    if (key == "point_data" || key == "cell_data") return key;
+    std::vector<double> v;
+    if (key == "scalars") {
+      const std::string name(s.need("SCALARS name")), type = to_lower(s.need("SCALARS type"));
+      std::string next(s.need("LOOKUP_TABLE"));
+      std::int64_t comps = 1;
+      if (const auto c = parse_int(next)) {
+        comps = *c;
+        if (comps < 1 || comps > 4) throw InputError(file, ln, "SCALARS " + printable(name) + ": " + std::to_string(comps) + " components (1..4)");
+        next = std::string(s.need("LOOKUP_TABLE"));
+      }
+      if (to_lower(next) != "lookup_table") throw InputError(file, s.line(), "expected LOOKUP_TABLE after SCALARS " + printable(name));
+      s.need("LOOKUP_TABLE name");
+      read_values(s, binary, type, n * comps, "SCALARS " + name, file, v);
+      if (into) add(name, attribute_type(type), v, comps, {});
+      else drop("scalars '" + printable(name) + "'", ln);
+    } else if (key == "vectors" || key == "normals") {
+      const std::string name(s.need(key + " name")), type = to_lower(s.need(key + " type"));
+      read_values(s, binary, type, 3 * n, to_upper(key) + " " + name, file, v);
+      if (into && key == "vectors") add(name, attribute_type(type), v, 3, {name + "_x", name + "_y", name + "_z"});
+      else drop(key + " '" + printable(name) + "'" + (key == "normals" ? " (they follow from the shape)" : ""), ln);
+    } else if (key == "color_scalars") {
+      const std::string name(s.need("COLOR_SCALARS name"));
+      const std::int64_t comps = s.need_count("COLOR_SCALARS values");
+      if (comps < 1 || comps > 4) throw InputError(file, ln, "COLOR_SCALARS " + printable(name) + ": " + std::to_string(comps) + " values (1..4)");
+      read_values(s, binary, binary ? "unsigned_char" : "float", n * comps, "COLOR_SCALARS " + name, file, v);
+      static const std::vector<std::string> rgba{"red", "green", "blue", "alpha"};
+      if (into) add(name, binary ? "uchar" : "float", v, comps, std::vector<std::string>(rgba.begin(), rgba.begin() + comps));
+      else drop("colours '" + printable(name) + "'", ln);
+    } else if (key == "texture_coordinates" || key == "tensors") {
+      const std::string name(s.need(key + " name"));
+      std::int64_t comps = 9;
+      if (key == "texture_coordinates") comps = s.need_count("TEXTURE_COORDINATES dimension");
+      const std::string type = to_lower(s.need(key + " type"));
+      read_values(s, binary, type, comps * n, to_upper(key) + " " + name, file, v);
+      drop(key == "tensors" ? "tensors '" + printable(name) + "'" : "texture coordinates '" + printable(name) + "' (vertex UVs; Sublift's are per face corner)", ln);
+    } else if (key == "lookup_table") {
+      const std::string name(s.need("LOOKUP_TABLE name"));
+      const std::int64_t size = s.need_count("LOOKUP_TABLE size");
+      read_values(s, binary, binary ? "unsigned_char" : "float", 4 * size, "LOOKUP_TABLE " + name, file, v);
+      drop("lookup table '" + printable(name) + "'", ln);
+    } else if (key == "field") {
+      s.need("FIELD name");
+      const std::int64_t arrays = s.need_count("FIELD array count");
+      for (std::int64_t a = 0; a < arrays; ++a) {
+        const std::string name(s.need("field array name"));
+        const std::size_t aline = s.line();
+        const std::int64_t comps = s.need_count("field array components");
+        const std::int64_t tuples = s.need_count("field array tuples");
+        const std::string type = to_lower(s.need("field array type"));
+        if (type == "string" || type == "utf8_string") throw InputError(file, s.line(), "string field arrays are not supported");
+        v.clear();
+        read_values(s, binary, type, comps * tuples, "field array " + name, file, v);
+        if (into && tuples == n && comps >= 1 && comps <= 4) add(name, attribute_type(type), v, comps, {});
+        else drop("field array '" + printable(name) + "'", aline);
+      }
+    } else {
+      throw InputError(file, ln, "unknown keyword '" + printable(*t) + "' in " + where);
+    }
+  }
+  return "";
 }
 
 Grid parse(std::string_view bytes, const std::string& file) {
@@ -344,7 +451,27 @@ Grid parse(std::string_view bytes, const std::string& file) {
       read_values(s, binary, "int", n, "CELL_TYPES", file, g.types, &g.type_lines);
       g.have_types = true;
     } else if (key == "cell_data" || key == "point_data") {
-      break;  // attributes: not needed
+      // Data blocks run to the end of the file: point data become attributes, cell data named.
+      std::string block = key;
+      while (!block.empty()) {
+        const std::size_t bline = s.line();
+        const std::int64_t n = s.need_count(to_upper(block) + " count");
+        const bool cells = block == "cell_data";
+        if (!cells && (!g.have_points || std::size_t(n) != g.xyz.size() / 3))
+          throw InputError(file, bline, "POINT_DATA " + std::to_string(n) + " does not match the " + std::to_string(g.xyz.size() / 3) + " points");
+        if (!cells && !g.point_attributes.empty()) throw InputError(file, bline, "a second POINT_DATA block");
+        if (!cells) {
+          block = read_data_block(s, binary, n, cells, file, &g.point_attributes, g.not_kept);
+          continue;
+        }
+        try {  // cell data are not kept: a fault in them costs them alone
+          block = read_data_block(s, binary, n, cells, file, nullptr, g.not_kept);
+        } catch (const InputError& e) {
+          g.not_kept.emplace_back(std::string("CELL_DATA and what follows it (unreadable: ") + e.what() + ")", bline);
+          block.clear();
+        }
+      }
+      break;
     } else {
       throw InputError(file, ln, "unknown keyword '" + printable(*t) + "'");
     }
@@ -367,9 +494,11 @@ Grid parse(std::string_view bytes, const std::string& file) {
 }  // namespace
 
 Shape read_vtk(std::string_view bytes, const std::string& file) {
-  const Grid g = parse(bytes, file);
+  Grid g = parse(bytes, file);
   Shape shape;
   shape.positions = g.xyz;
+  shape.attributes = std::move(g.point_attributes);
+  for (const auto& [what, line] : g.not_kept) shape.report.note_not_kept(what, line);
   const auto nv = static_cast<std::uint32_t>(g.xyz.size() / 3);
   ShapeBuilder b;
   std::vector<std::int64_t> loop;
@@ -448,7 +577,7 @@ Shape read_vtk(std::string_view bytes, const std::string& file) {
   return shape;
 }
 
-void write_vtk(const std::string& path, const Complex& c, std::span<const double> xyz) {
+void write_vtk(const std::string& path, const Complex& c, std::span<const double> xyz, std::span<const VertexAttribute> attributes) {
   if (xyz.size() != 3 * static_cast<std::size_t>(c.num_vertices))
     throw InputError(path, 0, "positions do not match the vertex count");
   check_writable_positions(path, xyz);
@@ -505,6 +634,15 @@ void write_vtk(const std::string& path, const Complex& c, std::span<const double
     }
     out << "CELL_TYPES " << types.size() << '\n';
     for (int t : types) out << t << '\n';
+    // Attributes as POINT_DATA scalars, in double (17 digits: a write/read round trip is exact).
+    if (!attributes.empty()) out << "POINT_DATA " << c.num_vertices << '\n';
+    for (const VertexAttribute& a : attributes) {
+      std::string name = a.name.empty() ? "attribute" : a.name;
+      for (char& ch : name)
+        if (std::isspace(static_cast<unsigned char>(ch)) || ch < 0x21 || ch > 0x7e) ch = '_';
+      out << "SCALARS " << name << " double 1\nLOOKUP_TABLE default\n";
+      for (double x : a.values) out << format_double(x) << '\n';
+    }
   });
 }
 

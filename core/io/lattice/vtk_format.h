@@ -9,13 +9,17 @@
 // surfaces that way): VTK_VERTEX/POLY_VERTEX are corners, VTK_LINE/POLY_LINE creases,
 // VTK_TRIANGLE/QUAD/PIXEL/POLYGON feature faces. Without volume cells the polygons are a
 // surface, without those the lines a curve. Other cell types are refused (cell index, type,
-// line). Counts are checked against the file size before anything is allocated; POINT_DATA
-// and CELL_DATA end the read (they are not needed).
+// line). Counts are checked against the file size before anything is allocated. POINT_DATA
+// become vertex attributes (SCALARS, a channel per component; VECTORS as NAME_x, _y, _z;
+// COLOR_SCALARS as red, green, blue, alpha; FIELD arrays of one tuple per point): a lattice's
+// material values, carried as channels. Normals, texture coordinates, tensors, lookup tables and
+// every CELL_DATA array are read past and named as not kept.
 //
 // Writing (ASCII, version 4.2 layout): hexahedral cells (6 quads forming a topological cube)
 // as VTK_HEXAHEDRON in VTK order with positive orientation, other cells as VTK_POLYHEDRON
 // with outward faces, surfaces as polygons, curves as lines; features as the lower-dimensional
-// cells above, so reading back gives the same feature dims.
+// cells above, so reading back gives the same feature dims; attributes as POINT_DATA SCALARS
+// (double).
 #include <span>
 #include <string>
 #include <string_view>
@@ -29,6 +33,7 @@ Shape read_vtk(std::string_view bytes, const std::string& file);
 
 /// Writes a complex of any dimension and its positions (3 per vertex). Throws InputError or
 /// IoError.
-void write_vtk(const std::string& path, const Complex& c, std::span<const double> xyz);
+void write_vtk(const std::string& path, const Complex& c, std::span<const double> xyz,
+               std::span<const VertexAttribute> attributes = {});
 
 }  // namespace sublift

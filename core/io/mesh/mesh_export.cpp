@@ -27,7 +27,8 @@ std::string attributes_not_written(const std::string& ext, std::span<const Verte
   std::string dropped;
   for (const VertexAttribute& a : attributes) {
     // glTF: red, green, blue (alpha) as COLOR_0, the rest as "_NAME" attributes (surface_export.h).
-    if (ext == "ply" || ext == "gltf" || ext == "glb" || (ext == "obj" && colour(a) && colours == 3)) continue;
+    // VTK as POINT_DATA, OVM as vertex properties (core/io/lattice).
+    if (ext == "ply" || ext == "gltf" || ext == "glb" || ext == "vtk" || ext == "ovm" || (ext == "obj" && colour(a) && colours == 3)) continue;
     dropped += (dropped.empty() ? "" : ", ") + a.name;
   }
   return dropped;

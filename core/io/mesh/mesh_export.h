@@ -20,8 +20,8 @@ void write_surface_mesh(const std::string& path, const SurfaceMesh& mesh, const 
 std::string format_double(double v);
 
 /// The names of `attributes` a file of extension `ext` cannot hold, comma-separated ("" when
-/// it holds them all): .ply every one, .obj red, green and blue together (`v x y z r g b`, as
-/// 0..1), other formats none. write_surface_mesh writes what it can and leaves the rest.
+/// it holds them all): .ply, .gltf/.glb, .vtk (POINT_DATA) and .ovm (vertex properties) every
+/// one, .obj red, green and blue together (`v x y z r g b`, as 0..1), other formats none. write_surface_mesh writes what it can and leaves the rest.
 std::string attributes_not_written(const std::string& ext, std::span<const VertexAttribute> attributes);
 
 /// Writes `prefix`, then p[0] p[1] p[2] by format_double, then a newline.

@@ -248,6 +248,13 @@ void draw_detail_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
     }
     ImGui::EndCombo();
   }
+  if (d.colour_channel >= 0 && !d.channel_group.empty()) {  // compress that channel's group on its own
+    float keep = static_cast<float>(100.0 * d.channel_keep);
+    ImGui::SetNextItemWidth(140.0f);
+    if (ImGui::SliderFloat(("Keep % of " + d.channel_group).c_str(), &keep, 0.0f, 100.0f, "%.1f%%")) r.channel_keep = keep / 100.0;
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("The largest wavelets of this channel group kept (shown, saved and exported); positions untouched; 100%%: all");
+  }
   float radius = static_cast<float>(d.soft_radius);
   ImGui::SetNextItemWidth(140.0f);
   if (ImGui::InputFloat("Soft radius", &radius, 0.0f, 0.0f, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue)) {

@@ -132,6 +132,8 @@ struct ModelerPanelData {
   int colour_level = -1;
   std::vector<std::string> channels;  // attribute channels the surface can be coloured by
   int colour_channel = -1;
+  std::string channel_group;          // the coloured channel's compression group, its kept fraction
+  double channel_keep = 1.0;
   bool dirty = false;
   std::vector<std::string> recent;    // recently opened files, newest first
   BasisPanelData basis;
@@ -164,6 +166,7 @@ struct AnimationOpenRequest {
 /// What the user asked for this frame.
 struct ModelerPanelRequests {
   std::optional<int> scheme, level, colour_level, view_level, colour_channel;
+  std::optional<double> channel_keep;  // for ModelerPanelData::channel_group
   std::optional<std::size_t> history_jump;
   std::optional<bool> local_frames;
   int gain_level = -1;                // a gain slider moved: level and value

@@ -57,30 +57,6 @@ double mode_value(const std::string& option, const std::string& text) {
   return *v;
 }
 
-// The channel groups of a hierarchy with attribute channels (none for x, y, z alone): x, y, z;
-// red, green, blue and alpha together as "colour"; every other attribute on its own.
-struct ChannelGroup {
-  std::string name;
-  std::vector<std::string> channels;
-  ChannelRange range;
-};
-
-std::vector<ChannelGroup> channel_groups(int channels, const std::vector<VertexAttribute>& attributes) {
-  if (channels <= 3 || attributes.size() != std::size_t(channels - 3)) return {};
-  std::vector<ChannelGroup> out{{"position", {"x", "y", "z"}, {0, 3}}};
-  const auto colour = [](const std::string& n) { return n == "red" || n == "green" || n == "blue" || n == "alpha"; };
-  for (std::size_t k = 0; k < attributes.size();) {
-    std::size_t end = k + 1;
-    if (colour(attributes[k].name))
-      while (end < attributes.size() && colour(attributes[end].name)) ++end;
-    ChannelGroup g{end > k + 1 ? "colour" : attributes[k].name, {}, {int(3 + k), int(end - k)}};
-    for (std::size_t i = k; i < end; ++i) g.channels.push_back(attributes[i].name);
-    out.push_back(std::move(g));
-    k = end;
-  }
-  return out;
-}
-
 }  // namespace
 
 int run_compress(int argc, char** argv) {

@@ -840,6 +840,8 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
     if (r.history_jump) model.jump_to(*r.history_jump);
     if (r.local_frames) model.set_local_frames(*r.local_frames);
     if (r.colour_channel) model.set_colour_channel(*r.colour_channel);
+    if (r.channel_keep && model.colour_channel() >= 0)
+      model.set_channel_keep(model.attribute_names()[std::size_t(model.colour_channel())].name, *r.channel_keep);
     if (r.colour_level) model.set_colour_level(*r.colour_level);
     if (r.soft_radius) model.set_soft_radius(*r.soft_radius);
     if (r.pivot) model.set_pivot(static_cast<Pivot>(*r.pivot));
@@ -1097,6 +1099,14 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     d.brush = model.brush();
     d.colour_level = model.colour_level();
     d.colour_channel = model.colour_channel();
+    d.channel_group.clear();
+    d.channel_keep = 1.0;
+    if (d.colour_channel >= 0)
+      for (const ChannelGroup& g : model.attribute_groups())
+        if (d.colour_channel >= g.range.first && d.colour_channel < g.range.first + g.range.count) {
+          d.channel_group = g.name;
+          d.channel_keep = model.channel_keep(g.name);
+        }
     d.channels.clear();
     for (const VertexAttribute& a : model.attribute_names()) d.channels.push_back(a.name);
     d.dirty = s.dirty();

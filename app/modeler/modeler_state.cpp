@@ -153,6 +153,7 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   attribute_sets_.clear();
   if (attributes) attribute_sets_.push_back(std::move(*attributes));
   colour_channel_ = -1;
+  channel_keep_.clear();
   attribute_names_ = std::move(attribute_names);
   file_uv_ = std::move(file_uv);
   texture_ = std::move(texture);

@@ -315,6 +315,16 @@ class ModelerState {
   int colour_channel() const { return colour_channel_; }
   /// The model's attribute channels (name and type; values empty), in channel order.
   const std::vector<VertexAttribute>& attribute_names() const { return attribute_names_; }
+  /// Their groups as compression takes them (core/analysis/compress.h: "colour" for red, green,
+  /// blue, alpha; every other channel on its own), ranges within the attribute channels.
+  std::vector<ChannelGroup> attribute_groups() const;
+  /// Compresses one attribute group on its own (`name`: the group's, or one of its channels'):
+  /// the largest fraction `keep` of its wavelets stay, ranked by its own magnitude; positions
+  /// and the other groups are untouched. A setting, not an edit: what is shown, saved and
+  /// exported is compressed, the full values are kept, 1 gives them back. Throws Error for an
+  /// unknown name or a fraction outside 0..1.
+  void set_channel_keep(const std::string& name, double keep);
+  double channel_keep(const std::string& group) const;
   const std::vector<float>& colour_values() const { return colour_; }
 
   /// Basis-function mode (issue 5, app/modeler/basis_view_state.h): computes the function of
@@ -454,6 +464,7 @@ class ModelerState {
   // One set per base the model has had (Delete Lower and Rebuild make new ones; undo brings an
   // old base back, and its set with it).
   std::vector<Hierarchy> attribute_sets_;
+  std::vector<std::pair<std::string, double>> channel_keep_;  // group -> fraction of its wavelets kept (< 1)
   std::vector<VertexAttribute> attribute_names_;  // name and type of each, values empty
   /// The attributes fitted to the session (attributes_for), if a set belongs to its base.
   std::optional<Hierarchy> fitted_attributes(std::string* why = nullptr) const;

@@ -497,6 +497,8 @@ constexpr Command kCommands[] = {
     {"screenshot", kPath, 0, "screenshot PATH",
      [](const Call& c) { c.step.kind = ScriptStep::Kind::Screenshot; c.step.path = c.raw; }},
     {"colour", 1, 2, "colour LEVEL|off|channel NAME", colour},
+    {"channel-keep", 2, 2, "channel-keep NAME FRACTION",
+     [](const Call& c) { c.state.set_channel_keep(c.w[1], number(c.w[2], "FRACTION")); }},
     {"color", 1, 2, "colour LEVEL|off|channel NAME", colour},
     {"basis", 1, kMany,
      "basis scaling|wavelet INDEX [dual] | basis height SCALE|off | basis slice x|y|z FRACTION | basis slice off | "

@@ -10,6 +10,23 @@
 #include "core/base/text_lines.h"
 
 namespace sublift {
+
+std::vector<ChannelGroup> channel_groups(int channels, std::span<const VertexAttribute> attributes, int first_attribute) {
+  if (channels <= first_attribute || attributes.size() != std::size_t(channels - first_attribute)) return {};
+  std::vector<ChannelGroup> out;
+  if (first_attribute == 3) out.push_back({"position", {"x", "y", "z"}, {0, 3}});
+  const auto colour = [](const std::string& n) { return n == "red" || n == "green" || n == "blue" || n == "alpha"; };
+  for (std::size_t k = 0; k < attributes.size();) {
+    std::size_t end = k + 1;
+    if (colour(attributes[k].name))
+      while (end < attributes.size() && colour(attributes[end].name)) ++end;
+    ChannelGroup g{end > k + 1 ? "colour" : attributes[k].name, {}, {int(std::size_t(first_attribute) + k), int(end - k)}};
+    for (std::size_t i = k; i < end; ++i) g.channels.push_back(attributes[i].name);
+    out.push_back(std::move(g));
+    k = end;
+  }
+  return out;
+}
 namespace {
 
 double norm(const double* v, int channels) {

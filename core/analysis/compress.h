@@ -32,6 +32,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/base/surface_mesh.h"
 #include "core/multires/hierarchy.h"
 
 namespace sublift {
@@ -42,6 +43,20 @@ namespace sublift {
 struct ChannelRange {
   int first = 0, count = 0;
 };
+
+/// A named channel group of a hierarchy with attribute channels: "position" (x, y, z), "colour"
+/// (red, green, blue, alpha together), every other attribute on its own (its name).
+struct ChannelGroup {
+  std::string name;
+  std::vector<std::string> channels;
+  ChannelRange range;
+};
+
+/// The groups of a hierarchy of `channels` channels whose channels 3.. are `attributes` (none for
+/// x, y, z alone or when the names do not match the channels). `first_attribute` is the channel
+/// number of attributes[0]: 3 in a project, 0 in a hierarchy of attribute channels alone (then
+/// no position group is listed).
+std::vector<ChannelGroup> channel_groups(int channels, std::span<const VertexAttribute> attributes, int first_attribute = 3);
 
 /// L2 norm of each wavelet, index v - nv_0 for the wavelet on fine vertex v: h.wavelet_norms when
 /// the scheme knows them exactly, else the area scaling 2^(-j dim / 2) of a level-j wavelet

@@ -192,6 +192,55 @@ TEST(ModelerAttributes, AChannelShownAsColour) {
   EXPECT_TRUE(m.colour_values().empty());
 }
 
+// One channel group compressed on its own (the panel's Keep slider, `channel-keep NAME F`): the
+// saved project's quality wavelets are what compress --group quality keeps at that fraction, the
+// positions' and the colour's coefficients are untouched, the shown colour follows, 1 restores.
+TEST(ModelerAttributes, AChannelCompressedOnItsOwn) {
+  testing::TempDir dir("sublift_modeler_channel_keep");
+  {
+    std::ofstream(dir.file("sq.ply"))
+        << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+           "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty float quality\n"
+           "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+           "0 0 0 255 0 0 0.5\n1 0 0 0 255 0 0.25\n1 1 0 0 0 255 1\n0 1 0 255 255 255 0\n4 0 1 2 3\n";
+  }
+  // Detail in every channel: a cubic subdivision's finest level rebuilt with the linear scheme.
+  ASSERT_EQ(testing::run_cli({"subdivide", dir.file("sq.ply"), "--scheme", "cubic", "--levels", "3", "-o", dir.file("fine.ply")}).exit_code, 0);
+  ASSERT_EQ(testing::run_cli({"rebuild", dir.file("fine.ply"), "--scheme", "linear", "-o", dir.file("linear.sublift")}).exit_code, 0);
+  ModelerState m;
+  m.open(dir.file("linear.sublift"));
+  m.save_project(dir.file("full.sublift"));
+  ASSERT_EQ(m.attribute_groups().size(), 2u);  // colour, quality
+  EXPECT_EQ(m.attribute_groups()[1].name, "quality");
+  m.set_colour_channel(3);
+  const std::vector<float> shown_full = m.colour_values();
+  m.set_channel_keep("quality", 0.0);
+  EXPECT_EQ(m.channel_keep("quality"), 0.0);
+  m.save_project(dir.file("kept0.sublift"));
+  const Hierarchy full = read_project(dir.file("full.sublift")), kept = read_project(dir.file("kept0.sublift"));
+  ASSERT_EQ(kept.channels, 7);
+  const std::size_t nv0 = kept.num_vertices(0);
+  std::size_t zero = 0, wavelets = 0;
+  for (std::size_t i = 0; i < full.coeffs.size(); ++i) {
+    const std::size_t v = i / 7, k = i % 7;
+    if (k < 6) EXPECT_EQ(kept.coeffs[i], full.coeffs[i]) << "vertex " << v << " channel " << k;
+    if (k == 6 && v >= nv0) ++wavelets, zero += kept.coeffs[i] == 0.0;
+  }
+  EXPECT_EQ(zero, wavelets);  // keep 0: every quality wavelet dropped
+  std::size_t had = 0;
+  for (std::size_t i = 7 * nv0 + 6; i < full.coeffs.size(); i += 7) had += full.coeffs[i] != 0.0;
+  EXPECT_GT(had, 10u) << "the full project has quality detail to drop";
+  EXPECT_NE(m.colour_values(), shown_full);
+  // The same as compress --group quality at that fraction.
+  const auto r = testing::run_cli({"compress", dir.file("full.sublift"), "--keep", "0", "--group", "quality", "-o", dir.file("cli.sublift")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_project(dir.file("cli.sublift")).coeffs, kept.coeffs);
+  // By a channel's name too; 1 gives the full values back.
+  EXPECT_THROW(m.set_channel_keep("hue", 0.5), Error);
+  m.set_channel_keep("quality", 1.0);
+  EXPECT_EQ(m.colour_values(), shown_full);
+}
+
 // Rebuild in the modeler carries a file's attributes as rebuild on the CLI does.
 TEST(ModelerAttributes, RebuildCarriesThem) {
   testing::TempDir dir("sublift_modeler_attributes_rebuild");

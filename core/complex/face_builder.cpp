@@ -9,11 +9,16 @@
 namespace sublift {
 
 void FaceBuilder::add(std::span<const std::int64_t> corners, std::size_t line, std::span<const std::int64_t> uvs) {
+  // UV indices are stored only once a corner has one (a file without vt costs nothing here).
+  const bool any = !uvs.empty() && uvs.size() == corners.size();  // callers pass UVs only when a corner has one
+  if (any || !uvs_.empty()) {
+    uvs_.resize(indices_.size(), -1);
+    if (any)
+      uvs_.insert(uvs_.end(), uvs.begin(), uvs.end());
+    else
+      uvs_.insert(uvs_.end(), corners.size(), -1);
+  }
   indices_.insert(indices_.end(), corners.begin(), corners.end());
-  if (uvs.size() == corners.size())
-    uvs_.insert(uvs_.end(), uvs.begin(), uvs.end());
-  else
-    uvs_.insert(uvs_.end(), corners.size(), -1);
   offsets_.push_back(indices_.size());
   lines_.push_back(line);
 }
@@ -51,15 +56,21 @@ void FaceBuilder::finish(SurfaceMesh& mesh, ImportReport& report) const {
     }
     // A vertex written twice in a row (1 2 2 3) is a harmless export artefact: collapse it (the
     // first copy's UV is kept).
-    face.clear();
-    face_uv.clear();
-    for (std::size_t k = 0; k < raw.size(); ++k)
-      if (face.empty() || face.back() != std::uint32_t(raw[k])) {
-        face.push_back(std::uint32_t(raw[k]));
-        face_uv.push_back(uvs_[offsets_[f] + k]);
-      }
     const std::size_t before = raw.size();
-    while (face.size() > 1 && face.front() == face.back()) face.pop_back(), face_uv.pop_back();
+    if (uvs_.empty()) {
+      face.assign(raw.begin(), raw.end());
+      face.erase(std::unique(face.begin(), face.end()), face.end());
+      while (face.size() > 1 && face.front() == face.back()) face.pop_back();
+    } else {
+      face.clear();
+      face_uv.clear();
+      for (std::size_t k = 0; k < raw.size(); ++k)
+        if (face.empty() || face.back() != std::uint32_t(raw[k])) {
+          face.push_back(std::uint32_t(raw[k]));
+          face_uv.push_back(uvs_[offsets_[f] + k]);
+        }
+      while (face.size() > 1 && face.front() == face.back()) face.pop_back(), face_uv.pop_back();
+    }
     if (face.size() < 3) {
       report.add("face dropped: fewer than 3 distinct vertices", line);
       continue;
@@ -72,7 +83,7 @@ void FaceBuilder::finish(SurfaceMesh& mesh, ImportReport& report) const {
     }
     if (face.size() != before) report.add("face repaired: repeated consecutive vertex removed", line);
     kept.insert(kept.end(), face.begin(), face.end());
-    kept_uv.insert(kept_uv.end(), face_uv.begin(), face_uv.end());
+    if (!uvs_.empty()) kept_uv.insert(kept_uv.end(), face_uv.begin(), face_uv.end());
     append_canonical_loop(face, canon);
     kept_offsets.push_back(kept.size());
     kept_lines.push_back(line);
@@ -123,7 +134,7 @@ void FaceBuilder::finish(SurfaceMesh& mesh, ImportReport& report) const {
     mesh.add_face(std::span<const std::uint32_t>(kept.data() + kept_offsets[i], kept_offsets[i + 1] - kept_offsets[i]));
     if (!with_uv || uv_fault) continue;
     for (std::size_t k = kept_offsets[i]; k < kept_offsets[i + 1] && !uv_fault; ++k) {
-      if (kept_uv[k] < 0) uv_fault = "a face without them";
+      if (kept_uv.empty() || kept_uv[k] < 0) uv_fault = "a face without them";
       else if (kept_uv[k] >= num_uv) uv_fault = "a texture-coordinate index out of range";
       else mesh.uv.corners.push_back(std::uint32_t(kept_uv[k]));
     }

@@ -14,7 +14,8 @@ namespace sublift {
 class FaceBuilder {
  public:
   /// Records one face; indices are 0-based (invalid ones are caught in finish()). `uvs`, when
-  /// not empty, gives each corner's 0-based texture-coordinate index (-1: the corner has none).
+  /// not empty, gives each corner's 0-based texture-coordinate index (-1: the corner has none);
+  /// pass it empty when no corner has one.
   void add(std::span<const std::int64_t> corners, std::size_t line, std::span<const std::int64_t> uvs = {});
   /// Records a face that could not even be parsed (dropped with `reason`).
   void add_unreadable(std::size_t line, ImportReport& report, const char* reason);
@@ -33,7 +34,7 @@ class FaceBuilder {
 
  private:
   std::vector<std::int64_t> indices_;
-  std::vector<std::int64_t> uvs_;  // parallel to indices_, -1 where a corner has no UV
+  std::vector<std::int64_t> uvs_;  // parallel to indices_ (-1: no UV), empty until a corner has one
   std::vector<std::size_t> offsets_{0};
   std::vector<std::size_t> lines_;
   std::vector<std::size_t> unusable_;

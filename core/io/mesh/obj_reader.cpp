@@ -80,6 +80,7 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
     corner_uvs.clear();
     if (tok.size() > limits.max_face_size + 1) return false;
     const auto num_uv = static_cast<std::int64_t>(mesh.uv.num_points());
+    bool any_uv = false;
     for (std::size_t k = 1; k < tok.size(); ++k) {
       const std::size_t slash = tok[k].find('/');
       const auto idx = parse_int(tok[k].substr(0, slash));
@@ -92,7 +93,9 @@ LoadedMesh read_obj(std::string_view bytes, const std::string& file, const Impor
           uv = *t > 0 ? *t - 1 : num_uv + *t;
         if (uv < 0) uv = -1;
       }
-      corner_uvs.push_back(uv);
+      // Filled from the first corner with a UV on (the common face without any costs nothing).
+      if (uv >= 0 && !any_uv) corner_uvs.assign(k - 1, -1), any_uv = true;
+      if (any_uv) corner_uvs.push_back(uv);
     }
     return true;
   };

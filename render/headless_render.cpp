@@ -77,9 +77,12 @@ Image draw_surface(LimitSurfaceRenderer& surface, BackgroundRenderer& background
 
 }  // namespace
 
-Image render_coloured_surface_headless(std::span<const double> xyz, std::span<const double> normals, const Csr& faces,
-                                       std::span<const float> scalar01, int width, int height,
-                                       const HeadlessRenderSettings& settings) {
+namespace {
+
+// A surface drawn once: its buffers filled by `fill` (scalars, texture) and drawn in `style`.
+template <class Fill>
+Image render_surface(std::span<const double> xyz, std::span<const double> normals, const Csr& faces, int width, int height,
+                     const HeadlessRenderSettings& settings, const SurfaceStyle& style, Fill fill) {
   check_size(width, height);
   HeadlessContext context;
   OffscreenTarget target(width, height, settings.samples);
@@ -87,27 +90,30 @@ Image render_coloured_surface_headless(std::span<const double> xyz, std::span<co
   LimitSurfaceRenderer surface;
   surface.set_topology(faces.offsets, faces.items, xyz.size() / 3);
   surface.set_positions_normals(xyz, normals);
-  surface.set_scalar(scalar01);
+  fill(surface);
+  return draw_surface(surface, background, target, width, height, settings, style);
+}
+
+}  // namespace
+
+Image render_coloured_surface_headless(std::span<const double> xyz, std::span<const double> normals, const Csr& faces,
+                                       std::span<const float> scalar01, int width, int height,
+                                       const HeadlessRenderSettings& settings) {
   SurfaceStyle style;
   style.color_map = true;
-  return draw_surface(surface, background, target, width, height, settings, style);
+  return render_surface(xyz, normals, faces, width, height, settings, style,
+                        [&](LimitSurfaceRenderer& s) { s.set_scalar(scalar01); });
 }
 
 Image render_textured_surface_headless(std::span<const double> xyz, std::span<const double> normals, const Csr& faces,
                                        std::span<const float> texcoords, const Image& texture, int width, int height,
                                        const HeadlessRenderSettings& settings, int wrap_s, int wrap_t) {
-  check_size(width, height);
-  HeadlessContext context;
-  OffscreenTarget target(width, height, settings.samples);
-  BackgroundRenderer background;
-  LimitSurfaceRenderer surface;
-  surface.set_topology(faces.offsets, faces.items, xyz.size() / 3);
-  surface.set_positions_normals(xyz, normals);
-  surface.set_texcoords(texcoords);
-  surface.set_texture(texture.rgba, texture.width, texture.height, wrap_s, wrap_t);
   SurfaceStyle style;
   style.textured = true;
-  return draw_surface(surface, background, target, width, height, settings, style);
+  return render_surface(xyz, normals, faces, width, height, settings, style, [&](LimitSurfaceRenderer& s) {
+    s.set_texcoords(texcoords);
+    s.set_texture(texture.rgba, texture.width, texture.height, wrap_s, wrap_t);
+  });
 }
 
 }  // namespace sublift

@@ -9,18 +9,10 @@ Hierarchy channel_range(const Hierarchy& h, int first, int count) {
   if (first < 0 || count < 1 || first + count > h.channels)
     throw Error("channels " + std::to_string(first) + ".." + std::to_string(first + count - 1) + " of a hierarchy of " +
                 std::to_string(h.channels));
-  Hierarchy out;
-  out.scheme = h.scheme;
-  out.integer = h.integer;
+  Hierarchy out = h;  // the levels and tables as they are; the coefficients of those channels
   out.channels = count;
-  out.levels = h.levels;
-  out.transitions = h.transitions;
-  out.sites = h.sites;
-  out.disc = h.disc;
-  out.first_level = h.first_level;
-  out.wavelet_norms = h.wavelet_norms;
   const std::size_t n = h.coeffs.size() / std::size_t(h.channels);
-  out.coeffs.resize(n * std::size_t(count));
+  out.coeffs.assign(n * std::size_t(count), 0.0);
   for (std::size_t v = 0; v < n; ++v)
     for (int k = 0; k < count; ++k) out.coeffs[v * std::size_t(count) + std::size_t(k)] = h.coeffs[v * std::size_t(h.channels) + std::size_t(first + k)];
   return out;

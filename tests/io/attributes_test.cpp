@@ -38,6 +38,17 @@ const VertexAttribute* find(const std::vector<VertexAttribute>& a, const std::st
 
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
+// kSquarePly as sq.ply in `dir`, subdivided `levels` times with the cubic scheme (fine.ply) and
+// analysed into p.sublift: a project with x, y, z and the four attribute channels.
+std::string coloured_project(const TempDir& dir, int levels) {
+  write_text(dir.file("sq.ply"), kSquarePly);
+  const std::string n = std::to_string(levels);
+  EXPECT_EQ(run_cli({"subdivide", dir.file("sq.ply"), "--scheme", "cubic", "--levels", n, "-o", dir.file("fine.ply")}).exit_code, 0);
+  EXPECT_EQ(run_cli({"analyze", dir.file("fine.ply"), "--base", dir.file("sq.ply"), "--scheme", "cubic", "--levels", n, "-o",
+                     dir.file("p.sublift")}).exit_code, 0);
+  return dir.file("p.sublift");
+}
+
 }  // namespace
 
 TEST(Attributes, PlyScalarPropertiesAreKeptNormalsAreNot) {
@@ -146,10 +157,7 @@ TEST(Attributes, AnalyzeAndSynthesizeRoundTripTheChannels) {
 // bit for bit, in the project it writes and in the level it exports.
 TEST(Attributes, EditsMovePositionsAndKeepTheAttributes) {
   TempDir dir("sublift_attr_edit");
-  write_text(dir.file("sq.ply"), kSquarePly);
-  ASSERT_EQ(run_cli({"subdivide", dir.file("sq.ply"), "--scheme", "cubic", "--levels", "2", "-o", dir.file("fine.ply")}).exit_code, 0);
-  ASSERT_EQ(run_cli({"analyze", dir.file("fine.ply"), "--base", dir.file("sq.ply"), "--scheme", "cubic", "--levels", "2", "-o",
-                     dir.file("p.sublift")}).exit_code, 0);
+  coloured_project(dir, 2);
   ProcessResult r = run_cli({"edit", dir.file("p.sublift"), "--level", "0", "--vertex", "2", "--delta", "0", "0", "0.5", "-o", dir.file("e.sublift")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ProjectExtras x, y;
@@ -180,10 +188,7 @@ TEST(Attributes, EditsMovePositionsAndKeepTheAttributes) {
 // --delete-lower; the project's UVs follow --delete-lower as well.
 TEST(Attributes, SetKeepsThemThroughSubdivideCreasesAndDeleteLower) {
   TempDir dir("sublift_attr_set");
-  write_text(dir.file("sq.ply"), kSquarePly);
-  ASSERT_EQ(run_cli({"subdivide", dir.file("sq.ply"), "--scheme", "cubic", "--levels", "1", "-o", dir.file("fine.ply")}).exit_code, 0);
-  ASSERT_EQ(run_cli({"analyze", dir.file("fine.ply"), "--base", dir.file("sq.ply"), "--scheme", "cubic", "--levels", "1", "-o",
-                     dir.file("p.sublift")}).exit_code, 0);
+  coloured_project(dir, 1);
   const Hierarchy p = read_project(dir.file("p.sublift"));
   const std::vector<double> p1 = synthesize(p, 1);
   ProcessResult r = run_cli({"set", dir.file("p.sublift"), "--subdivide", "1", "--crease", "0", "1", "-o", dir.file("s.sublift"), "--json"});

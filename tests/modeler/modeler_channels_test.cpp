@@ -30,6 +30,13 @@ constexpr char kCubeObj[] =
     "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
     "f 1/1 4/2 3/3 2/4\nf 5/1 6/2 7/3 8/4\nf 1/1 2/2 6/3 5/4\nf 2/1 3/2 7/3 6/4\nf 3/1 4/2 8/3 7/4\nf 4/1 1/2 5/3 8/4\n";
 
+// A square with a colour and a quality per corner.
+constexpr char kColouredSquarePly[] =
+    "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+    "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty float quality\n"
+    "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+    "0 0 0 255 0 0 0.5\n1 0 0 0 255 0 0.25\n1 1 0 0 0 255 1\n0 1 0 255 255 255 0\n4 0 1 2 3\n";
+
 void expect_same(const FaceVaryingUV& a, const FaceVaryingUV& b, const std::string& what) {
   EXPECT_EQ(a.points, b.points) << what;
   EXPECT_EQ(a.corners, b.corners) << what;
@@ -103,11 +110,7 @@ TEST(ModelerUv, ATexturedGltfExportsWithItsTexture) {
 TEST(ModelerAttributes, KeptThroughEditsSavesAndExports) {
   testing::TempDir dir("sublift_modeler_attributes");
   {
-    std::ofstream(dir.file("sq.ply"))
-        << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-           "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty float quality\n"
-           "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
-           "0 0 0 255 0 0 0.5\n1 0 0 0 255 0 0.25\n1 1 0 0 0 255 1\n0 1 0 255 255 255 0\n4 0 1 2 3\n";
+    std::ofstream(dir.file("sq.ply")) << kColouredSquarePly;
   }
   ModelerState m;
   m.open(dir.file("sq.ply"), 2, Scheme::Cubic);
@@ -198,11 +201,7 @@ TEST(ModelerAttributes, AChannelShownAsColour) {
 TEST(ModelerAttributes, AChannelCompressedOnItsOwn) {
   testing::TempDir dir("sublift_modeler_channel_keep");
   {
-    std::ofstream(dir.file("sq.ply"))
-        << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-           "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty float quality\n"
-           "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
-           "0 0 0 255 0 0 0.5\n1 0 0 0 255 0 0.25\n1 1 0 0 0 255 1\n0 1 0 255 255 255 0\n4 0 1 2 3\n";
+    std::ofstream(dir.file("sq.ply")) << kColouredSquarePly;
   }
   // Detail in every channel: a cubic subdivision's finest level rebuilt with the linear scheme.
   ASSERT_EQ(testing::run_cli({"subdivide", dir.file("sq.ply"), "--scheme", "cubic", "--levels", "3", "-o", dir.file("fine.ply")}).exit_code, 0);

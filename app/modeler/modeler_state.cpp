@@ -91,7 +91,7 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
   } else {
     Shape shape = read_shape(path);
     if (!shape.texture.empty())  // exports carry it; a project keeps the UVs only
-      shape.report.note_not_kept("the texture image '" + shape.texture.name + "' in a saved project (exported levels carry it)", 0);
+      warnings.push_back("the texture image '" + shape.texture.name + "' is not kept in a saved project (exported levels carry it)");
     if (!shape.uv.empty() && !uv_refinement_problem(scheme).empty())
       warnings.push_back("texture coordinates: " + uv_refinement_problem(scheme));
     base_uv = shape.uv;

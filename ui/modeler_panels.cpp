@@ -648,6 +648,10 @@ void draw_display_section(const ModelerPanelData& d, ModelerDisplay& v) {
   ImGui::SameLine(column);
   ImGui::Checkbox("Orthographic", &v.orthographic);
   ImGui::Checkbox("Z up", &v.z_up);
+  if (d.textured) {
+    ImGui::SameLine(column);
+    ImGui::Checkbox("Texture", &v.texture);
+  }
   ImGui::SameLine(column);
   ImGui::Checkbox("Clip", &v.clip);
   if (v.clip || d.dim == 3) {

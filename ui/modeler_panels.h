@@ -29,6 +29,7 @@ struct ModelerDisplay {
   bool clip_flip = false;
   bool orthographic = false;
   bool z_up = false;
+  bool texture = true;        // a textured model drawn with its texture (when it has one)
 };
 
 /// Readouts of one computed basis function.
@@ -130,6 +131,7 @@ struct ModelerPanelData {
   bool sculpt = false;                // sculpt mode: left drags are brush strokes
   BrushSettings brush;
   int colour_level = -1;
+  bool textured = false;              // the shown surface has UVs and a texture to draw
   std::vector<std::string> channels;  // attribute channels the surface can be coloured by
   int colour_channel = -1;
   std::string channel_group;          // the coloured channel's compression group, its kept fraction

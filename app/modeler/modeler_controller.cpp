@@ -1099,6 +1099,7 @@ void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_heigh
     d.brush = model.brush();
     d.colour_level = model.colour_level();
     d.colour_channel = model.colour_channel();
+    d.textured = !model.texture().empty() && !model.level_uv(0).empty();
     d.channel_group.clear();
     d.channel_keep = 1.0;
     if (d.colour_channel >= 0)

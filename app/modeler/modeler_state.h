@@ -32,6 +32,7 @@
 #include "core/io/project/project_io.h"
 #include "core/fit/fit_levels.h"
 #include "core/multires/rebuild.h"
+#include "core/complex/face_varying.h"
 
 namespace sublift {
 
@@ -147,6 +148,12 @@ class ModelerState {
   /// exported with the levels), empty when the model has none or its scheme cannot carry them
   /// (modeler_uv.cpp). The base's UVs follow Delete Lower and rebuild; a fit starts without.
   FaceVaryingUV level_uv(int level) const;
+  /// The drawn surface split at its UV seams (split_at_uv_seams of surface_faces() with the shown
+  /// level's UVs), for drawing the texture; empty without UVs, a texture, or when the drawn faces
+  /// are not the level's (modeler_uv.cpp).
+  UvVertexSplit shown_uv_split() const;
+  /// The texture the model's UVs map (glTF baseColorTexture), or none.
+  const SurfaceTexture& texture() const { return texture_; }
   void set_level(int level);
   /// Blender's separate viewport level: the surface drawn (and brushed, and picked) is the limit
   /// of level `level` (-1: the finest, the default, which follows subdivide); edits, the history,

@@ -27,6 +27,16 @@ FaceVaryingUV ModelerState::level_uv(int level) const {
   return uv_at_level(h, base, level);
 }
 
+UvVertexSplit ModelerState::shown_uv_split() const {
+  if (texture_.empty() || anim_) return {};
+  const int level = shown_level();
+  const Complex& c = session_->hierarchy().levels[std::size_t(level)];
+  if (c.dim != 2 || faces_.items != c.faces.items || faces_.offsets != c.faces.offsets) return {};
+  const FaceVaryingUV uv = level_uv(level);
+  if (uv.empty()) return {};
+  return split_at_uv_seams(faces_, uv, c.num_vertices);
+}
+
 FaceVaryingUV ModelerState::uv_in_file_order(const FaceVaryingUV& uv, const Complex& level) const {
   Csr faces = input_order_.faces;
   for (std::uint32_t& v : faces.items) v = input_order_.engine_vertex[v];

@@ -6,6 +6,8 @@
 
 #include "render/offscreen_target.h"
 
+#include <stb_image.h>
+
 namespace sublift {
 namespace {
 
@@ -57,10 +59,33 @@ void ModelerView::sync(ModelerState& state) {
                       state.session().num_vertices(state.level()));
     net_.set_positions(state.net_positions());  // compressed while the compression view is on
     u.state = u.scalar = true;
+    // The texture's surface, when the shown level has UVs and the model a texture.
+    const UvVertexSplit split = has_surface_ ? state.shown_uv_split() : UvVertexSplit{};
+    textured_on_ = !split.source.empty();
+    textured_source_ = split.source;
+    if (textured_on_) {
+      textured_surface_.set_topology(split.faces.offsets, split.faces.items, split.source.size());
+      textured_surface_.set_texcoords(std::vector<float>(split.texcoords.begin(), split.texcoords.end()));
+      const SurfaceTexture& t = state.texture();
+      if (texture_uploaded_ != t.bytes.data() || texture_bytes_ != t.bytes.size()) {
+        int w = 0, h = 0, n = 0;
+        unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(t.bytes.data()), int(t.bytes.size()), &w, &h, &n, 4);
+        if (pixels) {
+          textured_surface_.set_texture(std::span<const std::uint8_t>(pixels, 4 * std::size_t(w) * std::size_t(h)), w, h, t.wrap_s, t.wrap_t);
+          stbi_image_free(pixels);
+          texture_uploaded_ = t.bytes.data();
+          texture_bytes_ = t.bytes.size();
+        } else {
+          textured_on_ = false;  // an image that does not decode: clay, as before
+        }
+      }
+      if (textured_on_) upload_textured_positions(state);
+    }
   } else {
     if (!u.surface.empty()) {
       if (has_surface_) {
         surface_.update(state.limit_positions(), state.limit_normals(), u.surface);
+        if (textured_on_) upload_textured_positions(state);  // all of them: a seam vertex has copies
       } else {
         curve_.update_positions(state.limit_positions(), u.surface);
       }
@@ -127,6 +152,17 @@ void ModelerView::sync(ModelerState& state) {
     colour_map_ = !state.colour_values().empty();
     surface_.set_scalar(state.colour_values());
   }
+}
+
+void ModelerView::upload_textured_positions(const ModelerState& state) {
+  const std::span<const double> xyz = state.limit_positions(), nrm = state.limit_normals();
+  std::vector<double> px(3 * textured_source_.size()), pn(3 * textured_source_.size());
+  for (std::size_t i = 0; i < textured_source_.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      px[3 * i + std::size_t(k)] = xyz[3 * std::size_t(textured_source_[i]) + std::size_t(k)];
+      pn[3 * i + std::size_t(k)] = nrm[3 * std::size_t(textured_source_[i]) + std::size_t(k)];
+    }
+  textured_surface_.set_positions_normals(px, pn);
 }
 
 Bounds ModelerView::bounds() const {
@@ -199,6 +235,10 @@ void ModelerView::draw(const OrbitCamera& camera, const ViewportRect& rect, cons
     basis_curve_.draw(camera, curve_style(glm::vec4(0.10f, 0.55f, 0.75f, 1.0f)));
     // The curve itself, thin and faint, as the zero line.
     if (has_curve_) curve_.draw(camera, curve_style(glm::vec4(0.80f, 0.45f, 0.20f, 0.35f)));
+  } else if (has_surface_ && !hide_lattice_surface_ && textured_on_ && d.texture && !colour_map_) {
+    SurfaceStyle style = surface_style(false);
+    style.textured = true;
+    textured_surface_.draw(camera, style);
   } else if (has_surface_ && !hide_lattice_surface_) {
     surface_.draw(camera, surface_style(colour_map_));
   } else if (has_curve_) {

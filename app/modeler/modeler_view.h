@@ -57,6 +57,14 @@ class ModelerView {
   NetRenderer pinned_curve_;
   bool pinned_on_ = false, pinned_surface_on_ = false;
   Bounds pinned_bounds_;
+  // A textured model: the surface split at its UV seams (one GL vertex per vertex and UV), its
+  // positions copied from the drawn surface's; the texture decoded once per model.
+  LimitSurfaceRenderer textured_surface_;
+  std::vector<std::uint32_t> textured_source_;
+  bool textured_on_ = false;
+  const void* texture_uploaded_ = nullptr;
+  std::size_t texture_bytes_ = 0;
+  void upload_textured_positions(const ModelerState& state);
   // Free-form deformation: the model, shaded; a lattice around it shows only its net.
   LimitSurfaceRenderer model_surface_;
   bool model_on_ = false, hide_lattice_surface_ = false;

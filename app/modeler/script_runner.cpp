@@ -512,12 +512,12 @@ constexpr Command kCommands[] = {
       if (f < 0.0 || f > 1.0) throw ScriptError("compress keep F needs F in 0..1, got " + c.w[2]);
       c.state.set_compression(f);
     }},
-    {"display", 2, 2, "display smooth|wireframe|net|xray|depth_cue|clip|ortho on|off", [](const Call& c) {
+    {"display", 2, 2, "display smooth|wireframe|net|xray|depth_cue|clip|ortho|texture on|off", [](const Call& c) {
       using D = ModelerDisplay;
       using Switch = std::pair<const char*, bool D::*>;
       static constexpr Switch kSwitches[] = {{"smooth", &D::smooth}, {"wireframe", &D::wireframe}, {"net", &D::net},
                                              {"xray", &D::xray},     {"depth_cue", &D::depth_cue}, {"clip", &D::clip},
-                                             {"ortho", &D::orthographic}};
+                                             {"ortho", &D::orthographic}, {"texture", &D::texture}};
       if (c.w[2] != "on" && c.w[2] != "off") throw ScriptError("display takes 'on' or 'off', got '" + c.w[2] + "'");
       const Switch* s = std::ranges::find(kSwitches, c.w[1], &Switch::first);
       if (s == std::end(kSwitches)) throw ScriptError("unknown display switch '" + c.w[1] + "'");

@@ -51,4 +51,31 @@ TEST(ModelerChannelsGuiTest, XvfbColourByChannel) {
   EXPECT_LT(changed_viewport_pixels(clay, off, 24), 20) << "colour off does not bring the clay back";
 }
 
+// A textured model is drawn with its texture (the Display section's Texture switch, `display
+// texture on|off`), and the texture follows a drag: BoxTextured textured, in clay, then with a
+// base corner moved.
+TEST(ModelerChannelsGuiTest, XvfbTexturedModel) {
+  const fs::path box = fs::path(SUBLIFT_SHARED_DATA) / "gltf" / "BoxTextured" / "BoxTextured.glb";
+  if (!fs::exists(box)) GTEST_SKIP() << box << " not found (../shared/data absent)";
+  const fs::path dir = fs::path(SUBLIFT_TEST_OUT_DIR) / "xvfb_texture";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "texture.txt") << "open " << box.string() << "\n"
+                                     << "display net off\n"
+                                        "screenshot textured.png\n"
+                                        "display texture off\n"
+                                        "screenshot clay.png\n"
+                                        "display texture on\n"
+                                        "level 0\n"
+                                        "select 0\n"
+                                        "move 0 0.3 0\n"
+                                        "screenshot moved.png\n";
+  const auto r = sublift::testing::run_gui_script(SUBLIFT_GUI_EXE, dir, "texture.txt");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Png textured = load_png(dir / "textured.png"), clay = load_png(dir / "clay.png"), moved = load_png(dir / "moved.png");
+  for (const Png* p : {&textured, &clay, &moved}) ASSERT_EQ(p->width, kGuiWidth);
+  EXPECT_GT(changed_viewport_pixels(clay, textured, 40), 10000) << "the texture is not drawn";
+  EXPECT_GT(changed_viewport_pixels(textured, moved, 40), 500) << "the drag did not move the textured surface";
+}
+
 }  // namespace

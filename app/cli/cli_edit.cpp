@@ -292,15 +292,9 @@ int run_edit(int argc, char** argv) {
     const int J = session.finest_level();
     Hierarchy shown = *attributes;
     apply_gains(shown, session.gains());
-    const std::vector<double> values = synthesize(shown, J);
-    const auto xyz = session.positions(J);
-    const std::size_t ch = 3 + std::size_t(attributes->channels);
-    std::vector<double> x(std::size_t(session.num_vertices(J)) * ch);
-    for (std::size_t v = 0; v < session.num_vertices(J); ++v) {
-      std::copy_n(&xyz[3 * v], 3, &x[v * ch]);
-      std::copy_n(&values[v * (ch - 3)], ch - 3, &x[v * ch + 3]);
-    }
-    notes = write_level(out, merge_channels(session.hierarchy(), *attributes), J, x, int(ch), extras.input_order, extras.attributes, &extras.uv);
+    const std::vector<VertexAttribute> at = attributes_of(synthesize(shown, J), attributes->channels, extras.attributes, 0);
+    notes = write_level(out, merge_channels(session.hierarchy(), *attributes), J, with_attributes(session.positions(J), at),
+                        3 + attributes->channels, extras.input_order, extras.attributes, &extras.uv);
   } else {
     const int J = session.finest_level();
     notes = write_level(out, session.hierarchy(), J, session.positions(J), 3, extras.input_order, {}, &extras.uv);

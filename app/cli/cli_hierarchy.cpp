@@ -121,32 +121,6 @@ FaceVaryingUV project_uv(const Hierarchy& h, const Shape& fine, const std::vecto
   return {};
 }
 
-std::vector<double> with_attributes(std::span<const double> xyz, std::span<const VertexAttribute> attributes) {
-  const std::size_t n = xyz.size() / 3, ch = 3 + attributes.size();
-  std::vector<double> x(n * ch);
-  for (std::size_t v = 0; v < n; ++v) {
-    std::copy_n(&xyz[3 * v], 3, &x[v * ch]);
-    for (std::size_t k = 0; k < attributes.size(); ++k) x[v * ch + 3 + k] = attributes[k].values[v];
-  }
-  return x;
-}
-
-std::vector<VertexAttribute> attributes_of(std::span<const double> x, int channels, std::span<const VertexAttribute> names) {
-  const auto ch = static_cast<std::size_t>(channels);
-  std::vector<VertexAttribute> out = attribute_names(names);
-  for (std::size_t k = 0; k < out.size(); ++k) {
-    out[k].values.resize(x.size() / ch);
-    for (std::size_t v = 0; v < out[k].values.size(); ++v) out[k].values[v] = x[v * ch + 3 + k];
-  }
-  return out;
-}
-
-std::vector<VertexAttribute> attribute_names(std::span<const VertexAttribute> attributes) {
-  std::vector<VertexAttribute> out;
-  for (const VertexAttribute& a : attributes) out.push_back({a.name, a.type, {}});
-  return out;
-}
-
 nlohmann::json attribute_list_json(std::span<const VertexAttribute> attributes) {
   nlohmann::json j = nlohmann::json::array();
   for (const VertexAttribute& a : attributes) j.push_back({{"name", a.name}, {"type", a.type}});

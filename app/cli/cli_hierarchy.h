@@ -55,15 +55,6 @@ std::vector<std::string> write_level(const std::string& out, const Hierarchy& h,
 FaceVaryingUV project_uv(const Hierarchy& h, const Shape& fine, const std::vector<std::uint32_t>* engine_vertex,
                          std::vector<std::string>& not_kept);
 
-/// x, y, z and the attributes' values interleaved: 3 + attributes.size() values per vertex.
-std::vector<double> with_attributes(std::span<const double> xyz, std::span<const VertexAttribute> attributes);
-
-/// Channels 3.. of `x` (`channels` per vertex) as attributes with the names and types of `names`.
-std::vector<VertexAttribute> attributes_of(std::span<const double> x, int channels, std::span<const VertexAttribute> names);
-
-/// The attributes' names and types, without their values (what a project's header keeps).
-std::vector<VertexAttribute> attribute_names(std::span<const VertexAttribute> attributes);
-
 /// [{"name": ..., "type": ...}, ...] for --json.
 nlohmann::json attribute_list_json(std::span<const VertexAttribute> attributes);
 

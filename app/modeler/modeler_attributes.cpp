@@ -3,6 +3,7 @@
 #include "app/modeler/modeler_state.h"
 #include "core/analysis/compress.h"
 #include "core/base/errors.h"
+#include "core/base/channels.h"
 #include "core/edit/attribute_channels.h"
 
 #include <algorithm>
@@ -68,14 +69,7 @@ std::vector<VertexAttribute> ModelerState::attributes_at(int level) const {
   std::optional<Hierarchy> fitted = fitted_attributes();
   if (!fitted) return {};
   apply_gains(*fitted, session_->gains());
-  const std::vector<double> values = synthesize(*fitted, level);
-  const std::size_t n = values.size() / attribute_names_.size();
-  std::vector<VertexAttribute> out = attribute_names_;
-  for (std::size_t k = 0; k < out.size(); ++k) {
-    out[k].values.resize(n);
-    for (std::size_t v = 0; v < n; ++v) out[k].values[v] = values[v * out.size() + k];
-  }
-  return out;
+  return attributes_of(synthesize(*fitted, level), fitted->channels, attribute_names_, 0);
 }
 
 std::vector<float> ModelerState::channel_colour(int k) const {

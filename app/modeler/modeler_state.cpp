@@ -21,6 +21,7 @@
 #include "core/io/project/project_io.h"
 #include "core/complex/face_varying.h"
 #include "core/multires/level_uv.h"
+#include "core/base/channels.h"
 #include "core/edit/attribute_channels.h"
 #include "core/io/lattice/shape_io.h"
 #include "core/complex/polygon_normal.h"
@@ -127,11 +128,8 @@ void ModelerState::open(const std::string& path, int levels, Scheme scheme) {
     while (levels > 0 && predicted_level_counts(shape.base, levels, scheme).back() > kMaxOpenVertices) --levels;
     if (!shape.attributes.empty()) {  // colours and scalars: their own channels over the same levels
       attributes = make_hierarchy(shape.base, levels, scheme, int(shape.attributes.size()));
-      std::vector<double> values(shape.attributes.size() * shape.base.num_vertices);
-      for (std::size_t k = 0; k < shape.attributes.size(); ++k)
-        for (std::size_t v = 0; v < shape.base.num_vertices; ++v) values[v * shape.attributes.size() + k] = shape.attributes[k].values[v];
-      set_base(*attributes, values);
-      for (const VertexAttribute& a : shape.attributes) attribute_names.push_back({a.name, a.type, {}});
+      set_base(*attributes, with_attributes({}, shape.attributes));
+      attribute_names = sublift::attribute_names(shape.attributes);
     }
     Hierarchy h = make_hierarchy(std::move(shape.base), levels, scheme, 3);
     set_base(h, shape.positions);
@@ -185,8 +183,7 @@ ModelerState::PreparedRebuild ModelerState::prepare_rebuild(const std::string& f
     return {rebuild_volume_hierarchy(shape.base, shape.positions, offer.levels > 0 ? offer.scheme : Scheme::Cubic, levels, false, progress), Csr{}};
   const Scheme scheme = offer.levels > 0 ? offer.scheme : rebuild_auto_scheme(shape.base.faces);
   // The file's colours and scalars are rebuilt with it, as channels after x, y, z.
-  std::vector<VertexAttribute> names;
-  for (const VertexAttribute& a : shape.attributes) names.push_back({a.name, a.type, {}});
+  std::vector<VertexAttribute> names = sublift::attribute_names(shape.attributes);
   return {rebuild_hierarchy(shape.base.num_vertices, shape.base.faces, shape.positions, scheme, levels, false, 2,
                             derive_feature_tags(shape.base), progress, shape.attributes),
           std::move(shape.base.faces), std::move(names)};

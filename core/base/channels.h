@@ -4,6 +4,8 @@
 #include <span>
 #include <vector>
 
+#include "core/base/surface_mesh.h"
+
 namespace sublift {
 
 /// x, y, z of every vertex (the first three channels; missing ones 0).
@@ -14,5 +16,17 @@ inline std::vector<double> xyz_of(std::span<const double> values, int channels) 
     for (int k = 0; k < 3 && k < channels; ++k) xyz[3 * v + k] = values[v * channels + k];
   return xyz;
 }
+
+/// x, y, z (3 per vertex; empty: none) and the attributes' values interleaved: 3 +
+/// attributes.size() values per vertex, or attributes.size() without x, y, z.
+std::vector<double> with_attributes(std::span<const double> xyz, std::span<const VertexAttribute> attributes);
+
+/// Channels first.. of `x` (`channels` per vertex) as attributes with the names and types of
+/// `names` (one per channel from `first` on).
+std::vector<VertexAttribute> attributes_of(std::span<const double> x, int channels, std::span<const VertexAttribute> names,
+                                           int first = 3);
+
+/// The attributes' names and types, without their values (what a project's header keeps).
+std::vector<VertexAttribute> attribute_names(std::span<const VertexAttribute> attributes);
 
 }  // namespace sublift

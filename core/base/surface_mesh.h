@@ -42,6 +42,11 @@ struct FaceVaryingUV {
   std::size_t num_points() const { return points.size() / 2; }
 };
 
+/// "" when `uv` fits faces of `face_corners` corners in all: one index per corner, each below
+/// the points, the points finite; else what is wrong (the one check readers, writers and
+/// projects share).
+std::string uv_problem(std::size_t face_corners, const FaceVaryingUV& uv);
+
 /// The base-colour texture a surface's UVs map (glTF baseColorTexture): the image file's bytes
 /// as read, undecoded, its media type, and the material and sampler values that go with it
 /// (glTF's numbers, so a glTF written back looks as the source did). Empty bytes: none.

@@ -34,14 +34,7 @@ struct UvBuilder {
 
 std::string uv_problem(const Complex& c, const FaceVaryingUV& uv) {
   if (c.dim != 2) return "texture coordinates need a surface";
-  if (uv.corners.size() != c.faces.items.size())
-    return std::to_string(uv.corners.size()) + " UV corners for " + std::to_string(c.faces.items.size()) + " face corners";
-  if (uv.points.size() % 2) return "an odd number of UV coordinates";
-  for (std::uint32_t k : uv.corners)
-    if (k >= uv.num_points()) return "UV index " + std::to_string(k) + " beyond the " + std::to_string(uv.num_points()) + " UV points";
-  for (double x : uv.points)
-    if (!std::isfinite(x)) return "a UV coordinate that is not finite";
-  return "";
+  return uv_problem(c.faces.items.size(), uv);
 }
 
 UvVertexSplit split_at_uv_seams(const Csr& faces, const FaceVaryingUV& uv, std::size_t num_vertices) {

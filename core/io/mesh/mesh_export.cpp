@@ -151,10 +151,8 @@ void write_surface_mesh(const std::string& path, const SurfaceMesh& mesh, const 
       throw InputError(path, 0, "vertex attribute '" + a.name + "' of vertex " + std::to_string(*i) + " " +
                                     out_of_range_text(a.values[*i]) + "; nothing written");
   }
-  if (!mesh.uv.empty() && mesh.uv.corners.size() != mesh.face_indices.size())
-    throw InputError(path, 0, std::to_string(mesh.uv.corners.size()) + " UV corners for " + std::to_string(mesh.face_indices.size()) + " face corners");
-  for (std::uint32_t t : mesh.uv.corners)
-    if (t >= mesh.uv.num_points()) throw InputError(path, 0, "UV index " + std::to_string(t) + " beyond the UV points");
+  if (!mesh.uv.empty())
+    if (const std::string why = uv_problem(mesh.face_indices.size(), mesh.uv); !why.empty()) throw InputError(path, 0, "texture coordinates: " + why);
   write_file_atomic(path, [&](std::ostream& out) { writer(out, mesh, mtllib); });
 }
 

@@ -342,12 +342,6 @@ SplitSurface split_surface(const Surface& s, const FaceVaryingUV& uv) {
   return out;
 }
 
-void check_uv(const std::string& path, const Csr& faces, const FaceVaryingUV& uv) {
-  if (uv.corners.size() != faces.items.size())
-    throw InputError(path, 0, std::to_string(uv.corners.size()) + " UV corners for " + std::to_string(faces.items.size()) + " face corners");
-  for (std::uint32_t t : uv.corners)
-    if (t >= uv.num_points()) throw InputError(path, 0, "UV index " + std::to_string(t) + " beyond the " + std::to_string(uv.num_points()) + " UV points");
-}
 }  // namespace
 
 void write_surface_with_normals(const std::string& path, const Csr& faces, std::span<const double> xyz,
@@ -362,7 +356,8 @@ void write_surface_with_normals(const std::string& path, const Csr& faces, std::
       throw InputError(path, 0, "attribute " + a.name + " has " + std::to_string(a.values.size()) + " values for " + std::to_string(s.num_vertices()) + " vertices");
   s.attributes = attributes;
   if (uv && uv->empty()) uv = nullptr;
-  if (uv) check_uv(path, faces, *uv);
+  if (uv)
+    if (const std::string why = uv_problem(faces.items.size(), *uv); !why.empty()) throw InputError(path, 0, "texture coordinates: " + why);
   if (ext == "obj") {
     write_file_atomic(path, [&](std::ostream& out) { write_obj(out, s, uv); });
   } else if (ext == "ply") {

@@ -88,11 +88,7 @@ Image render_textured(const std::string& file, const std::optional<std::string>&
   stbi_image_free(pixels);
   const std::vector<double> normals = area_weighted_normals(shape.base.faces, shape.positions);
   const UvVertexSplit split = split_at_uv_seams(shape.base.faces, shape.uv, shape.base.num_vertices);
-  std::vector<double> xyz, nrm;
-  for (std::uint32_t v : split.source) {
-    xyz.insert(xyz.end(), &shape.positions[3 * v], &shape.positions[3 * v] + 3);
-    nrm.insert(nrm.end(), &normals[3 * v], &normals[3 * v] + 3);
-  }
+  const std::vector<double> xyz = at_split_vertices(split, shape.positions, 3), nrm = at_split_vertices(split, normals, 3);
   const std::vector<float> uv(split.texcoords.begin(), split.texcoords.end());
   const bool own = !image_path;  // the file's sampler wraps as it says; a given image repeats
   HeadlessRenderSettings settings;

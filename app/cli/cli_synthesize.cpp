@@ -100,7 +100,7 @@ int run_synthesize(int argc, char** argv) {
         uv = uv_at_level(h, extras.uv, L);
       else if (!extras.uv.empty())
         notes.push_back("texture coordinates not written with the limit surface (" + std::string(uv_refinement_problem(h.scheme).empty() ? "its faces are not the level's" : uv_refinement_problem(h.scheme)) + ")");
-      write_surface_with_normals(out, surface.faces, surface.positions, surface.normals, {}, &uv);
+      for (std::string& n : write_surface_with_normals(out, surface.faces, surface.positions, surface.normals, {}, &uv)) notes.push_back(std::move(n));
     } else {
       notes = write_level(out, h, L, surface.positions, 3, extras.input_order, {}, &extras.uv);
     }

@@ -770,19 +770,12 @@ std::vector<std::string> ModelerState::export_level(const std::string& path, int
   const bool net_with_attributes = !finest && !attrs.empty() && !gltf && c.dim == 2;
   if (surface_export_supported(path) && c.dim >= 2 && !net_with_attributes) {
     if (finest) {
-      std::vector<std::string> notes;
-      if (!attrs.empty() && !gltf)
-        notes.push_back("vertex attributes " + attribute_list() + " not written with the limit surface to ." + ext +
-                        " (its normals format has no place for them; export the net, or use .gltf/.glb)");
-      if (shown_level() == h.finest_level()) {
-        write_surface_with_normals(path, faces_, limit_, normals_, faces_.items == c.faces.items ? attrs : std::vector<VertexAttribute>{},
-                                   faces_.items == c.faces.items ? &uv : nullptr, texture);
-      } else {  // the viewport shows a coarser level: the export is still the finest limit
-        const LimitSurface s = finest_limit_surface(h, session_->positions(h.finest_level()));
-        write_surface_with_normals(path, s.faces, s.positions, s.normals, s.faces.items == c.faces.items ? attrs : std::vector<VertexAttribute>{},
-                                   s.faces.items == c.faces.items ? &uv : nullptr, texture);
-      }
-      return notes;
+      // The finest limit (also when the viewport shows a coarser level); UVs where its faces are the level's.
+      const LimitSurface coarser = shown_level() == h.finest_level() ? LimitSurface{} : finest_limit_surface(h, session_->positions(h.finest_level()));
+      const bool shown = shown_level() == h.finest_level();
+      const Csr& faces = shown ? faces_ : coarser.faces;
+      return write_surface_with_normals(path, faces, shown ? limit_ : coarser.positions, shown ? normals_ : coarser.normals, attrs,
+                                        faces.items == c.faces.items ? &uv : nullptr, texture);
     }
     // The control net of the current level, with area-weighted face normals; a rebuilt mesh's
     // level in the order of its file.
@@ -797,14 +790,13 @@ std::vector<std::string> ModelerState::export_level(const std::string& path, int
     if (file_order && !uv.empty()) uv = uv_in_file_order(uv, c);
     if (file_order)
       for (VertexAttribute& a : attrs) a.values = in_input_order(input_order_, a.values, 1);
-    if (c.dim != 2) attrs.clear();  // a lattice's boundary: not written (named below)
     const std::vector<double> normals = area_weighted_normals(faces, xyz);
-    write_surface_with_normals(path, faces, xyz, normals, attrs, c.dim == 2 ? &uv : nullptr, texture);
+    std::vector<std::string> notes = write_surface_with_normals(path, faces, xyz, normals, attrs, c.dim == 2 ? &uv : nullptr, texture);
     if (tagged)
-      return {"feature tags not written: " + std::to_string(tags.crease_edges.size()) + " crease edges and " +
-              std::to_string(tags.corner_vertices.size()) + " corners (." + file_extension(path) +
-              (file_order ? " in the file's vertex order" : "") + " cannot hold them; export the net as .obj)"};
-    return {};
+      notes.push_back("feature tags not written: " + std::to_string(tags.crease_edges.size()) + " crease edges and " +
+                      std::to_string(tags.corner_vertices.size()) + " corners (." + file_extension(path) +
+                      (file_order ? " in the file's vertex order" : "") + " cannot hold them; export the net as .obj)");
+    return notes;
   }
   if (const std::string problem = shape_output_problem(path, c.dim); !problem.empty()) {
     throw Error(path + ": " + problem);

@@ -60,9 +60,9 @@ void ModelerView::sync(ModelerState& state) {
     net_.set_positions(state.net_positions());  // compressed while the compression view is on
     u.state = u.scalar = true;
     // The texture's surface, when the shown level has UVs and the model a texture.
-    const UvVertexSplit split = has_surface_ ? state.shown_uv_split() : UvVertexSplit{};
+    textured_split_ = has_surface_ ? state.shown_uv_split() : UvVertexSplit{};
+    const UvVertexSplit& split = textured_split_;
     textured_on_ = !split.source.empty();
-    textured_source_ = split.source;
     if (textured_on_) {
       textured_surface_.set_topology(split.faces.offsets, split.faces.items, split.source.size());
       textured_surface_.set_texcoords(std::vector<float>(split.texcoords.begin(), split.texcoords.end()));
@@ -155,14 +155,8 @@ void ModelerView::sync(ModelerState& state) {
 }
 
 void ModelerView::upload_textured_positions(const ModelerState& state) {
-  const std::span<const double> xyz = state.limit_positions(), nrm = state.limit_normals();
-  std::vector<double> px(3 * textured_source_.size()), pn(3 * textured_source_.size());
-  for (std::size_t i = 0; i < textured_source_.size(); ++i)
-    for (int k = 0; k < 3; ++k) {
-      px[3 * i + std::size_t(k)] = xyz[3 * std::size_t(textured_source_[i]) + std::size_t(k)];
-      pn[3 * i + std::size_t(k)] = nrm[3 * std::size_t(textured_source_[i]) + std::size_t(k)];
-    }
-  textured_surface_.set_positions_normals(px, pn);
+  textured_surface_.set_positions_normals(at_split_vertices(textured_split_, state.limit_positions(), 3),
+                                         at_split_vertices(textured_split_, state.limit_normals(), 3));
 }
 
 Bounds ModelerView::bounds() const {

@@ -60,7 +60,7 @@ class ModelerView {
   // A textured model: the surface split at its UV seams (one GL vertex per vertex and UV), its
   // positions copied from the drawn surface's; the texture decoded once per model.
   LimitSurfaceRenderer textured_surface_;
-  std::vector<std::uint32_t> textured_source_;
+  UvVertexSplit textured_split_;
   bool textured_on_ = false;
   const void* texture_uploaded_ = nullptr;
   std::size_t texture_bytes_ = 0;

@@ -66,6 +66,12 @@ UvVertexSplit split_at_uv_seams(const Csr& faces, const FaceVaryingUV& uv, std::
   return out;
 }
 
+std::vector<double> at_split_vertices(const UvVertexSplit& split, std::span<const double> values, std::size_t width) {
+  std::vector<double> out(width * split.source.size());
+  for (std::size_t i = 0; i < split.source.size(); ++i) std::copy_n(&values[width * split.source[i]], width, &out[width * i]);
+  return out;
+}
+
 FaceVaryingUV uv_for_faces(const Csr& from, const FaceVaryingUV& uv, const Csr& to) {
   std::unordered_map<std::uint64_t, std::uint32_t> slot_of;  // oriented edge a -> b: the corner slot of a
   slot_of.reserve(from.items.size());

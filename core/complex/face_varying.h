@@ -9,7 +9,9 @@
 // across charts near seams' ends; the linear rule keeps what the artist painted where it was.)
 // Edge points are shared where the two faces meeting at an edge use the same UV points at its
 // ends, so a level without seams has one UV point per vertex, as its base.
+#include <span>
 #include <string>
+#include <vector>
 
 #include "core/base/surface_mesh.h"
 #include "core/complex/complex.h"
@@ -27,6 +29,8 @@ struct UvVertexSplit {
 };
 /// Needs uv_problem-free input (one UV index per corner of `faces`, each below the points).
 UvVertexSplit split_at_uv_seams(const Csr& faces, const FaceVaryingUV& uv, std::size_t num_vertices);
+/// `values` (`width` per input vertex: positions, normals, an attribute) copied to the split vertices.
+std::vector<double> at_split_vertices(const UvVertexSplit& split, std::span<const double> values, std::size_t width);
 
 /// `uv`, given per corner of `from` (a surface's faces), carried to `to`: the same faces over the
 /// same vertices listed in another order, each perhaps starting at another corner or running the

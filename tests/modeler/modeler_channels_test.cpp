@@ -65,6 +65,12 @@ TEST(ModelerUv, SavedExportedAndCarriedByDeleteLower) {
   m.set_level(1);
   m.export_shape(dir.file("net1.obj"), false);
   expect_same(read_shape(dir.file("net1.obj")).uv, l1, "exported level 1");
+  // The limit with its UVs to .obj; .ply has no place for them and says so.
+  m.export_shape(dir.file("limit.obj"), true);
+  expect_same(read_shape(dir.file("limit.obj")).uv, l2, "the exported limit");
+  const std::vector<std::string> ply = m.export_shape(dir.file("limit.ply"), true);
+  ASSERT_EQ(ply.size(), 1u);
+  EXPECT_EQ(ply[0], "texture coordinates not written: .ply has none (use .obj, .gltf or .glb)");
 
   // Delete Lower: level 1's UVs become the base's; undo brings the old base and its UVs back.
   m.delete_lower_levels();
@@ -144,6 +150,10 @@ TEST(ModelerAttributes, KeptThroughEditsSavesAndExports) {
   // An exported net carries its level's attributes.
   m.set_level(1);
   m.export_shape(dir.file("net1.ply"), false);
+  // The limit to .obj names the attributes it has no place for.
+  const std::vector<std::string> limit = m.export_shape(dir.file("limit.obj"), true);
+  ASSERT_EQ(limit.size(), 1u);
+  EXPECT_EQ(limit[0], "vertex attributes red, green, blue, quality not written: .obj with normals has no place for them (use .gltf or .glb)");
   const Shape net = read_shape(dir.file("net1.ply"));
   ASSERT_EQ(net.attributes.size(), 4u);
   const std::vector<double> l1 = synthesize(saved, 1);

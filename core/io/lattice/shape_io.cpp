@@ -259,7 +259,7 @@ std::vector<std::string> write_shape(const std::string& path, const Complex& c, 
   }
   if (ext == "gltf" || ext == "glb") {  // a surface's net with area-weighted normals, colours as COLOR_0
     const std::vector<double> normals = area_weighted_normals(c.faces, xyz);
-    write_surface_with_normals(path, c.faces, xyz, normals, attributes, uv, texture);
+    for (std::string& n : write_surface_with_normals(path, c.faces, xyz, normals, attributes, uv, texture)) notes.push_back(std::move(n));
     if (const FeatureTags tags = derive_feature_tags(c); !tags.crease_edges.empty() || !tags.corner_vertices.empty())
       notes.push_back("." + ext + " cannot hold feature tags: " + std::to_string(tags.crease_edges.size()) + " crease edges and " +
                       std::to_string(tags.corner_vertices.size()) + " corners not written (use .obj or .vtk)");

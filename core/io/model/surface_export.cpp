@@ -9,7 +9,6 @@
 #include <limits>
 #include <ostream>
 #include <sstream>
-#include <unordered_map>
 #include <vector>
 
 #include <tiny_gltf.h>
@@ -327,26 +326,19 @@ struct SplitSurface {
 SplitSurface split_surface(const Surface& s, const FaceVaryingUV& uv) {
   UvVertexSplit split = split_at_uv_seams(s.faces, uv, s.num_vertices());
   SplitSurface out;
+  out.xyz = at_split_vertices(split, s.xyz, 3);
+  out.normals = at_split_vertices(split, s.normals, 3);
+  for (const VertexAttribute& a : s.attributes) out.attributes.push_back({a.name, a.type, at_split_vertices(split, a.values, 1)});
   out.faces = std::move(split.faces);
   out.texcoords = std::move(split.texcoords);
-  const std::vector<std::uint32_t>& source = split.source;
-  for (std::uint32_t v : source) {
-    out.xyz.insert(out.xyz.end(), &s.xyz[3 * v], &s.xyz[3 * v] + 3);
-    out.normals.insert(out.normals.end(), &s.normals[3 * v], &s.normals[3 * v] + 3);
-  }
-  for (const VertexAttribute& a : s.attributes) {
-    VertexAttribute b{a.name, a.type, std::vector<double>(source.size())};
-    for (std::size_t i = 0; i < source.size(); ++i) b.values[i] = a.values[source[i]];
-    out.attributes.push_back(std::move(b));
-  }
   return out;
 }
 
 }  // namespace
 
-void write_surface_with_normals(const std::string& path, const Csr& faces, std::span<const double> xyz,
-                                std::span<const double> normals, std::span<const VertexAttribute> attributes,
-                                const FaceVaryingUV* uv, const SurfaceTexture* texture) {
+std::vector<std::string> write_surface_with_normals(const std::string& path, const Csr& faces, std::span<const double> xyz,
+                                                    std::span<const double> normals, std::span<const VertexAttribute> attributes,
+                                                    const FaceVaryingUV* uv, const SurfaceTexture* texture) {
   const std::string ext = file_extension(path);
   if (!surface_export_supported(path))
     throw InputError(path, 0, "cannot export a surface with normals to '." + ext + "' (expected .obj, .ply, .gltf or .glb)");
@@ -358,6 +350,14 @@ void write_surface_with_normals(const std::string& path, const Csr& faces, std::
   if (uv && uv->empty()) uv = nullptr;
   if (uv)
     if (const std::string why = uv_problem(faces.items.size(), *uv); !why.empty()) throw InputError(path, 0, "texture coordinates: " + why);
+  std::vector<std::string> notes;  // what OBJ and PLY with normals have no place for
+  if (ext == "obj" || ext == "ply") {
+    std::string names;
+    for (const VertexAttribute& a : attributes) names += (names.empty() ? "" : ", ") + a.name;
+    if (!names.empty()) notes.push_back("vertex attributes " + names + " not written: ." + ext + " with normals has no place for them (use .gltf or .glb)");
+    if (uv && ext == "ply") notes.push_back("texture coordinates not written: .ply has none (use .obj, .gltf or .glb)");
+    if (uv && texture && !texture->empty()) notes.push_back("texture '" + texture->name + "' not written with ." + ext + " (use .gltf or .glb)");
+  }
   if (ext == "obj") {
     write_file_atomic(path, [&](std::ostream& out) { write_obj(out, s, uv); });
   } else if (ext == "ply") {
@@ -372,6 +372,7 @@ void write_surface_with_normals(const std::string& path, const Csr& faces, std::
     }
     write_file_atomic(path, [&](std::ostream& out) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); }, true);
   }
+  return notes;
 }
 
 }  // namespace sublift

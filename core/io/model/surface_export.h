@@ -11,6 +11,7 @@
 // replaced atomically (file_io.h), so a failed save leaves the previous file intact.
 #include <span>
 #include <string>
+#include <vector>
 
 #include "core/base/csr.h"
 #include "core/base/surface_mesh.h"
@@ -30,8 +31,9 @@ namespace sublift {
 /// glTF as TEXCOORD_0 (t = 1 - v), the glTF vertices split wherever a vertex has corners with
 /// different UVs (normals, colours and attributes copied to each part); PLY ignores it. `texture`
 /// (glTF only, with uv) becomes the primitive's material: the image embedded in the buffer, its
-/// sampler and factors as read.
-void write_surface_with_normals(const std::string& path, const Csr& faces, std::span<const double> xyz,
+/// sampler and factors as read. Returns what the format could not hold, named (OBJ and PLY:
+/// the attributes; PLY: the UVs; OBJ and PLY: the texture); empty when nothing was left out.
+std::vector<std::string> write_surface_with_normals(const std::string& path, const Csr& faces, std::span<const double> xyz,
                                 std::span<const double> normals, std::span<const VertexAttribute> attributes = {},
                                 const FaceVaryingUV* uv = nullptr, const SurfaceTexture* texture = nullptr);
 

@@ -3,6 +3,7 @@
 #include <string>
 
 #include <epoxy/gl.h>
+#include <stb_image.h>
 
 #include "render/background.h"
 #include "render/headless_context.h"
@@ -12,6 +13,15 @@
 #include "render/viewport_renderer.h"
 
 namespace sublift {
+
+std::optional<Image> decode_image(std::string_view bytes) {
+  int w = 0, h = 0, n = 0;
+  unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()), int(bytes.size()), &w, &h, &n, 4);
+  if (!pixels) return std::nullopt;
+  Image image{w, h, std::vector<std::uint8_t>(pixels, pixels + 4 * std::size_t(w) * std::size_t(h))};
+  stbi_image_free(pixels);
+  return image;
+}
 
 OrbitCamera headless_camera(const SurfaceMesh& mesh, int width, int height,
                             const HeadlessRenderSettings& settings) {

@@ -2,6 +2,8 @@
 // One-call offscreen rendering of a mesh to pixels, without any window system
 // (what `sublift-cli render` uses).
 #include <cstdint>
+#include <optional>
+#include <string_view>
 #include <span>
 #include <vector>
 
@@ -51,6 +53,10 @@ Image render_coloured_surface_headless(std::span<const double> xyz, std::span<co
 Image render_textured_surface_headless(std::span<const double> xyz, std::span<const double> normals, const Csr& faces,
                                        std::span<const float> texcoords, const Image& texture, int width, int height,
                                        const HeadlessRenderSettings& settings = {}, int wrap_s = 10497, int wrap_t = 10497);
+
+/// An encoded image (PNG, JPEG: what stb_image reads) decoded to RGBA8; nullopt when it does not
+/// decode.
+std::optional<Image> decode_image(std::string_view bytes);
 
 /// The camera render_mesh_headless uses for these arguments (no GL needed).
 OrbitCamera headless_camera(const SurfaceMesh& mesh, int width, int height,

@@ -87,13 +87,7 @@ std::vector<std::string> write_level(const std::string& out, const Hierarchy& h,
   };
   const Complex& level = h.levels[static_cast<std::size_t>(L)];
   std::vector<std::string> notes;
-  FaceVaryingUV uv;
-  if (base_uv && !base_uv->empty()) {
-    if (const std::string why = uv_refinement_problem(h.scheme); !why.empty())
-      notes.push_back("texture coordinates not written: " + why);
-    else
-      uv = uv_at_level(h, *base_uv, L);
-  }
+  FaceVaryingUV uv = base_uv ? uv_for_output(h, *base_uv, L, notes) : FaceVaryingUV{};
   const auto add = [&](std::vector<std::string> more) {
     notes.insert(notes.end(), more.begin(), more.end());
     return notes;

@@ -19,7 +19,6 @@
 #ifdef SUBLIFT_HAVE_RENDER
 #include "render/headless_render.h"
 #include "render/offscreen_target.h"
-#include <stb_image.h>
 #endif
 #include "core/complex/face_varying.h"
 #include "core/complex/polygon_normal.h"
@@ -81,11 +80,8 @@ Image render_textured(const std::string& file, const std::optional<std::string>&
   if (shape.uv.empty()) throw Error(file + ": --textured needs texture coordinates (OBJ vt or glTF TEXCOORD_0); the file has none");
   std::string bytes = image_path ? read_file_bytes(*image_path) : shape.texture.bytes;
   if (bytes.empty()) throw Error(file + ": no texture to draw (the file's material names none): give one with --texture IMAGE");
-  int iw = 0, ih = 0, channels = 0;
-  unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()), int(bytes.size()), &iw, &ih, &channels, 4);
-  if (!pixels) throw InputError(image_path ? *image_path : file, 0, std::string("texture image cannot be decoded: ") + stbi_failure_reason());
-  Image texture{iw, ih, std::vector<std::uint8_t>(pixels, pixels + 4 * std::size_t(iw) * std::size_t(ih))};
-  stbi_image_free(pixels);
+  const std::optional<Image> texture = decode_image(bytes);
+  if (!texture) throw InputError(image_path ? *image_path : file, 0, "texture image cannot be decoded (PNG or JPEG expected)");
   const std::vector<double> normals = area_weighted_normals(shape.base.faces, shape.positions);
   const UvVertexSplit split = split_at_uv_seams(shape.base.faces, shape.uv, shape.base.num_vertices);
   const std::vector<double> xyz = at_split_vertices(split, shape.positions, 3), nrm = at_split_vertices(split, normals, 3);
@@ -94,7 +90,7 @@ Image render_textured(const std::string& file, const std::optional<std::string>&
   HeadlessRenderSettings settings;
   settings.display.wireframe = false;  // the texture is what is looked at
   settings.smooth = !flat;
-  return render_textured_surface_headless(xyz, nrm, split.faces, uv, texture, w, h, settings, own ? shape.texture.wrap_s : 10497,
+  return render_textured_surface_headless(xyz, nrm, split.faces, uv, *texture, w, h, settings, own ? shape.texture.wrap_s : 10497,
                                           own ? shape.texture.wrap_t : 10497);
 }
 #endif

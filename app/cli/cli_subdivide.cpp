@@ -56,13 +56,7 @@ int run_subdivide(int argc, char** argv) {
   const Complex& fine = h.levels.back();
   // Face-varying UVs by the linear rule (face_varying.h), with the texture they map.
   std::vector<std::string> notes;
-  FaceVaryingUV uv;
-  if (!shape.uv.empty()) {
-    if (const std::string why = uv_refinement_problem(scheme); !why.empty())
-      notes.push_back("texture coordinates not written: " + why);
-    else
-      uv = uv_at_level(h, shape.uv, levels);
-  }
+  const FaceVaryingUV uv = uv_for_output(h, shape.uv, levels, notes);
   for (std::string& n : write_shape(out, fine, xyz_of(x, channels), attributes_of(x, channels, shape.attributes), &uv, &shape.texture))
     notes.push_back(std::move(n));
   for (const std::string& n : notes) std::cerr << out << ": warning: " << n << "\n";

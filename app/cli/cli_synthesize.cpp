@@ -95,11 +95,11 @@ int run_synthesize(int argc, char** argv) {
     const LimitSurface surface = finest_limit_surface(h, x);  // core/analysis/limit_surface.h
     if (surface_out && surface.faces.rows() > 0) {
       // The limit surface has level L's faces: its UVs are the level's.
-      FaceVaryingUV uv;
-      if (!extras.uv.empty() && uv_refinement_problem(h.scheme).empty() && surface.faces.items == h.levels[std::size_t(L)].faces.items)
-        uv = uv_at_level(h, extras.uv, L);
-      else if (!extras.uv.empty())
-        notes.push_back("texture coordinates not written with the limit surface (" + std::string(uv_refinement_problem(h.scheme).empty() ? "its faces are not the level's" : uv_refinement_problem(h.scheme)) + ")");
+      FaceVaryingUV uv = uv_for_output(h, extras.uv, L, notes);
+      if (!uv.empty() && surface.faces.items != h.levels[std::size_t(L)].faces.items) {
+        notes.push_back("texture coordinates not written with the limit surface: its faces are not the level's");
+        uv = {};
+      }
       for (std::string& n : write_surface_with_normals(out, surface.faces, surface.positions, surface.normals, {}, &uv)) notes.push_back(std::move(n));
     } else {
       notes = write_level(out, h, L, surface.positions, 3, extras.input_order, {}, &extras.uv);

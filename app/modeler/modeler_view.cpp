@@ -6,7 +6,7 @@
 
 #include "render/offscreen_target.h"
 
-#include <stb_image.h>
+#include "render/headless_render.h"
 
 namespace sublift {
 namespace {
@@ -68,11 +68,8 @@ void ModelerView::sync(ModelerState& state) {
       textured_surface_.set_texcoords(std::vector<float>(split.texcoords.begin(), split.texcoords.end()));
       const SurfaceTexture& t = state.texture();
       if (texture_uploaded_ != t.bytes.data() || texture_bytes_ != t.bytes.size()) {
-        int w = 0, h = 0, n = 0;
-        unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(t.bytes.data()), int(t.bytes.size()), &w, &h, &n, 4);
-        if (pixels) {
-          textured_surface_.set_texture(std::span<const std::uint8_t>(pixels, 4 * std::size_t(w) * std::size_t(h)), w, h, t.wrap_s, t.wrap_t);
-          stbi_image_free(pixels);
+        if (const std::optional<Image> image = decode_image(t.bytes)) {
+          textured_surface_.set_texture(image->rgba, image->width, image->height, t.wrap_s, t.wrap_t);
           texture_uploaded_ = t.bytes.data();
           texture_bytes_ = t.bytes.size();
         } else {

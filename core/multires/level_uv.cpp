@@ -27,6 +27,15 @@ FaceVaryingUV uv_at_level(const Hierarchy& h, const FaceVaryingUV& base, int lev
   return uv;
 }
 
+FaceVaryingUV uv_for_output(const Hierarchy& h, const FaceVaryingUV& base, int level, std::vector<std::string>& notes) {
+  if (base.empty()) return {};
+  if (const std::string why = uv_refinement_problem(h.scheme); !why.empty()) {
+    notes.push_back("texture coordinates not written: " + why);
+    return {};
+  }
+  return uv_at_level(h, base, level);
+}
+
 FaceVaryingUV coarsen_file_uv(const Hierarchy& h, const Csr& file_faces, const FaceVaryingUV& file_uv,
                               std::span<const std::uint32_t> engine_vertex, std::string* why) {
   if (file_uv.empty()) return {};

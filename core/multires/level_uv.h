@@ -3,6 +3,7 @@
 // applied once per level by the scheme's refinement).
 #include <span>
 #include <string>
+#include <vector>
 
 #include "core/base/surface_mesh.h"
 #include "core/multires/hierarchy.h"
@@ -16,6 +17,10 @@ std::string uv_refinement_problem(Scheme scheme);
 /// `base` (the UVs of h.levels[0]) refined to level `level`. Throws InputError (file "uv") when
 /// the scheme cannot carry UVs or base does not fit h.levels[0].
 FaceVaryingUV uv_at_level(const Hierarchy& h, const FaceVaryingUV& base, int level);
+
+/// What a writer of level `level` takes: uv_at_level, or empty (nothing said for an empty `base`;
+/// "texture coordinates not written: <why>" added to `notes` when the scheme cannot carry them).
+FaceVaryingUV uv_for_output(const Hierarchy& h, const FaceVaryingUV& base, int level, std::vector<std::string>& notes);
 
 /// The base UVs whose refinement is `finest` (UVs per corner of h's finest level): each base
 /// corner takes the UV of the finest corner at the same vertex in its corner's descendants, then

@@ -2,6 +2,7 @@
 #include <cctype>
 #include <cstring>
 #include <set>
+#include <utility>
 
 #include <tiny_gltf.h>
 
@@ -76,13 +77,12 @@ SurfaceTexture gltf_surface_texture(const Model& model, std::vector<std::string>
     const tinygltf::Sampler& s = g.samplers[std::size_t(tex.sampler)];
     t.mag_filter = s.magFilter, t.min_filter = s.minFilter, t.wrap_s = s.wrapS, t.wrap_t = s.wrapT;
   }
-  for (const char* other : {"normalTexture", "occlusionTexture", "emissiveTexture", "metallicRoughnessTexture"}) {
-    const bool has = std::string(other) == "normalTexture" ? mat.normalTexture.index >= 0
-                   : std::string(other) == "occlusionTexture" ? mat.occlusionTexture.index >= 0
-                   : std::string(other) == "emissiveTexture" ? mat.emissiveTexture.index >= 0
-                   : mat.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0;
-    if (has) notes.push_back(what + ": its " + other + " is not kept (only the base colour)");
-  }
+  const std::pair<const char*, int> others[] = {{"normalTexture", mat.normalTexture.index},
+                                                {"occlusionTexture", mat.occlusionTexture.index},
+                                                {"emissiveTexture", mat.emissiveTexture.index},
+                                                {"metallicRoughnessTexture", mat.pbrMetallicRoughness.metallicRoughnessTexture.index}};
+  for (const auto& [other, index] : others)
+    if (index >= 0) notes.push_back(what + ": its " + other + " is not kept (only the base colour)");
   return t;
 }
 

@@ -149,8 +149,8 @@ const Data& data(Scheme s, const Size& sz) {
     analyze(d->h, d->finest);
     d->coeffs = d->h.coeffs;
     for (const Transition& t : d->h.transitions) {
-      d->update_entries += double(std::get<WeightedStep>(t.steps[0].op).weights.size());
-      d->predict_entries += double(std::get<WeightedStep>(t.steps[1].op).weights.size());
+      d->update_entries += double(std::get<WeightedStep>(t.steps[0].op).sources.items.size());
+      d->predict_entries += double(std::get<WeightedStep>(t.steps[1].op).sources.items.size());
     }
   }
   const std::vector<double> back = synthesize(d->h, d->h.finest_level());

@@ -199,10 +199,11 @@ void run_weighted(const WeightedStep& s, double* x, int ch, double sign, bool in
     double* a = ch > 64 ? big.data() : acc;
     for (std::uint32_t r = begin; r < end; ++r) {
       for (int c = 0; c < ch; ++c) a[c] = 0.0;
-      for (std::uint32_t k = s.sources.offsets[r]; k < s.sources.offsets[r + 1]; ++k) {
-        const double w = s.weights[k];
+      const double* w = row_weights(s, r);
+      for (std::uint32_t k = s.sources.offsets[r]; k < s.sources.offsets[r + 1]; ++k, ++w) {
+        const double wk = *w;
         const double* src = x + std::size_t(s.sources.items[k]) * ch;
-        for (int c = 0; c < ch; ++c) a[c] += w * src[c];
+        for (int c = 0; c < ch; ++c) a[c] += wk * src[c];
       }
       double* dst = x + std::size_t(s.target[r]) * ch;
       // Integer mode: the same rounded increment both ways, as the centroid rows.
@@ -367,9 +368,10 @@ void sparse_weighted(const WeightedStep& s, const Csr& readers, double sign, Spa
     }
   for (const std::uint32_t r : d.candidates) {
     double acc[3] = {0, 0, 0};
-    for (std::uint32_t k = s.sources.offsets[r]; k < s.sources.offsets[r + 1]; ++k) {
+    const double* w = row_weights(s, r);
+    for (std::uint32_t k = s.sources.offsets[r]; k < s.sources.offsets[r + 1]; ++k, ++w) {
       const double* src = d.x.data() + std::size_t(s.sources.items[k]) * 3;
-      for (int c = 0; c < 3; ++c) acc[c] += s.weights[k] * src[c];
+      for (int c = 0; c < 3; ++c) acc[c] += *w * src[c];
     }
     double* dst = d.at(s.target[r]);
     for (int c = 0; c < 3; ++c) dst[c] += sign * acc[c];
@@ -471,8 +473,9 @@ void adjoint_weighted(const WeightedStep& s, double* y) {
   for (std::uint32_t r = 0; r < s.target.size(); ++r) {
     const double yt = y[s.target[r]];
     if (yt == 0.0) continue;
-    for (std::uint32_t k = s.sources.offsets[r]; k < s.sources.offsets[r + 1]; ++k)
-      y[s.sources.items[k]] -= s.weights[k] * yt;
+    const double* w = row_weights(s, r);
+    for (std::uint32_t k = s.sources.offsets[r]; k < s.sources.offsets[r + 1]; ++k, ++w)
+      y[s.sources.items[k]] -= *w * yt;
   }
 }
 
@@ -485,13 +488,25 @@ MatrixStep make_matrix_step(std::uint32_t n, Csr rows, std::vector<double> weigh
   m.weights = std::move(weights);
   m.readers = transpose(m.rows, n);
   auto solver = std::make_shared<MatrixSolver>();
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(m.weights.size());
-  for (std::uint32_t i = 0; i < n; ++i)
-    for (std::uint32_t q = m.rows.offsets[i]; q < m.rows.offsets[i + 1]; ++q)
-      trip.emplace_back(static_cast<int>(i), static_cast<int>(m.rows.items[q]), m.weights[q]);
-  solver->P.resize(static_cast<int>(n), static_cast<int>(n));
-  solver->P.setFromTriplets(trip.begin(), trip.end());
+  bool increasing = m.rows.rows() == n;  // then P is the rows as they are, without a sort
+  for (std::uint32_t i = 0; i < n && increasing; ++i)
+    for (std::uint32_t q = m.rows.offsets[i]; q + 1 < m.rows.offsets[i + 1]; ++q)
+      increasing &= m.rows.items[q] < m.rows.items[q + 1];
+  if (increasing) {
+    const std::vector<int> outer(m.rows.offsets.begin(), m.rows.offsets.end());
+    const std::vector<int> inner(m.rows.items.begin(), m.rows.items.end());
+    solver->P = Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor>>(
+        static_cast<int>(n), static_cast<int>(n), static_cast<int>(inner.size()), outer.data(), inner.data(),
+        m.weights.data());
+  } else {
+    std::vector<Eigen::Triplet<double>> trip;
+    trip.reserve(m.weights.size());
+    for (std::uint32_t i = 0; i < n; ++i)
+      for (std::uint32_t q = m.rows.offsets[i]; q < m.rows.offsets[i + 1]; ++q)
+        trip.emplace_back(static_cast<int>(i), static_cast<int>(m.rows.items[q]), m.weights[q]);
+    solver->P.resize(static_cast<int>(n), static_cast<int>(n));
+    solver->P.setFromTriplets(trip.begin(), trip.end());
+  }
   m.solver = std::move(solver);
   return m;
 }
@@ -515,7 +530,7 @@ std::size_t Transition::bytes() const {
   for (const Csr& rows : owned) b += rows.bytes();
   for (const Step& s : steps) {
     if (const auto* w = std::get_if<WeightedStep>(&s.op))
-      b += w->target.capacity() * 4 + w->sources.bytes() + w->weights.capacity() * 8;
+      b += w->target.capacity() * 4 + w->sources.bytes() + w->weights.capacity() * 8 + w->weight_at.capacity() * 4;
     else if (const auto* m = std::get_if<MatrixStep>(&s.op))
       b += m->rows.bytes() + m->readers.bytes() + m->weights.capacity() * 8 +
            std::size_t(m->solver->P.nonZeros()) * (sizeof(double) + sizeof(int));

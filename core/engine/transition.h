@@ -31,8 +31,15 @@ namespace sublift {
 struct WeightedStep {
   std::vector<std::uint32_t> target;  // distinct, never among this step's sources
   Csr sources;                        // fine vertex indices per row
-  std::vector<double> weights;        // aligned with sources.items
+  std::vector<double> weights;        // aligned with sources.items, unless weight_at is set
+  // Rows may share their weights (a regular region's rows are one pattern): row r's weights
+  // then start at weights[weight_at[r]]. Empty: row r's start at weights[sources.offsets[r]].
+  std::vector<std::uint32_t> weight_at;
 };
+/// Row r's weights, sources.size(r) of them.
+inline const double* row_weights(const WeightedStep& s, std::size_t r) {
+  return s.weights.data() + (s.weight_at.empty() ? s.sources.offsets[r] : s.weight_at[r]);
+}
 
 /// Incidence rows of the parent complex (core/complex/complex.h) a centroid group reads.
 enum class Incidence : std::uint8_t {

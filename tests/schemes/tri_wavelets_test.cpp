@@ -5,6 +5,8 @@
 #include <cmath>
 #include <array>
 #include <map>
+#include <algorithm>
+#include <variant>
 
 #include "core/complex/complex_build.h"
 #include "core/analysis/inner_products.h"
@@ -13,6 +15,10 @@
 #include "core/schemes/tri/tri_local.h"
 #include "core/schemes/tri/tri_rules.h"
 #include "core/schemes/tri/tri_wavelets.h"
+#include "core/schemes/tri/tri_transform.h"
+#include "core/engine/executor.h"
+#include "core/analysis/sphere_resample.h"
+#include "core/schemes/registry.h"
 
 using namespace sublift;
 
@@ -354,4 +360,86 @@ TEST(TriWavelets, LinearEqualsClosedFormPolyhedralSolve) {
       for (std::size_t p = 0; p < d.size(); ++p) EXPECT_NEAR(w.alpha[p], alpha(static_cast<int>(p)), 1e-13) << p;
     }
   }
+}
+
+// ---- Shared update rows (tri_transform.h) ------------------------------------------------
+
+namespace {
+
+// The update step (the transition's first) with each row's terms sorted by source, so rows
+// listed in edge order and rows following the shared pattern can be compared term by term.
+std::vector<std::vector<std::pair<std::uint32_t, double>>> sorted_update_rows(const Transition& t) {
+  const auto& up = std::get<WeightedStep>(t.steps[0].op);
+  std::vector<std::vector<std::pair<std::uint32_t, double>>> rows(t.num_coarse);
+  for (std::size_t r = 0; r < up.target.size(); ++r) {
+    const double* w = row_weights(up, r);
+    for (std::uint32_t k = up.sources.offsets[r]; k < up.sources.offsets[r + 1]; ++k)
+      rows[up.target[r]].emplace_back(up.sources.items[k], w[k - up.sources.offsets[r]]);
+    std::sort(rows[up.target[r]].begin(), rows[up.target[r]].end());
+  }
+  return rows;
+}
+
+// Shared rows against listed rows on one level: the same terms, the weights equal up to the
+// rounding of the two symmetric places an alpha is read at, and the same transform.
+void expect_shared_rows_match(const Complex& coarse, Scheme s, bool expect_shared) {
+  const Complex fine = refine_tri(coarse);
+  const TriTransitionResult shared = build_tri_transition(coarse, fine, s, 2, true);
+  const TriTransitionResult listed = build_tri_transition(coarse, fine, s, 2, false);
+  const auto& up = std::get<WeightedStep>(shared.transition.steps[0].op);
+  const auto& ref = std::get<WeightedStep>(listed.transition.steps[0].op);
+  ASSERT_TRUE(ref.weight_at.empty());
+  ASSERT_EQ(up.sources.items.size(), ref.sources.items.size());
+  if (expect_shared) {
+    ASSERT_EQ(up.weight_at.size(), up.target.size());
+    EXPECT_LT(up.weights.size() * 4, ref.weights.size()) << "most rows should share the pattern";
+  } else {
+    // The surface closes on itself near every vertex: the listed rows, bit for bit.
+    EXPECT_TRUE(up.weight_at.empty());
+    EXPECT_EQ(up.sources.items, ref.sources.items);
+    EXPECT_EQ(up.weights, ref.weights);
+  }
+  const auto a = sorted_update_rows(shared.transition), b = sorted_update_rows(listed.transition);
+  double worst = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].size(), b[i].size()) << "row " << i;
+    for (std::size_t k = 0; k < a[i].size(); ++k) {
+      ASSERT_EQ(a[i][k].first, b[i][k].first) << "row " << i;
+      worst = std::max(worst, std::abs(a[i][k].second - b[i][k].second));
+    }
+  }
+  EXPECT_LE(worst, 1e-15);
+  // The transforms agree to rounding; each is its own exact inverse.
+  const std::size_t n = std::size_t(fine.num_vertices) * 3;
+  std::vector<double> x(n);
+  for (std::size_t k = 0; k < n; ++k) x[k] = std::sin(0.37 * double(k)) + 0.25 * std::cos(1.3 * double(k));
+  std::vector<double> y = x, z = x;
+  run_synthesis(shared.transition, coarse, y.data(), 3, false, false);
+  run_synthesis(listed.transition, coarse, z.data(), 3, false, false);
+  double diff = 0;
+  for (std::size_t k = 0; k < n; ++k) diff = std::max(diff, std::abs(y[k] - z[k]));
+  EXPECT_LE(diff, 1e-13);
+  run_analysis(shared.transition, coarse, y.data(), 3, false);
+  for (std::size_t k = 0; k < n; ++k) ASSERT_NEAR(y[k], x[k], 1e-12) << k;
+}
+
+}  // namespace
+
+TEST(TriTransition, SharedUpdateRowsEqualListedOnARefinedOctahedron) {
+  Complex c = octahedron_complex();
+  for (int j = 0; j < 6; ++j) c = refine_tri(c);  // 16,386 vertices, six of valence 4
+  for (Scheme s : {Scheme::LinearTri, Scheme::Butterfly, Scheme::Loop}) {
+    SCOPED_TRACE(scheme_name(s));
+    expect_shared_rows_match(c, s, true);
+  }
+}
+
+TEST(TriTransition, SharedUpdateRowsEqualListedOnARegularTorus) {
+  expect_shared_rows_match(regular_torus(24, 20), Scheme::Butterfly, true);
+  expect_shared_rows_match(regular_torus(24, 20), Scheme::Loop, true);
+}
+
+TEST(TriTransition, ATorusTooThinForThePatternListsItsRows) {
+  // Six cells round: a vertex's 3-ring closes on itself, so no row can follow the pattern.
+  expect_shared_rows_match(regular_torus(6, 6), Scheme::Butterfly, false);
 }

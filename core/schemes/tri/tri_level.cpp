@@ -10,13 +10,10 @@ namespace sublift {
 
 LevelBuild build_tri_level(Complex& parent, Scheme scheme, const LevelContext& ctx) {
   LevelBuild b;
-  // The wavelets read the child's neighbourhoods too; its derived rows go again if not wanted.
-  b.fine = refine_tri(parent, true);
+  // The child's derived rows only when the next level wants them (a wavelet that has to be solved
+  // builds its own copy of them).
+  b.fine = refine_tri(parent, ctx.adjacency);
   TriTransitionResult r = build_tri_transition(parent, b.fine, scheme, ctx.disc);
-  if (!ctx.adjacency)
-    for (Csr* rows : {&b.fine.vertex_edges, &b.fine.vertex_faces, &b.fine.vertex_cells, &b.fine.edge_faces,
-                      &b.fine.edge_cells, &b.fine.face_cells, &b.fine.cell_verts, &b.fine.cell_edges})
-      *rows = Csr{};
   const std::uint32_t nv = parent.num_vertices, ne = parent.num_edges();
   b.has_sites = true;
   b.sites.site.resize(ne);

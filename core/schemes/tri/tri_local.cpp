@@ -1,11 +1,13 @@
 #include "core/schemes/tri/tri_local.h"
 
 #include <algorithm>
+#include <atomic>
 #include <unordered_map>
 #include <unordered_set>
 
 #include "core/complex/complex_build.h"
 #include "core/base/errors.h"
+#include "core/base/parallel.h"
 
 namespace sublift {
 
@@ -24,10 +26,16 @@ TriRings build_tri_rings(const Complex& c) {
       throw TopologyError("edge " + std::to_string(e) + " (vertices " + std::to_string(c.edge_verts[2 * e]) + ", " +
                           std::to_string(c.edge_verts[2 * e + 1]) + ") has " + std::to_string(c.edge_faces.size(e)) +
                           " faces; the triangle schemes need a manifold surface");
+  // Ring v has one entry per edge at v (checked below), so every row's place is known first and
+  // the rows are filled in parallel; a fault is named for the lowest vertex that has one.
+  for (std::uint32_t v = 0; v < nv; ++v)  // a vertex on no face has an empty ring
+    r.ring.offsets[v + 1] = r.ring.offsets[v] + (c.vertex_faces.size(v) == 0 ? 0 : c.vertex_edges.size(v));
+  r.ring_edge.offsets = r.ring.offsets;
+  r.ring.items.resize(r.ring.offsets[nv]);
+  r.ring_edge.items.resize(r.ring.offsets[nv]);
   struct Wedge { std::uint32_t next, prev, e_next, e_prev; };
-  std::vector<Wedge> w;
-  std::vector<std::uint32_t> out, out_e;
-  for (std::uint32_t v = 0; v < nv; ++v) {
+  // Fills v's row; throws TopologyError when v's faces do not form one fan.
+  const auto fill = [&](std::uint32_t v, std::vector<Wedge>& w) {
     w.clear();
     for (std::uint32_t f : c.vertex_faces.row(v)) {
       const std::uint32_t b = c.faces.offsets[f];
@@ -41,11 +49,7 @@ TriRings build_tri_rings(const Complex& c) {
       throw TopologyError("the faces around vertex " + std::to_string(v) +
                           " do not form one fan; the triangle schemes need a manifold surface");
     };
-    if (w.empty()) {  // isolated vertex: an empty closed ring
-      r.ring.offsets[v + 1] = static_cast<std::uint32_t>(r.ring.items.size());
-      r.ring_edge.offsets[v + 1] = r.ring.offsets[v + 1];
-      continue;
-    }
+    if (w.empty()) return;  // isolated vertex: an empty closed ring
     // The wedge whose `next` is nobody's `prev` starts an open fan.
     std::size_t first = 0;
     bool open = false;
@@ -58,12 +62,13 @@ TriRings build_tri_rings(const Complex& c) {
         first = i;
       }
     }
-    out.clear();
-    out_e.clear();
+    if (w.size() + (open ? 1 : 0) != c.vertex_edges.size(v)) fail();
+    std::uint32_t* out = r.ring.items.data() + r.ring.offsets[v];
+    std::uint32_t* out_e = r.ring_edge.items.data() + r.ring.offsets[v];
     std::size_t cur = first;
     for (std::size_t k = 0; k < w.size(); ++k) {
-      out.push_back(w[cur].next);
-      out_e.push_back(w[cur].e_next);
+      *out++ = w[cur].next;
+      *out_e++ = w[cur].e_next;
       std::size_t nxt = w.size();
       for (std::size_t i = 0; i < w.size(); ++i)
         if (w[i].next == w[cur].prev) {
@@ -73,20 +78,33 @@ TriRings build_tri_rings(const Complex& c) {
       if (k + 1 == w.size()) {
         if (open ? nxt != w.size() : nxt != first) fail();
         if (open) {
-          out.push_back(w[cur].prev);
-          out_e.push_back(w[cur].e_prev);
+          *out++ = w[cur].prev;
+          *out_e++ = w[cur].e_prev;
         }
       } else {
         if (nxt == w.size() || nxt == first) fail();
         cur = nxt;
       }
     }
-    if (out.size() != c.vertex_edges.size(v)) fail();
     r.closed[v] = open ? 0 : 1;
-    r.ring.items.insert(r.ring.items.end(), out.begin(), out.end());
-    r.ring_edge.items.insert(r.ring_edge.items.end(), out_e.begin(), out_e.end());
-    r.ring.offsets[v + 1] = static_cast<std::uint32_t>(r.ring.items.size());
-    r.ring_edge.offsets[v + 1] = r.ring.offsets[v + 1];
+  };
+  std::atomic<std::uint32_t> first_bad{UINT32_MAX};
+  parallel_for(nv, 4096, [&](std::uint32_t v0, std::uint32_t v1) {
+    std::vector<Wedge> w;
+    for (std::uint32_t v = v0; v < v1; ++v) {
+      try {
+        fill(v, w);
+      } catch (const TopologyError&) {
+        std::uint32_t seen = first_bad.load();
+        while (v < seen && !first_bad.compare_exchange_weak(seen, v)) {
+        }
+        break;  // later vertices of this chunk cannot be lower
+      }
+    }
+  });
+  if (first_bad != UINT32_MAX) {
+    std::vector<Wedge> w;
+    fill(first_bad, w);  // throws its message
   }
   return r;
 }
@@ -131,6 +149,15 @@ std::uint32_t fan_index(const TriRings& r, std::uint32_t v, std::uint32_t start)
 LocalOrder local_order(const TriRings& r, std::span<const std::uint32_t> seeds,
                        std::span<const std::uint32_t> seed_start, int radius) {
   LocalOrder o;
+  local_order(r, seeds, seed_start, radius, o);
+  return o;
+}
+
+void local_order(const TriRings& r, std::span<const std::uint32_t> seeds, std::span<const std::uint32_t> seed_start,
+                 int radius, LocalOrder& o) {
+  o.vertex.clear();
+  o.dist.clear();
+  o.start.clear();
   table.begin(static_cast<std::uint32_t>(r.closed.size()));
   for (std::size_t i = 0; i < seeds.size(); ++i) {
     table.set(seeds[i], static_cast<std::uint32_t>(o.vertex.size()));
@@ -144,17 +171,17 @@ LocalOrder local_order(const TriRings& r, std::span<const std::uint32_t> seeds,
     const auto row = r.ring.row(u);
     if (row.empty()) continue;
     const std::uint32_t i0 = fan_index(r, u, o.start[l]);
-    for (std::uint32_t k = 0; k < row.size(); ++k) {
-      const std::uint32_t x = row[(i0 + k) % row.size()];
-      if (!table.has(x)) {
-        table.set(x, static_cast<std::uint32_t>(o.vertex.size()));
-        o.vertex.push_back(x);
-        o.dist.push_back(static_cast<std::uint8_t>(o.dist[l] + 1));
-        o.start.push_back(u);
-      }
-    }
+    const auto visit = [&](std::uint32_t x) {
+      if (table.has(x)) return;
+      table.set(x, static_cast<std::uint32_t>(o.vertex.size()));
+      o.vertex.push_back(x);
+      o.dist.push_back(static_cast<std::uint8_t>(o.dist[l] + 1));
+      o.start.push_back(u);
+    };
+    // The fan from i0 round to i0 - 1, without a modulo per neighbour.
+    for (std::uint32_t k = i0; k < row.size(); ++k) visit(row[k]);
+    for (std::uint32_t k = 0; k < i0; ++k) visit(row[k]);
   }
-  return o;
 }
 
 std::string local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius) {

@@ -41,6 +41,9 @@ struct LocalOrder {
 /// `seed_start[i]` is the neighbour seed i's walk starts at (it must be a neighbour).
 LocalOrder local_order(const TriRings& r, std::span<const std::uint32_t> seeds,
                        std::span<const std::uint32_t> seed_start, int radius);
+/// The same into `o`, reusing its storage (hot loops take millions of small orders).
+void local_order(const TriRings& r, std::span<const std::uint32_t> seeds, std::span<const std::uint32_t> seed_start,
+                 int radius, LocalOrder& o);
 
 /// The signature of the labelled neighbourhood up to distance `radius` (<= the order's): per
 /// label its distance, fan closure, valence, vertex dim, and its fan as labels (-1 beyond) with

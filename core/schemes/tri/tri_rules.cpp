@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "core/base/errors.h"
+#include "core/base/parallel.h"
 #include "core/schemes/registry.h"
 
 namespace sublift {
@@ -23,7 +24,13 @@ class RowBuilder {
  public:
   void add(std::uint32_t v, double w) { terms_.emplace_back(v, w); }
   void flush(Csr& rows, std::vector<double>& weights) {
-    std::stable_sort(terms_.begin(), terms_.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    const auto by_vertex = [](const auto& x, const auto& y) { return x.first < y.first; };
+    if (terms_.size() <= 32) {  // stable insertion sort: no buffer to allocate per row
+      for (std::size_t i = 1; i < terms_.size(); ++i)
+        for (std::size_t j = i; j > 0 && by_vertex(terms_[j], terms_[j - 1]); --j) std::swap(terms_[j], terms_[j - 1]);
+    } else {
+      std::stable_sort(terms_.begin(), terms_.end(), by_vertex);
+    }
     for (std::size_t i = 0; i < terms_.size();) {
       const std::uint32_t v = terms_[i].first;
       double w = 0;
@@ -37,6 +44,38 @@ class RowBuilder {
  private:
   std::vector<std::pair<std::uint32_t, double>> terms_;
 };
+
+// Rows 0..n-1 from row(i, builder), built in parallel chunks and joined in order (the same
+// rows as one serial pass). `row` must not throw.
+template <class RowFn>
+void build_rows(std::uint32_t n, Csr& rows, std::vector<double>& weights, RowFn&& row) {
+  constexpr std::uint32_t kChunk = 8192;
+  const std::uint32_t chunks = (n + kChunk - 1) / kChunk;
+  std::vector<Csr> part_rows(chunks);
+  std::vector<std::vector<double>> part_weights(chunks);
+  parallel_for(chunks, 1, [&](std::uint32_t c0, std::uint32_t c1) {
+    RowBuilder b;
+    for (std::uint32_t c = c0; c < c1; ++c) {
+      Csr& r = part_rows[c];
+      r.offsets.reserve(kChunk + 1);
+      for (std::uint32_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
+        row(i, b);
+        b.flush(r, part_weights[c]);
+      }
+    }
+  });
+  std::size_t items = rows.items.size();
+  for (const Csr& r : part_rows) items += r.items.size();
+  rows.items.reserve(items);
+  weights.reserve(items);
+  rows.offsets.reserve(rows.offsets.size() + n);
+  for (std::uint32_t c = 0; c < chunks; ++c) {
+    const auto base = static_cast<std::uint32_t>(rows.items.size());
+    rows.items.insert(rows.items.end(), part_rows[c].items.begin(), part_rows[c].items.end());
+    weights.insert(weights.end(), part_weights[c].begin(), part_weights[c].end());
+    for (std::size_t k = 1; k < part_rows[c].offsets.size(); ++k) rows.offsets.push_back(base + part_rows[c].offsets[k]);
+  }
+}
 
 // Preconditions of build_tri_stencils; throws TopologyError naming the element.
 void check_surface(const Complex& c) {
@@ -78,7 +117,9 @@ struct TriTopo {
       if (feature_edge[e]) ++feature_count[c.edge_verts[2 * e]], ++feature_count[c.edge_verts[2 * e + 1]];
     }
     manifold.resize(nv);
-    for (std::uint32_t v = 0; v < nv; ++v) manifold[v] = fans(v) <= 1;
+    parallel_for(nv, 8192, [&](std::uint32_t v0, std::uint32_t v1) {
+      for (std::uint32_t v = v0; v < v1; ++v) manifold[v] = fans(v) <= 1;
+    });
   }
 
   // The corner of triangle f that is not on edge e.
@@ -117,7 +158,8 @@ struct TriTopo {
   // the sorted vertex_faces row, so high valences stay n log n).
   std::uint32_t fans(std::uint32_t v) const {
     const auto vf = c.vertex_faces.row(v);
-    std::vector<std::uint32_t> parent(vf.size());
+    thread_local std::vector<std::uint32_t> parent;
+    parent.resize(vf.size());
     std::iota(parent.begin(), parent.end(), 0u);
     auto find = [&](std::uint32_t i) {
       while (parent[i] != i) i = parent[i] = parent[parent[i]];
@@ -140,12 +182,10 @@ struct TriTopo {
 // ---- Linear ------------------------------------------------------------------------------
 
 void linear_rules(const TriTopo& t, TriStencils& st) {
-  RowBuilder row;
-  for (std::uint32_t e = 0; e < t.c.num_edges(); ++e) {
+  build_rows(t.c.num_edges(), st.new_rows, st.new_weights, [&](std::uint32_t e, RowBuilder& row) {
     row.add(t.c.edge_verts[2 * e], 0.5);  // 004 sec. 4.1, Fig. 2: midpoints
     row.add(t.c.edge_verts[2 * e + 1], 0.5);
-    row.flush(st.new_rows, st.new_weights);
-  }
+  });
 }
 
 // ---- Butterfly ---------------------------------------------------------------------------
@@ -180,16 +220,16 @@ void butterfly_rules(const TriTopo& t, TriStencils& st) {
   std::vector<std::uint8_t> open(nv);
   for (std::uint32_t v = 0; v < nv; ++v)
     open[v] = t.feature_count[v] > 0 || !t.manifold[v] || c.vertex_edges.size(v) < 3;
-  std::vector<std::vector<double>> weights;  // by valence, filled on demand
-  auto weights_for = [&](std::uint32_t K) -> const std::vector<double>& {
+  std::vector<std::vector<double>> weights;  // by valence, for the valences present
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    const std::uint32_t K = c.vertex_edges.size(v);
+    if (open[v] || K == 6) continue;
     if (weights.size() <= K) weights.resize(K + 1);
     if (weights[K].empty()) weights[K] = butterfly_weights(K);
-    return weights[K];
-  };
-  RowBuilder row;
+  }
 
   // The curve neighbour across end a of feature edge e, or the reflection 2a - b.
-  auto curve_neighbour = [&](std::uint32_t e, std::uint32_t a, std::uint32_t b, double w) {
+  auto curve_neighbour = [&](RowBuilder& row, std::uint32_t e, std::uint32_t a, std::uint32_t b, double w) {
     if (t.feature_count[a] == 2 && c.vertex_dim[a] != 0) {
       row.add(edge_other_end(c, t.other_feature_edge(a, e), a), w);
     } else {
@@ -199,9 +239,9 @@ void butterfly_rules(const TriTopo& t, TriStencils& st) {
   };
   // K-point stencil of interior vertex a (valence K) for edge e, scaled by `scale`. Ring walk
   // through the faces: r_0 is the other end of e (ZSS96; weights symmetric in j <-> K - j).
-  auto k_point = [&](std::uint32_t e, std::uint32_t a, double scale) {
+  auto k_point = [&](RowBuilder& row, std::uint32_t e, std::uint32_t a, double scale) {
     const std::uint32_t K = c.vertex_edges.size(a);
-    const std::vector<double>& w = weights_for(K);
+    const std::vector<double>& w = weights[K];
     std::uint32_t edge = e, face = c.edge_faces.row(e)[0];
     for (std::uint32_t j = 0; j < K; ++j) {
       row.add(edge_other_end(c, edge, a), scale * w[j]);
@@ -212,13 +252,13 @@ void butterfly_rules(const TriTopo& t, TriStencils& st) {
     row.add(a, scale * w[K]);
   };
 
-  for (std::uint32_t e = 0; e < c.num_edges(); ++e) {
+  build_rows(c.num_edges(), st.new_rows, st.new_weights, [&](std::uint32_t e, RowBuilder& row) {
     const std::uint32_t a0 = c.edge_verts[2 * e], a1 = c.edge_verts[2 * e + 1];
     if (t.feature_edge[e]) {
       // 4-point rule along the boundary / crease curve (OpenMesh: boundary edges).
       row.add(a0, 9.0 / 16), row.add(a1, 9.0 / 16);
-      curve_neighbour(e, a0, a1, -1.0 / 16);
-      curve_neighbour(e, a1, a0, -1.0 / 16);
+      curve_neighbour(row, e, a0, a1, -1.0 / 16);
+      curve_neighbour(row, e, a1, a0, -1.0 / 16);
     } else {
       const std::uint32_t K0 = c.vertex_edges.size(a0), K1 = c.vertex_edges.size(a1);
       const bool o0 = open[a0], o1 = open[a1];
@@ -241,20 +281,18 @@ void butterfly_rules(const TriTopo& t, TriStencils& st) {
         // K-point rule at the extraordinary interior end(s), averaged when both are.
         const bool k0 = K0 != 6 && !o0, k1 = K1 != 6 && !o1;
         const double scale = k0 && k1 ? 0.5 : 1.0;
-        if (k0) k_point(e, a0, scale);
-        if (k1) k_point(e, a1, scale);
+        if (k0) k_point(row, e, a0, scale);
+        if (k1) k_point(row, e, a1, scale);
       }
     }
-    row.flush(st.new_rows, st.new_weights);
-  }
+  });
 }
 
 // ---- Loop --------------------------------------------------------------------------------
 
 void loop_rules(const TriTopo& t, TriStencils& st) {
   const Complex& c = t.c;
-  RowBuilder row;
-  for (std::uint32_t e = 0; e < c.num_edges(); ++e) {
+  build_rows(c.num_edges(), st.new_rows, st.new_weights, [&](std::uint32_t e, RowBuilder& row) {
     const std::uint32_t a0 = c.edge_verts[2 * e], a1 = c.edge_verts[2 * e + 1];
     if (t.feature_edge[e]) {
       row.add(a0, 0.5), row.add(a1, 0.5);  // Sdc Loop crease edge mask
@@ -262,9 +300,8 @@ void loop_rules(const TriTopo& t, TriStencils& st) {
       row.add(a0, 3.0 / 8), row.add(a1, 3.0 / 8);  // Loop 1987 edge mask: 3/8, 3/8, 1/8, 1/8
       for (std::uint32_t f : c.edge_faces.row(e)) row.add(t.opposite(f, e), 1.0 / 8);
     }
-    row.flush(st.new_rows, st.new_weights);
-  }
-  for (std::uint32_t v = 0; v < c.num_vertices; ++v) {
+  });
+  build_rows(c.num_vertices, st.old_rows, st.old_weights, [&](std::uint32_t v, RowBuilder& row) {
     const auto edges = c.vertex_edges.row(v);
     const std::uint32_t s = t.feature_count[v];
     if (c.vertex_dim[v] == 0 || s > 2 || edges.empty() || !t.manifold[v]) {
@@ -287,8 +324,7 @@ void loop_rules(const TriTopo& t, TriStencils& st) {
       row.add(v, v_weight);
       for (std::uint32_t e : edges) row.add(edge_other_end(c, e, v), e_weight);
     }
-    row.flush(st.old_rows, st.old_weights);
-  }
+  });
 }
 
 }  // namespace

@@ -4,7 +4,10 @@
 #include <atomic>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <mutex>
+#include <tuple>
+#include <unordered_map>
 
 #include "core/base/parallel.h"
 #include "core/schemes/tri/tri_local.h"
@@ -20,16 +23,296 @@ std::map<std::pair<int, int>, std::unique_ptr<TriWaveletBuilder>>& builders() {
   return b;
 }
 
+// One old vertex's update row where every wavelet reaching it is the regular one: its terms as
+// edges between labels of the vertex's canonical (disc + 1)-ring order (tri_local.h), each with
+// its weight. Every such vertex has this row, up to the labels (the lattice's rotations map the
+// regular wavelets onto each other), so the rows share one weight pattern and only their
+// sources are listed.
+struct RowTemplate {
+  std::uint32_t labels = 0;                                    // size of the order
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> slots;  // each term's edge, as two labels
+  std::vector<double> weights;                                 // aligned with slots
+  // The order as walks, so a row is found without a search: label l > 0 is step[l] places
+  // round the fan of label parent[l] from where that fan's walk starts; slot k's edge is
+  // slot_step[k] places round the fan of its first label.
+  std::vector<std::uint32_t> parent;
+  std::vector<std::uint8_t> step, slot_step;
+};
+
+// Position of `x` in v's fan (a regular vertex: six neighbours).
+std::uint32_t fan_position(const TriRings& r, std::uint32_t v, std::uint32_t x) {
+  const std::uint32_t* ring = r.ring.items.data() + r.ring.offsets[v];
+  for (std::uint32_t i = 0; i < 6; ++i)
+    if (ring[i] == x) return i;
+  return UINT32_MAX;
+}
+
+LocalOrder vertex_order(const TriRings& r, std::uint32_t v, int radius) {
+  const std::uint32_t seeds[1] = {v}, starts[1] = {r.ring.row(v)[0]};
+  return local_order(r, seeds, starts, radius);
+}
+
+LocalOrder edge_disc(const Complex& c, const TriRings& r, std::uint32_t e, int disc) {
+  const std::uint32_t seeds[2] = {c.edge_verts[2 * e], c.edge_verts[2 * e + 1]}, starts[2] = {seeds[1], seeds[0]};
+  return local_order(r, seeds, starts, disc);
+}
+
+// The template read off vertex i0 (whose rows reach only regular edges): the edges whose disc
+// holds i0 are those at the vertices within `disc` of it; i0's weight from each is -alpha at
+// i0's place in that edge's disc.
+RowTemplate make_row_template(const Complex& c, const TriRings& r, std::uint32_t i0, int disc,
+                              const std::vector<double>& alpha) {
+  const LocalOrder around = vertex_order(r, i0, disc + 1);
+  std::unordered_map<std::uint32_t, std::uint32_t> label;
+  for (std::uint32_t l = 0; l < around.vertex.size(); ++l) label.emplace(around.vertex[l], l);
+  std::vector<std::uint32_t> edges;
+  for (std::uint32_t l = 0; l < around.vertex.size(); ++l)
+    if (around.dist[l] <= disc)
+      for (std::uint32_t e : r.ring_edge.row(around.vertex[l])) edges.push_back(e);
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<std::tuple<std::uint32_t, std::uint32_t, double>> terms;
+  for (std::uint32_t e : edges) {
+    const LocalOrder d = edge_disc(c, r, e, disc);
+    const auto at = std::find(d.vertex.begin(), d.vertex.end(), i0);
+    if (at == d.vertex.end() || d.vertex.size() != alpha.size())
+      throw std::logic_error("tri_transform: a regular edge's disc misses its own vertex");
+    const std::uint32_t la = label.at(c.edge_verts[2 * e]), lb = label.at(c.edge_verts[2 * e + 1]);
+    terms.emplace_back(std::min(la, lb), std::max(la, lb), -alpha[static_cast<std::size_t>(at - d.vertex.begin())]);
+  }
+  std::sort(terms.begin(), terms.end());
+  RowTemplate t;
+  t.labels = static_cast<std::uint32_t>(around.vertex.size());
+  // Where each label's fan walk starts: at its parent (the seed: at its first neighbour).
+  const auto walk_start = [&](std::uint32_t l) { return l == 0 ? 0u : fan_position(r, around.vertex[l], around.start[l]); };
+  const auto steps_round = [&](std::uint32_t l, std::uint32_t x) {
+    return static_cast<std::uint8_t>((fan_position(r, around.vertex[l], x) + 6 - walk_start(l)) % 6);
+  };
+  t.parent.assign(t.labels, 0);
+  t.step.assign(t.labels, 0);
+  for (std::uint32_t l = 1; l < t.labels; ++l) {
+    t.parent[l] = label.at(around.start[l]);
+    t.step[l] = steps_round(t.parent[l], around.vertex[l]);
+  }
+  for (const auto& [la, lb, w] : terms) {
+    t.slots.emplace_back(la, lb);
+    t.slot_step.push_back(steps_round(la, around.vertex[lb]));
+    t.weights.push_back(w);
+  }
+  return t;
+}
+
+// Vertex i's sources by the template; false where its neighbourhood is not the template's (the
+// surface closes on itself within the radius: a small regular torus).
+bool fill_template_row(const TriRings& r, const RowTemplate& t, std::uint32_t i, std::uint32_t nv, LocalOrder& o,
+                       std::uint32_t* out) {
+  // o.vertex: label -> vertex; o.start (reused): label -> where its fan walk starts.
+  o.vertex.resize(t.labels);
+  o.start.resize(t.labels);
+  o.vertex[0] = i;
+  o.start[0] = 0;
+  const std::uint32_t* items = r.ring.items.data();
+  const std::uint32_t* offsets = r.ring.offsets.data();
+  for (std::uint32_t l = 1; l < t.labels; ++l) {
+    const std::uint32_t p = t.parent[l], pv = o.vertex[p];
+    const std::uint32_t v = items[offsets[pv] + (o.start[p] + t.step[l]) % 6];
+    o.vertex[l] = v;
+    o.start[l] = fan_position(r, v, pv);
+    if (o.start[l] == UINT32_MAX) return false;
+  }
+  // A surface that closes on itself within the radius gives some vertex two labels.
+  thread_local std::vector<std::uint32_t> stamp;
+  thread_local std::uint32_t epoch = 0;
+  if (stamp.size() < r.closed.size()) stamp.assign(r.closed.size(), 0), epoch = 0;
+  if (++epoch == 0) std::fill(stamp.begin(), stamp.end(), 0), epoch = 1;
+  for (std::uint32_t v : o.vertex) {
+    if (stamp[v] == epoch) return false;
+    stamp[v] = epoch;
+  }
+  const std::uint32_t* edges = r.ring_edge.items.data();
+  for (std::size_t k = 0; k < t.slots.size(); ++k) {
+    const std::uint32_t at = offsets[o.vertex[t.slots[k].first]] + (o.start[t.slots[k].first] + t.slot_step[k]) % 6;
+    if (items[at] != o.vertex[t.slots[k].second]) return false;
+    out[k] = nv + edges[at];
+  }
+  return true;
+}
+
+// Every edge's wavelet: the regular ones share `regular_alpha`; the others' discs and alphas
+// are listed by `irregular_at`.
+struct EdgeWavelets {
+  std::vector<std::uint8_t> dist;  // per coarse vertex: distance to irregular, capped
+  int radius = 0;                  // an edge is regular when both ends are farther than this
+  std::vector<std::uint8_t> regular;
+  std::vector<double> regular_alpha;
+  std::vector<std::uint32_t> irregular_at;  // per edge: index into discs, UINT32_MAX if regular
+  std::vector<std::vector<std::uint32_t>> discs;
+  std::vector<std::vector<double>> alphas;
+};
+
+// Update rows (old vertex i += sum -alpha_{i,m} d_m), rows by old vertex. Rows that read only
+// regular wavelets follow the template (when `with_template`); the others list their terms in
+// edge order, from the edges that can reach them. False when a template row did not fit.
+bool update_rows(const Complex& coarse, const TriRings& rings, const EdgeWavelets& w, int disc, bool with_template,
+                 WeightedStep& up) {
+  const std::uint32_t nv = coarse.num_vertices, ne = coarse.num_edges();
+  const int R = w.radius;
+  std::vector<std::uint8_t> by_template(nv, 0);
+  RowTemplate tmpl;
+  std::uint32_t first = UINT32_MAX;
+  if (with_template && !w.regular_alpha.empty()) {
+    for (std::uint32_t i = 0; i < nv; ++i)
+      if (w.dist[i] > R + disc + 1) {  // every edge whose disc holds i is regular
+        by_template[i] = 1;
+        if (first == UINT32_MAX) first = i;
+      }
+    if (first != UINT32_MAX) tmpl = make_row_template(coarse, rings, first, disc, w.regular_alpha);
+    // The pattern is read off a plain lattice patch (1 + 3 r (r + 1) vertices within r rings),
+    // so a row whose neighbourhood closes on itself shows as a vertex labelled twice.
+    const std::uint32_t r = static_cast<std::uint32_t>(disc) + 1;
+    if (first != UINT32_MAX && tmpl.labels != 1 + 3 * r * (r + 1)) {
+      first = UINT32_MAX;
+      std::fill(by_template.begin(), by_template.end(), 0);
+    }
+  }
+  const bool templated = first != UINT32_MAX;
+  // The edges whose discs can hold a vertex listed term by term, and their discs.
+  std::vector<std::uint32_t> edges;
+  for (std::uint32_t e = 0; e < ne; ++e)
+    if (!templated || std::min(w.dist[coarse.edge_verts[2 * e]], w.dist[coarse.edge_verts[2 * e + 1]]) <= R + 2 * disc + 1)
+      edges.push_back(e);
+  const auto m = static_cast<std::uint32_t>(edges.size());
+  std::vector<std::uint32_t> offset(std::size_t(m) + 1, 0);
+  const auto regular_size = static_cast<std::uint32_t>(w.regular_alpha.size());
+  for (std::uint32_t k = 0; k < m; ++k) {
+    const std::uint32_t e = edges[k];
+    offset[k + 1] = offset[k] + (w.regular[e] ? regular_size : static_cast<std::uint32_t>(w.discs[w.irregular_at[e]].size()));
+  }
+  std::unique_ptr<std::uint32_t[]> disc_of(new std::uint32_t[offset[m]]);  // every entry is written
+  std::atomic<bool> mismatch{false};
+  parallel_for(m, 1024, [&](std::uint32_t begin, std::uint32_t end) {
+    thread_local LocalOrder o;
+    for (std::uint32_t k = begin; k < end; ++k) {
+      const std::uint32_t e = edges[k];
+      if (!w.regular[e]) {
+        const auto& d = w.discs[w.irregular_at[e]];
+        std::copy(d.begin(), d.end(), disc_of.get() + offset[k]);
+        continue;
+      }
+      const std::uint32_t seeds[2] = {coarse.edge_verts[2 * e], coarse.edge_verts[2 * e + 1]};
+      const std::uint32_t starts[2] = {seeds[1], seeds[0]};
+      local_order(rings, seeds, starts, disc, o);
+      if (o.vertex.size() != regular_size) {
+        mismatch = true;
+        continue;
+      }
+      std::copy(o.vertex.begin(), o.vertex.end(), disc_of.get() + offset[k]);
+    }
+  });
+  if (mismatch) throw std::logic_error("tri_transform: a regular edge's disc has an unexpected size");
+  const auto alpha_of = [&](std::uint32_t e) {
+    return w.regular[e] ? w.regular_alpha.data() : w.alphas[w.irregular_at[e]].data();
+  };
+
+  // Terms listed one by one: a counting sort of the edges' entries by old vertex, over kBlocks
+  // blocks of edges, each block counted and placed by its own thread after the prefix sums (so
+  // entries of a row stay in edge order).
+  constexpr std::uint32_t kBlocks = 4;
+  const std::uint32_t per_block = (m + kBlocks - 1) / kBlocks;
+  std::vector<std::uint32_t> fill(std::size_t(kBlocks) * nv, 0);  // block-major: count, then place
+  parallel_for(kBlocks, 1, [&](std::uint32_t b0, std::uint32_t b1) {
+    for (std::uint32_t blk = b0; blk < b1; ++blk) {
+      std::uint32_t* count = fill.data() + std::size_t(blk) * nv;
+      const std::uint32_t k0 = std::min(m, blk * per_block), k1 = std::min(m, k0 + per_block);
+      for (std::uint32_t q = offset[k0]; q < offset[k1]; ++q)
+        if (!by_template[disc_of[q]]) ++count[disc_of[q]];
+    }
+  });
+  const auto T = static_cast<std::uint32_t>(tmpl.slots.size());
+  // Row i's entry p (a source) has its weight at p - shift[i]: the template rows' own weights
+  // are the pattern, so the listed terms' weights follow it, packed.
+  std::vector<std::uint32_t> row_of(nv, UINT32_MAX), shift(nv, 0);
+  up.target.reserve(nv);
+  up.sources.offsets.reserve(std::size_t(nv) + 1);
+  if (templated) up.weight_at.reserve(nv);
+  std::uint32_t listed = 0;  // terms listed one by one so far
+  {
+    std::uint32_t at = 0;
+    for (std::uint32_t i = 0; i < nv; ++i) {
+      const std::uint32_t row_start = at;
+      if (by_template[i]) {
+        at += T;
+      } else {
+        for (std::uint32_t blk = 0; blk < kBlocks; ++blk) {
+          std::uint32_t& c = fill[std::size_t(blk) * nv + i];
+          const std::uint32_t n = c;
+          c = at;
+          at += n;
+        }
+      }
+      if (at == row_start) continue;
+      row_of[i] = static_cast<std::uint32_t>(up.target.size());
+      up.target.push_back(i);
+      up.sources.offsets.push_back(at);
+      if (!templated) continue;
+      if (by_template[i]) {
+        up.weight_at.push_back(0);
+      } else {
+        up.weight_at.push_back(T + listed);
+        shift[i] = row_start - (T + listed);  // sources before this row minus weights before it
+        listed += at - row_start;
+      }
+    }
+  }
+  up.sources.items.resize(up.sources.offsets.back());
+  if (templated) {
+    up.weights.resize(std::size_t(T) + listed);
+    std::copy(tmpl.weights.begin(), tmpl.weights.end(), up.weights.begin());
+  } else {
+    up.weights.resize(up.sources.items.size());
+  }
+  // The template rows, in parallel.
+  std::atomic<bool> misfit{false};
+  if (templated)
+    parallel_for(nv, 2048, [&](std::uint32_t begin, std::uint32_t end) {
+      thread_local LocalOrder o;
+      for (std::uint32_t i = begin; i < end && !misfit; ++i)
+        if (by_template[i] &&
+            !fill_template_row(rings, tmpl, i, nv, o, up.sources.items.data() + up.sources.offsets[row_of[i]]))
+          misfit = true;
+    });
+  if (misfit) return false;
+  // The listed terms.
+  parallel_for(kBlocks, 1, [&](std::uint32_t b0, std::uint32_t b1) {
+    for (std::uint32_t blk = b0; blk < b1; ++blk) {
+      std::uint32_t* place = fill.data() + std::size_t(blk) * nv;
+      const std::uint32_t k0 = std::min(m, blk * per_block), k1 = std::min(m, k0 + per_block);
+      for (std::uint32_t k = k0; k < k1; ++k) {
+        const std::uint32_t e = edges[k];
+        const double* alpha = alpha_of(e);
+        for (std::uint32_t q = offset[k]; q < offset[k + 1]; ++q) {
+          const std::uint32_t i = disc_of[q];
+          if (by_template[i]) continue;
+          const std::uint32_t p = place[i]++;
+          up.sources.items[p] = nv + e;
+          up.weights[p - shift[i]] = -alpha[q - offset[k]];
+        }
+      }
+    }
+  });
+  return true;
+}
+
 }  // namespace
 
-TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, Scheme s, int disc) {
+TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, Scheme s, int disc,
+                                         bool shared_rows) {
   const TriRings rings = build_tri_rings(coarse);
-  const TriStencils st = build_tri_stencils(coarse, s);
-  std::unique_ptr<TriRings> fine_rings;  // built when an edge first needs its neighbourhood
+  TriStencils st = build_tri_stencils(coarse, s);  // moved into the steps at the end
   TriLevel level;
   level.coarse = &coarse;
   level.coarse_rings = &rings;
-  level.fine = &fine;
+  level.fine = &fine;  // its rings are built only if a wavelet has to be solved
   level.stencils = &st;
   const std::uint32_t nv = coarse.num_vertices, ne = coarse.num_edges();
   TriTransitionResult out;
@@ -38,115 +321,73 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
   t.num_fine = nv + ne;
   out.norm2.resize(ne);
 
-  // Update: old vertex i gets -alpha_{i,m} d_m. Per edge its disc D (coarse vertices) and
-  // alpha; irregular edges are solved (or found cached) under the builders' lock, the regular
-  // ones, nearly all of a fine level, share one alpha and only list their disc, in parallel.
-  std::vector<std::uint8_t> regular(ne, 0);
-  std::vector<std::uint32_t> offset(std::size_t(ne) + 1, 0);
-  std::vector<std::uint32_t> disc_items;
-  std::vector<double> alpha_items;
-  std::vector<double> regular_alpha;
+  // Per edge its disc D (coarse vertices) and alpha. The regular edges, nearly all of a fine
+  // level, share one alpha; the others are found by their neighbourhood's signature (keys
+  // taken in parallel) or solved, under the builders' lock.
+  EdgeWavelets w;
   {
     const std::lock_guard<std::mutex> lock(builders_mutex);
     auto& slot = builders()[{static_cast<int>(s), disc}];
     if (!slot) slot = std::make_unique<TriWaveletBuilder>(s, disc);
     TriWaveletBuilder& b = *slot;
-    const int R = b.signature_radius();
-    const std::vector<std::uint8_t> dist = distance_to_irregular(coarse, rings, R + 1);
-    for (std::uint32_t e = 0; e < ne; ++e)
-      regular[e] = std::min(dist[coarse.edge_verts[2 * e]], dist[coarse.edge_verts[2 * e + 1]]) > R ? 1 : 0;
-    const auto need_fine_rings = [&] {
-      if (fine_rings) return;
-      fine_rings = std::make_unique<TriRings>(build_tri_rings(fine));
-      level.fine_rings = fine_rings.get();
-    };
+    w.radius = b.signature_radius();
+    // Exact up to R + 2 disc + 1, the farthest an update row looks (update_rows).
+    w.dist = distance_to_irregular(coarse, rings, std::min(255, w.radius + 2 * disc + 2));
+    w.regular.resize(ne);
+    w.irregular_at.assign(ne, UINT32_MAX);
+    std::vector<std::uint32_t> irregular;
+    for (std::uint32_t e = 0; e < ne; ++e) {
+      w.regular[e] = std::min(w.dist[coarse.edge_verts[2 * e]], w.dist[coarse.edge_verts[2 * e + 1]]) > w.radius;
+      if (!w.regular[e]) irregular.push_back(e);
+    }
     // The regular wavelet (computed on the first regular edge unless cached).
     const EdgeWavelet* reg = nullptr;
     for (std::uint32_t e = 0; e < ne && !reg; ++e)
-      if (regular[e]) {
-        if (!b.has_regular()) need_fine_rings();
+      if (w.regular[e]) {
         reg = &b.edge_wavelet(level, e, nullptr, true);
-        regular_alpha = reg->alpha;
+        w.regular_alpha = reg->alpha;
       }
-    std::vector<std::uint32_t> d;
-    for (std::uint32_t e = 0; e < ne; ++e) {
-      if (regular[e]) {
-        offset[e + 1] = static_cast<std::uint32_t>(regular_alpha.size());
-        out.norm2[e] = reg->norm2;
-        continue;
+    std::vector<TriWaveletBuilder::EdgeKey> keys(irregular.size());
+    std::atomic<bool> failed{false};
+    parallel_for(static_cast<std::uint32_t>(irregular.size()), 64, [&](std::uint32_t begin, std::uint32_t end) {
+      try {
+        for (std::uint32_t k = begin; k < end; ++k) keys[k] = b.edge_key(level, irregular[k]);
+      } catch (...) {
+        failed = true;
       }
-      need_fine_rings();
-      const EdgeWavelet& w = b.edge_wavelet(level, e, &d, false);
-      if (w.alpha.size() != d.size()) throw std::logic_error("tri_transform: disc and alpha sizes differ");
-      offset[e + 1] = static_cast<std::uint32_t>(d.size());
-      disc_items.insert(disc_items.end(), d.begin(), d.end());
-      alpha_items.insert(alpha_items.end(), w.alpha.begin(), w.alpha.end());
-      out.norm2[e] = w.norm2;
+    });
+    if (failed) {  // the rings were checked, so this is a defect; the serial call names it
+      for (std::uint32_t e : irregular) (void)b.edge_key(level, e);
+      throw std::logic_error("tri_transform: an edge's neighbourhood could not be ordered");
     }
-  }
-  // Flat per-edge lists: irregular edges' entries move into place, regular ones are listed.
-  for (std::uint32_t e = 0; e < ne; ++e) offset[e + 1] += offset[e];
-  std::vector<std::uint32_t> disc_of(offset[ne]);
-  std::vector<double> alpha_of(offset[ne]);
-  {
-    std::size_t k = 0;
     for (std::uint32_t e = 0; e < ne; ++e)
-      if (!regular[e]) {
-        std::copy_n(disc_items.begin() + static_cast<std::ptrdiff_t>(k), offset[e + 1] - offset[e], disc_of.begin() + offset[e]);
-        std::copy_n(alpha_items.begin() + static_cast<std::ptrdiff_t>(k), offset[e + 1] - offset[e], alpha_of.begin() + offset[e]);
-        k += offset[e + 1] - offset[e];
-      }
+      if (w.regular[e]) out.norm2[e] = reg->norm2;
+    w.discs.resize(irregular.size());
+    w.alphas.resize(irregular.size());
+    for (std::size_t k = 0; k < irregular.size(); ++k) {
+      const std::uint32_t e = irregular[k];
+      w.discs[k] = std::move(keys[k].disc);
+      const EdgeWavelet& wave = b.edge_wavelet(level, e, std::move(keys[k]));
+      if (wave.alpha.size() != w.discs[k].size()) throw std::logic_error("tri_transform: disc and alpha sizes differ");
+      w.irregular_at[e] = static_cast<std::uint32_t>(k);
+      w.alphas[k] = wave.alpha;
+      out.norm2[e] = wave.norm2;
+    }
   }
-  const int k_disc = disc;
-  std::atomic<bool> mismatch{false};
-  parallel_for(ne, 4096, [&](std::uint32_t begin, std::uint32_t end) {
-    for (std::uint32_t e = begin; e < end; ++e) {
-      if (!regular[e]) continue;
-      const std::uint32_t seeds[2] = {coarse.edge_verts[2 * e], coarse.edge_verts[2 * e + 1]};
-      const std::uint32_t starts[2] = {seeds[1], seeds[0]};
-      const LocalOrder o = local_order(rings, seeds, starts, k_disc);
-      if (o.vertex.size() != offset[e + 1] - offset[e]) {
-        mismatch = true;
-        continue;
-      }
-      std::copy(o.vertex.begin(), o.vertex.end(), disc_of.begin() + offset[e]);
-      std::copy(regular_alpha.begin(), regular_alpha.end(), alpha_of.begin() + offset[e]);
-    }
-  });
-  if (mismatch) throw std::logic_error("tri_transform: a regular edge's disc has an unexpected size");
-  // Rows by old vertex: a counting sort (entries of one row stay in edge order).
-  std::vector<std::uint32_t> start(std::size_t(nv) + 1, 0);
-  for (std::uint32_t i : disc_of) ++start[i + 1];
-  for (std::uint32_t i = 0; i < nv; ++i) start[i + 1] += start[i];
-  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-  std::vector<std::uint32_t> items(disc_of.size());
-  std::vector<double> weights(disc_of.size());
-  for (std::uint32_t e = 0; e < ne; ++e)
-    for (std::uint32_t q = offset[e]; q < offset[e + 1]; ++q) {
-      const std::uint32_t i = disc_of[q];
-      items[fill[i]] = nv + e;
-      weights[fill[i]++] = -alpha_of[q];
-    }
   WeightedStep up;
-  up.target.reserve(nv);
-  up.sources.items.reserve(items.size());
-  up.weights.reserve(items.size());
-  for (std::uint32_t i = 0; i < nv; ++i) {
-    if (start[i] == start[i + 1]) continue;
-    up.target.push_back(i);
-    up.sources.items.insert(up.sources.items.end(), items.begin() + start[i], items.begin() + start[i + 1]);
-    up.weights.insert(up.weights.end(), weights.begin() + start[i], weights.begin() + start[i + 1]);
-    up.sources.offsets.push_back(static_cast<std::uint32_t>(up.sources.items.size()));
+  if (!update_rows(coarse, rings, w, disc, shared_rows, up)) {
+    up = WeightedStep{};
+    update_rows(coarse, rings, w, disc, false, up);
   }
   WeightedStep predict;
   predict.target.resize(ne);
   for (std::uint32_t e = 0; e < ne; ++e) predict.target[e] = nv + e;
-  predict.sources = st.new_rows;
-  predict.weights = st.new_weights;
+  predict.sources = std::move(st.new_rows);
+  predict.weights = std::move(st.new_weights);
   t.add(std::move(up));
   t.add(std::move(predict));
 
-  if (st.old_rows.rows() != 0) t.add(make_matrix_step(nv, st.old_rows, st.old_weights));
+  if (st.old_rows.rows() != 0) t.add(make_matrix_step(nv, std::move(st.old_rows), std::move(st.old_weights)));
   return out;
 }
 

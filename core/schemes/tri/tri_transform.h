@@ -28,10 +28,14 @@ struct TriTransitionResult {
   std::vector<double> norm2;  // ||psi||^2 per coarse edge, a level-j face having area 1
 };
 
-/// Builds the sub-steps for the 1-to-4 split of `coarse` into `fine` (= refine_tri(coarse); both
-/// with derived rows) with k-disc wavelets. Uses a process-wide cache of face and edge types per
-/// (scheme, disc).
-TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, Scheme s, int disc);
+/// Builds the sub-steps for the 1-to-4 split of `coarse` (derived rows needed) into `fine` (=
+/// refine_tri(coarse); its derived rows are built on a copy if a wavelet has to be solved) with
+/// k-disc wavelets. Uses a process-wide cache of face and edge types per (scheme, disc).
+/// Update rows that read only regular wavelets share one weight pattern (WeightedStep::weight_at:
+/// a third of the memory, no sort of their terms); `shared_rows` false lists every row's own
+/// weights in edge order, the reference the shared rows are tested against.
+TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, Scheme s, int disc,
+                                         bool shared_rows = true);
 
 /// Loop's limit positions (rows over the vertices of `c`, a triangle mesh; derived rows not
 /// needed): smooth or dart vertex (1 - n g) v + g sum of neighbours, g = 1 / (3 / (8 beta) + n);

@@ -27,6 +27,15 @@ int TriWaveletBuilder::signature_radius() const {
 }
 
 EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
+  if (lv.fine->vertex_faces.rows() != lv.fine->num_vertices) {
+    lv.fine_built = std::make_unique<Complex>(*lv.fine);
+    build_adjacency(*lv.fine_built);
+    lv.fine = lv.fine_built.get();
+  }
+  if (!lv.fine_rings) {
+    lv.fine_rings_built = std::make_unique<TriRings>(build_tri_rings(*lv.fine));
+    lv.fine_rings = lv.fine_rings_built.get();
+  }
   const TriGramRadii& g = gram_.radii();
   const Complex& c = *lv.coarse;
   const Complex& fine = *lv.fine;
@@ -108,27 +117,42 @@ EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
   return out;
 }
 
+TriWaveletBuilder::EdgeKey TriWaveletBuilder::edge_key(const TriLevel& lv, std::uint32_t e) const {
+  const Complex& c = *lv.coarse;
+  const std::uint32_t a = c.edge_verts[2 * e], b = c.edge_verts[2 * e + 1];
+  const std::uint32_t seeds[2] = {a, b}, starts[2] = {b, a};
+  thread_local LocalOrder order;
+  local_order(*lv.coarse_rings, seeds, starts, signature_radius() + 1, order);
+  EdgeKey key;
+  std::uint32_t nd = 0;
+  while (nd < order.dist.size() && order.dist[nd] <= disc_) ++nd;
+  key.disc.assign(order.vertex.begin(), order.vertex.begin() + nd);
+  key.signature = local_signature(c, *lv.coarse_rings, order, signature_radius());
+  return key;
+}
+
+const EdgeWavelet& TriWaveletBuilder::edge_wavelet(TriLevel& lv, std::uint32_t e, EdgeKey&& key) {
+  auto it = edges_.find(key.signature);
+  if (it == edges_.end())
+    it = edges_.emplace(std::move(key.signature), std::make_unique<EdgeWavelet>(compute(lv, e))).first;
+  return *it->second;
+}
+
 const EdgeWavelet& TriWaveletBuilder::edge_wavelet(TriLevel& lv, std::uint32_t e, std::vector<std::uint32_t>* disc_out,
                                                    bool regular_hint) {
   const Complex& c = *lv.coarse;
-  const TriRings& r = *lv.coarse_rings;
-  const std::uint32_t a = c.edge_verts[2 * e], b = c.edge_verts[2 * e + 1];
-  const std::uint32_t seeds[2] = {a, b}, starts[2] = {b, a};
   if (regular_hint && regular_) {
-    if (disc_out) *disc_out = local_order(r, seeds, starts, disc_).vertex;
+    if (disc_out) {
+      const std::uint32_t seeds[2] = {c.edge_verts[2 * e], c.edge_verts[2 * e + 1]}, starts[2] = {seeds[1], seeds[0]};
+      *disc_out = local_order(*lv.coarse_rings, seeds, starts, disc_).vertex;
+    }
     return *regular_;
   }
-  const LocalOrder order = local_order(r, seeds, starts, signature_radius() + 1);
-  if (disc_out) {
-    std::uint32_t nd = 0;
-    while (nd < order.dist.size() && order.dist[nd] <= disc_) ++nd;
-    disc_out->assign(order.vertex.begin(), order.vertex.begin() + nd);
-  }
-  std::string sig = local_signature(c, r, order, signature_radius());
-  auto it = edges_.find(sig);
-  if (it == edges_.end()) it = edges_.emplace(std::move(sig), std::make_unique<EdgeWavelet>(compute(lv, e))).first;
-  if (regular_hint) regular_ = std::make_unique<EdgeWavelet>(*it->second);
-  return *it->second;
+  EdgeKey key = edge_key(lv, e);
+  if (disc_out) *disc_out = key.disc;
+  const EdgeWavelet& w = edge_wavelet(lv, e, std::move(key));
+  if (regular_hint) regular_ = std::make_unique<EdgeWavelet>(w);
+  return w;
 }
 
 const EdgeWavelet& TriWaveletBuilder::edge_wavelet(const Complex& c, const TriRings& r, std::uint32_t e,

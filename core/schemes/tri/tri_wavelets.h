@@ -45,8 +45,10 @@ struct EdgeWavelet {
 struct TriLevel {
   const Complex* coarse = nullptr;  // derived rows needed
   const TriRings* coarse_rings = nullptr;
-  const Complex* fine = nullptr;    // refine_tri(*coarse), derived rows needed
-  const TriRings* fine_rings = nullptr;
+  const Complex* fine = nullptr;    // refine_tri(*coarse); its derived rows and rings are built
+  const TriRings* fine_rings = nullptr;  // on the first wavelet that is solved, if absent
+  std::unique_ptr<Complex> fine_built;
+  std::unique_ptr<TriRings> fine_rings_built;
   const TriStencils* stencils = nullptr;  // build_tri_stencils(*coarse, scheme)
   std::unordered_map<std::uint32_t, FaceGramCache::FaceGram> coarse_faces, fine_faces;
 };
@@ -59,6 +61,16 @@ class TriWaveletBuilder {
   /// Rings of the neighbourhood the wavelet depends on (its cache signature): the disc, the
   /// supports of its functions and the faces' own signatures.
   int signature_radius() const;
+
+  /// What finds an edge's wavelet in the cache: its neighbourhood's signature, and its disc D
+  /// as coarse vertices. Reads `level` only, so edges' keys may be taken in parallel.
+  struct EdgeKey {
+    std::string signature;
+    std::vector<std::uint32_t> disc;
+  };
+  EdgeKey edge_key(const TriLevel& level, std::uint32_t e) const;
+  /// The wavelet of the edge whose key this is: cached, or solved and cached.
+  const EdgeWavelet& edge_wavelet(TriLevel& level, std::uint32_t e, EdgeKey&& key);
 
   /// The wavelet of coarse edge e of `level`. `disc_out` receives D as coarse vertices.
   /// `regular_hint`: the caller knows no irregular vertex lies within signature_radius().

@@ -69,6 +69,17 @@ std::vector<std::uint32_t> list_curve_edges(const Complex& p, Sqrt2Children& ch)
   return curve_index;
 }
 
+// Room for the fine level's faces, edges and corners: the steps append them one by one.
+void reserve_fine(Complex& c, std::size_t faces, std::size_t edges, std::size_t corners) {
+  c.faces.offsets.reserve(faces + 1);
+  c.face_edges.offsets.reserve(faces + 1);
+  c.face_dim.reserve(faces);
+  c.faces.items.reserve(corners);
+  c.face_edges.items.reserve(corners);
+  c.edge_verts.reserve(2 * edges);
+  c.edge_dim.reserve(edges);
+}
+
 Complex start_fine(const Complex& p, std::uint32_t num_vertices) {
   Complex c;
   c.dim = 2;
@@ -91,6 +102,7 @@ Sqrt2Step keep_step(const Complex& p) {
   const std::uint32_t nc = static_cast<std::uint32_t>(ch.curve_edges.size());
 
   Complex c = start_fine(p, nv + nf);
+  reserve_fine(c, ne + nc, std::size_t(nc) + p.faces.items.size(), 4 * std::size_t(ne + nc));
   c.vertex_dim.insert(c.vertex_dim.end(), p.face_dim.begin(), p.face_dim.end());
   // Edges: kept curve edges, then corner slot s -> (corner, face point).
   for (std::uint32_t e : ch.curve_edges) {
@@ -165,6 +177,7 @@ Sqrt2Step curve_step(const Complex& p) {
   }
 
   Complex c = start_fine(p, ch.first_face_point + static_cast<std::uint32_t>(ch.point_faces.size()));
+  reserve_fine(c, ne, inner, 4 * std::size_t(ne));
   for (std::uint32_t e : ch.curve_edges) c.vertex_dim.push_back(p.edge_dim[e]);
   for (std::uint32_t f : ch.point_faces) c.vertex_dim.push_back(p.face_dim[f]);
 

@@ -23,7 +23,9 @@ class Pool {
   void run(std::uint32_t n, std::uint32_t grain, const std::function<void(std::uint32_t, std::uint32_t)>& body) {
     const std::uint32_t chunks = (n + grain - 1) / grain;
     const int helpers = std::min<int>(threads_ - 1, static_cast<int>(chunks) - 1);
-    if (helpers <= 0) {
+    // A parallel_for inside a body runs inline: the pool is busy with the outer one (waiting for
+    // it would never end).
+    if (helpers <= 0 || in_body_) {
       body(0, n);
       return;
     }
@@ -58,12 +60,15 @@ class Pool {
   }
 
   void work() {
+    in_body_ = true;
     for (;;) {
       const std::uint32_t b = next_.fetch_add(grain_);
-      if (b >= n_) return;
+      if (b >= n_) break;
       (*body_)(b, std::min(n_, b + grain_));
     }
+    in_body_ = false;
   }
+  static thread_local bool in_body_;
 
   void ensure_workers(int count) {
     while (static_cast<int>(workers_.size()) < count) {
@@ -99,6 +104,8 @@ class Pool {
   std::uint64_t generation_ = 0;
   bool stop_ = false;
 };
+
+thread_local bool Pool::in_body_ = false;
 
 }  // namespace
 

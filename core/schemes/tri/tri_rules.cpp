@@ -58,6 +58,8 @@ void build_rows(std::uint32_t n, Csr& rows, std::vector<double>& weights, RowFn&
     for (std::uint32_t c = c0; c < c1; ++c) {
       Csr& r = part_rows[c];
       r.offsets.reserve(kChunk + 1);
+      r.items.reserve(std::size_t(kChunk) * 8);  // the 8-point rule; others fewer or a few more
+      part_weights[c].reserve(std::size_t(kChunk) * 8);
       for (std::uint32_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
         row(i, b);
         b.flush(r, part_weights[c]);

@@ -443,3 +443,22 @@ TEST(TriTransition, ATorusTooThinForThePatternListsItsRows) {
   // Six cells round: a vertex's 3-ring closes on itself, so no row can follow the pattern.
   expect_shared_rows_match(regular_torus(6, 6), Scheme::Butterfly, false);
 }
+
+// Signatures are 16-bit where every number fits and 32-bit otherwise (more than 32767 labels),
+// marked by their first byte, so the two kinds never compare equal; the wide kind still tells
+// neighbourhoods apart.
+TEST(TriLocal, SignaturesWidenForHugeNeighbourhoodsAndStayDistinct) {
+  const auto signature = [](int w, int h, int radius) {
+    const Complex c = regular_torus(w, h);
+    const TriRings r = build_tri_rings(c);
+    const std::uint32_t seeds[1] = {0}, starts[1] = {r.ring.row(0)[0]};
+    return local_signature(c, r, local_order(r, seeds, starts, radius), radius);
+  };
+  const std::string small = signature(200, 180, 3), big = signature(200, 180, 150), bigger = signature(200, 181, 150);
+  EXPECT_EQ(small.front(), 'h');
+  EXPECT_EQ(big.front(), 'w');  // all 36,000 vertices labelled
+  EXPECT_NE(big, bigger);
+  EXPECT_EQ(signature(200, 180, 150), big);
+  EXPECT_EQ(SignatureHash{}(big), SignatureHash{}(signature(200, 180, 150)));
+  EXPECT_EQ(signature(200, 180, 3), small);
+}

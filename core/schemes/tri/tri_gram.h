@@ -73,7 +73,7 @@ class FaceGramCache {
 
   Scheme scheme_;
   TriGramRadii radii_;
-  std::unordered_map<std::string, int> index_;
+  std::unordered_map<std::string, int, SignatureHash> index_;
   std::deque<Type> types_;  // stable addresses: FaceGram points into it
   std::vector<int> pending_;
   double last_change_ = 0;

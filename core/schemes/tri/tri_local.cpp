@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
+#include <cstring>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -158,12 +160,14 @@ void local_order(const TriRings& r, std::span<const std::uint32_t> seeds, std::s
   o.vertex.clear();
   o.dist.clear();
   o.start.clear();
+  o.fan0.clear();
   table.begin(static_cast<std::uint32_t>(r.closed.size()));
   for (std::size_t i = 0; i < seeds.size(); ++i) {
     table.set(seeds[i], static_cast<std::uint32_t>(o.vertex.size()));
     o.vertex.push_back(seeds[i]);
     o.dist.push_back(0);
     o.start.push_back(seed_start[i]);
+    o.fan0.push_back(UINT32_MAX);
   }
   for (std::size_t l = 0; l < o.vertex.size(); ++l) {
     if (o.dist[l] >= radius) continue;
@@ -171,12 +175,14 @@ void local_order(const TriRings& r, std::span<const std::uint32_t> seeds, std::s
     const auto row = r.ring.row(u);
     if (row.empty()) continue;
     const std::uint32_t i0 = fan_index(r, u, o.start[l]);
+    o.fan0[l] = i0;
     const auto visit = [&](std::uint32_t x) {
       if (table.has(x)) return;
       table.set(x, static_cast<std::uint32_t>(o.vertex.size()));
       o.vertex.push_back(x);
       o.dist.push_back(static_cast<std::uint8_t>(o.dist[l] + 1));
       o.start.push_back(u);
+      o.fan0.push_back(UINT32_MAX);
     };
     // The fan from i0 round to i0 - 1, without a modulo per neighbour.
     for (std::uint32_t k = i0; k < row.size(); ++k) visit(row[k]);
@@ -200,15 +206,37 @@ std::string local_signature(const Complex& c, const TriRings& r, const LocalOrde
     s.push_back(static_cast<std::int32_t>(row.size()));
     s.push_back(c.vertex_dim.empty() ? 2 : c.vertex_dim[u]);
     if (row.empty()) continue;
-    const std::uint32_t i0 = fan_index(r, u, o.start[l]);
-    for (std::uint32_t k = 0; k < row.size(); ++k) {
-      const std::uint32_t i = (i0 + k) % static_cast<std::uint32_t>(row.size());
+    const std::uint32_t i0 = l < o.fan0.size() && o.fan0[l] != UINT32_MAX ? o.fan0[l] : fan_index(r, u, o.start[l]);
+    const auto term = [&](std::uint32_t i) {
       const std::uint32_t l2 = table.get(row[i]);
       s.push_back(l2 == UINT32_MAX ? -1 : static_cast<std::int32_t>(l2));
       s.push_back(c.edge_dim.empty() ? 2 : c.edge_dim[erow[i]]);
-    }
+    };
+    for (std::uint32_t i = i0; i < row.size(); ++i) term(i);
+    for (std::uint32_t i = 0; i < i0; ++i) term(i);
   }
-  return std::string(reinterpret_cast<const char*>(s.data()), s.size() * sizeof(std::int32_t));
+  const bool narrow = std::all_of(s.begin(), s.end(), [](std::int32_t x) { return x >= INT16_MIN && x <= INT16_MAX; });
+  std::string out(1 + s.size() * (narrow ? sizeof(std::int16_t) : sizeof(std::int32_t)), narrow ? 'h' : 'w');
+  if (narrow) {
+    std::vector<std::int16_t> h(s.begin(), s.end());
+    std::memcpy(out.data() + 1, h.data(), h.size() * sizeof(std::int16_t));
+  } else {
+    std::memcpy(out.data() + 1, s.data(), s.size() * sizeof(std::int32_t));
+  }
+  return out;
+}
+
+std::size_t SignatureHash::operator()(const std::string& s) const noexcept {
+  std::uint64_t h = 0x9e3779b97f4a7c15ull ^ s.size();
+  std::size_t i = 0;
+  for (; i + 8 <= s.size(); i += 8) {
+    std::uint64_t w;
+    std::memcpy(&w, s.data() + i, 8);
+    h = (h ^ w) * 0xff51afd7ed558ccdull;
+    h ^= h >> 29;
+  }
+  for (; i < s.size(); ++i) h = (h ^ static_cast<unsigned char>(s[i])) * 0x100000001b3ull;
+  return static_cast<std::size_t>(h ^ (h >> 32));
 }
 
 namespace {

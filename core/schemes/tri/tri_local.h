@@ -36,6 +36,7 @@ struct LocalOrder {
   std::vector<std::uint32_t> vertex;  // label -> mesh vertex
   std::vector<std::uint8_t> dist;     // label -> distance to the seeds
   std::vector<std::uint32_t> start;   // label -> the neighbour its fan walk starts at
+  std::vector<std::uint32_t> fan0;    // label -> start's place in its fan (UINT32_MAX: not walked)
 };
 
 /// `seed_start[i]` is the neighbour seed i's walk starts at (it must be a neighbour).
@@ -47,8 +48,15 @@ void local_order(const TriRings& r, std::span<const std::uint32_t> seeds, std::s
 
 /// The signature of the labelled neighbourhood up to distance `radius` (<= the order's): per
 /// label its distance, fan closure, valence, vertex dim, and its fan as labels (-1 beyond) with
-/// the edges' dims. Equal signatures <=> isomorphic labelled neighbourhoods.
+/// the edges' dims. Equal signatures <=> isomorphic labelled neighbourhoods. Stored as 16-bit
+/// numbers when every one fits (nearly always), else 32-bit, after a byte that says which.
 std::string local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius);
+
+/// A hash for signatures that reads them 8 bytes at a time (they are kilobytes long and looked
+/// up once per irregular edge and face; equality is still checked in full).
+struct SignatureHash {
+  std::size_t operator()(const std::string& s) const noexcept;
+};
 
 /// The sub-mesh of the faces whose corners all carry labels, vertices numbered by label, with
 /// the original vertex and edge dims (so the fans of labels closer than the order's radius are

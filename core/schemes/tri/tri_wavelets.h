@@ -87,7 +87,7 @@ class TriWaveletBuilder {
 
   int disc_;
   FaceGramCache gram_;
-  std::unordered_map<std::string, std::unique_ptr<EdgeWavelet>> edges_;
+  std::unordered_map<std::string, std::unique_ptr<EdgeWavelet>, SignatureHash> edges_;
   std::unique_ptr<EdgeWavelet> regular_;
 };
 

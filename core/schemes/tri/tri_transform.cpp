@@ -63,6 +63,11 @@ LocalOrder edge_disc(const Complex& c, const TriRings& r, std::uint32_t e, int d
 RowTemplate make_row_template(const Complex& c, const TriRings& r, std::uint32_t i0, int disc,
                               const std::vector<double>& alpha) {
   const LocalOrder around = vertex_order(r, i0, disc + 1);
+  RowTemplate t;
+  t.labels = static_cast<std::uint32_t>(around.vertex.size());
+  // Only off a plain lattice patch (1 + 3 R (R + 1) vertices within R rings): else no slots.
+  const auto R = static_cast<std::uint32_t>(disc) + 1;
+  if (t.labels != 1 + 3 * R * (R + 1)) return t;
   std::unordered_map<std::uint32_t, std::uint32_t> label;
   for (std::uint32_t l = 0; l < around.vertex.size(); ++l) label.emplace(around.vertex[l], l);
   std::vector<std::uint32_t> edges;
@@ -81,8 +86,6 @@ RowTemplate make_row_template(const Complex& c, const TriRings& r, std::uint32_t
     terms.emplace_back(std::min(la, lb), std::max(la, lb), -alpha[static_cast<std::size_t>(at - d.vertex.begin())]);
   }
   std::sort(terms.begin(), terms.end());
-  RowTemplate t;
-  t.labels = static_cast<std::uint32_t>(around.vertex.size());
   // Where each label's fan walk starts: at its parent (the seed: at its first neighbour).
   const auto walk_start = [&](std::uint32_t l) { return l == 0 ? 0u : fan_position(r, around.vertex[l], around.start[l]); };
   const auto steps_round = [&](std::uint32_t l, std::uint32_t x) {
@@ -167,10 +170,9 @@ bool update_rows(const Complex& coarse, const TriRings& rings, const EdgeWavelet
         if (first == UINT32_MAX) first = i;
       }
     if (first != UINT32_MAX) tmpl = make_row_template(coarse, rings, first, disc, w.regular_alpha);
-    // The pattern is read off a plain lattice patch (1 + 3 r (r + 1) vertices within r rings),
-    // so a row whose neighbourhood closes on itself shows as a vertex labelled twice.
-    const std::uint32_t r = static_cast<std::uint32_t>(disc) + 1;
-    if (first != UINT32_MAX && tmpl.labels != 1 + 3 * r * (r + 1)) {
+    // The pattern is read off a plain lattice patch, so a row whose neighbourhood closes on
+    // itself shows as a vertex labelled twice.
+    if (first != UINT32_MAX && tmpl.slots.empty()) {
       first = UINT32_MAX;
       std::fill(by_template.begin(), by_template.end(), 0);
     }

@@ -261,7 +261,9 @@ bool update_rows(const Complex& coarse, const TriRings& rings, const EdgeWavelet
         up.weight_at.push_back(0);
       } else {
         up.weight_at.push_back(T + listed);
-        shift[i] = row_start - (T + listed);  // sources before this row minus weights before it
+        // Sources before this row minus weights before it; unsigned, so a row before every
+        // template row wraps round 2^32 and p - shift still lands right.
+        shift[i] = row_start - (T + listed);
         listed += at - row_start;
       }
     }

@@ -131,6 +131,7 @@ struct LabelTable {
   }
   bool has(std::uint32_t v) const { return stamp[v] == epoch; }
   std::uint32_t get(std::uint32_t v) const { return stamp[v] == epoch ? label[v] : UINT32_MAX; }
+  void mark(std::uint32_t v) { stamp[v] = epoch; }  // has(v) from now on, with no label
   void set(std::uint32_t v, std::uint32_t l) {
     stamp[v] = epoch;
     label[v] = l;
@@ -138,15 +139,20 @@ struct LabelTable {
 };
 thread_local LabelTable table;
 
-// Position of `start` in v's fan (the walk begins there).
-std::uint32_t fan_index(const TriRings& r, std::uint32_t v, std::uint32_t start) {
-  const auto row = r.ring.row(v);
-  for (std::uint32_t i = 0; i < row.size(); ++i)
-    if (row[i] == start) return i;
-  throw TopologyError("vertex " + std::to_string(start) + " is not a neighbour of " + std::to_string(v));
+}  // namespace
+
+void throw_not_a_neighbour(std::uint32_t v, std::uint32_t x) {
+  throw TopologyError("vertex " + std::to_string(x) + " is not a neighbour of " + std::to_string(v));
 }
 
-}  // namespace
+bool all_distinct(std::span<const std::uint32_t> vs, std::uint32_t n) {
+  table.begin(n);
+  for (std::uint32_t v : vs) {
+    if (table.has(v)) return false;
+    table.mark(v);
+  }
+  return true;
+}
 
 LocalOrder local_order(const TriRings& r, std::span<const std::uint32_t> seeds,
                        std::span<const std::uint32_t> seed_start, int radius) {
@@ -217,11 +223,13 @@ std::string local_signature(const Complex& c, const TriRings& r, const LocalOrde
   }
   const bool narrow = std::all_of(s.begin(), s.end(), [](std::int32_t x) { return x >= INT16_MIN && x <= INT16_MAX; });
   std::string out(1 + s.size() * (narrow ? sizeof(std::int16_t) : sizeof(std::int32_t)), narrow ? 'h' : 'w');
-  if (narrow) {
-    std::vector<std::int16_t> h(s.begin(), s.end());
-    std::memcpy(out.data() + 1, h.data(), h.size() * sizeof(std::int16_t));
-  } else {
+  if (!narrow) {
     std::memcpy(out.data() + 1, s.data(), s.size() * sizeof(std::int32_t));
+    return out;
+  }
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const auto x = static_cast<std::int16_t>(s[i]);
+    std::memcpy(out.data() + 1 + 2 * i, &x, sizeof x);
   }
   return out;
 }

@@ -39,6 +39,21 @@ struct LocalOrder {
   std::vector<std::uint32_t> fan0;    // label -> start's place in its fan (UINT32_MAX: not walked)
 };
 
+[[noreturn]] void throw_not_a_neighbour(std::uint32_t v, std::uint32_t x);
+/// Position of neighbour `x` in v's fan; throws TopologyError when x is not a neighbour. Inline:
+/// the row templates' walks ask it for every label.
+inline std::uint32_t fan_index(const TriRings& r, std::uint32_t v, std::uint32_t x) {
+  const std::uint32_t* row = r.ring.items.data() + r.ring.offsets[v];
+  const std::uint32_t n = r.ring.offsets[v + 1] - r.ring.offsets[v];
+  for (std::uint32_t i = 0; i < n; ++i)
+    if (row[i] == x) return i;
+  throw_not_a_neighbour(v, x);
+}
+
+/// Whether the vertices `vs` (of a mesh of n vertices) are pairwise distinct: the same per-thread
+/// table local_order labels with, so no sort and no allocation.
+bool all_distinct(std::span<const std::uint32_t> vs, std::uint32_t n);
+
 /// `seed_start[i]` is the neighbour seed i's walk starts at (it must be a neighbour).
 LocalOrder local_order(const TriRings& r, std::span<const std::uint32_t> seeds,
                        std::span<const std::uint32_t> seed_start, int radius);

@@ -39,22 +39,10 @@ struct RowTemplate {
   std::vector<std::uint8_t> step, slot_step;
 };
 
-// Position of `x` in v's fan (a regular vertex: six neighbours).
-std::uint32_t fan_position(const TriRings& r, std::uint32_t v, std::uint32_t x) {
-  const std::uint32_t* ring = r.ring.items.data() + r.ring.offsets[v];
-  for (std::uint32_t i = 0; i < 6; ++i)
-    if (ring[i] == x) return i;
-  return UINT32_MAX;
-}
-
-LocalOrder vertex_order(const TriRings& r, std::uint32_t v, int radius) {
-  const std::uint32_t seeds[1] = {v}, starts[1] = {r.ring.row(v)[0]};
-  return local_order(r, seeds, starts, radius);
-}
-
-LocalOrder edge_disc(const Complex& c, const TriRings& r, std::uint32_t e, int disc) {
+// Edge e's disc in its canonical order (a, b, then breadth first; tri_wavelets.h).
+void edge_disc(const Complex& c, const TriRings& r, std::uint32_t e, int disc, LocalOrder& o) {
   const std::uint32_t seeds[2] = {c.edge_verts[2 * e], c.edge_verts[2 * e + 1]}, starts[2] = {seeds[1], seeds[0]};
-  return local_order(r, seeds, starts, disc);
+  local_order(r, seeds, starts, disc, o);
 }
 
 // The template read off vertex i0 (whose rows reach only regular edges): the edges whose disc
@@ -62,7 +50,8 @@ LocalOrder edge_disc(const Complex& c, const TriRings& r, std::uint32_t e, int d
 // i0's place in that edge's disc.
 RowTemplate make_row_template(const Complex& c, const TriRings& r, std::uint32_t i0, int disc,
                               const std::vector<double>& alpha) {
-  const LocalOrder around = vertex_order(r, i0, disc + 1);
+  const std::uint32_t seeds[1] = {i0}, starts[1] = {r.ring.row(i0)[0]};
+  const LocalOrder around = local_order(r, seeds, starts, disc + 1);
   RowTemplate t;
   t.labels = static_cast<std::uint32_t>(around.vertex.size());
   // Only off a plain lattice patch (1 + 3 R (R + 1) vertices within R rings): else no slots.
@@ -77,8 +66,9 @@ RowTemplate make_row_template(const Complex& c, const TriRings& r, std::uint32_t
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   std::vector<std::tuple<std::uint32_t, std::uint32_t, double>> terms;
+  LocalOrder d;
   for (std::uint32_t e : edges) {
-    const LocalOrder d = edge_disc(c, r, e, disc);
+    edge_disc(c, r, e, disc, d);
     const auto at = std::find(d.vertex.begin(), d.vertex.end(), i0);
     if (at == d.vertex.end() || d.vertex.size() != alpha.size())
       throw std::logic_error("tri_transform: a regular edge's disc misses its own vertex");
@@ -86,10 +76,9 @@ RowTemplate make_row_template(const Complex& c, const TriRings& r, std::uint32_t
     terms.emplace_back(std::min(la, lb), std::max(la, lb), -alpha[static_cast<std::size_t>(at - d.vertex.begin())]);
   }
   std::sort(terms.begin(), terms.end());
-  // Where each label's fan walk starts: at its parent (the seed: at its first neighbour).
-  const auto walk_start = [&](std::uint32_t l) { return l == 0 ? 0u : fan_position(r, around.vertex[l], around.start[l]); };
+  // Places round label l's fan (walked: l is within disc of i0) from where its walk starts.
   const auto steps_round = [&](std::uint32_t l, std::uint32_t x) {
-    return static_cast<std::uint8_t>((fan_position(r, around.vertex[l], x) + 6 - walk_start(l)) % 6);
+    return static_cast<std::uint8_t>((fan_index(r, around.vertex[l], x) + 6 - around.fan0[l]) % 6);
   };
   t.parent.assign(t.labels, 0);
   t.step.assign(t.labels, 0);
@@ -109,32 +98,24 @@ RowTemplate make_row_template(const Complex& c, const TriRings& r, std::uint32_t
 // surface closes on itself within the radius: a small regular torus).
 bool fill_template_row(const TriRings& r, const RowTemplate& t, std::uint32_t i, std::uint32_t nv, LocalOrder& o,
                        std::uint32_t* out) {
-  // o.vertex: label -> vertex; o.start (reused): label -> where its fan walk starts.
+  // o.vertex: label -> vertex; o.fan0: label -> where its fan walk starts (at its parent).
   o.vertex.resize(t.labels);
-  o.start.resize(t.labels);
+  o.fan0.resize(t.labels);
   o.vertex[0] = i;
-  o.start[0] = 0;
+  o.fan0[0] = 0;
   const std::uint32_t* items = r.ring.items.data();
   const std::uint32_t* offsets = r.ring.offsets.data();
   for (std::uint32_t l = 1; l < t.labels; ++l) {
     const std::uint32_t p = t.parent[l], pv = o.vertex[p];
-    const std::uint32_t v = items[offsets[pv] + (o.start[p] + t.step[l]) % 6];
+    const std::uint32_t v = items[offsets[pv] + (o.fan0[p] + t.step[l]) % 6];
     o.vertex[l] = v;
-    o.start[l] = fan_position(r, v, pv);
-    if (o.start[l] == UINT32_MAX) return false;
+    o.fan0[l] = fan_index(r, v, pv);  // pv is v's neighbour, so it is found
   }
   // A surface that closes on itself within the radius gives some vertex two labels.
-  thread_local std::vector<std::uint32_t> stamp;
-  thread_local std::uint32_t epoch = 0;
-  if (stamp.size() < r.closed.size()) stamp.assign(r.closed.size(), 0), epoch = 0;
-  if (++epoch == 0) std::fill(stamp.begin(), stamp.end(), 0), epoch = 1;
-  for (std::uint32_t v : o.vertex) {
-    if (stamp[v] == epoch) return false;
-    stamp[v] = epoch;
-  }
+  if (!all_distinct(o.vertex, static_cast<std::uint32_t>(r.closed.size()))) return false;
   const std::uint32_t* edges = r.ring_edge.items.data();
   for (std::size_t k = 0; k < t.slots.size(); ++k) {
-    const std::uint32_t at = offsets[o.vertex[t.slots[k].first]] + (o.start[t.slots[k].first] + t.slot_step[k]) % 6;
+    const std::uint32_t at = offsets[o.vertex[t.slots[k].first]] + (o.fan0[t.slots[k].first] + t.slot_step[k]) % 6;
     if (items[at] != o.vertex[t.slots[k].second]) return false;
     out[k] = nv + edges[at];
   }
@@ -201,9 +182,7 @@ bool update_rows(const Complex& coarse, const TriRings& rings, const EdgeWavelet
         std::copy(d.begin(), d.end(), disc_of.get() + offset[k]);
         continue;
       }
-      const std::uint32_t seeds[2] = {coarse.edge_verts[2 * e], coarse.edge_verts[2 * e + 1]};
-      const std::uint32_t starts[2] = {seeds[1], seeds[0]};
-      local_order(rings, seeds, starts, disc, o);
+      edge_disc(coarse, rings, e, disc, o);
       if (o.vertex.size() != regular_size) {
         mismatch = true;
         continue;

@@ -77,6 +77,13 @@ inline long changed_viewport_pixels(const Png& a, const Png& b, int threshold) {
   return n;
 }
 
+/// `dir`, emptied (a test's screenshots from an earlier run must not pass for this one's).
+inline std::filesystem::path fresh_dir(const std::filesystem::path& dir) {
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
 /// Runs `exe --script SCRIPT` under xvfb-run at kGuiWidth x kGuiHeight in folder `dir` (recovery
 /// files there too; a display number of the process's own), stderr to dir/stderr.txt.
 inline ShellResult run_gui_script(const std::string& exe, const std::filesystem::path& dir, const std::string& script) {

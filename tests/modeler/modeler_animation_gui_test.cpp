@@ -43,9 +43,7 @@ long blue_pixels(const Png& p) {
 TEST(ModelerAnimationGuiTest, XvfbFoxWalkFramesGhostsAndADrag) {
   const fs::path fox = fs::path(SUBLIFT_SHARED_DATA) / "gltf" / "Fox" / "Fox.glb";
   if (!fs::exists(fox)) GTEST_SKIP() << fox << " not found (../shared/data absent)";
-  const fs::path dir = fs::path(SUBLIFT_TEST_OUT_DIR) / "xvfb";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = sublift::testing::fresh_dir(fs::path(SUBLIFT_TEST_OUT_DIR) / "xvfb");
   const std::string script = "animation open clip 1 frames 17 levels 2 " + fox.string() + "\n"
                              "view left\n"
                              "screenshot f0.png\n"

@@ -30,9 +30,7 @@ using sublift::testing::Png;
 TEST(ModelerChannelsGuiTest, XvfbColourByChannel) {
   const fs::path box = fs::path(SUBLIFT_SHARED_DATA) / "gltf" / "BoxVertexColors" / "BoxVertexColors.glb";
   if (!fs::exists(box)) GTEST_SKIP() << box << " not found (../shared/data absent)";
-  const fs::path dir = fs::path(SUBLIFT_TEST_OUT_DIR) / "xvfb";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = sublift::testing::fresh_dir(fs::path(SUBLIFT_TEST_OUT_DIR) / "xvfb");
   std::ofstream(dir / "channels.txt") << "open " << box.string() << "\n"
                                       << "display net off\n"
                                          "screenshot clay.png\n"
@@ -57,9 +55,7 @@ TEST(ModelerChannelsGuiTest, XvfbColourByChannel) {
 TEST(ModelerChannelsGuiTest, XvfbTexturedModel) {
   const fs::path box = fs::path(SUBLIFT_SHARED_DATA) / "gltf" / "BoxTextured" / "BoxTextured.glb";
   if (!fs::exists(box)) GTEST_SKIP() << box << " not found (../shared/data absent)";
-  const fs::path dir = fs::path(SUBLIFT_TEST_OUT_DIR) / "xvfb_texture";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = sublift::testing::fresh_dir(fs::path(SUBLIFT_TEST_OUT_DIR) / "xvfb_texture");
   std::ofstream(dir / "texture.txt") << "open " << box.string() << "\n"
                                      << "display net off\n"
                                         "screenshot textured.png\n"

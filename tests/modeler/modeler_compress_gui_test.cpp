@@ -34,9 +34,7 @@ using sublift::testing::load_png;
 using sublift::testing::Png;
 
 TEST(ModelerCompressGuiTest, XvfbSliderFractionsOffApplyAndUndo) {
-  const fs::path dir = fs::path(SUBLIFT_TEST_OUT_DIR) / "xvfb";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = sublift::testing::fresh_dir(fs::path(SUBLIFT_TEST_OUT_DIR) / "xvfb");
   // The sample torus (24 x 12 quads), 2 cubic levels, waves of three lengths at 1.5 times the
   // fixture's amplitude and visible roughness; the net hidden, so that only the surface shows.
   const sublift::Hierarchy h = sublift::testing::detailed_hierarchy(std::string(SUBLIFT_ASSETS_DIR) + "/sample.obj",

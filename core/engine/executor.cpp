@@ -130,11 +130,20 @@ inline bool accumulate_row(const Group* groups, std::uint32_t i, int m, const do
 // to balance two cores when one is busy with something else.
 constexpr std::uint32_t kGrain = 8192;
 
+// A Scale step's factors for one class, applied inside the Centroid step that last writes the
+// class (ScaleFold): synthesis x = (x + acc) * f, analysis x = x * (1 / f) + acc.
+struct FoldedScale {
+  const std::uint8_t* dims = nullptr;  // the class's feature dims; nullptr: no scale here
+  double factor[4] = {1, 1, 1, 1};     // already inverted for analysis
+  bool first = false;                  // analysis: scale before adding
+};
+
 // x[target] += sum_g weight_g(m) * centroid_g (weights carry the sign), for targets [0, n) of
-// one class. G and C are template parameters so the loops unroll; C == 0: channels at run time.
+// one class, scaled by `fs` when it has dims. G and C are template parameters so the loops
+// unroll; C == 0: channels at run time.
 template <int C, int G, bool Integer>
 void gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* target_m, const Group* groups_in,
-            double* x, int channels, double sign) {
+            double* x, int channels, double sign, const FoldedScale& fs) {
   const int ch = C > 0 ? C : channels;
   std::array<Group, G> groups;
   for (int g = 0; g < G; ++g) groups[g] = groups_in[g];
@@ -146,8 +155,19 @@ void gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* targ
     for (std::uint32_t i = begin; i < end; ++i) {
       const int m = target_m ? target_m[i] : 0;
       for (int c = 0; c < ch; ++c) acc[c] = 0.0;
-      if (!accumulate_row<C, G>(groups.data(), i, m, x, ch, sum, acc)) continue;
+      const bool any = accumulate_row<C, G>(groups.data(), i, m, x, ch, sum, acc);
       double* dst = x + std::size_t(target_base + i) * ch;
+      if (fs.dims) {  // never in integer mode, where Scale steps are skipped
+        const double f = fs.factor[fs.dims[i]];
+        if (!any)
+          for (int c = 0; c < ch; ++c) dst[c] *= f;
+        else if (fs.first)
+          for (int c = 0; c < ch; ++c) dst[c] = dst[c] * f + acc[c];
+        else
+          for (int c = 0; c < ch; ++c) dst[c] = (dst[c] + acc[c]) * f;
+        continue;
+      }
+      if (!any) continue;
       if constexpr (Integer) {
         for (int c = 0; c < ch; ++c) dst[c] += sign * std::floor(sign * acc[c] + 0.5);
       } else {
@@ -159,32 +179,32 @@ void gather(std::uint32_t n, std::uint32_t target_base, const std::uint8_t* targ
 
 template <int C, int G>
 void gather_mode(std::uint32_t n, std::uint32_t tb, const std::uint8_t* tm, const Group* g, double* x, int ch,
-                 double sign, bool integer) {
-  if (integer) gather<C, G, true>(n, tb, tm, g, x, ch, sign);
-  else gather<C, G, false>(n, tb, tm, g, x, ch, sign);
+                 double sign, bool integer, const FoldedScale& fs) {
+  if (integer) gather<C, G, true>(n, tb, tm, g, x, ch, sign, fs);
+  else gather<C, G, false>(n, tb, tm, g, x, ch, sign, fs);
 }
 
 template <int G>
 void gather_channels(std::uint32_t n, std::uint32_t tb, const std::uint8_t* tm, const Group* g, double* x, int ch,
-                     double sign, bool integer) {
+                     double sign, bool integer, const FoldedScale& fs) {
   switch (ch) {
-    case 1: return gather_mode<1, G>(n, tb, tm, g, x, ch, sign, integer);
-    case 3: return gather_mode<3, G>(n, tb, tm, g, x, ch, sign, integer);
-    case 4: return gather_mode<4, G>(n, tb, tm, g, x, ch, sign, integer);
-    default: return gather_mode<0, G>(n, tb, tm, g, x, ch, sign, integer);
+    case 1: return gather_mode<1, G>(n, tb, tm, g, x, ch, sign, integer, fs);
+    case 3: return gather_mode<3, G>(n, tb, tm, g, x, ch, sign, integer, fs);
+    case 4: return gather_mode<4, G>(n, tb, tm, g, x, ch, sign, integer, fs);
+    default: return gather_mode<0, G>(n, tb, tm, g, x, ch, sign, integer, fs);
   }
 }
 
 void run_centroid(const CentroidStep& s, const Complex& p, const Transition& t, double* x, int ch, double sign,
-                  bool integer) {
+                  bool integer, const FoldedScale& fs = {}) {
   if (!s.count || !s.num_groups) return;
   Group g[3];
   for (int k = 0; k < s.num_groups; ++k) g[k] = resolve(p, t, s.groups[k], sign);
   const std::uint8_t* m = dims_of(p, s.target_dims);
   switch (s.num_groups) {
-    case 1: return gather_channels<1>(s.count, s.target_base, m, g, x, ch, sign, integer);
-    case 2: return gather_channels<2>(s.count, s.target_base, m, g, x, ch, sign, integer);
-    default: return gather_channels<3>(s.count, s.target_base, m, g, x, ch, sign, integer);
+    case 1: return gather_channels<1>(s.count, s.target_base, m, g, x, ch, sign, integer, fs);
+    case 2: return gather_channels<2>(s.count, s.target_base, m, g, x, ch, sign, integer, fs);
+    default: return gather_channels<3>(s.count, s.target_base, m, g, x, ch, sign, integer, fs);
   }
 }
 
@@ -226,8 +246,11 @@ void for_each_scaled(const ScaleStep& s, const Complex& p, bool inverse, Visit v
   }
 }
 
-void run_scale(const ScaleStep& s, const Complex& p, double* x, int ch, bool inverse) {
+// `folded`: bit t set when class t's scale is applied by a Centroid step instead (ScaleFold).
+void run_scale(const ScaleStep& s, const Complex& p, double* x, int ch, bool inverse, unsigned folded = 0) {
   for_each_scaled(s, p, inverse, [&](std::uint32_t base, std::uint32_t n, const std::uint8_t* dims, const double* f) {
+    for (int t = 0; t < 3; ++t)
+      if ((folded >> t & 1u) && base == s.base[t] && n == s.count[t]) return;
     parallel_for(n, kGrain, [&](std::uint32_t b, std::uint32_t e) {
       for (std::uint32_t i = b; i < e; ++i) {
         const double fi = f[dims[i]];
@@ -281,13 +304,68 @@ struct Overload : F... {
 template <class... F>
 Overload(F...) -> Overload<F...>;
 
-// One step forwards (synthesis) or inverted (analysis).
-void run_step(const Step& s, const Transition& t, const Complex& p, double* x, int ch, bool integer, bool inverse) {
+// A Scale step's classes folded into the Centroid steps that last write them before it, so the
+// dense loops make one pass fewer over those classes (Bertram's cubic s-scale: the v and e
+// classes, 3/4 of a surface's fine vertices). A class folds when that step's targets are the
+// class and only Centroid steps that neither read nor write it lie between: then x = (x + acc)
+// * f rounds exactly as x += acc there and x *= f later, and analysis's x = x * (1/f) + acc
+// exactly as its x *= 1/f first and x += acc later. Bit for bit the unfolded run.
+struct ScaleFold {
+  std::size_t scale = SIZE_MAX;  // the Scale step's index
+  int into[3] = {-1, -1, -1};    // per class: the Centroid step that applies its factors
+  unsigned mask() const { return (into[0] >= 0) | (into[1] >= 0) << 1 | (into[2] >= 0) << 2; }
+};
+
+ScaleFold plan_scale_fold(const Transition& t) {
+  ScaleFold f;
+  for (std::size_t k = 0; k < t.steps.size() && f.scale == SIZE_MAX; ++k)
+    if (std::holds_alternative<ScaleStep>(t.steps[k].op)) f.scale = k;
+  if (f.scale == SIZE_MAX) return f;
+  const ScaleStep& sc = std::get<ScaleStep>(t.steps[f.scale].op);
+  for (int c = 0; c < 3; ++c) {
+    if (!sc.count[c]) continue;
+    const std::uint32_t lo = sc.base[c], hi = sc.base[c] + sc.count[c];
+    for (std::size_t k = f.scale; k-- > 0;) {
+      const auto* cs = std::get_if<CentroidStep>(&t.steps[k].op);
+      if (!cs) break;  // another kind of step: keep the Scale step's own pass
+      bool reads = false;
+      for (int g = 0; g < cs->num_groups; ++g)
+        reads |= cs->groups[g].source_base < hi && cs->groups[g].source_base + cs->groups[g].source_count > lo;
+      if (reads) break;
+      const bool writes = cs->count && cs->target_base < hi && cs->target_base + cs->count > lo;
+      if (writes) {
+        if (cs->target_base == lo && cs->count == sc.count[c] && cs->num_groups) f.into[c] = static_cast<int>(k);
+        break;
+      }
+    }
+  }
+  return f;
+}
+
+FoldedScale folded_scale(const ScaleFold& f, const Transition& t, const Complex& p, std::size_t k, bool inverse) {
+  static constexpr FeatureDims kDims[3] = {FeatureDims::Vertex, FeatureDims::Edge, FeatureDims::Face};
+  FoldedScale fs;
+  for (int c = 0; c < 3; ++c) {
+    if (f.into[c] != static_cast<int>(k)) continue;
+    const ScaleStep& sc = std::get<ScaleStep>(t.steps[f.scale].op);
+    fs.dims = dims_of(p, kDims[c]);
+    for (int m = 0; m < 4; ++m) fs.factor[m] = inverse ? 1.0 / sc.factor[c][m] : sc.factor[c][m];
+    fs.first = inverse;
+  }
+  return fs;
+}
+
+// Step k forwards (synthesis) or inverted (analysis); `fold` as planned for this run (empty in
+// integer mode, where Scale steps are skipped).
+void run_step(const Transition& t, std::size_t k, const Complex& p, double* x, int ch, bool integer, bool inverse,
+              const ScaleFold& fold) {
   const double sign = inverse ? -1.0 : 1.0;
   std::visit(Overload{[&](const WeightedStep& w) { run_weighted(w, x, ch, sign, integer); },
-                      [&](const CentroidStep& c) { run_centroid(c, p, t, x, ch, sign, integer); },
+                      [&](const CentroidStep& c) {
+                        run_centroid(c, p, t, x, ch, sign, integer, folded_scale(fold, t, p, k, inverse));
+                      },
                       [&](const ScaleStep& sc) {
-                        if (!integer) run_scale(sc, p, x, ch, inverse);
+                        if (!integer) run_scale(sc, p, x, ch, inverse, k == fold.scale ? fold.mask() : 0u);
                       },
                       [&](const MatrixStep& m) {
                         if (integer)
@@ -295,7 +373,7 @@ void run_step(const Step& s, const Transition& t, const Complex& p, double* x, i
                         if (inverse) unrun_matrix(m, x, ch);
                         else run_matrix(m, x, ch);
                       }},
-             s.op);
+             t.steps[k].op);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -542,17 +620,26 @@ void run_synthesis(const Transition& t, const Complex& p, double* x, int ch, boo
   // While the new values are zero, a step that reads only them adds exact zeros (000 sec. 4:
   // "the first lifting operation does not have an impact"): pure subdivision then costs what
   // the subdivision rules cost.
+  ScaleFold fold = integer ? ScaleFold{} : plan_scale_fold(t);
   bool zero = new_zero;
-  for (const Step& s : t.steps) {
-    if (zero && !s.reads_coarse) continue;
+  for (std::size_t k = 0; k < t.steps.size(); ++k) {
+    const Step& s = t.steps[k];
+    if (zero && !s.reads_coarse) {
+      for (int& into : fold.into)
+        if (into == static_cast<int>(k)) into = -1;  // skipped: the Scale step scales the class
+      continue;
+    }
     zero = zero && !s.writes_new;
-    run_step(s, t, p, x, ch, integer, false);
+    run_step(t, k, p, x, ch, integer, false, fold);
   }
 }
 
 void run_analysis(const Transition& t, const Complex& p, double* x, int ch, bool integer) {
-  for (auto it = t.steps.rbegin(); it != t.steps.rend(); ++it) run_step(*it, t, p, x, ch, integer, true);
+  const ScaleFold fold = integer ? ScaleFold{} : plan_scale_fold(t);
+  for (std::size_t k = t.steps.size(); k-- > 0;) run_step(t, k, p, x, ch, integer, true, fold);
 }
+
+unsigned folded_scale_classes(const Transition& t) { return plan_scale_fold(t).mask(); }
 
 SparseIndex build_sparse_index(const Transition& t) {
   SparseIndex idx;

@@ -26,6 +26,11 @@ void run_synthesis(const Transition& t, const Complex& parent, double* x, int ch
 /// Analysis in place: the exact inverse of run_synthesis.
 void run_analysis(const Transition& t, const Complex& parent, double* x, int channels, bool integer);
 
+/// The classes (bit 0 v, 1 e, 2 f) whose Scale factors the dense loops apply inside the Centroid
+/// step that last writes them, instead of in a pass of their own: bit for bit the same values
+/// (executor.cpp, ScaleFold; tested against the unfolded run).
+unsigned folded_scale_classes(const Transition& t);
+
 /// Per step: the rows that read each vertex (Weighted steps; empty for the others, whose
 /// reverse incidences the complex has).
 struct SparseIndex {

@@ -276,23 +276,32 @@ void run_matrix(const MatrixStep& m, double* x, int ch) {
     }
 }
 
+// One solve per channel, the channels on the pool's threads at once: each is the same serial
+// solve whatever the thread count, so the values do not depend on it. A solver per channel
+// (Eigen's keeps its iteration count and error in itself).
 template <class Matrix>
 void solve_channels(const Matrix& A, std::uint32_t n, double* x, int ch, const char* what) {
-  Eigen::BiCGSTAB<Matrix, Eigen::DiagonalPreconditioner<double>> solver;
-  solver.setTolerance(1e-15);
-  solver.setMaxIterations(1000);
-  solver.compute(A);
-  Eigen::VectorXd b(n), u(n);
-  for (int c = 0; c < ch; ++c) {
-    for (std::uint32_t i = 0; i < n; ++i) b(i) = x[std::size_t(i) * ch + c];
-    if (b.squaredNorm() == 0) continue;
-    u = solver.solve(b);
-    const double rel = (A * u - b).norm() / b.norm();
+  std::vector<double> residual(static_cast<std::size_t>(ch), 0.0);
+  parallel_for(static_cast<std::uint32_t>(ch), 1, [&](std::uint32_t begin, std::uint32_t end) {
+    Eigen::BiCGSTAB<Matrix, Eigen::DiagonalPreconditioner<double>> solver;
+    solver.setTolerance(1e-15);
+    solver.setMaxIterations(1000);
+    solver.compute(A);
+    Eigen::VectorXd b(n), u(n);
+    for (std::uint32_t c = begin; c < end; ++c) {
+      for (std::uint32_t i = 0; i < n; ++i) b(i) = x[std::size_t(i) * ch + c];
+      if (b.squaredNorm() == 0) continue;
+      u = solver.solve(b);
+      const double rel = (A * u - b).norm() / b.norm();
+      residual[c] = rel;
+      if (!(rel < 1e-12)) continue;  // thrown below: the body must not throw
+      for (std::uint32_t i = 0; i < n; ++i) x[std::size_t(i) * ch + c] = u(i);
+    }
+  });
+  for (const double rel : residual)
     if (!(rel < 1e-12))
       throw Error(std::string("Loop analysis: the sparse solve of the vertex rule did not converge (") + what +
                   ", relative residual " + std::to_string(rel) + ")");
-    for (std::uint32_t i = 0; i < n; ++i) x[std::size_t(i) * ch + c] = u(i);
-  }
 }
 
 void unrun_matrix(const MatrixStep& m, double* x, int ch) { solve_channels(m.solver->P, m.n, x, ch, "P"); }

@@ -58,6 +58,7 @@ class TriangleBvh {
  private:
   struct Tri {
     glm::dvec3 p0, e1, e2;
+    glm::dvec3 n;  // cross(e1, e2), for the facing tests
     std::uint32_t face = 0;
   };
   struct Node {

@@ -13,6 +13,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -175,29 +176,62 @@ void BM_Transform(benchmark::State& st, const Case* c, int L, bool synthesis) {
 
 // ---- Summary --------------------------------------------------------------------------------
 
+// Least squares ms = fixed + marginal * n over the points, each weighted by 1 / ms^2 (relative
+// misses count alike at every size); the worst |relative miss|.
+struct Affine {
+  double fixed_ms = 0, marginal_ns = 0, worst = 0;
+};
+Affine affine_fit(const std::vector<std::pair<double, double>>& pts) {  // (n, ms)
+  Affine a;
+  if (pts.size() < 2) return a;
+  double s = 0, sn = 0, sm = 0, snn = 0, snm = 0;
+  for (const auto& [n, ms] : pts) {
+    const double w = 1 / (ms * ms);
+    s += w, sn += w * n, sm += w * ms, snn += w * n * n, snm += w * n * ms;
+  }
+  const double slope = (s * snm - sn * sm) / (s * snn - sn * sn);
+  a.fixed_ms = (sm - slope * sn) / s;
+  a.marginal_ns = slope * 1e6;
+  for (const auto& [n, ms] : pts) a.worst = std::max(a.worst, std::abs(a.fixed_ms + slope * n - ms) / ms);
+  return a;
+}
+
 void print_summary() {
   std::printf("\n=== ns per finest vertex against size (best over iterations; default threads) ===\n");
-  std::printf("%-22s %-16s", "scheme/base", "operation");
-  for (int i = 0; i < 5; ++i) std::printf(" %17s", "");
-  std::printf(" %8s\n", "spread");
+  std::printf("%-22s %-13s", "scheme/base", "operation");
+  for (int i = 0; i < 5; ++i) std::printf(" %16s", "");
+  std::printf(" %7s %9s %8s %6s\n", "spread", "fixed ms", "ns/v", "worst");
   for (const Case& c : cases())
     for (const char* op : {"setup first", "setup second", "synthesis", "analysis", "bytes"}) {
-      std::printf("%-22s %-16s", c.name().c_str(), op);
+      const bool bytes = std::string(op) == "bytes";
+      std::printf("%-22s %-13s", c.name().c_str(), op);
       double lo = 0, hi = 0;
+      std::vector<std::pair<double, double>> pts;
       for (int L : c.levels) {
-        const std::string k = key(c, L);
+        const std::string k = key(c, L), t = std::string(op) + " " + k;
         const double v = g_vertices.count(k) ? g_vertices[k] : 0;
-        const double ms = std::string(op) == "bytes" ? 0 : (best_ms().count(std::string(op) + " " + k) ? best_ms()[std::string(op) + " " + k] : 0);
-        const double per = std::string(op) == "bytes" ? (g_bytes.count(k) && v > 0 ? g_bytes[k] / v : 0) : (v > 0 ? ms * 1e6 / v : 0);
+        const double ms = bytes || !best_ms().count(t) ? 0 : best_ms()[t];
+        const double per = bytes ? (g_bytes.count(k) && v > 0 ? g_bytes[k] / v : 0) : (v > 0 ? ms * 1e6 / v : 0);
         char cell[40];
         std::snprintf(cell, sizeof cell, "%.0fk:%.1f", v / 1e3, per);
-        std::printf(" %17s", per > 0 ? cell : "-");
-        if (per > 0 && v >= 1e5) lo = lo == 0 ? per : std::min(lo, per), hi = std::max(hi, per);
+        std::printf(" %16s", per > 0 ? cell : "-");
+        if (per > 0 && v >= 1e5) {
+          lo = lo == 0 ? per : std::min(lo, per), hi = std::max(hi, per);
+          if (!bytes) pts.emplace_back(v, ms);
+        }
       }
-      if (lo > 0) std::printf(" %7.2fx", hi / lo);
+      for (std::size_t i = c.levels.size(); i < 5; ++i) std::printf(" %16s", "");
+      if (lo > 0) std::printf(" %6.2fx", hi / lo);
+      if (pts.size() >= 2) {
+        const Affine a = affine_fit(pts);
+        std::printf(" %9.1f %8.1f %5.0f%%", a.fixed_ms, a.marginal_ns, 100 * a.worst);
+      }
       std::printf("\n");
     }
-  std::printf("cells: finest vertices (thousands):ns per vertex (bytes: Hierarchy::bytes per vertex)\n");
+  std::printf("cells: finest vertices (thousands):ns per vertex (bytes: Hierarchy::bytes per vertex)\n"
+              "spread: the largest ns per vertex over the smallest at 1e5 vertices and more; fixed ms, ns/v:\n"
+              "the least-squares line ms = fixed + ns/v * vertices over those sizes, worst: its largest\n"
+              "relative miss (a fixed part is the triangle schemes' neighbourhood types, solved once)\n");
 }
 
 template <class... Args>

@@ -390,9 +390,14 @@ void run_step(const Transition& t, std::size_t k, const Complex& p, double* x, i
 
 constexpr std::uint32_t kSparseGrain = 2048;
 
-// The centroid rows reading a changed source are found through the reverse incidences; they
-// are evaluated on the change as the dense loop evaluates them.
-void sparse_centroid(const CentroidStep& s, const Complex& p, const Transition& t, double sign, SparseDelta& d) {
+void find_centroid_rows(const CentroidStep& s, const Group* rev, SparseDelta& d);
+void evaluate_centroid_rows(const CentroidStep& s, const Complex& p, const Group* g, SparseDelta& d);
+
+// The centroid rows reading a changed source are found through the reverse incidences (or
+// taken from `planned`, the rows found for the same change before: SparsePlan); they are
+// evaluated on the change as the dense loop evaluates them.
+void sparse_centroid(const CentroidStep& s, const Complex& p, const Transition& t, double sign, SparseDelta& d,
+                     const std::vector<std::uint32_t>* planned) {
   if (!s.count || !s.num_groups) return;
   Group g[3], rev[3];  // rev: the reverse rows (source -> targets)
   const int G = s.num_groups;
@@ -400,6 +405,13 @@ void sparse_centroid(const CentroidStep& s, const Complex& p, const Transition& 
     g[k] = resolve(p, t, s.groups[k], sign);
     resolve_rows(p, t, s.groups[k].reverse, -1, rev[k].offsets, rev[k].items, rev[k].stride);
   }
+  if (planned) d.candidates = *planned;
+  else find_centroid_rows(s, rev, d);
+  evaluate_centroid_rows(s, p, g, d);
+}
+
+void find_centroid_rows(const CentroidStep& s, const Group* rev, SparseDelta& d) {
+  const int G = s.num_groups;
   const std::uint32_t epoch = ++d.epoch;
   d.candidates.clear();
   const std::size_t n_list = d.list.size();
@@ -420,7 +432,11 @@ void sparse_centroid(const CentroidStep& s, const Complex& p, const Transition& 
       }
     }
   }
-  // Rows are independent (each writes its own target, reads other classes).
+}
+
+// Rows are independent (each writes its own target, reads other classes).
+void evaluate_centroid_rows(const CentroidStep& s, const Complex& p, const Group* g, SparseDelta& d) {
+  const int G = s.num_groups;
   const std::uint8_t* dims = dims_of(p, s.target_dims);
   const std::uint32_t nc = static_cast<std::uint32_t>(d.candidates.size());
   parallel_for(nc, kSparseGrain, [&](std::uint32_t begin, std::uint32_t end) {
@@ -442,17 +458,22 @@ void sparse_centroid(const CentroidStep& s, const Complex& p, const Transition& 
 
 // Rows of a weighted step reading a listed vertex; targets are never sources of the same step,
 // so the order of the rows does not matter.
-void sparse_weighted(const WeightedStep& s, const Csr& readers, double sign, SparseDelta& d) {
-  const std::uint32_t epoch = ++d.epoch;
-  d.candidates.clear();
-  for (const std::uint32_t v : d.list)
-    for (const std::uint32_t r : readers.row(v)) {
-      std::uint32_t& st = d.stamp[s.target[r]];
-      if (st != epoch) {
-        st = epoch;
-        d.candidates.push_back(r);
+void sparse_weighted(const WeightedStep& s, const Csr& readers, double sign, SparseDelta& d,
+                     const std::vector<std::uint32_t>* planned) {
+  if (planned) {
+    d.candidates = *planned;
+  } else {
+    const std::uint32_t epoch = ++d.epoch;
+    d.candidates.clear();
+    for (const std::uint32_t v : d.list)
+      for (const std::uint32_t r : readers.row(v)) {
+        std::uint32_t& st = d.stamp[s.target[r]];
+        if (st != epoch) {
+          st = epoch;
+          d.candidates.push_back(r);
+        }
       }
-    }
+  }
   for (const std::uint32_t r : d.candidates) {
     double acc[3] = {0, 0, 0};
     const double* w = row_weights(s, r);
@@ -520,12 +541,12 @@ void sparse_unmatrix(const MatrixStep& m, SparseDelta& d) {
   }
 }
 
-// Step k of the sparse mode, forwards or inverted.
+// Step k of the sparse mode, forwards or inverted; `planned`: its rows, found before.
 void run_sparse_step(const Transition& t, const Complex& p, const SparseIndex& index, std::size_t k, bool inverse,
-                     SparseDelta& d) {
+                     SparseDelta& d, const std::vector<std::uint32_t>* planned) {
   const double sign = inverse ? -1.0 : 1.0;
-  std::visit(Overload{[&](const WeightedStep& w) { sparse_weighted(w, index.readers[k], sign, d); },
-                      [&](const CentroidStep& c) { sparse_centroid(c, p, t, sign, d); },
+  std::visit(Overload{[&](const WeightedStep& w) { sparse_weighted(w, index.readers[k], sign, d, planned); },
+                      [&](const CentroidStep& c) { sparse_centroid(c, p, t, sign, d, planned); },
                       [&](const ScaleStep& sc) { sparse_scale(sc, p, inverse, d); },
                       [&](const MatrixStep& m) {
                         if (inverse) sparse_unmatrix(m, d);
@@ -660,12 +681,38 @@ SparseIndex build_sparse_index(const Transition& t) {
   return idx;
 }
 
+// A drag moves the same vertices every frame, so each step reaches the same rows: they are kept
+// (SparseIndex::plans) and replayed while the change comes in on the same list. Without a Matrix
+// step the list grows by topology alone (every row found is listed), so the same input list
+// means the same rows at every step.
+void run_sparse(const Transition& t, const Complex& p, const SparseIndex& index, SparseDelta& d, bool inverse) {
+  const bool plannable = std::none_of(t.steps.begin(), t.steps.end(),
+                                      [](const Step& s) { return std::holds_alternative<MatrixStep>(s.op); });
+  SparsePlan& plan = index.plans[inverse ? 1 : 0];
+  const bool replay = plannable && plan.rows.size() == t.steps.size() && plan.input == d.list;
+  if (replay) {
+    ++plan.replays;
+  } else if (plannable) {
+    plan.input = d.list;
+    plan.rows.assign(t.steps.size(), {});
+  }
+  const auto one = [&](std::size_t k) {
+    const bool finds = !std::holds_alternative<ScaleStep>(t.steps[k].op);
+    run_sparse_step(t, p, index, k, inverse, d, replay && finds ? &plan.rows[k] : nullptr);
+    if (plannable && !replay && finds) plan.rows[k] = d.candidates;
+  };
+  if (inverse)
+    for (std::size_t k = t.steps.size(); k-- > 0;) one(k);
+  else
+    for (std::size_t k = 0; k < t.steps.size(); ++k) one(k);
+}
+
 void run_synthesis_sparse(const Transition& t, const Complex& p, const SparseIndex& index, SparseDelta& d) {
-  for (std::size_t k = 0; k < t.steps.size(); ++k) run_sparse_step(t, p, index, k, false, d);
+  run_sparse(t, p, index, d, false);
 }
 
 void run_analysis_sparse(const Transition& t, const Complex& p, const SparseIndex& index, SparseDelta& d) {
-  for (std::size_t k = t.steps.size(); k-- > 0;) run_sparse_step(t, p, index, k, true, d);
+  run_sparse(t, p, index, d, true);
 }
 
 void run_analysis_adjoint(const Transition& t, const Complex& p, double* y) {

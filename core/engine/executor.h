@@ -31,10 +31,20 @@ void run_analysis(const Transition& t, const Complex& parent, double* x, int cha
 /// (executor.cpp, ScaleFold; tested against the unfolded run).
 unsigned folded_scale_classes(const Transition& t);
 
+/// The rows each step of one sparse run reached from an input list (executor.cpp, run_sparse).
+struct SparsePlan {
+  std::vector<std::uint32_t> input;              // the change's list when the run began
+  std::vector<std::vector<std::uint32_t>> rows;  // per step: the rows found
+  std::uint64_t replays = 0;                     // runs that reused them (for tests)
+};
+
 /// Per step: the rows that read each vertex (Weighted steps; empty for the others, whose
-/// reverse incidences the complex has).
+/// reverse incidences the complex has). `plans` (synthesis, analysis) keep the rows the last
+/// sparse run found, reused while the next run starts from the same list (a drag): one index
+/// serves one thread at a time.
 struct SparseIndex {
   std::vector<Csr> readers;
+  mutable SparsePlan plans[2];
 };
 SparseIndex build_sparse_index(const Transition& t);
 

@@ -110,6 +110,39 @@ TEST_P(Engine, SparseEqualsDense) {
   }
 }
 
+// A drag runs the same list every frame: the second run replays the rows the first found
+// (SparsePlan) and gives the same bits; another list is found afresh and equals a new index's.
+TEST_P(Engine, ReplayedSparseRunsEqualFreshOnes) {
+  const Hierarchy h = hierarchy(bases_for(info()).front(), levels(), 3);
+  for (int j = 0; j < h.finest_level(); ++j) {
+    const auto J = static_cast<std::size_t>(j);
+    const Transition& t = h.transitions[J];
+    const bool has_matrix = std::any_of(t.steps.begin(), t.steps.end(),
+                                        [](const Step& s) { return std::holds_alternative<MatrixStep>(s.op); });
+    const std::uint32_t n = h.num_vertices(j + 1);
+    const SparseIndex kept = build_sparse_index(t);
+    for (bool analysis : {false, true}) {
+      const auto run = [&](const SparseIndex& index, std::uint32_t first, double value) {
+        SparseDelta d;
+        d.reset(n);
+        for (std::uint32_t v : {first, (first + n / 3) % n, n - 1})
+          for (int c = 0; c < 3; ++c) d.at(v)[c] = value + c;
+        if (analysis) run_analysis_sparse(t, h.levels[J], index, d);
+        else run_synthesis_sparse(t, h.levels[J], index, d);
+        return std::make_pair(d.x, d.list);
+      };
+      const std::uint64_t before = kept.plans[analysis].replays;
+      const auto first = run(kept, 0, 1.5);
+      const auto again = run(kept, 0, -0.25);  // same list, other values
+      EXPECT_EQ(kept.plans[analysis].replays, before + (has_matrix ? 0 : 1)) << "level " << j;
+      EXPECT_EQ(again.second, first.second) << "level " << j;
+      EXPECT_EQ(again.first, run(build_sparse_index(t), 0, -0.25).first) << "level " << j << (analysis ? " analysis" : " synthesis");
+      const auto other = run(kept, 1, 2.0);  // another list: found afresh
+      EXPECT_EQ(other.first, run(build_sparse_index(t), 1, 2.0).first) << "level " << j;
+    }
+  }
+}
+
 // Analysis is linear: column i of its matrix A is the analysis of unit vector e_i. The adjoint
 // applied to e_k must give row k of A, entry for entry.
 TEST_P(Engine, AdjointIsTheAnalysisRows) {

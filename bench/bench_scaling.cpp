@@ -104,24 +104,19 @@ int setup_child(const std::string& arg) {  // "scheme base L"
 std::map<std::string, double> g_vertices, g_bytes;  // by key
 
 void BM_Setup(benchmark::State& st, const Case* c, int L) {
-  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
-  const std::string cmd = "'" + self + "' " + kChildFlag + scheme_name(c->scheme) + ":" + c->base + ":" + std::to_string(L);
   const std::string k = key(*c, L);
   for (auto _ : st) {
-    double first = -1, second = -1, bytes = 0, vertices = 0;
-    if (FILE* p = popen(cmd.c_str(), "r")) {
-      if (std::fscanf(p, "%lf %lf %lf %lf", &first, &second, &bytes, &vertices) != 4) first = -1;
-      pclose(p);
-    }
-    if (first < 0) {
+    const std::vector<double> r =
+        bench::numbers_from_child(kChildFlag, scheme_name(c->scheme) + ":" + c->base + ":" + std::to_string(L), 4);
+    if (r.empty()) {
       st.SkipWithError("setup child failed");
       return;
     }
-    st.SetIterationTime(first * 1e-3);
-    note("setup first " + k, first);
-    note("setup second " + k, second);
-    g_vertices[k] = vertices;
-    g_bytes[k] = bytes;
+    st.SetIterationTime(r[0] * 1e-3);
+    note("setup first " + k, r[0]);
+    note("setup second " + k, r[1]);
+    g_bytes[k] = r[2];
+    g_vertices[k] = r[3];
   }
   st.counters["finest_vertices"] = g_vertices[k];
   st.counters["ns_per_vertex"] = best_ms()["setup first " + k] * 1e6 / g_vertices[k];
@@ -251,13 +246,5 @@ void register_all() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i)
-    if (std::strncmp(argv[i], kChildFlag, std::strlen(kChildFlag)) == 0) return setup_child(argv[i] + std::strlen(kChildFlag));
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  register_all();
-  benchmark::RunSpecifiedBenchmarks();
-  print_summary();
-  benchmark::Shutdown();
-  return 0;
+  return sublift::bench::main_with_children(argc, argv, kChildFlag, setup_child, register_all, print_summary);
 }

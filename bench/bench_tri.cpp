@@ -279,8 +279,7 @@ void BM_LoopParts(benchmark::State& st, const Size* sz) {
 // ---- Setup ----------------------------------------------------------------------------------
 
 /// Child mode: builds the hierarchy twice in this fresh process and prints both times (ms).
-int setup_child(const char* arg) {
-  const std::string s(arg);
+int setup_child(const std::string& s) {
   const auto colon = s.find(':');
   const Scheme scheme = parse_scheme(s.substr(0, colon));
   const int J = std::stoi(s.substr(colon + 1));
@@ -296,22 +295,16 @@ int setup_child(const char* arg) {
 }
 
 void BM_TriSetup(benchmark::State& st, Scheme s, const Size* sz) {
-  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
-  const std::string cmd = "'" + self + "' " + kChildFlag + scheme_name(s) + ":" + std::to_string(sz->J);
   const std::string k = "setup " + key(s, *sz);
   for (auto _ : st) {
-    double first = -1, second = -1;
-    if (FILE* p = popen(cmd.c_str(), "r")) {
-      if (std::fscanf(p, "%lf %lf", &first, &second) != 2) first = second = -1;
-      pclose(p);
-    }
-    if (first < 0) {
+    const std::vector<double> r = bench::numbers_from_child(kChildFlag, scheme_name(s) + ":" + std::to_string(sz->J), 2);
+    if (r.empty()) {
       st.SkipWithError("setup child failed");
       return;
     }
-    st.SetIterationTime(first * 1e-3);
-    note(k + " first", first);
-    note(k + " second", second);
+    st.SetIterationTime(r[0] * 1e-3);
+    note(k + " first", r[0]);
+    note(k + " second", r[1]);
   }
   st.counters["first_ms"] = ms_of(k + " first");
   st.counters["second_ms"] = ms_of(k + " second");
@@ -416,13 +409,5 @@ void register_all() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i)
-    if (std::strncmp(argv[i], kChildFlag, std::strlen(kChildFlag)) == 0) return setup_child(argv[i] + std::strlen(kChildFlag));
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  register_all();
-  benchmark::RunSpecifiedBenchmarks();
-  print_summary();
-  benchmark::Shutdown();
-  return 0;
+  return sublift::bench::main_with_children(argc, argv, kChildFlag, setup_child, register_all, print_summary);
 }

@@ -638,8 +638,10 @@ void eval_limit(const LimitStencils& s, const double* control, double* limit) {
 // Vertices per chunk of the subset updates (a drag changes ~10^4).
 constexpr std::uint32_t kSubsetGrain = 2048;
 
-void eval_limit_subset(const LimitStencils& s, const double* control, std::span<const std::uint32_t> changed_control,
-                       double* limit, std::vector<std::uint32_t>& changed_limit) {
+// The limit vertices reading a changed control vertex (`fresh`), those not yet in changed_limit
+// appended to it.
+static void find_subset(const LimitStencils& s, std::span<const std::uint32_t> changed_control,
+                        std::vector<std::uint32_t>& changed_limit, std::vector<std::uint32_t>& fresh) {
   // Stamps instead of sorting: a drag calls this every frame with ~10^5 user entries.
   thread_local std::vector<std::uint32_t> stamp;
   thread_local std::uint32_t epoch = 0;
@@ -649,7 +651,7 @@ void eval_limit_subset(const LimitStencils& s, const double* control, std::span<
   ++epoch;
   for (std::uint32_t v : changed_limit)
     if (v < nv) stamp[v] = epoch;  // already listed: recomputed below if needed, not appended again
-  std::vector<std::uint32_t> fresh;
+  fresh.clear();
   for (std::uint32_t u : changed_control)
     for (std::uint32_t v : s.users.row(u)) {
       if (stamp[v] == epoch + 1) continue;
@@ -658,6 +660,23 @@ void eval_limit_subset(const LimitStencils& s, const double* control, std::span<
       fresh.push_back(v);
     }
   ++epoch;  // epoch + 1 marked "recomputed"
+}
+
+void eval_limit_subset(const LimitStencils& s, const double* control, std::span<const std::uint32_t> changed_control,
+                       double* limit, std::vector<std::uint32_t>& changed_limit) {
+  LimitStencils::SubsetPlan& plan = s.subset_plan;
+  const bool replay = !plan.fresh.empty() && std::equal(changed_control.begin(), changed_control.end(), plan.control.begin(),
+                                                        plan.control.end()) && changed_limit == plan.limit_in;
+  if (replay) {
+    ++plan.replays;
+    changed_limit.insert(changed_limit.end(), plan.appended.begin(), plan.appended.end());
+  } else {
+    plan.control.assign(changed_control.begin(), changed_control.end());
+    plan.limit_in = changed_limit;
+    find_subset(s, changed_control, changed_limit, plan.fresh);
+    plan.appended.assign(changed_limit.begin() + std::ptrdiff_t(plan.limit_in.size()), changed_limit.end());
+  }
+  const std::vector<std::uint32_t>& fresh = plan.fresh;
   parallel_for(static_cast<std::uint32_t>(fresh.size()), kSubsetGrain, [&](std::uint32_t b, std::uint32_t e) {
     for (std::uint32_t i = b; i < e; ++i) limit_row(s, fresh[i], control, limit + 3 * std::size_t(fresh[i]));
   });

@@ -34,6 +34,13 @@ struct LimitStencils {
   std::size_t configurations = 0;  // distinct configurations solved (cache size)
   std::vector<std::int8_t> tangent_sign;  // per vertex: +1/-1 orients tu x tv like the faces (orient_tangents); empty = decide per call
   std::size_t unsolved = 0;        // vertices whose configuration had no dominant eigenvalue 1 (identity used)
+  // What the last eval_limit_subset found from its two lists, replayed while they come in the
+  // same (a drag moves the same control points every frame); one caller at a time.
+  struct SubsetPlan {
+    std::vector<std::uint32_t> control, limit_in, fresh, appended;
+    std::uint64_t replays = 0;
+  };
+  mutable SubsetPlan subset_plan;
 };
 
 /// Stencils for the finest level of h (its complex may lack adjacency; build it on a copy then).

@@ -459,6 +459,39 @@ TEST(Limit, ExtraordinaryNormalsFromEigenTangents) {
 
 // ---- incremental evaluation ----------------------------------------------------------------
 
+// A drag's frames move the same control points: the second call replays the limit vertices the
+// first found (LimitStencils::subset_plan), with the same lists and values as a fresh search.
+TEST(Limit, RepeatedSubsetEvaluationReplaysItsRows) {
+  const Hierarchy h = surface(jittered(pentagonal_prism(), 9, 0.05), 2);
+  const LimitStencils s = build_limit_stencils(h);
+  std::vector<double> x = synthesize(h, 2), lim(x.size()), full(x.size());
+  eval_limit(s, x.data(), lim.data());
+  const std::vector<std::uint32_t> moved = {0, 3, 17, 40};
+  std::vector<std::vector<std::uint32_t>> lists;
+  for (int frame = 0; frame < 3; ++frame) {
+    for (std::uint32_t u : moved) x[3 * u] += 0.05 * (frame + 1);
+    std::vector<std::uint32_t> changed{41};
+    eval_limit_subset(s, x.data(), moved, lim.data(), changed);
+    lists.push_back(changed);
+    eval_limit(s, x.data(), full.data());
+    EXPECT_EQ(lim, full) << "frame " << frame;
+  }
+  EXPECT_EQ(s.subset_plan.replays, 2u);
+  EXPECT_EQ(lists[1], lists[0]);
+  EXPECT_EQ(lists[2], lists[0]);
+  // Another list is searched afresh, and so is the same list with another changed_limit.
+  const LimitStencils fresh = build_limit_stencils(h);
+  for (const std::vector<std::uint32_t>& other : {std::vector<std::uint32_t>{5, 6}, moved}) {
+    x[3 * other[0] + 1] += 0.25;
+    std::vector<std::uint32_t> a, b;
+    eval_limit_subset(s, x.data(), other, lim.data(), a);
+    eval_limit_subset(fresh, x.data(), other, full.data(), b);
+    EXPECT_EQ(a, b);
+    EXPECT_EQ(lim, full);
+  }
+  EXPECT_EQ(s.subset_plan.replays, 2u);
+}
+
 TEST(Limit, SubsetEvaluationEqualsFullEvaluation) {
   const Hierarchy h = surface(jittered(pentagonal_prism(), 9, 0.05), 2);
   const LimitStencils s = build_limit_stencils(h);

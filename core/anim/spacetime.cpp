@@ -173,11 +173,6 @@ Complex sweep_lattice(const Complex& surface, int base_steps, bool cyclic) {
 
 int SpaceTime::layers(int level) const { return space_time_frames(base_steps, level, cyclic); }
 
-double SpaceTime::layer_time(int level, int layer) const {
-  const int n = layers(level);
-  return cyclic ? double(layer) / n : double(layer) / (n - 1);
-}
-
 int space_time_frames(int base_steps, int levels, bool cyclic) { return (base_steps << levels) + (cyclic ? 0 : 1); }
 
 std::optional<int> space_time_base_steps(int frames, int levels, bool cyclic) {

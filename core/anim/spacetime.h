@@ -51,8 +51,6 @@ struct SpaceTime {
   /// Layers of level j: base_steps 2^j (+ 1 when open).
   int layers(int level) const;
   std::uint32_t surface_vertices(int level) const { return surface_levels.num_vertices(level); }
-  /// The time of layer t of level j in [0, 1]: t / (layers - 1), or t / layers when cyclic.
-  double layer_time(int level, int layer) const;
 };
 
 /// Finest layer count for base_steps and levels (K 2^J + 1, or K 2^J cyclic).

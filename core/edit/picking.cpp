@@ -225,14 +225,4 @@ std::vector<std::uint32_t> PickIndex::in_circle(double cx, double cy, double rad
   });
 }
 
-bool PickIndex::screen_position(std::uint32_t i, glm::dvec2& screen) const {
-  for (const Entry& e : entries_) {
-    if ((e.code & ~kHiddenBit) == i) {
-      screen = {e.x, e.y};
-      return true;
-    }
-  }
-  return false;
-}
-
 }  // namespace sublift

@@ -96,8 +96,6 @@ class PickIndex {
   std::size_t size() const { return entries_.size(); }
   /// Number of indexed points marked hidden by the occlusion depth.
   std::size_t hidden_count() const { return hidden_count_; }
-  /// Projected screen position of indexed point `i`; false when it is not in the index. O(size).
-  bool screen_position(std::uint32_t i, glm::dvec2& screen) const;
 
  private:
   struct Entry {

@@ -57,11 +57,6 @@ double* Session::array_ptr(int array) {
   return pos_.at(static_cast<std::size_t>(array)).data();
 }
 
-std::size_t Session::array_vertices(int array) const {
-  if (array == kCoeffs || array == kLocal) return num_vertices(finest_level());
-  return num_vertices(array);
-}
-
 void Session::resynthesize_from(int level) {
   for (int l = level; l < finest_level(); ++l) resynthesize_one(l);
 }

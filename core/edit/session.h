@@ -170,7 +170,6 @@ class Session {
   double prepare_edit_buffers();
   void record(int array, std::uint32_t v);  // remembers the old value before a change
   double* array_ptr(int array);
-  std::size_t array_vertices(int array) const;
   void apply_entry(const HistoryEntry& e, bool forward);
   void push_entry(HistoryEntry e);
   void clear_changed();

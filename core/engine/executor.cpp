@@ -685,7 +685,7 @@ SparseIndex build_sparse_index(const Transition& t) {
 // (SparseIndex::plans) and replayed while the change comes in on the same list. Without a Matrix
 // step the list grows by topology alone (every row found is listed), so the same input list
 // means the same rows at every step.
-void run_sparse(const Transition& t, const Complex& p, const SparseIndex& index, SparseDelta& d, bool inverse) {
+static void run_sparse(const Transition& t, const Complex& p, const SparseIndex& index, SparseDelta& d, bool inverse) {
   const bool plannable = std::none_of(t.steps.begin(), t.steps.end(),
                                       [](const Step& s) { return std::holds_alternative<MatrixStep>(s.op); });
   SparsePlan& plan = index.plans[inverse ? 1 : 0];

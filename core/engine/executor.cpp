@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <exception>
 #include <string>
 #include <unordered_map>
 
@@ -282,22 +283,29 @@ void run_matrix(const MatrixStep& m, double* x, int ch) {
 template <class Matrix>
 void solve_channels(const Matrix& A, std::uint32_t n, double* x, int ch, const char* what) {
   std::vector<double> residual(static_cast<std::size_t>(ch), 0.0);
+  std::vector<std::exception_ptr> failed(static_cast<std::size_t>(ch));  // rethrown below: bodies must not throw
   parallel_for(static_cast<std::uint32_t>(ch), 1, [&](std::uint32_t begin, std::uint32_t end) {
-    Eigen::BiCGSTAB<Matrix, Eigen::DiagonalPreconditioner<double>> solver;
-    solver.setTolerance(1e-15);
-    solver.setMaxIterations(1000);
-    solver.compute(A);
-    Eigen::VectorXd b(n), u(n);
-    for (std::uint32_t c = begin; c < end; ++c) {
-      for (std::uint32_t i = 0; i < n; ++i) b(i) = x[std::size_t(i) * ch + c];
-      if (b.squaredNorm() == 0) continue;
-      u = solver.solve(b);
-      const double rel = (A * u - b).norm() / b.norm();
-      residual[c] = rel;
-      if (!(rel < 1e-12)) continue;  // thrown below: the body must not throw
-      for (std::uint32_t i = 0; i < n; ++i) x[std::size_t(i) * ch + c] = u(i);
+    try {
+      Eigen::BiCGSTAB<Matrix, Eigen::DiagonalPreconditioner<double>> solver;
+      solver.setTolerance(1e-15);
+      solver.setMaxIterations(1000);
+      solver.compute(A);
+      Eigen::VectorXd b(n), u(n);
+      for (std::uint32_t c = begin; c < end; ++c) {
+        for (std::uint32_t i = 0; i < n; ++i) b(i) = x[std::size_t(i) * ch + c];
+        if (b.squaredNorm() == 0) continue;
+        u = solver.solve(b);
+        const double rel = (A * u - b).norm() / b.norm();
+        residual[c] = rel;
+        if (!(rel < 1e-12)) continue;  // thrown below
+        for (std::uint32_t i = 0; i < n; ++i) x[std::size_t(i) * ch + c] = u(i);
+      }
+    } catch (...) {  // out of memory, say
+      failed[begin] = std::current_exception();
     }
   });
+  for (const std::exception_ptr& e : failed)
+    if (e) std::rethrow_exception(e);
   for (const double rel : residual)
     if (!(rel < 1e-12))
       throw Error(std::string("Loop analysis: the sparse solve of the vertex rule did not converge (") + what +

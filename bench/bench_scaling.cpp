@@ -32,10 +32,7 @@
 namespace {
 
 using namespace sublift;
-using bench::best_ms;
-using bench::Clock;
-using bench::note;
-using bench::since_ms;
+using namespace sublift::bench;  // best_ms, Clock, note, since_ms, numbers_from_child
 
 constexpr const char* kChildFlag = "--scaling-setup-child=";
 
@@ -107,7 +104,7 @@ void BM_Setup(benchmark::State& st, const Case* c, int L) {
   const std::string k = key(*c, L);
   for (auto _ : st) {
     const std::vector<double> r =
-        bench::numbers_from_child(kChildFlag, scheme_name(c->scheme) + ":" + c->base + ":" + std::to_string(L), 4);
+        numbers_from_child(kChildFlag, scheme_name(c->scheme) + ":" + c->base + ":" + std::to_string(L), 4);
     if (r.empty()) {
       st.SkipWithError("setup child failed");
       return;
@@ -246,5 +243,5 @@ void register_all() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return sublift::bench::main_with_children(argc, argv, kChildFlag, setup_child, register_all, print_summary);
+  return main_with_children(argc, argv, kChildFlag, setup_child, register_all, print_summary);
 }

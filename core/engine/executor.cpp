@@ -398,14 +398,15 @@ void run_step(const Transition& t, std::size_t k, const Complex& p, double* x, i
 
 constexpr std::uint32_t kSparseGrain = 2048;
 
-void find_centroid_rows(const CentroidStep& s, const Group* rev, SparseDelta& d);
-void evaluate_centroid_rows(const CentroidStep& s, const Complex& p, const Group* g, SparseDelta& d);
+void find_centroid_rows(const CentroidStep& s, const Group* rev, SparseDelta& d, std::vector<std::uint32_t>& rows);
+void evaluate_centroid_rows(const CentroidStep& s, const Complex& p, const Group* g, SparseDelta& d,
+                            const std::vector<std::uint32_t>& rows);
 
-// The centroid rows reading a changed source are found through the reverse incidences (or
-// taken from `planned`, the rows found for the same change before: SparsePlan); they are
-// evaluated on the change as the dense loop evaluates them.
+// The centroid rows reading a changed source are found (`find`) into `rows` through the
+// reverse incidences, or `rows` holds them already (found for the same change before:
+// SparsePlan); they are evaluated on the change as the dense loop evaluates them.
 void sparse_centroid(const CentroidStep& s, const Complex& p, const Transition& t, double sign, SparseDelta& d,
-                     const std::vector<std::uint32_t>* planned) {
+                     std::vector<std::uint32_t>& rows, bool find) {
   if (!s.count || !s.num_groups) return;
   Group g[3], rev[3];  // rev: the reverse rows (source -> targets)
   const int G = s.num_groups;
@@ -413,15 +414,14 @@ void sparse_centroid(const CentroidStep& s, const Complex& p, const Transition& 
     g[k] = resolve(p, t, s.groups[k], sign);
     resolve_rows(p, t, s.groups[k].reverse, -1, rev[k].offsets, rev[k].items, rev[k].stride);
   }
-  if (planned) d.candidates = *planned;
-  else find_centroid_rows(s, rev, d);
-  evaluate_centroid_rows(s, p, g, d);
+  if (find) find_centroid_rows(s, rev, d, rows);
+  evaluate_centroid_rows(s, p, g, d, rows);
 }
 
-void find_centroid_rows(const CentroidStep& s, const Group* rev, SparseDelta& d) {
+void find_centroid_rows(const CentroidStep& s, const Group* rev, SparseDelta& d, std::vector<std::uint32_t>& rows) {
   const int G = s.num_groups;
   const std::uint32_t epoch = ++d.epoch;
-  d.candidates.clear();
+  rows.clear();
   const std::size_t n_list = d.list.size();
   for (std::size_t q = 0; q < n_list; ++q) {
     const std::uint32_t v = d.list[q];
@@ -435,7 +435,7 @@ void find_centroid_rows(const CentroidStep& s, const Group* rev, SparseDelta& d)
         std::uint32_t& st = d.stamp[s.target_base + row[i]];
         if (st != epoch) {
           st = epoch;
-          d.candidates.push_back(row[i]);
+          rows.push_back(row[i]);
         }
       }
     }
@@ -443,13 +443,14 @@ void find_centroid_rows(const CentroidStep& s, const Group* rev, SparseDelta& d)
 }
 
 // Rows are independent (each writes its own target, reads other classes).
-void evaluate_centroid_rows(const CentroidStep& s, const Complex& p, const Group* g, SparseDelta& d) {
+void evaluate_centroid_rows(const CentroidStep& s, const Complex& p, const Group* g, SparseDelta& d,
+                            const std::vector<std::uint32_t>& rows) {
   const int G = s.num_groups;
   const std::uint8_t* dims = dims_of(p, s.target_dims);
-  const std::uint32_t nc = static_cast<std::uint32_t>(d.candidates.size());
+  const std::uint32_t nc = static_cast<std::uint32_t>(rows.size());
   parallel_for(nc, kSparseGrain, [&](std::uint32_t begin, std::uint32_t end) {
     for (std::uint32_t q = begin; q < end; ++q) {
-      const std::uint32_t i = d.candidates[q];
+      const std::uint32_t i = rows[q];
       const int m = dims ? dims[i] : 0;
       double acc[3] = {0, 0, 0}, sum[3];
       switch (G) {
@@ -461,28 +462,26 @@ void evaluate_centroid_rows(const CentroidStep& s, const Complex& p, const Group
       for (int c = 0; c < 3; ++c) dst[c] += acc[c];
     }
   });
-  for (const std::uint32_t i : d.candidates) d.at(s.target_base + i);
+  for (const std::uint32_t i : rows) d.at(s.target_base + i);
 }
 
 // Rows of a weighted step reading a listed vertex; targets are never sources of the same step,
 // so the order of the rows does not matter.
 void sparse_weighted(const WeightedStep& s, const Csr& readers, double sign, SparseDelta& d,
-                     const std::vector<std::uint32_t>* planned) {
-  if (planned) {
-    d.candidates = *planned;
-  } else {
+                     std::vector<std::uint32_t>& rows, bool find) {
+  if (find) {
     const std::uint32_t epoch = ++d.epoch;
-    d.candidates.clear();
+    rows.clear();
     for (const std::uint32_t v : d.list)
       for (const std::uint32_t r : readers.row(v)) {
         std::uint32_t& st = d.stamp[s.target[r]];
         if (st != epoch) {
           st = epoch;
-          d.candidates.push_back(r);
+          rows.push_back(r);
         }
       }
   }
-  for (const std::uint32_t r : d.candidates) {
+  for (const std::uint32_t r : rows) {
     double acc[3] = {0, 0, 0};
     const double* w = row_weights(s, r);
     for (std::uint32_t k = s.sources.offsets[r]; k < s.sources.offsets[r + 1]; ++k, ++w) {
@@ -549,12 +548,13 @@ void sparse_unmatrix(const MatrixStep& m, SparseDelta& d) {
   }
 }
 
-// Step k of the sparse mode, forwards or inverted; `planned`: its rows, found before.
+// Step k of the sparse mode, forwards or inverted; `rows`: the rows it reaches, found first
+// when `find` (else found before).
 void run_sparse_step(const Transition& t, const Complex& p, const SparseIndex& index, std::size_t k, bool inverse,
-                     SparseDelta& d, const std::vector<std::uint32_t>* planned) {
+                     SparseDelta& d, std::vector<std::uint32_t>& rows, bool find) {
   const double sign = inverse ? -1.0 : 1.0;
-  std::visit(Overload{[&](const WeightedStep& w) { sparse_weighted(w, index.readers[k], sign, d, planned); },
-                      [&](const CentroidStep& c) { sparse_centroid(c, p, t, sign, d, planned); },
+  std::visit(Overload{[&](const WeightedStep& w) { sparse_weighted(w, index.readers[k], sign, d, rows, find); },
+                      [&](const CentroidStep& c) { sparse_centroid(c, p, t, sign, d, rows, find); },
                       [&](const ScaleStep& sc) { sparse_scale(sc, p, inverse, d); },
                       [&](const MatrixStep& m) {
                         if (inverse) sparse_unmatrix(m, d);
@@ -697,22 +697,24 @@ static void run_sparse(const Transition& t, const Complex& p, const SparseIndex&
   const bool plannable = std::none_of(t.steps.begin(), t.steps.end(),
                                       [](const Step& s) { return std::holds_alternative<MatrixStep>(s.op); });
   SparsePlan& plan = index.plans[inverse ? 1 : 0];
-  const bool replay = plannable && plan.rows.size() == t.steps.size() && plan.input == d.list;
+  const bool replay = plannable && plan.valid && plan.input == d.list;
   if (replay) {
     ++plan.replays;
   } else if (plannable) {
+    plan.valid = false;  // until the run has found every step's rows
     plan.input = d.list;
-    plan.rows.assign(t.steps.size(), {});
+    plan.rows.resize(t.steps.size());  // each step's rows are cleared as they are found
   }
+  // Found straight into the plan (no copy), or into the change's scratch list when the run
+  // cannot be planned.
   const auto one = [&](std::size_t k) {
-    const bool finds = !std::holds_alternative<ScaleStep>(t.steps[k].op);
-    run_sparse_step(t, p, index, k, inverse, d, replay && finds ? &plan.rows[k] : nullptr);
-    if (plannable && !replay && finds) plan.rows[k] = d.candidates;
+    run_sparse_step(t, p, index, k, inverse, d, plannable ? plan.rows[k] : d.candidates, !replay);
   };
   if (inverse)
     for (std::size_t k = t.steps.size(); k-- > 0;) one(k);
   else
     for (std::size_t k = 0; k < t.steps.size(); ++k) one(k);
+  plan.valid = plannable;
 }
 
 void run_synthesis_sparse(const Transition& t, const Complex& p, const SparseIndex& index, SparseDelta& d) {

@@ -35,6 +35,7 @@ unsigned folded_scale_classes(const Transition& t);
 struct SparsePlan {
   std::vector<std::uint32_t> input;              // the change's list when the run began
   std::vector<std::vector<std::uint32_t>> rows;  // per step: the rows found
+  bool valid = false;                            // a run found them all
   std::uint64_t replays = 0;                     // runs that reused them (for tests)
 };
 

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <future>
+#include <exception>
 #include <string>
+#include <span>
+#include <utility>
 
 #include <Eigen/Dense>
 
@@ -53,8 +55,8 @@ bool corner_ring(const Complex& c, const std::vector<std::uint8_t>& inner, std::
   return ring.size() == valence;
 }
 
-// One term of a sub-step: weight * x[source] added to x[target], with (target, source) packed
-// into one key (target in the high half) so sorting compares one integer.
+// One term of a sub-step: weight * x[source] added to x[target], (target, source) packed into
+// one key, target in the high half (swapping the halves gives the step's columns).
 struct Entry {
   std::uint64_t key;
   double weight;
@@ -64,46 +66,65 @@ Entry entry(std::uint32_t target, std::uint32_t source, double weight) {
   return {std::uint64_t(target) << 32 | source, weight};
 }
 
-// Rows sorted by target, duplicate sources merged (small closed curves repeat vertices; a face
-// rule repeats its corners). Comparing the packed keys gives the same results as comparing
-// (target, source) pairs, so std::sort moves the entries exactly as it did when they were
-// tuples: duplicates are summed in the same order and the weights stay bit-identical.
-WeightedStep make_substep(std::vector<Entry> t) {
-  std::sort(t.begin(), t.end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });
-  WeightedStep s;
-  s.sources.items.reserve(t.size());
-  s.weights.reserve(t.size());
-  for (const Entry& x : t) {
-    const std::uint32_t tg = std::uint32_t(x.key >> 32), src = std::uint32_t(x.key);
-    if (s.target.empty() || s.target.back() != tg) {
-      if (!s.target.empty()) s.sources.offsets.push_back(static_cast<std::uint32_t>(s.sources.items.size()));
-      s.target.push_back(tg);
-    } else if (s.sources.items.back() == src) {
-      s.weights.back() += x.weight;
+using Term = std::pair<std::uint32_t, double>;  // (source, weight)
+
+// Appends row `target` from its terms in the order they were made: sorted by source, stably
+// (insertion sort: rows hold a few dozen terms), duplicates merged (small closed curves repeat
+// vertices; a face rule repeats its corners) and summed in that order.
+void append_row(WeightedStep& s, std::uint32_t target, std::span<Term> row) {
+  if (row.empty()) return;
+  if (row.size() > 64) {  // a vertex of high valence: no quadratic sort
+    std::stable_sort(row.begin(), row.end(), [](const Term& x, const Term& y) { return x.first < y.first; });
+  } else {
+    for (std::size_t i = 1; i < row.size(); ++i) {
+      const Term x = row[i];
+      std::size_t j = i;
+      for (; j > 0 && row[j - 1].first > x.first; --j) row[j] = row[j - 1];
+      row[j] = x;
+    }
+  }
+  s.target.push_back(target);
+  for (std::size_t i = 0; i < row.size(); ++i) {
+    if (i > 0 && row[i].first == row[i - 1].first) {
+      s.weights.back() += row[i].second;
       continue;
     }
-    s.sources.items.push_back(src);
-    s.weights.push_back(x.weight);
+    s.sources.items.push_back(row[i].first);
+    s.weights.push_back(row[i].second);
   }
-  if (!s.target.empty()) s.sources.offsets.push_back(static_cast<std::uint32_t>(s.sources.items.size()));
-  return s;
+  s.sources.offsets.push_back(static_cast<std::uint32_t>(s.sources.items.size()));
 }
 
-// Below this many entries a second thread costs more than it saves.
-constexpr std::size_t kConcurrentSortEntries = 1 << 16;
-
-// Runs a() and b(), at the same time on a second thread when `big` and parallel_threads() allow
-// (a std::async thread, not the pool: callers may run inside a parallel_for).
-template <class A, class B>
-void side_by_side(bool big, A a, B b) {
-  if (!big || parallel_threads() < 2) {
-    a();
-    b();
-    return;
+// One row at a time, in increasing target order: the terms of the current row, then end().
+struct RowWriter {
+  WeightedStep s;
+  std::vector<Term> row;
+  void add(std::uint32_t source, double weight) { row.emplace_back(source, weight); }
+  void end(std::uint32_t target) {
+    append_row(s, target, row);
+    row.clear();
   }
-  auto done = std::async(std::launch::async, a);
-  b();
-  done.get();  // rethrows a's exception, if any
+};
+
+// The step of terms made in any order: a counting sort by target (stable, so each row keeps
+// the order its terms were made in), then append_row per target. Linear in the terms (one
+// std::sort of them all was half of the whole build).
+WeightedStep make_substep(std::vector<Entry> t, std::uint32_t num_targets) {  // by value: freed on return
+  std::vector<std::uint32_t> start(std::size_t(num_targets) + 1, 0);
+  for (const Entry& x : t) ++start[(x.key >> 32) + 1];
+  for (std::uint32_t i = 0; i < num_targets; ++i) start[i + 1] += start[i];
+  std::vector<Term> terms(t.size());
+  {
+    std::vector<std::uint32_t> at(start.begin(), start.end() - 1);
+    for (const Entry& x : t) terms[at[x.key >> 32]++] = {std::uint32_t(x.key), x.weight};
+  }
+  t = {};
+  WeightedStep s;
+  s.sources.items.reserve(terms.size());
+  s.weights.reserve(terms.size());
+  for (std::uint32_t tg = 0; tg < num_targets; ++tg)
+    append_row(s, tg, std::span<Term>(terms.data() + start[tg], start[tg + 1] - start[tg]));
+  return s;
 }
 
 // The face rules (eq. 1 / sec. 4) of one transition. Keeps what every face would otherwise
@@ -113,9 +134,9 @@ class FaceRules {
  public:
   FaceRules(const Complex& c, const std::vector<std::uint8_t>& inner) : c_(c), inner_(inner) {}
 
-  // Face point `fp` of coarse face f. Returns true when f is a quad with 4 inner corners (the
+  // The terms of coarse face f's face point. Returns true when f is a quad with 4 inner corners (the
   // lifting then uses the table), with their valences in `valences`.
-  bool add(std::uint32_t f, std::uint32_t fp, std::vector<Entry>& predict, std::array<std::uint32_t, 4>& valences) {
+  bool add(std::uint32_t f, RowWriter& predict, std::array<std::uint32_t, 4>& valences) {
     const std::uint32_t b = c_.faces.offsets[f], m = c_.faces.size(f);
     if (rings_.size() < m) rings_.resize(m);
     std::uint32_t l = 0;
@@ -123,7 +144,7 @@ class FaceRules {
       if (corner_ring(c_, inner_, f, b + i, rings_[i])) ++l;
       else rings_[i].clear();
     if (l == 0) {  // no inner corner: no rule of the paper applies; the mean keeps it affine
-      for (std::uint32_t i = 0; i < m; ++i) predict.push_back(entry(fp, c_.faces.items[b + i], 1.0 / m));
+      for (std::uint32_t i = 0; i < m; ++i) predict.add(c_.faces.items[b + i], 1.0 / m);
       return false;
     }
     for (std::uint32_t i = 0; i < m; ++i) {
@@ -131,8 +152,8 @@ class FaceRules {
       if (ring.empty()) continue;
       const std::uint32_t n = static_cast<std::uint32_t>(ring.size());
       const std::vector<double>& alpha = alphas(n);
-      predict.push_back(entry(fp, c_.faces.items[b + i], kSqrt2Alpha0 / l));
-      for (std::uint32_t j = 0; j < n; ++j) predict.push_back(entry(fp, ring[j], alpha[j] / l));
+      predict.add(c_.faces.items[b + i], kSqrt2Alpha0 / l);
+      for (std::uint32_t j = 0; j < n; ++j) predict.add(ring[j], alpha[j] / l);
       if (i < 4) valences[i] = n;
     }
     return l == 4 && m == 4;
@@ -235,31 +256,17 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
   for (std::uint32_t e = 0; e < c.num_edges(); ++e)
     if (sqrt2_is_curve_edge(c, e)) inner[c.edge_verts[2 * e]] = inner[c.edge_verts[2 * e + 1]] = 0;
 
-  // Reserved for a quad mesh of valence 4 (5 terms per corner, 12 lifting terms per face point)
-  // plus the curve points, so the big arrays grow without copies in the common case.
-  std::vector<Entry> update, predict;
-  predict.reserve(20 * std::size_t(np) + 4 * std::size_t(nc));
+  // Reserved for a quad mesh of valence 4 (5 terms per corner and 4 distinct sources per
+  // face point, 12 lifting terms) plus the curve points, so the big arrays grow without copies
+  // in the common case. The predict rows are made in target order: the curve points (nv ..),
+  // then the face points.
+  RowWriter predict;
+  predict.s.target.reserve(std::size_t(np) + nc);
+  predict.s.sources.offsets.reserve(std::size_t(np) + nc + 1);
+  predict.s.sources.items.reserve(4 * (std::size_t(np) + nc));
+  predict.s.weights.reserve(4 * (std::size_t(np) + nc));
+  std::vector<Entry> update;
   update.reserve(12 * std::size_t(np) + 4 * std::size_t(nc));
-  FaceRules face_rules(c, inner);
-  std::vector<std::uint32_t> near_curve;  // face points lifted by lift_near_curve below
-  std::vector<std::array<std::uint32_t, 12>> near_phi;
-  for (std::uint32_t k = 0; k < np; ++k) {
-    const std::uint32_t f = ch.point_faces[k], fp = ch.first_face_point + k;
-    std::array<std::uint32_t, 4> n{};
-    std::array<std::uint32_t, 12> phi{};
-    const bool all_inner = face_rules.add(f, fp, predict, n);
-    if (c.faces.size(f) != 4) continue;  // level-0 polygons: no lifting (the paper starts from quads)
-    if (!find_phis(c, f, inner, phi) || !all_inner) {
-      near_curve.push_back(fp);
-      near_phi.push_back(phi);
-      continue;
-    }
-    const auto omega = sqrt2_omega(int(n[0]), int(n[1]), int(n[2]), int(n[3]));
-    for (int s = 0; s < 12; ++s)
-      if (omega[s] != 0.0) update.push_back(entry(phi[s], fp, omega[s]));  // dropped valence-3 slots are exact 0
-    ++t.lifted_face_points;
-  }
-
   const auto w4 = sqrt2_four_point_weights();
   const auto w3 = sqrt2_four_point_corner_weights();
   const auto eta = sqrt2_eta_inner();
@@ -269,37 +276,91 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
     const std::uint32_t a = s[0], p = s[1], q = s[2], b = s[3], x = nv + k;
     if (a != kNone && b != kNone) {
       const std::uint32_t v[4] = {a, p, q, b};
-      for (int i = 0; i < 4; ++i) predict.push_back(entry(x, v[i], w4[i])), update.push_back(entry(v[i], x, eta[i]));
+      for (int i = 0; i < 4; ++i) predict.add(v[i], w4[i]), update.push_back(entry(v[i], x, eta[i]));
     } else if (a != kNone || b != kNone) {  // eq. 11 (b): (p0, p1, p2 = the curve end)
       const std::uint32_t v[3] = {a != kNone ? a : b, a != kNone ? p : q, a != kNone ? q : p};
-      for (int i = 0; i < 3; ++i) predict.push_back(entry(x, v[i], w3[i]));
+      for (int i = 0; i < 3; ++i) predict.add(v[i], w3[i]);
       for (int i = 0; i < 2; ++i) update.push_back(entry(v[i], x, etc[i]));
     } else {  // a curve of one edge between two ends: no rule in the paper; the midpoint
-      predict.push_back(entry(x, p, 0.5));
-      predict.push_back(entry(x, q, 0.5));
+      predict.add(p, 0.5);
+      predict.add(q, 0.5);
     }
+    predict.end(x);
   }
-  // The sorts in make_substep take about half of the build; the two that do not wait for each
-  // other run side by side (each is still one std::sort, so the result does not change).
-  const bool big = predict.size() + update.size() >= kConcurrentSortEntries;
-  WeightedStep pred, upd;
-  if (near_curve.empty()) {
-    side_by_side(big, [&] { pred = make_substep(std::move(predict)); }, [&] { upd = make_substep(std::move(update)); });
-  } else {
+  // The face points in chunks, each on its own thread with its own rows and lifting terms,
+  // joined in chunk order: the same rows and terms in the same order whatever the threads.
+  struct Chunk {
+    RowWriter predict;
+    std::vector<Entry> update;
+    std::vector<std::uint32_t> near_curve;  // face points lifted by lift_near_curve below
+    std::vector<std::array<std::uint32_t, 12>> near_phi;
+    std::uint32_t lifted = 0;
+    std::exception_ptr error;
+  };
+  constexpr std::uint32_t kChunk = 8192;
+  std::vector<Chunk> chunks((np + kChunk - 1) / kChunk);
+  parallel_for(static_cast<std::uint32_t>(chunks.size()), 1, [&](std::uint32_t c0, std::uint32_t c1) {
+    FaceRules face_rules(c, inner);
+    std::array<std::uint32_t, 4> last_n{};  // sqrt2_omega takes a lock: the last one is kept
+    std::array<double, 12> omega{};
+    for (std::uint32_t ci = c0; ci < c1; ++ci) {
+      Chunk& out = chunks[ci];
+      try {
+        for (std::uint32_t k = ci * kChunk; k < std::min(np, (ci + 1) * kChunk); ++k) {
+          const std::uint32_t f = ch.point_faces[k], fp = ch.first_face_point + k;
+          std::array<std::uint32_t, 4> n{};
+          std::array<std::uint32_t, 12> phi{};
+          const bool all_inner = face_rules.add(f, out.predict, n);
+          out.predict.end(fp);
+          if (c.faces.size(f) != 4) continue;  // level-0 polygons: no lifting (the paper starts from quads)
+          if (!find_phis(c, f, inner, phi) || !all_inner) {
+            out.near_curve.push_back(fp);
+            out.near_phi.push_back(phi);
+            continue;
+          }
+          if (n != last_n) omega = sqrt2_omega(int(n[0]), int(n[1]), int(n[2]), int(n[3])), last_n = n;
+          for (int s = 0; s < 12; ++s)
+            if (omega[s] != 0.0) out.update.push_back(entry(phi[s], fp, omega[s]));  // dropped valence-3 slots are exact 0
+          ++out.lifted;
+        }
+      } catch (...) {
+        out.error = std::current_exception();
+      }
+    }
+  });
+  std::vector<std::uint32_t> near_curve;
+  std::vector<std::array<std::uint32_t, 12>> near_phi;
+  for (Chunk& part : chunks) {
+    if (part.error) std::rethrow_exception(part.error);
+    const WeightedStep& r = part.predict.s;
+    WeightedStep& p = predict.s;
+    const auto base = static_cast<std::uint32_t>(p.sources.items.size());
+    p.target.insert(p.target.end(), r.target.begin(), r.target.end());
+    for (std::size_t i = 1; i < r.sources.offsets.size(); ++i) p.sources.offsets.push_back(base + r.sources.offsets[i]);
+    p.sources.items.insert(p.sources.items.end(), r.sources.items.begin(), r.sources.items.end());
+    p.weights.insert(p.weights.end(), r.weights.begin(), r.weights.end());
+    update.insert(update.end(), part.update.begin(), part.update.end());
+    near_curve.insert(near_curve.end(), part.near_curve.begin(), part.near_curve.end());
+    near_phi.insert(near_phi.end(), part.near_phi.begin(), part.near_phi.end());
+    t.lifted_face_points += part.lifted;
+    part = Chunk{};
+  }
+  WeightedStep& pred = predict.s;
+  if (!near_curve.empty()) {
     std::vector<Entry> swapped;  // the predict step by source: P's columns
-    swapped.reserve(predict.size());
-    for (const Entry& x : predict) swapped.push_back({x.key << 32 | x.key >> 32, x.weight});
-    WeightedStep cols;
-    side_by_side(big, [&] { pred = make_substep(std::move(predict)); }, [&] { cols = make_substep(std::move(swapped)); });
+    swapped.reserve(pred.sources.items.size());
+    for (std::uint32_t r = 0; r < pred.target.size(); ++r)
+      for (std::uint32_t k = pred.sources.offsets[r]; k < pred.sources.offsets[r + 1]; ++k)
+        swapped.push_back(entry(pred.sources.items[k], pred.target[r], pred.weights[k]));
+    const WeightedStep cols = make_substep(std::move(swapped), t.transition.num_fine);
     std::vector<std::uint32_t> row_of(t.transition.num_fine, kNone), col_of(t.transition.num_fine, kNone);
     for (std::uint32_t r = 0; r < pred.target.size(); ++r) row_of[pred.target[r]] = r;
     for (std::uint32_t r = 0; r < cols.target.size(); ++r) col_of[cols.target[r]] = r;
     for (std::size_t i = 0; i < near_curve.size(); ++i)
       lift_near_curve(near_curve[i], near_phi[i], inner, pred, row_of, cols, col_of, update);
     t.near_curve_face_points = static_cast<std::uint32_t>(near_curve.size());
-    upd = make_substep(std::move(update));  // after the near-curve terms were added
   }
-  t.transition.add(std::move(upd));
+  t.transition.add(make_substep(std::move(update), t.transition.num_fine));  // after any near-curve terms
   t.transition.add(std::move(pred));
   return t;
 }

@@ -197,41 +197,57 @@ void local_order(const TriRings& r, std::span<const std::uint32_t> seeds, std::s
 }
 
 std::string local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius) {
+  std::string out;
+  local_signature(c, r, o, radius, out);
+  return out;
+}
+
+void local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius, std::string& out) {
   table.begin(c.num_vertices);
+  std::size_t bound = 0;  // 4 numbers per label and 2 per fan entry
   for (std::uint32_t l = 0; l < o.vertex.size(); ++l)
-    if (o.dist[l] <= radius) table.set(o.vertex[l], l);
-  std::vector<std::int32_t> s;
-  s.reserve(o.vertex.size() * 12);
+    if (o.dist[l] <= radius) {
+      table.set(o.vertex[l], l);
+      bound += 4 + 2 * std::size_t(r.ring.size(o.vertex[l]));
+    }
+  thread_local std::vector<std::int32_t> buffer;  // reused: no allocation per signature
+  if (buffer.size() < bound) buffer.resize(bound);
+  // Plain pointers in the loop: the table's and the buffer's are thread-locals.
+  std::int32_t* const s = buffer.data();
+  std::int32_t* w = s;
+  const std::uint32_t* const stamp = table.stamp.data();
+  const std::uint32_t* const label = table.label.data();
+  const std::uint32_t epoch = table.epoch;
+  const std::uint32_t* const items = r.ring.items.data();
+  const std::uint32_t* const edges = r.ring_edge.items.data();
   for (std::uint32_t l = 0; l < o.vertex.size(); ++l) {
     if (o.dist[l] > radius) continue;
     const std::uint32_t u = o.vertex[l];
-    const auto row = r.ring.row(u);
-    const auto erow = r.ring_edge.row(u);
-    s.push_back(-1000 - o.dist[l]);
-    s.push_back(r.closed[u]);
-    s.push_back(static_cast<std::int32_t>(row.size()));
-    s.push_back(c.vertex_dim.empty() ? 2 : c.vertex_dim[u]);
-    if (row.empty()) continue;
+    const std::uint32_t begin = r.ring.offsets[u], n = r.ring.offsets[u + 1] - begin;
+    *w++ = -1000 - o.dist[l];
+    *w++ = r.closed[u];
+    *w++ = static_cast<std::int32_t>(n);
+    *w++ = c.vertex_dim.empty() ? 2 : c.vertex_dim[u];
+    if (n == 0) continue;
     const std::uint32_t i0 = l < o.fan0.size() && o.fan0[l] != UINT32_MAX ? o.fan0[l] : fan_index(r, u, o.start[l]);
-    const auto term = [&](std::uint32_t i) {
-      const std::uint32_t l2 = table.get(row[i]);
-      s.push_back(l2 == UINT32_MAX ? -1 : static_cast<std::int32_t>(l2));
-      s.push_back(c.edge_dim.empty() ? 2 : c.edge_dim[erow[i]]);
-    };
-    for (std::uint32_t i = i0; i < row.size(); ++i) term(i);
-    for (std::uint32_t i = 0; i < i0; ++i) term(i);
+    for (std::uint32_t k = 0, i = i0; k < n; ++k, i = i + 1 == n ? 0 : i + 1) {
+      const std::uint32_t x = items[begin + i];
+      *w++ = stamp[x] == epoch ? static_cast<std::int32_t>(label[x]) : -1;
+      *w++ = c.edge_dim.empty() ? 2 : c.edge_dim[edges[begin + i]];
+    }
   }
-  const bool narrow = std::all_of(s.begin(), s.end(), [](std::int32_t x) { return x >= INT16_MIN && x <= INT16_MAX; });
-  std::string out(1 + s.size() * (narrow ? sizeof(std::int16_t) : sizeof(std::int32_t)), narrow ? 'h' : 'w');
+  const std::size_t count = static_cast<std::size_t>(w - s);
+  const bool narrow = std::all_of(s, w, [](std::int32_t x) { return x >= INT16_MIN && x <= INT16_MAX; });
+  out.assign(1 + count * (narrow ? sizeof(std::int16_t) : sizeof(std::int32_t)), narrow ? 'h' : 'w');
   if (!narrow) {
-    std::memcpy(out.data() + 1, s.data(), s.size() * sizeof(std::int32_t));
-    return out;
+    std::memcpy(out.data() + 1, s, count * sizeof(std::int32_t));
+    return;
   }
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const auto x = static_cast<std::int16_t>(s[i]);
-    std::memcpy(out.data() + 1 + 2 * i, &x, sizeof x);
+  char* at = out.data() + 1;
+  for (const std::int32_t* v = s; v != w; ++v, at += sizeof(std::int16_t)) {
+    const auto x = static_cast<std::int16_t>(*v);
+    std::memcpy(at, &x, sizeof x);
   }
-  return out;
 }
 
 std::size_t SignatureHash::operator()(const std::string& s) const noexcept {

@@ -66,6 +66,10 @@ void local_order(const TriRings& r, std::span<const std::uint32_t> seeds, std::s
 /// the edges' dims. Equal signatures <=> isomorphic labelled neighbourhoods. Stored as 16-bit
 /// numbers when every one fits (nearly always), else 32-bit, after a byte that says which.
 std::string local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius);
+/// The same into `out`, reusing its storage (edges' keys are taken millions of times, and most
+/// are found in the cache and dropped). Labels beyond `radius` are not read, so `o` may stop at
+/// `radius`: vertices there that were not walked have their fan's start searched.
+void local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius, std::string& out);
 
 /// A hash for signatures that reads them 8 bytes at a time (they are kilobytes long and looked
 /// up once per irregular edge and face; equality is still checked in full).

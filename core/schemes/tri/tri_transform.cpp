@@ -330,11 +330,19 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
         reg = &b.edge_wavelet(level, e, nullptr, true);
         w.regular_alpha = reg->alpha;
       }
+    // Keys in parallel, each looked up at once (the cache is only read here): a found one
+    // keeps no signature, so a deep level's thousands of known neighbourhoods allocate nothing.
     std::vector<TriWaveletBuilder::EdgeKey> keys(irregular.size());
+    std::vector<const EdgeWavelet*> found(irregular.size(), nullptr);
     std::atomic<bool> failed{false};
     parallel_for(static_cast<std::uint32_t>(irregular.size()), 64, [&](std::uint32_t begin, std::uint32_t end) {
+      thread_local std::string signature;
       try {
-        for (std::uint32_t k = begin; k < end; ++k) keys[k] = b.edge_key(level, irregular[k]);
+        for (std::uint32_t k = begin; k < end; ++k) {
+          b.edge_key(level, irregular[k], keys[k].disc, signature);
+          found[k] = b.find(signature);
+          if (!found[k]) keys[k].signature = signature;
+        }
       } catch (...) {
         failed = true;
       }
@@ -350,7 +358,7 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
     for (std::size_t k = 0; k < irregular.size(); ++k) {
       const std::uint32_t e = irregular[k];
       w.discs[k] = std::move(keys[k].disc);
-      const EdgeWavelet& wave = b.edge_wavelet(level, e, std::move(keys[k]));
+      const EdgeWavelet& wave = found[k] ? *found[k] : b.edge_wavelet(level, e, std::move(keys[k]));
       if (wave.alpha.size() != w.discs[k].size()) throw std::logic_error("tri_transform: disc and alpha sizes differ");
       w.irregular_at[e] = static_cast<std::uint32_t>(k);
       w.alphas[k] = wave.alpha;

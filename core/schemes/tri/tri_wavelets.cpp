@@ -118,17 +118,27 @@ EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
 }
 
 TriWaveletBuilder::EdgeKey TriWaveletBuilder::edge_key(const TriLevel& lv, std::uint32_t e) const {
+  EdgeKey key;
+  edge_key(lv, e, key.disc, key.signature);
+  return key;
+}
+
+void TriWaveletBuilder::edge_key(const TriLevel& lv, std::uint32_t e, std::vector<std::uint32_t>& disc,
+                                 std::string& signature) const {
   const Complex& c = *lv.coarse;
   const std::uint32_t a = c.edge_verts[2 * e], b = c.edge_verts[2 * e + 1];
   const std::uint32_t seeds[2] = {a, b}, starts[2] = {b, a};
   thread_local LocalOrder order;
-  local_order(*lv.coarse_rings, seeds, starts, signature_radius() + 1, order);
-  EdgeKey key;
+  local_order(*lv.coarse_rings, seeds, starts, signature_radius(), order);
   std::uint32_t nd = 0;
   while (nd < order.dist.size() && order.dist[nd] <= disc_) ++nd;
-  key.disc.assign(order.vertex.begin(), order.vertex.begin() + nd);
-  key.signature = local_signature(c, *lv.coarse_rings, order, signature_radius());
-  return key;
+  disc.assign(order.vertex.begin(), order.vertex.begin() + nd);
+  local_signature(c, *lv.coarse_rings, order, signature_radius(), signature);
+}
+
+const EdgeWavelet* TriWaveletBuilder::find(const std::string& signature) const {
+  const auto it = edges_.find(signature);
+  return it == edges_.end() ? nullptr : it->second.get();
 }
 
 const EdgeWavelet& TriWaveletBuilder::edge_wavelet(TriLevel& lv, std::uint32_t e, EdgeKey&& key) {

@@ -69,6 +69,11 @@ class TriWaveletBuilder {
     std::vector<std::uint32_t> disc;
   };
   EdgeKey edge_key(const TriLevel& level, std::uint32_t e) const;
+  /// The same into reused storage.
+  void edge_key(const TriLevel& level, std::uint32_t e, std::vector<std::uint32_t>& disc, std::string& signature) const;
+  /// The cached wavelet of a signature, or null. Only reads the cache, so keys may be looked up
+  /// from several threads while nothing is added.
+  const EdgeWavelet* find(const std::string& signature) const;
   /// The wavelet of the edge whose key this is: cached, or solved and cached.
   const EdgeWavelet& edge_wavelet(TriLevel& level, std::uint32_t e, EdgeKey&& key);
 

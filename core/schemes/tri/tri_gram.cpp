@@ -80,16 +80,18 @@ int FaceGramCache::type_of(const Complex& c, const TriRings& r, std::uint32_t f,
     LocalOrder co;
     const int ct = type_of(fine, fine_rings, 4 * pf + static_cast<std::uint32_t>(k), &co);
     const int m = types_[static_cast<std::size_t>(ct)].n;
-    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(m, n);
+    std::vector<Eigen::Triplet<double>> terms;
     for (int i = 0; i < m; ++i) {
       const std::uint32_t v = co.vertex[static_cast<std::size_t>(i)];
       const auto add = [&](std::uint32_t a, double w) {
         if (a >= static_cast<std::uint32_t>(n))
           throw std::logic_error("tri_gram: N(f) does not close under subdivision (support radius too small)");
-        S(i, static_cast<int>(a)) += w;
+        terms.emplace_back(i, static_cast<int>(a), w);
       };
       for_each_stencil_weight(st, nvp, v, add);
     }
+    Eigen::SparseMatrix<double> S(m, n);
+    S.setFromTriplets(terms.begin(), terms.end());  // repeated (i, a) summed, as += did
     Type& t = types_[static_cast<std::size_t>(id)];
     t.child[static_cast<std::size_t>(k)] = ct;
     t.S[static_cast<std::size_t>(k)] = std::move(S);
@@ -107,8 +109,9 @@ void FaceGramCache::solve_pending() {
     Type& ty = types_[static_cast<std::size_t>(t)];
     Eigen::MatrixXd G = Eigen::MatrixXd::Zero(ty.n, ty.n);
     for (int k = 0; k < 4; ++k) {
-      const Eigen::MatrixXd& S = ty.S[static_cast<std::size_t>(k)];
-      G.noalias() += S.transpose() * types_[static_cast<std::size_t>(ty.child[static_cast<std::size_t>(k)])].G * S;
+      const Eigen::SparseMatrix<double>& S = ty.S[static_cast<std::size_t>(k)];
+      const Eigen::MatrixXd GS = types_[static_cast<std::size_t>(ty.child[static_cast<std::size_t>(k)])].G * S;
+      G.noalias() += S.transpose() * GS;
     }
     G *= 0.25;
     G = 0.5 * (G + G.transpose());

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 
 #include "core/complex/complex.h"
 #include "core/schemes/tri/tri_local.h"
@@ -64,7 +65,9 @@ class FaceGramCache {
   struct Type {
     int n = 0;                       // |N(f)|
     std::array<int, 4> child{};      // child types
-    std::array<Eigen::MatrixXd, 4> S;  // rows N(child k), cols N(f)
+    // Rows N(child k), cols N(f): subdivision stencils, a few entries per row, so sparse (the
+    // dense triple products were the most of a new type's cost).
+    std::array<Eigen::SparseMatrix<double>, 4> S;
     Eigen::MatrixXd G;
     bool solved = false;
   };

@@ -43,15 +43,15 @@ EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
   const std::uint32_t a = c.edge_verts[2 * e], b = c.edge_verts[2 * e + 1];
   const std::uint32_t seeds[2] = {a, b}, starts[2] = {b, a};
   // D and the vertices whose faces touch D's supports.
-  const LocalOrder order = local_order(*lv.coarse_rings, seeds, starts, disc_ + g.support);
+  thread_local LocalOrder order, around_m;  // reused: compute runs once per new neighbourhood
+  local_order(*lv.coarse_rings, seeds, starts, disc_ + g.support, order);
   std::uint32_t nd = 0;
   while (nd < order.dist.size() && order.dist[nd] <= disc_) ++nd;
-  std::unordered_map<std::uint32_t, std::uint32_t> label;
-  label.reserve(nd * 2);
-  for (std::uint32_t l = 0; l < nd; ++l) label.emplace(order.vertex[l], l);
+  // D's label of a vertex: D holds a few dozen vertices, so a scan beats a hash map.
+  const std::uint32_t* const disc_begin = order.vertex.data();
   const auto in_disc = [&](std::uint32_t v) {
-    const auto it = label.find(v);
-    return it == label.end() ? UINT32_MAX : it->second;
+    const std::uint32_t* it = std::find(disc_begin, disc_begin + nd, v);
+    return it == disc_begin + nd ? UINT32_MAX : static_cast<std::uint32_t>(it - disc_begin);
   };
   const auto gram_of = [&](std::unordered_map<std::uint32_t, FaceGramCache::FaceGram>& memo, const Complex& mesh,
                            const TriRings& rings, std::uint32_t f) -> const FaceGramCache::FaceGram& {
@@ -61,47 +61,57 @@ EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
   };
 
   // Left side: <phi_i^j, phi_l^j> over the level-j faces that touch D's supports.
-  std::vector<std::uint32_t> faces;
+  thread_local std::vector<std::uint32_t> faces;
+  faces.clear();
   for (std::uint32_t v : order.vertex)
     for (std::uint32_t f : c.vertex_faces.row(v)) faces.push_back(f);
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nd, nd);
-  std::vector<std::uint32_t> idx;
+  thread_local std::vector<std::pair<int, std::uint32_t>> in;  // (place in the face's N(f), label in D)
   for (std::uint32_t f : faces) {
     const auto& fg = gram_of(lv.coarse_faces, c, *lv.coarse_rings, f);
-    idx.resize(fg.verts.size());
-    for (std::size_t p = 0; p < fg.verts.size(); ++p) idx[p] = in_disc(fg.verts[p]);
-    for (std::size_t p = 0; p < idx.size(); ++p) {
-      if (idx[p] == UINT32_MAX) continue;
-      for (std::size_t q = 0; q < idx.size(); ++q)
-        if (idx[q] != UINT32_MAX) G(idx[p], idx[q]) += (*fg.G)(static_cast<int>(p), static_cast<int>(q));
-    }
+    in.clear();
+    for (std::size_t p = 0; p < fg.verts.size(); ++p)
+      if (const std::uint32_t l = in_disc(fg.verts[p]); l != UINT32_MAX) in.emplace_back(static_cast<int>(p), l);
+    // Column by column: the Grams are column-major and mostly out of cache.
+    for (const auto& [q, lq] : in)
+      for (const auto& [p, lp] : in) G(lp, lq) += (*fg.G)(p, q);
   }
 
   // Right side: <phi_c^{j+1}, phi_m^{j+1}> over the level-(j+1) faces around m, pulled back.
   const std::uint32_t nv = c.num_vertices;
   const std::uint32_t m = nv + e;
   const std::uint32_t mseed[1] = {m}, mstart[1] = {lv.fine_rings->ring.row(m)[0]};
-  const LocalOrder around_m = local_order(*lv.fine_rings, mseed, mstart, g.support);
-  std::vector<std::uint32_t> fine_faces;
+  local_order(*lv.fine_rings, mseed, mstart, g.support, around_m);
+  thread_local std::vector<std::uint32_t> fine_faces;
+  fine_faces.clear();
   for (std::uint32_t v : around_m.vertex)
     for (std::uint32_t f : fine.vertex_faces.row(v)) fine_faces.push_back(f);
   std::sort(fine_faces.begin(), fine_faces.end());
   fine_faces.erase(std::unique(fine_faces.begin(), fine_faces.end()), fine_faces.end());
-  std::unordered_map<std::uint32_t, double> with_m;  // fine vertex c -> <phi_c, phi_m>
+  // Fine vertex c -> <phi_c, phi_m>, summed in the order the faces are met (a short list).
+  thread_local std::vector<std::pair<std::uint32_t, double>> with_m;
+  with_m.clear();
   for (std::uint32_t f : fine_faces) {
     const auto& fg = gram_of(lv.fine_faces, fine, *lv.fine_rings, f);
     int im = -1;
     for (std::size_t p = 0; p < fg.verts.size(); ++p)
       if (fg.verts[p] == m) im = static_cast<int>(p);
     if (im < 0) continue;
-    for (std::size_t p = 0; p < fg.verts.size(); ++p) with_m[fg.verts[p]] += 0.25 * (*fg.G)(static_cast<int>(p), im);
+    for (std::size_t p = 0; p < fg.verts.size(); ++p) {
+      const double add = 0.25 * (*fg.G)(static_cast<int>(p), im);
+      const auto at = std::find_if(with_m.begin(), with_m.end(), [&](const auto& x) { return x.first == fg.verts[p]; });
+      if (at == with_m.end()) with_m.emplace_back(fg.verts[p], add);
+      else at->second += add;
+    }
   }
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nd);
+  double self = 0;
   // Not a structured binding: clang 14 (the fuzz build's compiler) cannot capture one in a lambda.
   for (const auto& entry : with_m) {
     const double value = entry.second;
+    if (entry.first == m) self = value;
     for_each_stencil_weight(st, nv, entry.first, [&](std::uint32_t i, double w) {
       if (const std::uint32_t l = in_disc(i); l != UINT32_MAX) rhs(l) += w * value;
     });
@@ -111,7 +121,7 @@ EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(G);
   const Eigen::VectorXd alpha = ldlt.solve(rhs);
   out.alpha.assign(alpha.data(), alpha.data() + nd);
-  out.self = with_m[m];
+  out.self = self;
   out.norm2 = out.self - alpha.dot(rhs);
   out.residual = (G * alpha - rhs).cwiseAbs().maxCoeff();
   return out;

@@ -26,6 +26,33 @@ int TriWaveletBuilder::signature_radius() const {
   return disc_ + g.support + g.signature;
 }
 
+namespace {
+
+// Vertex -> slot for the few dozen vertices one solve asks about, cleared by epoch (a solve
+// looks up every vertex of every Gram block it sums: thousands of lookups).
+struct Slots {
+  std::vector<std::uint32_t> slot, stamp;
+  std::uint32_t epoch = 0;
+  void begin(std::uint32_t n) {
+    if (stamp.size() < n) {
+      slot.resize(n);
+      stamp.assign(n, 0);
+      epoch = 0;
+    }
+    if (++epoch == 0) {
+      std::fill(stamp.begin(), stamp.end(), 0);
+      epoch = 1;
+    }
+  }
+  std::uint32_t get(std::uint32_t v) const { return stamp[v] == epoch ? slot[v] : UINT32_MAX; }
+  void set(std::uint32_t v, std::uint32_t s) {
+    stamp[v] = epoch;
+    slot[v] = s;
+  }
+};
+
+}  // namespace
+
 EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
   if (lv.fine->vertex_faces.rows() != lv.fine->num_vertices) {
     lv.fine_built = std::make_unique<Complex>(*lv.fine);
@@ -47,12 +74,10 @@ EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
   local_order(*lv.coarse_rings, seeds, starts, disc_ + g.support, order);
   std::uint32_t nd = 0;
   while (nd < order.dist.size() && order.dist[nd] <= disc_) ++nd;
-  // D's label of a vertex: D holds a few dozen vertices, so a scan beats a hash map.
-  const std::uint32_t* const disc_begin = order.vertex.data();
-  const auto in_disc = [&](std::uint32_t v) {
-    const std::uint32_t* it = std::find(disc_begin, disc_begin + nd, v);
-    return it == disc_begin + nd ? UINT32_MAX : static_cast<std::uint32_t>(it - disc_begin);
-  };
+  thread_local Slots disc_label, with_m_slot;  // coarse vertex -> label in D; fine vertex -> with_m
+  disc_label.begin(c.num_vertices);
+  for (std::uint32_t l = 0; l < nd; ++l) disc_label.set(order.vertex[l], l);
+  const auto in_disc = [&](std::uint32_t v) { return disc_label.get(v); };
   const auto gram_of = [&](std::unordered_map<std::uint32_t, FaceGramCache::FaceGram>& memo, const Complex& mesh,
                            const TriRings& rings, std::uint32_t f) -> const FaceGramCache::FaceGram& {
     auto it = memo.find(f);
@@ -93,6 +118,7 @@ EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
   // Fine vertex c -> <phi_c, phi_m>, summed in the order the faces are met (a short list).
   thread_local std::vector<std::pair<std::uint32_t, double>> with_m;
   with_m.clear();
+  with_m_slot.begin(fine.num_vertices);
   for (std::uint32_t f : fine_faces) {
     const auto& fg = gram_of(lv.fine_faces, fine, *lv.fine_rings, f);
     int im = -1;
@@ -101,9 +127,13 @@ EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
     if (im < 0) continue;
     for (std::size_t p = 0; p < fg.verts.size(); ++p) {
       const double add = 0.25 * (*fg.G)(static_cast<int>(p), im);
-      const auto at = std::find_if(with_m.begin(), with_m.end(), [&](const auto& x) { return x.first == fg.verts[p]; });
-      if (at == with_m.end()) with_m.emplace_back(fg.verts[p], add);
-      else at->second += add;
+      const std::uint32_t at = with_m_slot.get(fg.verts[p]);
+      if (at != UINT32_MAX) {
+        with_m[at].second += add;
+      } else {
+        with_m_slot.set(fg.verts[p], static_cast<std::uint32_t>(with_m.size()));
+        with_m.emplace_back(fg.verts[p], add);
+      }
     }
   }
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nd);

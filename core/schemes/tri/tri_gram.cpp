@@ -114,7 +114,10 @@ void FaceGramCache::solve_pending() {
       G.noalias() += S.transpose() * GS;
     }
     G *= 0.25;
-    G = 0.5 * (G + G.transpose());
+    // Through a temporary: written in place, `G = 0.5 * (G + G.transpose())` reads entries it
+    // has already overwritten (Eigen assumes no aliasing there) and left G(i, j) != G(j, i).
+    const Eigen::MatrixXd Gt = G.transpose();
+    G = 0.5 * (G + Gt);
     G /= G.sum();  // the functions sum to 1 on the face: entries sum to its area
     const double change = (G - ty.G).cwiseAbs().maxCoeff();
     ty.G = std::move(G);

@@ -779,10 +779,18 @@ void ModelerController::handle(const WindowEvent& ev) {
 void ModelerController::run_replacing(const Replacing& c) {
   switch (c.kind) {
     case Replacing::Kind::Scheme: {
-      const Scheme s = static_cast<Scheme>(c.scheme);
-      model.set_scheme(s);
-      message = "Rebuilt with the " + scheme_name(s) + " scheme (Ctrl+Z undoes)";
-      break;
+      // The levels are built on a worker thread (a dense mesh's take a while under the triangle
+      // schemes), with progress and cancel; the window takes no edits meanwhile.
+      if (job_) return;
+      std::optional<SchemeSwitchInput> in = model.begin_scheme(static_cast<Scheme>(c.scheme));
+      if (!in) return;
+      const auto input = std::make_shared<const SchemeSwitchInput>(std::move(*in));
+      start_job("Changing the scheme", [input](const SwitchProgress& progress) {
+        auto next = std::make_shared<SchemeSwitch>(ModelerState::prepare_scheme(*input, progress));
+        return std::function<std::string(ModelerState&)>(
+            [input, next](ModelerState& m) { return m.install_scheme(*input, std::move(*next)); });
+      });
+      return;  // poll_job says what happened (and marks the pick index and statistics stale)
     }
     case Replacing::Kind::DeleteHigher: message = model.delete_higher_levels(); break;
     case Replacing::Kind::DeleteLower: message = model.delete_lower_levels(); break;

@@ -458,12 +458,24 @@ void ModelerState::refresh_basis() {
 }
 
 void ModelerState::set_scheme(Scheme scheme) {
+  if (const std::optional<SchemeSwitchInput> in = begin_scheme(scheme)) install_scheme(*in, prepare_scheme(*in));
+}
+
+std::optional<SchemeSwitchInput> ModelerState::begin_scheme(Scheme scheme) {
   check_not_animation("changing the scheme");
   ffd_check_free("changing the scheme");
   check_unlocked("changing the scheme");
-  const Scheme from = session_->hierarchy().scheme;
-  if (scheme == from) return;  // as `sublift-cli set --scheme`: nothing to rebuild, nothing to undo
-  SchemeSwitch next = switch_scheme(*session_, scheme);  // core/edit/scheme_switch.h: shape kept where it can be
+  // As `sublift-cli set --scheme`: the same scheme has nothing to rebuild, nothing to undo.
+  if (scheme == session_->hierarchy().scheme) return std::nullopt;
+  return scheme_switch_input(*session_, scheme);  // core/edit/scheme_switch.h: shape kept where it can be
+}
+
+SchemeSwitch ModelerState::prepare_scheme(const SchemeSwitchInput& in, const SwitchProgress& progress) {
+  return switch_scheme(in, progress);
+}
+
+std::string ModelerState::install_scheme(const SchemeSwitchInput& in, SchemeSwitch next) {
+  const Scheme from = in.from, scheme = in.to;
   const bool local = session_->detail_frames() == DetailFrames::Local;
   auto session = std::make_unique<Session>(std::move(next.hierarchy));
   if (local) session->set_detail_frames(DetailFrames::Local);
@@ -483,6 +495,7 @@ void ModelerState::set_scheme(Scheme scheme) {
   }
   update_.topology = true;
   refresh_state();
+  return "Rebuilt with the " + scheme_name(scheme) + " scheme (Ctrl+Z undoes)";
 }
 
 void ModelerState::set_level(int level) {

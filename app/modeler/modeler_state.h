@@ -26,6 +26,7 @@
 #include "core/multires/hierarchy.h"
 #include "core/multires/limit.h"
 #include "core/edit/brush.h"
+#include "core/edit/scheme_switch.h"
 #include "core/edit/session.h"
 #include "core/edit/symmetry.h"
 #include "core/edit/transform.h"
@@ -79,6 +80,13 @@ class ModelerState {
   /// scheme become 2J sqrt2 levels and back (rounded up). Undo history is cleared. Refused
   /// (Error) while a model is bound, as is subdivide(), and sqrt2 for curves and lattices.
   void set_scheme(Scheme scheme);
+  /// The same in three parts, so the costly middle one runs on a worker thread while the
+  /// window shows its progress: the checks and a copy of what the switch reads (throws Error;
+  /// nullopt when `scheme` is already the session's), the new hierarchy (any thread; throws
+  /// Cancelled when `progress` answers false), then installing it (says what happened).
+  std::optional<SchemeSwitchInput> begin_scheme(Scheme scheme);
+  static SchemeSwitch prepare_scheme(const SchemeSwitchInput& in, const SwitchProgress& progress = {});
+  std::string install_scheme(const SchemeSwitchInput& in, SchemeSwitch next);
   /// A mesh (not a project) that another tool subdivided: the levels it holds (0: none or not
   /// checked), the scheme `rebuild` would use, and why it holds no more (docs/rebuild.md).
   struct RebuildOffer {

@@ -24,21 +24,37 @@ int level_under_scheme(int level, Scheme from, Scheme to) {
   return std::min((level * b + a - 1) / a, max_levels(to));
 }
 
-SchemeSwitch switch_scheme(const Session& session, Scheme to) {
+SchemeSwitchInput scheme_switch_input(const Session& session, Scheme to) {
   const Hierarchy& old = session.hierarchy();
-  const Complex& base = old.levels.front();
-  check_scheme_takes(to, base);
-  const int J = old.finest_level();
+  check_scheme_takes(to, old.levels.front());
+  SchemeSwitchInput in;
+  in.base = old.levels.front();
+  in.from = old.scheme;
+  in.to = to;
+  in.finest = old.finest_level();
+  const bool same = scheme_info(to).refinement == scheme_info(old.scheme).refinement;
+  const std::span<const double> net = session.positions(same ? in.finest : 0);
+  in.positions.assign(net.begin(), net.end());
+  return in;
+}
+
+SchemeSwitch switch_scheme(const SchemeSwitchInput& in, const SwitchProgress& progress) {
+  check_scheme_takes(in.to, in.base);
+  const bool same = scheme_info(in.to).refinement == scheme_info(in.from).refinement;
+  const int levels = same ? in.finest : level_under_scheme(in.finest, in.from, in.to);
+  // Building the levels is nearly all of the work; the analysis is a few synthesis passes.
+  LevelProgress building;
+  if (progress) building = [&](double f) { return progress("building the levels", 0.95 * f); };
   SchemeSwitch out;
-  if (scheme_info(to).refinement == scheme_info(old.scheme).refinement) {
-    out.hierarchy = make_hierarchy(base, J, to, 3);
-    analyze(out.hierarchy, session.positions(J));
-    out.kept_detail = true;
-  } else {
-    out.hierarchy = make_hierarchy(base, level_under_scheme(J, old.scheme, to), to, 3);
-    set_base(out.hierarchy, session.positions(0));
-  }
+  out.hierarchy = make_hierarchy(in.base, levels, in.to, 3, false, 0, 2, building);
+  if (progress && !progress(same ? "analysing the shape" : "setting the base", 0.95))
+    throw Cancelled("changing the scheme was cancelled");
+  if (same) analyze(out.hierarchy, in.positions);
+  else set_base(out.hierarchy, in.positions);
+  out.kept_detail = same;
   return out;
 }
+
+SchemeSwitch switch_scheme(const Session& session, Scheme to) { return switch_scheme(scheme_switch_input(session, to)); }
 
 }  // namespace sublift

@@ -9,7 +9,9 @@
 // the gains become 1 (they are in the new wavelets). Between refinements (to or from sqrt2) the
 // levels are different meshes: the new hierarchy starts from the base's positions with zero
 // detail, and `kept_detail` is false so the caller can say so.
+#include <functional>
 #include <span>
+#include <vector>
 
 #include "core/edit/session.h"
 #include "core/schemes/registry.h"
@@ -29,7 +31,23 @@ struct SchemeSwitch {
   bool kept_detail = false; // the finest shape is the session's (same refinement)
 };
 
-/// The session's shape under `to` (see above). Throws Error as check_scheme_takes does.
+/// What a switch reads of the session, copied, so the costly part can run on another thread
+/// while the session stays in use: the base, the old scheme and finest level, and the net the
+/// new hierarchy starts from (the finest shown net with the same refinement, else level 0's).
+struct SchemeSwitchInput {
+  Complex base;
+  Scheme from = Scheme::Cubic, to = Scheme::Cubic;
+  int finest = 0;
+  std::vector<double> positions;
+};
+/// Throws Error as check_scheme_takes does.
+SchemeSwitchInput scheme_switch_input(const Session& session, Scheme to);
+
+/// Told the stage and the fraction done; answering false stops the switch with Cancelled.
+using SwitchProgress = std::function<bool(const char* stage, double fraction)>;
+SchemeSwitch switch_scheme(const SchemeSwitchInput& in, const SwitchProgress& progress = {});
+
+/// The session's shape under `to` (see above), in one call.
 SchemeSwitch switch_scheme(const Session& session, Scheme to);
 
 }  // namespace sublift

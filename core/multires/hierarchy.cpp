@@ -66,7 +66,8 @@ void pop_level(Hierarchy& h) {
     h.wavelet_norms.resize(std::size_t(h.levels.back().num_vertices) - h.levels.front().num_vertices);
 }
 
-Hierarchy make_hierarchy(Complex base, int levels, Scheme scheme, int channels, bool integer, int first_level, int disc) {
+Hierarchy make_hierarchy(Complex base, int levels, Scheme scheme, int channels, bool integer, int first_level, int disc,
+                         const LevelProgress& progress) {
   const SchemeInfo& info = scheme_info(scheme);
   const int most = max_levels(scheme);
   if (levels < 0 || levels > most)
@@ -90,9 +91,19 @@ Hierarchy make_hierarchy(Complex base, int levels, Scheme scheme, int channels, 
   h.disc = disc;
   if (base.vertex_edges.rows() != base.num_vertices) build_adjacency(base);
   check_levels_memory(base, levels, scheme, h.first_level);
+  std::vector<double> counts;  // the work of level j: about its vertex count
+  double total = 0, done = 0;
+  if (progress) {
+    counts = predicted_level_counts(base, levels, scheme, h.first_level);
+    for (int j = 1; j <= levels; ++j) total += counts[static_cast<std::size_t>(j)];
+  }
   h.levels.reserve(static_cast<std::size_t>(levels) + 1);
   h.levels.push_back(std::move(base));
-  for (int j = 0; j < levels; ++j) append_level(h, /*adjacency=*/j + 1 < levels);
+  for (int j = 0; j < levels; ++j) {
+    if (progress && !progress(total > 0 ? done / total : 0.0)) throw Cancelled("building the levels was cancelled");
+    append_level(h, /*adjacency=*/j + 1 < levels);
+    if (progress) done += counts[static_cast<std::size_t>(j) + 1];
+  }
   h.coeffs.assign(std::size_t(h.levels.back().num_vertices) * std::size_t(channels), 0.0);
   return h;
 }

@@ -9,6 +9,7 @@
 // The sqrt(2) scheme (paper 001) keeps this layout: level j+1 numbers its vertices [v | curve
 // points | face points] (refine_sqrt2.h), so its wavelets too sit on the new vertices.
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -45,8 +46,11 @@ struct Hierarchy {
 /// Sqrt2 needs a surface; `first_level` says which sqrt(2) level `base` is (a level-j complex
 /// taken out of a hierarchy refines as level j does: curves are refined after odd levels).
 /// `disc`: the k of the triangle schemes' k-disc wavelets (1, 2 or 3).
+/// `progress` (may be empty) is told the fraction of the work done (by the levels' vertex
+/// counts) before each level; when it answers false, make_hierarchy throws Cancelled.
+using LevelProgress = std::function<bool(double fraction)>;
 Hierarchy make_hierarchy(Complex base, int levels, Scheme scheme, int channels, bool integer = false,
-                         int first_level = 0, int disc = 2);
+                         int first_level = 0, int disc = 2, const LevelProgress& progress = {});
 
 /// Appends level J+1 and transition J -> J+1 (the new level with its derived rows when
 /// `adjacency`; the old finest level gets them if it lacks them). Coefficients are not touched.

@@ -567,6 +567,47 @@ TEST(ModelerControllerTest, Sqrt2SchemeFromTheMenu) {
   EXPECT_EQ(lattice.app.model.session().hierarchy().scheme, Scheme::Cubic);
 }
 
+// The Scheme menu builds the new levels on a worker thread with progress (a dense mesh's take a
+// while under the triangle schemes); the result installs itself, undoable; a cancelled change
+// leaves the session as it was; the same scheme again starts nothing.
+TEST(ModelerControllerTest, SchemeChangeRunsAsAJobWithCancel) {
+  Fixture f;
+  f.app.set_background_jobs(true);
+  ModelerState& m = f.app.model;
+  const std::uint64_t serial = m.serial();
+  const std::vector<double> shown(m.limit_positions().begin(), m.limit_positions().end());
+  ModelerPanelRequests to_linear;
+  to_linear.scheme = static_cast<int>(Scheme::Linear);
+  f.app.apply_panel_requests(to_linear);
+  EXPECT_TRUE(f.app.job_running());
+  EXPECT_EQ(m.serial(), serial);  // nothing installed until the job is polled
+  EXPECT_TRUE(f.app.poll_job(true));
+  EXPECT_EQ(m.session().hierarchy().scheme, Scheme::Linear);
+  EXPECT_NE(f.app.message.find("Rebuilt with the linear scheme"), std::string::npos) << f.app.message << f.app.error;
+  ASSERT_TRUE(m.undo());
+  EXPECT_EQ(m.session().hierarchy().scheme, Scheme::Cubic);
+  EXPECT_EQ(std::vector<double>(m.limit_positions().begin(), m.limit_positions().end()), shown);
+  // Cancelled from the window: nothing changes. Five levels (98 k quads, ten sqrt(2) levels
+  // to build) keep the job running well past the cancel that follows it at once.
+  while (m.session().finest_level() < 5) m.subdivide();
+  const std::vector<double> fine(m.limit_positions().begin(), m.limit_positions().end());
+  ModelerPanelRequests to_sqrt2;
+  to_sqrt2.scheme = static_cast<int>(Scheme::Sqrt2);
+  f.app.apply_panel_requests(to_sqrt2);
+  ASSERT_TRUE(f.app.job_running());
+  f.app.cancel_job();
+  EXPECT_TRUE(f.app.poll_job(true));
+  EXPECT_EQ(m.session().hierarchy().scheme, Scheme::Cubic);
+  EXPECT_EQ(m.session().finest_level(), 5);
+  EXPECT_NE(f.app.message.find("Changing the scheme cancelled; nothing changed"), std::string::npos) << f.app.message;
+  EXPECT_EQ(std::vector<double>(m.limit_positions().begin(), m.limit_positions().end()), fine);
+  // The scheme it already has: no job.
+  ModelerPanelRequests same;
+  same.scheme = static_cast<int>(Scheme::Cubic);
+  f.app.apply_panel_requests(same);
+  EXPECT_FALSE(f.app.job_running());
+}
+
 // The triangle schemes of paper 004 from the Scheme menu: drags keep the shown surface equal
 // to a fresh evaluation, butterfly shows its finest net (it interpolates), Loop its limit
 // masks; a quad mesh refuses them with the face named.

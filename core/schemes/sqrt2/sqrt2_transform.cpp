@@ -257,9 +257,9 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
     if (sqrt2_is_curve_edge(c, e)) inner[c.edge_verts[2 * e]] = inner[c.edge_verts[2 * e + 1]] = 0;
 
   // Reserved for a quad mesh of valence 4 (12 distinct sources per face point: its corners and
-  // their 8 outer neighbours; 12 lifting terms) plus the curve points, so the big arrays grow without copies
-  // in the common case. The predict rows are made in target order: the curve points (nv ..),
-  // then the face points.
+  // their 8 outer neighbours; 12 lifting terms) plus the curve points, so the big arrays grow
+  // without copies in the common case. The predict rows are made in target order: the curve
+  // points (nv ..), then the face points.
   RowWriter predict;
   predict.s.target.reserve(std::size_t(np) + nc);
   predict.s.sources.offsets.reserve(std::size_t(np) + nc + 1);
@@ -307,12 +307,13 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
       Chunk& out = chunks[ci];
       try {
         // As for the whole step above: a quad mesh of valence 4 fills these without regrowing.
-        out.predict.s.target.reserve(kChunk);
-        out.predict.s.sources.offsets.reserve(kChunk + 1);
-        out.predict.s.sources.items.reserve(12 * std::size_t(kChunk));
-        out.predict.s.weights.reserve(12 * std::size_t(kChunk));
-        out.update.reserve(12 * std::size_t(kChunk));
-        for (std::uint32_t k = ci * kChunk; k < std::min(np, (ci + 1) * kChunk); ++k) {
+        const std::uint32_t k0 = ci * kChunk, k1 = std::min(np, k0 + kChunk);
+        out.predict.s.target.reserve(k1 - k0);
+        out.predict.s.sources.offsets.reserve(std::size_t(k1 - k0) + 1);
+        out.predict.s.sources.items.reserve(12 * std::size_t(k1 - k0));
+        out.predict.s.weights.reserve(12 * std::size_t(k1 - k0));
+        out.update.reserve(12 * std::size_t(k1 - k0));
+        for (std::uint32_t k = k0; k < k1; ++k) {
           const std::uint32_t f = ch.point_faces[k], fp = ch.first_face_point + k;
           std::array<std::uint32_t, 4> n{};
           std::array<std::uint32_t, 12> phi{};

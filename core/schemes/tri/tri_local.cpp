@@ -8,6 +8,7 @@
 #include <unordered_set>
 
 #include "core/complex/complex_build.h"
+#include "core/base/epoch_table.h"
 #include "core/base/errors.h"
 #include "core/base/parallel.h"
 
@@ -113,31 +114,7 @@ TriRings build_tri_rings(const Complex& c) {
 
 namespace {
 
-// A per-thread vertex -> label table, cleared by epoch instead of by value: local orders are
-// taken millions of times on big meshes, each touching a few hundred vertices.
-struct LabelTable {
-  std::vector<std::uint32_t> label, stamp;
-  std::uint32_t epoch = 0;
-  void begin(std::uint32_t n) {
-    if (stamp.size() < n) {
-      label.resize(n);
-      stamp.assign(n, 0);
-      epoch = 0;
-    }
-    if (++epoch == 0) {
-      std::fill(stamp.begin(), stamp.end(), 0);
-      epoch = 1;
-    }
-  }
-  bool has(std::uint32_t v) const { return stamp[v] == epoch; }
-  std::uint32_t get(std::uint32_t v) const { return stamp[v] == epoch ? label[v] : UINT32_MAX; }
-  void mark(std::uint32_t v) { stamp[v] = epoch; }  // has(v) from now on, with no label
-  void set(std::uint32_t v, std::uint32_t l) {
-    stamp[v] = epoch;
-    label[v] = l;
-  }
-};
-thread_local LabelTable table;
+thread_local EpochTable table;  // vertex -> label
 
 }  // namespace
 
@@ -216,7 +193,7 @@ void local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, i
   std::int32_t* const s = buffer.data();
   std::int32_t* w = s;
   const std::uint32_t* const stamp = table.stamp.data();
-  const std::uint32_t* const label = table.label.data();
+  const std::uint32_t* const label = table.value.data();
   const std::uint32_t epoch = table.epoch;
   const std::uint32_t* const items = r.ring.items.data();
   const std::uint32_t* const edges = r.ring_edge.items.data();

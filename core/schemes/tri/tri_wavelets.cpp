@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 
+#include "core/base/epoch_table.h"
 #include "core/complex/complex_build.h"
 #include "core/complex/refine_tri.h"
 
@@ -25,33 +26,6 @@ int TriWaveletBuilder::signature_radius() const {
   const TriGramRadii& g = gram_.radii();
   return disc_ + g.support + g.signature;
 }
-
-namespace {
-
-// Vertex -> slot for the few dozen vertices one solve asks about, cleared by epoch (a solve
-// looks up every vertex of every Gram block it sums: thousands of lookups).
-struct Slots {
-  std::vector<std::uint32_t> slot, stamp;
-  std::uint32_t epoch = 0;
-  void begin(std::uint32_t n) {
-    if (stamp.size() < n) {
-      slot.resize(n);
-      stamp.assign(n, 0);
-      epoch = 0;
-    }
-    if (++epoch == 0) {
-      std::fill(stamp.begin(), stamp.end(), 0);
-      epoch = 1;
-    }
-  }
-  std::uint32_t get(std::uint32_t v) const { return stamp[v] == epoch ? slot[v] : UINT32_MAX; }
-  void set(std::uint32_t v, std::uint32_t s) {
-    stamp[v] = epoch;
-    slot[v] = s;
-  }
-};
-
-}  // namespace
 
 EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
   if (lv.fine->vertex_faces.rows() != lv.fine->num_vertices) {
@@ -74,7 +48,8 @@ EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
   local_order(*lv.coarse_rings, seeds, starts, disc_ + g.support, order);
   std::uint32_t nd = 0;
   while (nd < order.dist.size() && order.dist[nd] <= disc_) ++nd;
-  thread_local Slots disc_label, with_m_slot;  // coarse vertex -> label in D; fine vertex -> with_m
+  // Coarse vertex -> label in D; fine vertex -> its place in with_m (thousands of lookups).
+  thread_local EpochTable disc_label, with_m_slot;
   disc_label.begin(c.num_vertices);
   for (std::uint32_t l = 0; l < nd; ++l) disc_label.set(order.vertex[l], l);
   const auto in_disc = [&](std::uint32_t v) { return disc_label.get(v); };

@@ -6,11 +6,14 @@
 #include <array>
 #include <map>
 #include <algorithm>
+#include <span>
+#include <string>
 #include <variant>
 
 #include "core/complex/complex_build.h"
 #include "core/analysis/inner_products.h"
 #include "core/complex/refine_tri.h"
+#include "core/io/lattice/shape_io.h"
 #include "core/schemes/tri/tri_gram.h"
 #include "core/schemes/tri/tri_local.h"
 #include "core/schemes/tri/tri_rules.h"
@@ -442,6 +445,47 @@ TEST(TriTransition, SharedUpdateRowsEqualListedOnARegularTorus) {
 TEST(TriTransition, ATorusTooThinForThePatternListsItsRows) {
   // Six cells round: a vertex's 3-ring closes on itself, so no row can follow the pattern.
   expect_shared_rows_match(regular_torus(6, 6), Scheme::Butterfly, false);
+}
+
+// The one-pass order and signature (what the edges' keys use) equal local_order followed by
+// local_signature, field for field and byte for byte: on a refined octahedron (valence 4 and
+// 6), an open disc around a valence-5 vertex (open fans at the rim), a creased grid (edge and
+// vertex dims) and a thin torus whose neighbourhoods meet themselves; from edges (two seeds)
+// and faces (three), at radii 0 to 5.
+TEST(TriLocal, OrderAndSignatureInOnePassEqualTheTwoCalls) {
+  Complex octa = octahedron_complex();
+  for (int j = 0; j < 3; ++j) octa = refine_tri(octa);
+  Complex grid = read_shape(std::string(SUBLIFT_ASSETS_DIR) + "/tri_crease_grid.obj").base;
+  build_adjacency(grid);
+  const Complex meshes[] = {octa, extraordinary_disc(5, 6), grid, regular_torus(6, 5)};
+  std::size_t compared = 0;
+  for (const Complex& c : meshes) {
+    const TriRings r = build_tri_rings(c);
+    LocalOrder fused;
+    std::string fused_signature;
+    const auto compare = [&](std::span<const std::uint32_t> seeds, std::span<const std::uint32_t> starts, int radius) {
+      const LocalOrder o = local_order(r, seeds, starts, radius);
+      local_order_and_signature(c, r, seeds, starts, radius, fused, fused_signature);
+      ASSERT_EQ(fused.vertex, o.vertex);
+      ASSERT_EQ(fused.dist, o.dist);
+      ASSERT_EQ(fused.start, o.start);
+      ASSERT_EQ(fused.fan0, o.fan0);
+      ASSERT_EQ(fused_signature, local_signature(c, r, o, radius));
+      ++compared;
+    };
+    for (int radius = 0; radius <= 5; ++radius) {
+      for (std::uint32_t e = 0; e < c.num_edges(); e += 3) {
+        const std::uint32_t seeds[2] = {c.edge_verts[2 * e], c.edge_verts[2 * e + 1]}, starts[2] = {seeds[1], seeds[0]};
+        compare(seeds, starts, radius);
+      }
+      for (std::uint32_t f = 0; f < c.num_faces(); f += 5) {
+        std::uint32_t seeds[3], starts[3];
+        face_seeds(c, f, seeds, starts);
+        compare(seeds, starts, radius);
+      }
+    }
+  }
+  EXPECT_GT(compared, 1000u);
 }
 
 // Signatures are 16-bit where every number fits and 32-bit otherwise (more than 32767 labels),

@@ -179,6 +179,29 @@ std::string local_signature(const Complex& c, const TriRings& r, const LocalOrde
   return out;
 }
 
+namespace {
+
+// The numbers of a signature as 16-bit ones when every one fits (nearly always), else 32-bit,
+// after a byte that says which.
+void pack_signature(const std::int32_t* s, const std::int32_t* w, std::string& out) {
+  const std::size_t count = static_cast<std::size_t>(w - s);
+  const bool narrow = std::all_of(s, w, [](std::int32_t x) { return x >= INT16_MIN && x <= INT16_MAX; });
+  out.assign(1 + count * (narrow ? sizeof(std::int16_t) : sizeof(std::int32_t)), narrow ? 'h' : 'w');
+  if (!narrow) {
+    std::memcpy(out.data() + 1, s, count * sizeof(std::int32_t));
+    return;
+  }
+  char* at = out.data() + 1;
+  for (const std::int32_t* v = s; v != w; ++v, at += sizeof(std::int16_t)) {
+    const auto x = static_cast<std::int16_t>(*v);
+    std::memcpy(at, &x, sizeof x);
+  }
+}
+
+thread_local std::vector<std::int32_t> signature_buffer;  // reused: no allocation per signature
+
+}  // namespace
+
 void local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius, std::string& out) {
   table.begin(c.num_vertices);
   std::size_t bound = 0;  // 4 numbers per label and 2 per fan entry
@@ -187,7 +210,7 @@ void local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, i
       table.set(o.vertex[l], l);
       bound += 4 + 2 * std::size_t(r.ring.size(o.vertex[l]));
     }
-  thread_local std::vector<std::int32_t> buffer;  // reused: no allocation per signature
+  std::vector<std::int32_t>& buffer = signature_buffer;
   if (buffer.size() < bound) buffer.resize(bound);
   // Plain pointers in the loop: the table's and the buffer's are thread-locals.
   std::int32_t* const s = buffer.data();
@@ -213,18 +236,54 @@ void local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, i
       *w++ = c.edge_dim.empty() ? 2 : c.edge_dim[edges[begin + i]];
     }
   }
-  const std::size_t count = static_cast<std::size_t>(w - s);
-  const bool narrow = std::all_of(s, w, [](std::int32_t x) { return x >= INT16_MIN && x <= INT16_MAX; });
-  out.assign(1 + count * (narrow ? sizeof(std::int16_t) : sizeof(std::int32_t)), narrow ? 'h' : 'w');
-  if (!narrow) {
-    std::memcpy(out.data() + 1, s, count * sizeof(std::int32_t));
-    return;
+  pack_signature(s, w, out);
+}
+
+void local_order_and_signature(const Complex& c, const TriRings& r, std::span<const std::uint32_t> seeds,
+                               std::span<const std::uint32_t> seed_start, int radius, LocalOrder& o, std::string& out) {
+  o.vertex.clear();
+  o.dist.clear();
+  o.start.clear();
+  o.fan0.clear();
+  table.begin(static_cast<std::uint32_t>(r.closed.size()));
+  for (std::size_t i = 0; i < seeds.size(); ++i) {
+    table.set(seeds[i], static_cast<std::uint32_t>(o.vertex.size()));
+    o.vertex.push_back(seeds[i]);
+    o.dist.push_back(0);
+    o.start.push_back(seed_start[i]);
+    o.fan0.push_back(UINT32_MAX);
   }
-  char* at = out.data() + 1;
-  for (const std::int32_t* v = s; v != w; ++v, at += sizeof(std::int16_t)) {
-    const auto x = static_cast<std::int16_t>(*v);
-    std::memcpy(at, &x, sizeof x);
+  std::vector<std::int32_t>& s = signature_buffer;
+  s.clear();
+  const std::uint32_t* const items = r.ring.items.data();
+  const std::uint32_t* const edges = r.ring_edge.items.data();
+  // Label order is breadth first, so every vertex within `radius` is labelled before the first
+  // one at `radius` is walked: a neighbour without a label when it is read lies beyond.
+  for (std::size_t l = 0; l < o.vertex.size(); ++l) {
+    const std::uint32_t u = o.vertex[l];
+    const std::uint8_t d = o.dist[l];
+    const std::uint32_t begin = r.ring.offsets[u], n = r.ring.offsets[u + 1] - begin;
+    s.insert(s.end(), {-1000 - d, std::int32_t(r.closed[u]), static_cast<std::int32_t>(n), c.vertex_dim.empty() ? 2 : c.vertex_dim[u]});
+    if (n == 0) continue;
+    const std::uint32_t i0 = fan_index(r, u, o.start[l]);
+    const bool walk = d < radius;
+    if (walk) o.fan0[l] = i0;
+    for (std::uint32_t k = 0, i = i0; k < n; ++k, i = i + 1 == n ? 0 : i + 1) {
+      const std::uint32_t x = items[begin + i];
+      std::uint32_t lx = table.get(x);
+      if (lx == UINT32_MAX && walk) {
+        lx = static_cast<std::uint32_t>(o.vertex.size());
+        table.set(x, lx);
+        o.vertex.push_back(x);
+        o.dist.push_back(static_cast<std::uint8_t>(d + 1));
+        o.start.push_back(u);
+        o.fan0.push_back(UINT32_MAX);
+      }
+      s.push_back(lx == UINT32_MAX ? -1 : static_cast<std::int32_t>(lx));
+      s.push_back(c.edge_dim.empty() ? 2 : c.edge_dim[edges[begin + i]]);
+    }
   }
+  pack_signature(s.data(), s.data() + s.size(), out);
 }
 
 std::size_t SignatureHash::operator()(const std::string& s) const noexcept {

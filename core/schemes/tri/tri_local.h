@@ -71,6 +71,12 @@ std::string local_signature(const Complex& c, const TriRings& r, const LocalOrde
 /// `radius`: vertices there that were not walked have their fan's start searched.
 void local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius, std::string& out);
 
+/// local_order(r, seeds, seed_start, radius, o) and local_signature(c, r, o, radius, out) in
+/// one pass: each vertex's fan is walked once, labelling and writing together. The same order
+/// and the same signature as the two calls.
+void local_order_and_signature(const Complex& c, const TriRings& r, std::span<const std::uint32_t> seeds,
+                               std::span<const std::uint32_t> seed_start, int radius, LocalOrder& o, std::string& out);
+
 /// A hash for signatures that reads them 8 bytes at a time (they are kilobytes long and looked
 /// up once per irregular edge and face; equality is still checked in full).
 struct SignatureHash {

@@ -144,11 +144,10 @@ void TriWaveletBuilder::edge_key(const TriLevel& lv, std::uint32_t e, std::vecto
   const std::uint32_t a = c.edge_verts[2 * e], b = c.edge_verts[2 * e + 1];
   const std::uint32_t seeds[2] = {a, b}, starts[2] = {b, a};
   thread_local LocalOrder order;
-  local_order(*lv.coarse_rings, seeds, starts, signature_radius(), order);
+  local_order_and_signature(c, *lv.coarse_rings, seeds, starts, signature_radius(), order, signature);
   std::uint32_t nd = 0;
   while (nd < order.dist.size() && order.dist[nd] <= disc_) ++nd;
   disc.assign(order.vertex.begin(), order.vertex.begin() + nd);
-  local_signature(c, *lv.coarse_rings, order, signature_radius(), signature);
 }
 
 const EdgeWavelet* TriWaveletBuilder::find(const std::string& signature) const {

@@ -335,23 +335,40 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
       }
     }
   });
+  // Joined: each chunk's rows and terms copied in parallel to where they end up (the arrays
+  // sized once), the short near-curve lists in order.
   std::vector<std::uint32_t> near_curve;
   std::vector<std::array<std::uint32_t, 12>> near_phi;
-  for (Chunk& part : chunks) {
+  WeightedStep& p = predict.s;
+  std::vector<std::size_t> row_at(chunks.size() + 1), item_at(chunks.size() + 1), term_at(chunks.size() + 1);
+  row_at[0] = p.target.size(), item_at[0] = p.sources.items.size(), term_at[0] = update.size();
+  for (std::size_t i = 0; i < chunks.size(); ++i) {
+    const Chunk& part = chunks[i];
     if (part.error) std::rethrow_exception(part.error);
-    const WeightedStep& r = part.predict.s;
-    WeightedStep& p = predict.s;
-    const auto base = static_cast<std::uint32_t>(p.sources.items.size());
-    p.target.insert(p.target.end(), r.target.begin(), r.target.end());
-    for (std::size_t i = 1; i < r.sources.offsets.size(); ++i) p.sources.offsets.push_back(base + r.sources.offsets[i]);
-    p.sources.items.insert(p.sources.items.end(), r.sources.items.begin(), r.sources.items.end());
-    p.weights.insert(p.weights.end(), r.weights.begin(), r.weights.end());
-    update.insert(update.end(), part.update.begin(), part.update.end());
+    row_at[i + 1] = row_at[i] + part.predict.s.target.size();
+    item_at[i + 1] = item_at[i] + part.predict.s.sources.items.size();
+    term_at[i + 1] = term_at[i] + part.update.size();
     near_curve.insert(near_curve.end(), part.near_curve.begin(), part.near_curve.end());
     near_phi.insert(near_phi.end(), part.near_phi.begin(), part.near_phi.end());
     t.lifted_face_points += part.lifted;
-    part = Chunk{};
   }
+  p.target.resize(row_at.back());
+  p.sources.offsets.resize(row_at.back() + 1);
+  p.sources.items.resize(item_at.back());
+  p.weights.resize(item_at.back());
+  update.resize(term_at.back());
+  parallel_for(static_cast<std::uint32_t>(chunks.size()), 1, [&](std::uint32_t c0, std::uint32_t c1) {
+    for (std::uint32_t i = c0; i < c1; ++i) {
+      const WeightedStep& r = chunks[i].predict.s;
+      std::copy(r.target.begin(), r.target.end(), p.target.begin() + std::ptrdiff_t(row_at[i]));
+      const auto base = static_cast<std::uint32_t>(item_at[i]);
+      for (std::size_t k = 1; k < r.sources.offsets.size(); ++k) p.sources.offsets[row_at[i] + k] = base + r.sources.offsets[k];
+      std::copy(r.sources.items.begin(), r.sources.items.end(), p.sources.items.begin() + std::ptrdiff_t(item_at[i]));
+      std::copy(r.weights.begin(), r.weights.end(), p.weights.begin() + std::ptrdiff_t(item_at[i]));
+      std::copy(chunks[i].update.begin(), chunks[i].update.end(), update.begin() + std::ptrdiff_t(term_at[i]));
+      chunks[i] = Chunk{};
+    }
+  });
   WeightedStep& pred = predict.s;
   if (!near_curve.empty()) {
     std::vector<Entry> swapped;  // the predict step by source: P's columns

@@ -66,17 +66,27 @@ void build_rows(std::uint32_t n, Csr& rows, std::vector<double>& weights, RowFn&
       }
     }
   });
-  std::size_t items = rows.items.size();
-  for (const Csr& r : part_rows) items += r.items.size();
-  rows.items.reserve(items);
-  weights.reserve(items);
-  rows.offsets.reserve(rows.offsets.size() + n);
+  // Joined: the arrays sized once, each chunk copied to its place in parallel.
+  std::vector<std::size_t> row_at(std::size_t(chunks) + 1), item_at(std::size_t(chunks) + 1);
+  row_at[0] = rows.rows(), item_at[0] = rows.items.size();
   for (std::uint32_t c = 0; c < chunks; ++c) {
-    const auto base = static_cast<std::uint32_t>(rows.items.size());
-    rows.items.insert(rows.items.end(), part_rows[c].items.begin(), part_rows[c].items.end());
-    weights.insert(weights.end(), part_weights[c].begin(), part_weights[c].end());
-    for (std::size_t k = 1; k < part_rows[c].offsets.size(); ++k) rows.offsets.push_back(base + part_rows[c].offsets[k]);
+    row_at[c + 1] = row_at[c] + part_rows[c].rows();
+    item_at[c + 1] = item_at[c] + part_rows[c].items.size();
   }
+  rows.offsets.resize(row_at.back() + 1);
+  rows.items.resize(item_at.back());
+  weights.resize(item_at.back());
+  parallel_for(chunks, 1, [&](std::uint32_t c0, std::uint32_t c1) {
+    for (std::uint32_t c = c0; c < c1; ++c) {
+      const Csr& r = part_rows[c];
+      const auto base = static_cast<std::uint32_t>(item_at[c]);
+      for (std::size_t k = 1; k < r.offsets.size(); ++k) rows.offsets[row_at[c] + k] = base + r.offsets[k];
+      std::copy(r.items.begin(), r.items.end(), rows.items.begin() + std::ptrdiff_t(item_at[c]));
+      std::copy(part_weights[c].begin(), part_weights[c].end(), weights.begin() + std::ptrdiff_t(item_at[c]));
+      part_rows[c] = Csr{};
+      part_weights[c] = {};
+    }
+  });
 }
 
 // Preconditions of build_tri_stencils; throws TopologyError naming the element.

@@ -138,8 +138,11 @@ LocalOrder local_order(const TriRings& r, std::span<const std::uint32_t> seeds,
   return o;
 }
 
-void local_order(const TriRings& r, std::span<const std::uint32_t> seeds, std::span<const std::uint32_t> seed_start,
-                 int radius, LocalOrder& o) {
+namespace {
+
+// An order holding the seeds only (labels 0.., distance 0), the label table started with them.
+void start_order(const TriRings& r, std::span<const std::uint32_t> seeds, std::span<const std::uint32_t> seed_start,
+                 LocalOrder& o) {
   o.vertex.clear();
   o.dist.clear();
   o.start.clear();
@@ -152,6 +155,13 @@ void local_order(const TriRings& r, std::span<const std::uint32_t> seeds, std::s
     o.start.push_back(seed_start[i]);
     o.fan0.push_back(UINT32_MAX);
   }
+}
+
+}  // namespace
+
+void local_order(const TriRings& r, std::span<const std::uint32_t> seeds, std::span<const std::uint32_t> seed_start,
+                 int radius, LocalOrder& o) {
+  start_order(r, seeds, seed_start, o);
   for (std::size_t l = 0; l < o.vertex.size(); ++l) {
     if (o.dist[l] >= radius) continue;
     const std::uint32_t u = o.vertex[l];
@@ -241,18 +251,7 @@ void local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, i
 
 void local_order_and_signature(const Complex& c, const TriRings& r, std::span<const std::uint32_t> seeds,
                                std::span<const std::uint32_t> seed_start, int radius, LocalOrder& o, std::string& out) {
-  o.vertex.clear();
-  o.dist.clear();
-  o.start.clear();
-  o.fan0.clear();
-  table.begin(static_cast<std::uint32_t>(r.closed.size()));
-  for (std::size_t i = 0; i < seeds.size(); ++i) {
-    table.set(seeds[i], static_cast<std::uint32_t>(o.vertex.size()));
-    o.vertex.push_back(seeds[i]);
-    o.dist.push_back(0);
-    o.start.push_back(seed_start[i]);
-    o.fan0.push_back(UINT32_MAX);
-  }
+  start_order(r, seeds, seed_start, o);
   std::vector<std::int32_t>& s = signature_buffer;
   s.clear();
   const std::uint32_t* const items = r.ring.items.data();

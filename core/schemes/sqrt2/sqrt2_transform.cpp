@@ -12,6 +12,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/parallel.h"
+#include "core/engine/stencil_rows.h"
 #include "core/schemes/sqrt2/sqrt2_coefficients.h"
 
 namespace sublift {
@@ -66,54 +67,15 @@ Entry entry(std::uint32_t target, std::uint32_t source, double weight) {
   return {std::uint64_t(target) << 32 | source, weight};
 }
 
-using Term = std::pair<std::uint32_t, double>;  // (source, weight)
-
-// Appends row `target` from its terms in the order they were made: sorted by source, stably
-// (insertion sort: rows hold a few dozen terms), duplicates merged (small closed curves repeat
-// vertices; a face rule repeats its corners) and summed in that order.
-void append_row(WeightedStep& s, std::uint32_t target, std::span<Term> row) {
-  if (row.empty()) return;
-  if (row.size() > 64) {  // a vertex of high valence: no quadratic sort
-    std::stable_sort(row.begin(), row.end(), [](const Term& x, const Term& y) { return x.first < y.first; });
-  } else {
-    for (std::size_t i = 1; i < row.size(); ++i) {
-      const Term x = row[i];
-      std::size_t j = i;
-      for (; j > 0 && row[j - 1].first > x.first; --j) row[j] = row[j - 1];
-      row[j] = x;
-    }
-  }
-  s.target.push_back(target);
-  for (std::size_t i = 0; i < row.size(); ++i) {
-    if (i > 0 && row[i].first == row[i - 1].first) {
-      s.weights.back() += row[i].second;
-      continue;
-    }
-    s.sources.items.push_back(row[i].first);
-    s.weights.push_back(row[i].second);
-  }
-  s.sources.offsets.push_back(static_cast<std::uint32_t>(s.sources.items.size()));
-}
-
-// One row at a time, in increasing target order: the terms of the current row, then end().
-struct RowWriter {
-  WeightedStep s;
-  std::vector<Term> row;
-  void add(std::uint32_t source, double weight) { row.emplace_back(source, weight); }
-  void end(std::uint32_t target) {
-    append_row(s, target, row);
-    row.clear();
-  }
-};
-
+// The rule's terms of a face point (FaceRules::add) go to a RowBuilder (stencil_rows.h).
 // The step of terms made in any order: a counting sort by target (stable, so each row keeps
-// the order its terms were made in), then append_row per target. Linear in the terms (one
-// std::sort of them all was half of the whole build).
+// the order its terms were made in), then append_stencil_row per target. Linear in the terms
+// (one std::sort of them all was half of the whole build).
 WeightedStep make_substep(std::vector<Entry> t, std::uint32_t num_targets) {  // by value: freed on return
   std::vector<std::uint32_t> start(std::size_t(num_targets) + 1, 0);
   for (const Entry& x : t) ++start[(x.key >> 32) + 1];
   for (std::uint32_t i = 0; i < num_targets; ++i) start[i + 1] += start[i];
-  std::vector<Term> terms(t.size());
+  std::vector<StencilTerm> terms(t.size());
   {
     std::vector<std::uint32_t> at(start.begin(), start.end() - 1);
     for (const Entry& x : t) terms[at[x.key >> 32]++] = {std::uint32_t(x.key), x.weight};
@@ -122,8 +84,11 @@ WeightedStep make_substep(std::vector<Entry> t, std::uint32_t num_targets) {  //
   WeightedStep s;
   s.sources.items.reserve(terms.size());
   s.weights.reserve(terms.size());
-  for (std::uint32_t tg = 0; tg < num_targets; ++tg)
-    append_row(s, tg, std::span<Term>(terms.data() + start[tg], start[tg + 1] - start[tg]));
+  for (std::uint32_t tg = 0; tg < num_targets; ++tg) {
+    if (start[tg] == start[tg + 1]) continue;
+    s.target.push_back(tg);
+    append_stencil_row(std::span<StencilTerm>(terms.data() + start[tg], start[tg + 1] - start[tg]), s.sources, s.weights);
+  }
   return s;
 }
 
@@ -136,7 +101,7 @@ class FaceRules {
 
   // The terms of coarse face f's face point. Returns true when f is a quad with 4 inner corners (the
   // lifting then uses the table), with their valences in `valences`.
-  bool add(std::uint32_t f, RowWriter& predict, std::array<std::uint32_t, 4>& valences) {
+  bool add(std::uint32_t f, RowBuilder& predict, std::array<std::uint32_t, 4>& valences) {
     const std::uint32_t b = c_.faces.offsets[f], m = c_.faces.size(f);
     if (rings_.size() < m) rings_.resize(m);
     std::uint32_t l = 0;
@@ -260,11 +225,12 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
   // their 8 outer neighbours; 12 lifting terms) plus the curve points, so the big arrays grow
   // without copies in the common case. The predict rows are made in target order: the curve
   // points (nv ..), then the face points.
-  RowWriter predict;
-  predict.s.target.reserve(std::size_t(np) + nc);
-  predict.s.sources.offsets.reserve(std::size_t(np) + nc + 1);
-  predict.s.sources.items.reserve(12 * std::size_t(np) + 4 * std::size_t(nc));
-  predict.s.weights.reserve(12 * std::size_t(np) + 4 * std::size_t(nc));
+  WeightedStep pred;
+  pred.target.reserve(std::size_t(np) + nc);
+  pred.sources.offsets.reserve(std::size_t(np) + nc + 1);
+  pred.sources.items.reserve(12 * std::size_t(np) + 4 * std::size_t(nc));
+  pred.weights.reserve(12 * std::size_t(np) + 4 * std::size_t(nc));
+  RowBuilder predict;
   std::vector<Entry> update;
   update.reserve(12 * std::size_t(np) + 4 * std::size_t(nc));
   const auto w4 = sqrt2_four_point_weights();
@@ -285,12 +251,14 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
       predict.add(p, 0.5);
       predict.add(q, 0.5);
     }
-    predict.end(x);
+    pred.target.push_back(x);
+    predict.flush(pred.sources, pred.weights);
   }
   // The face points in chunks, each on its own thread with its own rows and lifting terms,
   // joined in chunk order: the same rows and terms in the same order whatever the threads.
   struct Chunk {
-    RowWriter predict;
+    Csr rows;  // the face points' prediction rows
+    std::vector<double> weights;
     std::vector<Entry> update;
     std::vector<std::uint32_t> near_curve;  // face points lifted by lift_near_curve below
     std::vector<std::array<std::uint32_t, 12>> near_phi;
@@ -301,6 +269,7 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
   std::vector<Chunk> chunks((np + kChunk - 1) / kChunk);
   parallel_for(static_cast<std::uint32_t>(chunks.size()), 1, [&](std::uint32_t c0, std::uint32_t c1) {
     FaceRules face_rules(c, inner);
+    RowBuilder predict;
     std::array<std::uint32_t, 4> last_n{};  // sqrt2_omega takes a lock: the last one is kept
     std::array<double, 12> omega{};
     for (std::uint32_t ci = c0; ci < c1; ++ci) {
@@ -308,17 +277,16 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
       try {
         // As for the whole step above: a quad mesh of valence 4 fills these without regrowing.
         const std::uint32_t k0 = ci * kChunk, k1 = std::min(np, k0 + kChunk);
-        out.predict.s.target.reserve(k1 - k0);
-        out.predict.s.sources.offsets.reserve(std::size_t(k1 - k0) + 1);
-        out.predict.s.sources.items.reserve(12 * std::size_t(k1 - k0));
-        out.predict.s.weights.reserve(12 * std::size_t(k1 - k0));
+        out.rows.offsets.reserve(std::size_t(k1 - k0) + 1);
+        out.rows.items.reserve(12 * std::size_t(k1 - k0));
+        out.weights.reserve(12 * std::size_t(k1 - k0));
         out.update.reserve(12 * std::size_t(k1 - k0));
         for (std::uint32_t k = k0; k < k1; ++k) {
           const std::uint32_t f = ch.point_faces[k], fp = ch.first_face_point + k;
           std::array<std::uint32_t, 4> n{};
           std::array<std::uint32_t, 12> phi{};
-          const bool all_inner = face_rules.add(f, out.predict, n);
-          out.predict.end(fp);
+          const bool all_inner = face_rules.add(f, predict, n);
+          predict.flush(out.rows, out.weights);
           if (c.faces.size(f) != 4) continue;  // level-0 polygons: no lifting (the paper starts from quads)
           if (!find_phis(c, f, inner, phi) || !all_inner) {
             out.near_curve.push_back(fp);
@@ -335,41 +303,25 @@ Sqrt2Transition build_sqrt2_transition(const Complex& c, const Complex& fine, co
       }
     }
   });
-  // Joined: each chunk's rows and terms copied in parallel to where they end up (the arrays
-  // sized once), the short near-curve lists in order.
+  // Joined in chunk order: the rows copied to their places in parallel (join_rows), the face
+  // points' targets in order after the curve points', the terms and short lists appended.
   std::vector<std::uint32_t> near_curve;
   std::vector<std::array<std::uint32_t, 12>> near_phi;
-  WeightedStep& p = predict.s;
-  std::vector<std::size_t> row_at(chunks.size() + 1), item_at(chunks.size() + 1), term_at(chunks.size() + 1);
-  row_at[0] = p.target.size(), item_at[0] = p.sources.items.size(), term_at[0] = update.size();
+  std::vector<Csr> parts(chunks.size());
+  std::vector<std::vector<double>> part_weights(chunks.size());
   for (std::size_t i = 0; i < chunks.size(); ++i) {
-    const Chunk& part = chunks[i];
+    Chunk& part = chunks[i];
     if (part.error) std::rethrow_exception(part.error);
-    row_at[i + 1] = row_at[i] + part.predict.s.target.size();
-    item_at[i + 1] = item_at[i] + part.predict.s.sources.items.size();
-    term_at[i + 1] = term_at[i] + part.update.size();
+    parts[i] = std::move(part.rows);
+    part_weights[i] = std::move(part.weights);
+    update.insert(update.end(), part.update.begin(), part.update.end());
     near_curve.insert(near_curve.end(), part.near_curve.begin(), part.near_curve.end());
     near_phi.insert(near_phi.end(), part.near_phi.begin(), part.near_phi.end());
     t.lifted_face_points += part.lifted;
+    part = Chunk{};
   }
-  p.target.resize(row_at.back());
-  p.sources.offsets.resize(row_at.back() + 1);
-  p.sources.items.resize(item_at.back());
-  p.weights.resize(item_at.back());
-  update.resize(term_at.back());
-  parallel_for(static_cast<std::uint32_t>(chunks.size()), 1, [&](std::uint32_t c0, std::uint32_t c1) {
-    for (std::uint32_t i = c0; i < c1; ++i) {
-      const WeightedStep& r = chunks[i].predict.s;
-      std::copy(r.target.begin(), r.target.end(), p.target.begin() + std::ptrdiff_t(row_at[i]));
-      const auto base = static_cast<std::uint32_t>(item_at[i]);
-      for (std::size_t k = 1; k < r.sources.offsets.size(); ++k) p.sources.offsets[row_at[i] + k] = base + r.sources.offsets[k];
-      std::copy(r.sources.items.begin(), r.sources.items.end(), p.sources.items.begin() + std::ptrdiff_t(item_at[i]));
-      std::copy(r.weights.begin(), r.weights.end(), p.weights.begin() + std::ptrdiff_t(item_at[i]));
-      std::copy(chunks[i].update.begin(), chunks[i].update.end(), update.begin() + std::ptrdiff_t(term_at[i]));
-      chunks[i] = Chunk{};
-    }
-  });
-  WeightedStep& pred = predict.s;
+  join_rows(parts, part_weights, pred.sources, pred.weights);
+  for (std::uint32_t k = 0; k < np; ++k) pred.target.push_back(ch.first_face_point + k);
   if (!near_curve.empty()) {
     std::vector<Entry> swapped;  // the predict step by source: P's columns
     swapped.reserve(pred.sources.items.size());

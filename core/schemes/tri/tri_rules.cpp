@@ -10,84 +10,12 @@
 
 #include "core/base/errors.h"
 #include "core/base/parallel.h"
+#include "core/engine/stencil_rows.h"
 #include "core/schemes/registry.h"
 
 namespace sublift {
 
 namespace {
-
-// Accumulates one stencil row; flush() writes it with items in increasing vertex order,
-// repeated vertices merged (small meshes repeat them, the butterfly's symmetric wings name a0/a1
-// again, two K-point rings overlap) and exact zeros dropped. n log n, so a vertex of valence
-// 70 000 costs no more than its sort.
-class RowBuilder {
- public:
-  void add(std::uint32_t v, double w) { terms_.emplace_back(v, w); }
-  void flush(Csr& rows, std::vector<double>& weights) {
-    const auto by_vertex = [](const auto& x, const auto& y) { return x.first < y.first; };
-    if (terms_.size() <= 32) {  // stable insertion sort: no buffer to allocate per row
-      for (std::size_t i = 1; i < terms_.size(); ++i)
-        for (std::size_t j = i; j > 0 && by_vertex(terms_[j], terms_[j - 1]); --j) std::swap(terms_[j], terms_[j - 1]);
-    } else {
-      std::stable_sort(terms_.begin(), terms_.end(), by_vertex);
-    }
-    for (std::size_t i = 0; i < terms_.size();) {
-      const std::uint32_t v = terms_[i].first;
-      double w = 0;
-      for (; i < terms_.size() && terms_[i].first == v; ++i) w += terms_[i].second;
-      if (w != 0.0) rows.items.push_back(v), weights.push_back(w);
-    }
-    rows.offsets.push_back(static_cast<std::uint32_t>(rows.items.size()));
-    terms_.clear();
-  }
-
- private:
-  std::vector<std::pair<std::uint32_t, double>> terms_;
-};
-
-// Rows 0..n-1 from row(i, builder), built in parallel chunks and joined in order (the same
-// rows as one serial pass). `row` must not throw.
-template <class RowFn>
-void build_rows(std::uint32_t n, Csr& rows, std::vector<double>& weights, RowFn&& row) {
-  constexpr std::uint32_t kChunk = 8192;
-  const std::uint32_t chunks = (n + kChunk - 1) / kChunk;
-  std::vector<Csr> part_rows(chunks);
-  std::vector<std::vector<double>> part_weights(chunks);
-  parallel_for(chunks, 1, [&](std::uint32_t c0, std::uint32_t c1) {
-    RowBuilder b;
-    for (std::uint32_t c = c0; c < c1; ++c) {
-      Csr& r = part_rows[c];
-      r.offsets.reserve(kChunk + 1);
-      r.items.reserve(std::size_t(kChunk) * 8);  // the 8-point rule; others fewer or a few more
-      part_weights[c].reserve(std::size_t(kChunk) * 8);
-      for (std::uint32_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
-        row(i, b);
-        b.flush(r, part_weights[c]);
-      }
-    }
-  });
-  // Joined: the arrays sized once, each chunk copied to its place in parallel.
-  std::vector<std::size_t> row_at(std::size_t(chunks) + 1), item_at(std::size_t(chunks) + 1);
-  row_at[0] = rows.rows(), item_at[0] = rows.items.size();
-  for (std::uint32_t c = 0; c < chunks; ++c) {
-    row_at[c + 1] = row_at[c] + part_rows[c].rows();
-    item_at[c + 1] = item_at[c] + part_rows[c].items.size();
-  }
-  rows.offsets.resize(row_at.back() + 1);
-  rows.items.resize(item_at.back());
-  weights.resize(item_at.back());
-  parallel_for(chunks, 1, [&](std::uint32_t c0, std::uint32_t c1) {
-    for (std::uint32_t c = c0; c < c1; ++c) {
-      const Csr& r = part_rows[c];
-      const auto base = static_cast<std::uint32_t>(item_at[c]);
-      for (std::size_t k = 1; k < r.offsets.size(); ++k) rows.offsets[row_at[c] + k] = base + r.offsets[k];
-      std::copy(r.items.begin(), r.items.end(), rows.items.begin() + std::ptrdiff_t(item_at[c]));
-      std::copy(part_weights[c].begin(), part_weights[c].end(), weights.begin() + std::ptrdiff_t(item_at[c]));
-      part_rows[c] = Csr{};
-      part_weights[c] = {};
-    }
-  });
-}
 
 // Preconditions of build_tri_stencils; throws TopologyError naming the element.
 void check_surface(const Complex& c) {

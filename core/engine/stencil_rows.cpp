@@ -1,0 +1,47 @@
+#include "core/engine/stencil_rows.h"
+
+namespace sublift {
+
+void append_stencil_row(std::span<StencilTerm> terms, Csr& rows, std::vector<double>& weights) {
+  const auto by_source = [](const StencilTerm& x, const StencilTerm& y) { return x.first < y.first; };
+  if (terms.size() <= 32) {  // stable insertion sort: no buffer to allocate per row
+    for (std::size_t i = 1; i < terms.size(); ++i)
+      for (std::size_t j = i; j > 0 && by_source(terms[j], terms[j - 1]); --j) std::swap(terms[j], terms[j - 1]);
+  } else {
+    std::stable_sort(terms.begin(), terms.end(), by_source);
+  }
+  for (std::size_t i = 0; i < terms.size();) {
+    const std::uint32_t v = terms[i].first;
+    double w = 0;
+    for (; i < terms.size() && terms[i].first == v; ++i) w += terms[i].second;
+    if (w != 0.0) rows.items.push_back(v), weights.push_back(w);
+  }
+  rows.offsets.push_back(static_cast<std::uint32_t>(rows.items.size()));
+}
+
+void join_rows(std::vector<Csr>& parts, std::vector<std::vector<double>>& part_weights, Csr& rows,
+               std::vector<double>& weights) {
+  const std::size_t n = parts.size();
+  std::vector<std::size_t> row_at(n + 1), item_at(n + 1);
+  row_at[0] = rows.rows(), item_at[0] = rows.items.size();
+  for (std::size_t c = 0; c < n; ++c) {
+    row_at[c + 1] = row_at[c] + parts[c].rows();
+    item_at[c + 1] = item_at[c] + parts[c].items.size();
+  }
+  rows.offsets.resize(row_at.back() + 1);
+  rows.items.resize(item_at.back());
+  weights.resize(item_at.back());
+  parallel_for(static_cast<std::uint32_t>(n), 1, [&](std::uint32_t c0, std::uint32_t c1) {
+    for (std::uint32_t c = c0; c < c1; ++c) {
+      const Csr& r = parts[c];
+      const auto base = static_cast<std::uint32_t>(item_at[c]);
+      for (std::size_t k = 1; k < r.offsets.size(); ++k) rows.offsets[row_at[c] + k] = base + r.offsets[k];
+      std::copy(r.items.begin(), r.items.end(), rows.items.begin() + std::ptrdiff_t(item_at[c]));
+      std::copy(part_weights[c].begin(), part_weights[c].end(), weights.begin() + std::ptrdiff_t(item_at[c]));
+      parts[c] = Csr{};
+      part_weights[c] = {};
+    }
+  });
+}
+
+}  // namespace sublift

@@ -183,12 +183,6 @@ void local_order(const TriRings& r, std::span<const std::uint32_t> seeds, std::s
   }
 }
 
-std::string local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius) {
-  std::string out;
-  local_signature(c, r, o, radius, out);
-  return out;
-}
-
 namespace {
 
 // The numbers of a signature as 16-bit ones when every one fits (nearly always), else 32-bit,
@@ -212,7 +206,7 @@ thread_local std::vector<std::int32_t> signature_buffer;  // reused: no allocati
 
 }  // namespace
 
-void local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius, std::string& out) {
+std::string local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius) {
   table.begin(c.num_vertices);
   std::size_t bound = 0;  // 4 numbers per label and 2 per fan entry
   for (std::uint32_t l = 0; l < o.vertex.size(); ++l)
@@ -246,7 +240,9 @@ void local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, i
       *w++ = c.edge_dim.empty() ? 2 : c.edge_dim[edges[begin + i]];
     }
   }
+  std::string out;
   pack_signature(s, w, out);
+  return out;
 }
 
 void local_order_and_signature(const Complex& c, const TriRings& r, std::span<const std::uint32_t> seeds,

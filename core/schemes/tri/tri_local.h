@@ -66,10 +66,6 @@ void local_order(const TriRings& r, std::span<const std::uint32_t> seeds, std::s
 /// the edges' dims. Equal signatures <=> isomorphic labelled neighbourhoods. Stored as 16-bit
 /// numbers when every one fits (nearly always), else 32-bit, after a byte that says which.
 std::string local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius);
-/// The same into `out`, reusing its storage (edges' keys are taken millions of times, and most
-/// are found in the cache and dropped). Labels beyond `radius` are not read, so `o` may stop at
-/// `radius`: vertices there that were not walked have their fan's start searched.
-void local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius, std::string& out);
 
 /// local_order(r, seeds, seed_start, radius, o) and local_signature(c, r, o, radius, out) in
 /// one pass: each vertex's fan is walked once, labelling and writing together. The same order

@@ -131,7 +131,7 @@ int run_fit(int argc, char** argv) {
     const nlohmann::json j = {{"input", in},
                               {"output", out},
                               {"scheme", scheme_name(fo.scheme)},
-                              {"base", {{"vertices", base.num_vertices}, {"faces", base.faces.rows()}, {"quads", quads}, {"creases", base.tags.crease_edges.size()}, {"slabs", base.parts},
+                              {"base", {{"vertices", base.num_vertices}, {"faces", base.faces.rows()}, {"quads", quads}, {"creases", base.tags.crease_edges.size()},
                                         {"input_vertex", base.input_vertex}}},  // the mesh vertex each base vertex is
                               {"euler", {{"input", base.euler_before}, {"base", base.euler_after}}},
                               {"boundary_loops", {{"input", base.boundary_loops_before}, {"base", base.boundary_loops_after}}},

@@ -1,21 +1,29 @@
 #include "core/fit/base_mesh.h"
 
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModAspectRatioT.hh>
+#include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
+#include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
 #include <numbers>
-#include <optional>
 
 #include "core/base/errors.h"
 #include "core/fit/base_quads.h"
-#include "core/fit/decimate_parts.h"
 
 namespace sublift {
 
 namespace {
 
-using fit_detail::Mesh;
+struct Traits : OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+};
+using Mesh = OpenMesh::TriMesh_ArrayKernelT<Traits>;
 
 long long euler(const Mesh& m) {
   return static_cast<long long>(m.n_vertices()) - static_cast<long long>(m.n_edges()) + static_cast<long long>(m.n_faces());
@@ -177,56 +185,52 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
   for (auto v : m.vertices())
     if (m.is_isolated(v)) m.status(v).set_locked(true);
 
-  // Large meshes go down in slabs side by side first (decimate_parts.h), then all together.
-  const std::uint32_t parts = options.parts ? options.parts : used >= 10 * kSlabsFrom ? 4 : used >= kSlabsFrom ? 2 : 1;
-  std::uint32_t keep = target;
-  if (options.target_faces)  // the faces' share of the vertices, for the slabs only
-    keep = static_cast<std::uint32_t>(std::ceil(double(target_triangles) * used / double(m.n_faces())));
-  std::optional<fit_detail::JoinedParts> joined;
-  if (parts > 1) joined = fit_detail::decimate_in_parts(m, parts, keep, options.max_normal_deviation_deg);
-  out.parts = joined ? parts : 1;
-  Mesh& dm = joined ? joined->mesh : m;
-  std::vector<std::uint32_t> identity;
-  if (!joined) {
-    identity.resize(num_vertices);
-    for (std::uint32_t v = 0; v < num_vertices; ++v) identity[v] = v;
-  }
-  const std::vector<std::uint32_t>& input_of = joined ? joined->input_of : identity;
-  const std::uint32_t loose = joined ? 0 : num_vertices - used;  // loose vertices stay (locked) and are dropped below
-  auto dec = fit_detail::make_decimater(dm, options.max_normal_deviation_deg);
-  if (options.target_faces) dec->decimate_to_faces(0, std::min(target_triangles, dm.n_faces()));
-  else dec->decimate_to(target + loose);
+  using Decimater = OpenMesh::Decimater::DecimaterT<Mesh>;
+  Decimater dec(m);
+  OpenMesh::Decimater::ModQuadricT<Mesh>::Handle quadric;
+  OpenMesh::Decimater::ModNormalFlippingT<Mesh>::Handle flips;
+  OpenMesh::Decimater::ModAspectRatioT<Mesh>::Handle aspect;
+  dec.add(quadric);
+  dec.add(flips);
+  dec.add(aspect);
+  dec.module(quadric).unset_max_err();
+  dec.module(flips).set_max_normal_deviation(options.max_normal_deviation_deg);
+  dec.module(aspect).set_aspect_ratio(10.0);
+  dec.module(aspect).set_binary(true);
+  dec.initialize();
+  if (options.target_faces) dec.decimate_to_faces(0, std::min(target_triangles, m.n_faces()));
+  else dec.decimate_to(target + (num_vertices - used));  // loose vertices stay (locked) and are dropped below
 
   // The base from what survived (`b` holds what was read before the decimation).
   const auto extract = [&](BaseMesh b) {
-    // Surviving vertices keep their index until garbage collection: read them first.
-    const auto in = [&](Mesh::VertexHandle v) { return input_of[static_cast<std::size_t>(v.idx())]; };
+    // Surviving vertices keep their input index until garbage collection: read them first.
     std::vector<std::uint32_t> base_of(num_vertices, UINT32_MAX);
-    for (auto v : dm.vertices()) {
-      if (dm.status(v).deleted() || dm.is_isolated(v)) continue;
-      base_of[in(v)] = static_cast<std::uint32_t>(b.input_vertex.size());
-      b.input_vertex.push_back(in(v));
-      const auto p = dm.point(v);
+    for (auto v : m.vertices()) {
+      if (m.status(v).deleted() || m.is_isolated(v)) continue;
+      base_of[static_cast<std::size_t>(v.idx())] = static_cast<std::uint32_t>(b.input_vertex.size());
+      b.input_vertex.push_back(static_cast<std::uint32_t>(v.idx()));
+      const auto p = m.point(v);
       b.positions.insert(b.positions.end(), {p[0], p[1], p[2]});
-      if (corner[in(v)]) b.tags.corner_vertices.push_back(static_cast<std::uint32_t>(b.input_vertex.size() - 1));
+      if (corner[static_cast<std::size_t>(v.idx())]) b.tags.corner_vertices.push_back(static_cast<std::uint32_t>(b.input_vertex.size() - 1));
     }
     b.num_vertices = static_cast<std::uint32_t>(b.input_vertex.size());
     long long edges = 0;
-    for (auto f : dm.faces()) {
-      if (dm.status(f).deleted()) continue;
-      for (auto v : dm.fv_range(f)) b.faces.items.push_back(base_of[in(v)]);
+    for (auto f : m.faces()) {
+      if (m.status(f).deleted()) continue;
+      for (auto v : m.fv_range(f)) b.faces.items.push_back(base_of[static_cast<std::size_t>(v.idx())]);
       b.faces.offsets.push_back(static_cast<std::uint32_t>(b.faces.items.size()));
     }
-    for (auto e : dm.edges()) {
-      if (dm.status(e).deleted()) continue;
+    for (auto e : m.edges()) {
+      if (m.status(e).deleted()) continue;
       ++edges;
-      const auto h = dm.halfedge_handle(e, 0);
-      if (dm.status(e).feature() && !dm.is_boundary(e))
-        b.tags.crease_edges.emplace_back(base_of[in(dm.from_vertex_handle(h))], base_of[in(dm.to_vertex_handle(h))]);
+      const auto h = m.halfedge_handle(e, 0);
+      if (m.status(e).feature() && !m.is_boundary(e))
+        b.tags.crease_edges.emplace_back(base_of[static_cast<std::size_t>(m.from_vertex_handle(h).idx())],
+                                         base_of[static_cast<std::size_t>(m.to_vertex_handle(h).idx())]);
     }
     add_chain_creases(b, base_of);
     b.euler_after = static_cast<long long>(b.num_vertices) - edges + static_cast<long long>(b.faces.rows());
-    b.boundary_loops_after = boundary_loops(dm);
+    b.boundary_loops_after = boundary_loops(m);
     if (options.quads) pair_into_quads(b);
     return b;
   };
@@ -235,11 +239,11 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
   // until the polygons are at most the target.
   while (options.quads && options.target_faces && result.faces.rows() > options.target_faces) {
     std::size_t alive = 0;
-    for (auto f : dm.faces()) alive += !dm.status(f).deleted();
+    for (auto f : m.faces()) alive += !m.status(f).deleted();
     const std::size_t over = result.faces.rows() - options.target_faces;
     if (alive <= 2 * over + 2) break;
     // OpenMesh counts deleted faces until garbage collection: the target is offset by them.
-    if (dec->decimate_to_faces(0, alive - 2 * over + (dm.n_faces() - alive)) == 0) break;  // nothing more gives way
+    if (dec.decimate_to_faces(0, alive - 2 * over + (m.n_faces() - alive)) == 0) break;  // nothing more gives way
     result = extract(out);
   }
   return result;

@@ -21,13 +21,6 @@ namespace sublift {
 /// 512-segment UV sphere's poles reach it).
 constexpr std::uint32_t kMaxFitValence = 512;
 
-/// From this many input vertices the decimation runs in two slabs side by side before the
-/// whole (decimate_parts.h), from ten times as many in four: below it the serial decimation
-/// takes a second or less. Fixed counts, not the thread count, so the base does not depend on
-/// the machine. Four slabs of 250 k vertices took 25 s on two cores, two of 500 k 27-32 s, the
-/// whole million at once 51 s (bench_fit, 2026-12-07).
-constexpr std::uint32_t kSlabsFrom = 50'000;
-
 struct BaseMeshOptions {
   std::uint32_t target_vertices = 0;  // 0: 1/64 of the input's, at least 24
   std::uint32_t target_faces = 0;     // > 0: instead of a vertex count, at most this many faces
@@ -36,7 +29,6 @@ struct BaseMeshOptions {
   bool quads = false;                 // pair the triangles into quads (base_quads.h); target_faces
                                       // then counts the polygons (still at most: the decimation
                                       // goes on while the pairing leaves too many triangles)
-  std::uint32_t parts = 0;            // slabs decimated side by side first; 0: by kSlabsFrom
 };
 
 struct BaseMesh {
@@ -51,7 +43,6 @@ struct BaseMesh {
   std::vector<std::uint32_t> input_feature_edges;  // those edges, 2 input vertices each
   std::size_t input_lines = 0;                     // feature lines of 8 or more of them
   std::vector<std::uint32_t> input_line_vertices;  // their vertices (what a fit must keep sharp)
-  std::uint32_t parts = 1;                         // slabs decimated side by side (1: the whole at once)
 };
 
 /// The base of `faces` (triangles; other polygons are fanned) with `positions` (3 per vertex).

@@ -8,28 +8,13 @@
 #include <numbers>
 #include <filesystem>
 #include <map>
-#include <set>
 
 #include "core/base/errors.h"
-#include "core/base/parallel.h"
 #include "core/io/mesh/mesh_import.h"
 #include "tests/mesh_fixtures.h"
 
 namespace sublift {
 namespace {
-
-fixtures::Polygons sheet(std::uint32_t n) {
-  fixtures::Polygons g;
-  g.num_vertices = (n + 1) * (n + 1);
-  for (std::uint32_t y = 0; y <= n; ++y)
-    for (std::uint32_t x = 0; x <= n; ++x) g.positions.insert(g.positions.end(), {double(x), double(y), 0.1 * std::sin(0.3 * x + 0.2 * y)});
-  for (std::uint32_t y = 0; y < n; ++y)
-    for (std::uint32_t x = 0; x < n; ++x) {
-      const std::uint32_t a = y * (n + 1) + x;
-      fixtures::push_row(g.faces, {a, a + 1, a + n + 2, a + n + 1});
-    }
-  return g;
-}
 
 fixtures::Polygons triangulated(const fixtures::Polygons& m) {
   fixtures::Polygons t{m.num_vertices, {}, m.positions};
@@ -40,12 +25,8 @@ fixtures::Polygons triangulated(const fixtures::Polygons& m) {
   return t;
 }
 
-// Smallest cosine between the normals of two faces sharing an edge (but for crease edges with
-// `skip_creases`), and the smallest face area.
-void shape_of(const BaseMesh& b, double& min_cos, double& min_area, bool skip_creases = false) {
-  std::set<std::pair<std::uint32_t, std::uint32_t>> creases;
-  if (skip_creases)
-    for (const auto& [a, c] : b.tags.crease_edges) creases.insert(std::minmax(a, c));
+// Smallest cosine between the normals of two faces sharing an edge, and the smallest face area.
+void shape_of(const BaseMesh& b, double& min_cos, double& min_area) {
   auto normal = [&](std::size_t f, double n[3]) {
     const auto q = b.faces.row(f);
     const double* p0 = &b.positions[3 * q[0]];
@@ -66,7 +47,7 @@ void shape_of(const BaseMesh& b, double& min_cos, double& min_area, bool skip_cr
     for (int k = 0; k < 3; ++k) {
       const std::pair<std::uint32_t, std::uint32_t> e{std::min(q[k], q[(k + 1) % 3]), std::max(q[k], q[(k + 1) % 3])};
       auto [it, fresh] = first.emplace(e, f);
-      if (fresh || creases.count(e)) continue;
+      if (fresh) continue;
       double o[3];
       normal(it->second, o);
       min_cos = std::min(min_cos, n[0] * o[0] + n[1] * o[1] + n[2] * o[2]);
@@ -105,69 +86,22 @@ TEST(BaseMesh, QuadBasesKeepToTheirFaceTarget) {
 }
 
 TEST(BaseMesh, OpenSheetKeepsItsBoundary) {
-  const fixtures::Polygons t = triangulated(sheet(40));
+  fixtures::Polygons g;
+  const std::uint32_t n = 40;
+  g.num_vertices = (n + 1) * (n + 1);
+  for (std::uint32_t y = 0; y <= n; ++y)
+    for (std::uint32_t x = 0; x <= n; ++x) g.positions.insert(g.positions.end(), {double(x), double(y), 0.1 * std::sin(0.3 * x + 0.2 * y)});
+  for (std::uint32_t y = 0; y < n; ++y)
+    for (std::uint32_t x = 0; x < n; ++x) {
+      const std::uint32_t a = y * (n + 1) + x;
+      fixtures::push_row(g.faces, {a, a + 1, a + n + 2, a + n + 1});
+    }
+  const fixtures::Polygons t = triangulated(g);
   const BaseMesh b = decimate_to_base(t.num_vertices, t.faces, t.positions, {60});
   EXPECT_EQ(b.boundary_loops_before, 1u);
   EXPECT_EQ(b.boundary_loops_after, 1u);
   EXPECT_EQ(b.euler_after, 1);
   EXPECT_LE(b.num_vertices, 60u + 4u);  // corners and boundary vertices only move along the boundary
-}
-
-// Large inputs go down in slabs side by side first (decimate_parts.h). Forced here on small
-// ones: the slabs join without a seam (genus, boundary loops, no fold, the vertex target), the
-// corners all stay, and the base is the same bit for bit on one thread and on two.
-TEST(BaseMesh, SlabsSideBySideKeepTopologyAndDoNotDependOnThreads) {
-  struct Case {
-    const char* name;
-    fixtures::Polygons mesh;
-    std::uint32_t target;
-  };
-  std::vector<Case> cases = {{"torus", triangulated(fixtures::torus(64, 32)), 128}, {"sheet", triangulated(sheet(40)), 60}};
-  const std::filesystem::path fandisk = std::filesystem::path(SUBLIFT_SHARED_DATA) / "scans" / "fandisk.off";
-  if (std::filesystem::exists(fandisk)) {
-    const LoadedMesh lm = import_surface_mesh(fandisk.string());
-    fixtures::Polygons f{static_cast<std::uint32_t>(lm.mesh.num_vertices()), {}, {}};
-    for (const auto& p : lm.mesh.positions) f.positions.insert(f.positions.end(), {p.x, p.y, p.z});
-    f.faces.offsets = lm.mesh.face_offsets;
-    f.faces.items = lm.mesh.face_indices;
-    cases.push_back({"fandisk", f, 101});
-  } else {
-    std::printf("fandisk skipped: no third-party data at %s (SUBLIFT_SHARED_DATA)\n", fandisk.string().c_str());
-  }
-  const int threads = parallel_threads();
-  for (const Case& c : cases) {
-    SCOPED_TRACE(c.name);
-    const fixtures::Polygons& t = c.mesh;
-    const BaseMesh whole = decimate_to_base(t.num_vertices, t.faces, t.positions, {c.target});
-    EXPECT_EQ(whole.parts, 1u);
-    double whole_cos, whole_area;
-    shape_of(whole, whole_cos, whole_area, true);
-    EXPECT_GT(whole_cos, 0.0);
-    for (const std::uint32_t parts : {2u, 3u}) {
-      SCOPED_TRACE(parts);
-      BaseMeshOptions o{c.target};
-      o.parts = parts;
-      set_parallel_threads(1);
-      const BaseMesh one = decimate_to_base(t.num_vertices, t.faces, t.positions, o);
-      set_parallel_threads(2);
-      const BaseMesh two = decimate_to_base(t.num_vertices, t.faces, t.positions, o);
-      set_parallel_threads(threads);
-      EXPECT_EQ(one.parts, parts) << "the slabs were not joined: the whole mesh was decimated instead";
-      EXPECT_EQ(one.euler_after, whole.euler_before);
-      EXPECT_EQ(one.boundary_loops_after, one.boundary_loops_before);
-      EXPECT_EQ(one.num_vertices, whole.num_vertices);
-      double min_cos, min_area;
-      shape_of(one, min_cos, min_area, true);
-      EXPECT_GT(min_cos, 0.0) << "adjacent base faces turn by more than 90 degrees away from the creases";
-      EXPECT_GT(min_area, 0.0);
-      EXPECT_EQ(one.tags.corner_vertices.size(), whole.tags.corner_vertices.size());
-      if (!whole.tags.crease_edges.empty()) EXPECT_GT(one.tags.crease_edges.size(), whole.tags.crease_edges.size() * 3 / 4);
-      EXPECT_EQ(one.input_vertex, two.input_vertex);
-      EXPECT_EQ(one.faces.items, two.faces.items);
-      EXPECT_EQ(one.positions, two.positions);
-      EXPECT_EQ(one.tags.crease_edges, two.tags.crease_edges);
-    }
-  }
 }
 
 TEST(BaseMesh, BadInputIsRefused) {

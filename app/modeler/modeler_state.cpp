@@ -180,7 +180,7 @@ ModelerState::PreparedRebuild ModelerState::prepare_rebuild(const std::string& f
   Shape shape = read_shape(file);
   if (shape.base.dim == 1) throw Error("rebuild takes surface meshes and volume lattices, not curves");
   if (shape.base.dim == 3)  // lattices keep their vertex order only (no face rows)
-    return {rebuild_volume_hierarchy(shape.base, shape.positions, offer.levels > 0 ? offer.scheme : Scheme::Cubic, levels, false, progress), Csr{}};
+    return {rebuild_volume_hierarchy(shape.base, shape.positions, offer.levels > 0 ? offer.scheme : Scheme::Cubic, levels, false, progress), Csr{}, {}};
   const Scheme scheme = offer.levels > 0 ? offer.scheme : rebuild_auto_scheme(shape.base.faces);
   // The file's colours and scalars are rebuilt with it, as channels after x, y, z.
   std::vector<VertexAttribute> names = sublift::attribute_names(shape.attributes);

@@ -107,8 +107,12 @@ TEST(ModelerAnimation, ADragMovesTheLayersPointAndSpreadsOverItsTimeSupport) {
   for (std::uint32_t u = 0; u < s.session().num_vertices(0); ++u) {
     const bool on_layer = s.net_pick_mask()[u] != 0;
     const double moved = std::abs(after0[3 * u + 2] - before0[3 * u + 2]);
-    if (u == v) EXPECT_NEAR(moved, 0.5, 1e-12);
-    if (!on_layer) EXPECT_EQ(moved, 0.0) << "point " << u << " of another layer moved";
+    if (u == v) {
+      EXPECT_NEAR(moved, 0.5, 1e-12);
+    }
+    if (!on_layer) {
+      EXPECT_EQ(moved, 0.0) << "point " << u << " of another layer moved";
+    }
   }
   const std::vector<double> after(s.session().positions(J).begin(), s.session().positions(J).end());
   for (int frame = 0; frame < 17; ++frame) {

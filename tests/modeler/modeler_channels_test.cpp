@@ -232,7 +232,9 @@ TEST(ModelerAttributes, AChannelCompressedOnItsOwn) {
   std::size_t zero = 0, wavelets = 0;
   for (std::size_t i = 0; i < full.coeffs.size(); ++i) {
     const std::size_t v = i / 7, k = i % 7;
-    if (k < 6) EXPECT_EQ(kept.coeffs[i], full.coeffs[i]) << "vertex " << v << " channel " << k;
+    if (k < 6) {
+      EXPECT_EQ(kept.coeffs[i], full.coeffs[i]) << "vertex " << v << " channel " << k;
+    }
     if (k == 6 && v >= nv0) ++wavelets, zero += kept.coeffs[i] == 0.0;
   }
   EXPECT_EQ(zero, wavelets);  // keep 0: every quality wavelet dropped

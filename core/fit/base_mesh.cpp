@@ -1,6 +1,5 @@
 #include "core/fit/base_mesh.h"
 
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModAspectRatioT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
@@ -14,16 +13,13 @@
 
 #include "core/base/errors.h"
 #include "core/fit/base_quads.h"
+#include "core/fit/decimation_mesh.h"
 
 namespace sublift {
 
 namespace {
 
-struct Traits : OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;
-  using Normal = OpenMesh::Vec3d;
-};
-using Mesh = OpenMesh::TriMesh_ArrayKernelT<Traits>;
+using fit_detail::Mesh;
 
 long long euler(const Mesh& m) {
   return static_cast<long long>(m.n_vertices()) - static_cast<long long>(m.n_edges()) + static_cast<long long>(m.n_faces());

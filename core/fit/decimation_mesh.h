@@ -1,0 +1,45 @@
+#pragma once
+// Internal to core/fit: the OpenMesh mesh a fitting base is decimated on (base_mesh.cpp).
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+namespace sublift::fit_detail {
+
+struct Traits : OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+};
+
+/// OpenMesh's mesh with its collapse check compiled here. The packaged library is built with
+/// assertions on, and each status lookup in TriConnectivity::is_collapse_ok builds a std::string
+/// of the property's type name to compare (malloc, memcmp, free): two thirds of the decimation's
+/// time went there. This is the same check (the link condition and the boundary cases, as
+/// OpenMesh documents it), and it hides the library's: the decimater, a template, calls it on this
+/// type. tests/fit/decimation_mesh_test.cpp compares the two on every halfedge, through decimations;
+/// the bases are byte-identical on the shared scans and the benchmark torus.
+struct Mesh : OpenMesh::TriMesh_ArrayKernelT<Traits> {
+  bool is_collapse_ok(HalfedgeHandle v0v1) {
+    if (status(edge_handle(v0v1)).deleted()) return false;
+    const HalfedgeHandle v1v0 = opposite_halfedge_handle(v0v1);
+    const VertexHandle v0 = to_vertex_handle(v1v0), v1 = to_vertex_handle(v0v1);
+    if (status(v0).deleted() || status(v1).deleted()) return false;
+    // The triangle on each side: its apex, unless both its other edges are boundary edges (the
+    // collapse would leave a dangling edge).
+    const auto apex = [&](HalfedgeHandle h, VertexHandle& apex_vertex) {
+      if (is_boundary(h)) return true;
+      const HalfedgeHandle h1 = next_halfedge_handle(h), h2 = next_halfedge_handle(h1);
+      apex_vertex = to_vertex_handle(h1);
+      return !(is_boundary(opposite_halfedge_handle(h1)) && is_boundary(opposite_halfedge_handle(h2)));
+    };
+    VertexHandle vl, vr;
+    if (!apex(v0v1, vl) || !apex(v1v0, vr) || vl == vr) return false;
+    // Link condition: the one-rings of v0 and v1 share the two apexes only.
+    for (const VertexHandle w : vv_range(v0)) status(w).set_tagged(false);
+    for (const VertexHandle w : vv_range(v1)) status(w).set_tagged(true);
+    for (const VertexHandle w : vv_range(v0))
+      if (status(w).tagged() && w != vl && w != vr) return false;
+    // Two boundary vertices joined through the interior would pinch the surface.
+    return !(is_boundary(v0) && is_boundary(v1) && !is_boundary(v0v1) && !is_boundary(v1v0));
+  }
+};
+
+}  // namespace sublift::fit_detail

@@ -15,8 +15,16 @@ struct Traits : OpenMesh::DefaultTraits {
 /// time went there. This is the same check (the link condition and the boundary cases, as
 /// OpenMesh documents it), and it hides the library's: the decimater, a template, calls it on this
 /// type. tests/fit/decimation_mesh_test.cpp compares the two on every halfedge, through decimations;
-/// the bases are byte-identical on the shared scans and the benchmark torus.
+/// the bases are byte-identical on the shared scans and the benchmark torus. find_halfedge, which
+/// the decimater's legality test calls for every candidate, likewise.
 struct Mesh : OpenMesh::TriMesh_ArrayKernelT<Traits> {
+  /// The halfedge from `from` to `to`, or an invalid handle.
+  HalfedgeHandle find_halfedge(VertexHandle from, VertexHandle to) const {
+    for (const HalfedgeHandle h : voh_range(from))
+      if (to_vertex_handle(h) == to) return h;
+    return HalfedgeHandle();
+  }
+
   bool is_collapse_ok(HalfedgeHandle v0v1) {
     if (status(edge_handle(v0v1)).deleted()) return false;
     const HalfedgeHandle v1v0 = opposite_halfedge_handle(v0v1);

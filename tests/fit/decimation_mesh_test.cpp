@@ -42,9 +42,18 @@ Mesh om_mesh(const fixtures::Polygons& p) {
   return m;
 }
 
-// Every halfedge, ours against OpenMesh's; returns how many collapses were legal.
+// Every halfedge, ours against OpenMesh's (the collapse check, and finding the halfedge from
+// its ends and from its tip to a vertex two steps on, usually no edge); returns how many
+// collapses were legal.
 std::size_t compare_all(Mesh& m, const std::string& what) {
   std::size_t legal = 0;
+  for (auto h : m.halfedges()) {
+    if (m.status(m.edge_handle(h)).deleted()) continue;
+    const auto a = m.from_vertex_handle(h), b = m.to_vertex_handle(h);
+    EXPECT_EQ(m.find_halfedge(a, b), m.PolyConnectivity::find_halfedge(a, b)) << what;
+    const auto c = m.to_vertex_handle(m.next_halfedge_handle(m.opposite_halfedge_handle(m.next_halfedge_handle(h))));
+    EXPECT_EQ(m.find_halfedge(a, c), m.PolyConnectivity::find_halfedge(a, c)) << what;
+  }
   for (auto h : m.halfedges()) {
     const bool ours = m.is_collapse_ok(h);
     const bool theirs = m.TriConnectivity::is_collapse_ok(h);

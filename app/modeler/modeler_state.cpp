@@ -240,7 +240,9 @@ ModelerState::PreparedFit ModelerState::prepare_fit(const std::string& file, con
   const Shape shape = read_shape(file);
   if (shape.base.dim != 2) throw Error("fitting takes surface meshes");
   if (progress && !progress("the base mesh", 0.0)) throw Cancelled("fitting cancelled");
-  const BaseMesh base = decimate_to_base(shape.base.num_vertices, shape.base.faces, shape.positions, base_options(settings));
+  BaseMeshOptions bo = base_options(settings);
+  if (progress) bo.progress = [&](double f) { return progress("the base mesh", f); };  // Cancel stops the decimation too
+  const BaseMesh base = decimate_to_base(shape.base.num_vertices, shape.base.faces, shape.positions, bo);
   FitOptions fo;
   fo.scheme = settings.scheme;
   fo.levels = settings.levels > 0 ? settings.levels : default_fit_levels(shape.base.num_vertices, base.num_vertices, settings.scheme);

@@ -4,9 +4,11 @@
 #include <OpenMesh/Tools/Decimater/ModAspectRatioT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+#include <OpenMesh/Tools/Decimater/Observer.hh>
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <set>
 #include <numbers>
@@ -72,6 +74,18 @@ void add_chain_creases(BaseMesh& out, const std::vector<std::uint32_t>& base_of)
   }
   out.tags.crease_edges.assign(creases.begin(), creases.end());
 }
+
+// OpenMesh's decimation observer: the collapses done so far, as a fraction of those expected,
+// to the caller's callback, whose false stops the decimation.
+struct Progress : OpenMesh::Decimater::Observer {
+  const std::function<bool(double)>& report;
+  std::size_t expected;
+  bool cancelled = false;
+  Progress(const std::function<bool(double)>& r, std::size_t e)
+      : Observer(std::max<std::size_t>(1, e / 100)), report(r), expected(std::max<std::size_t>(1, e)) {}
+  void notify(std::size_t step) override { cancelled = !report(std::min(1.0, double(step) / double(expected))); }
+  bool abort() const override { return cancelled; }
+};
 
 }  // namespace
 
@@ -194,8 +208,13 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
   dec.module(aspect).set_aspect_ratio(10.0);
   dec.module(aspect).set_binary(true);
   dec.initialize();
+  // Progress about every 1 % of the collapses expected (each removes a vertex and two faces).
+  const std::size_t expected = options.target_faces ? (m.n_faces() - std::min(target_triangles, m.n_faces())) / 2 : used - target;
+  Progress observer(options.progress, expected);
+  if (options.progress) dec.set_observer(&observer);
   if (options.target_faces) dec.decimate_to_faces(0, std::min(target_triangles, m.n_faces()));
   else dec.decimate_to(target + (num_vertices - used));  // loose vertices stay (locked) and are dropped below
+  if (observer.cancelled) throw Cancelled("fitting cancelled");
 
   // The base from what survived (`b` holds what was read before the decimation).
   const auto extract = [&](BaseMesh b) {

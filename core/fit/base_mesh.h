@@ -6,6 +6,7 @@
 // threshold) and boundaries are feature edges that only collapse along themselves, and come out
 // as crease tags.
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -29,6 +30,8 @@ struct BaseMeshOptions {
   bool quads = false;                 // pair the triangles into quads (base_quads.h); target_faces
                                       // then counts the polygons (still at most: the decimation
                                       // goes on while the pairing leaves too many triangles)
+  std::function<bool(double)> progress = {};  // the decimation's progress (0-1) now and then; false
+                                         // cancels it (Cancelled is thrown)
 };
 
 struct BaseMesh {
@@ -48,7 +51,8 @@ struct BaseMesh {
 /// The base of `faces` (triangles; other polygons are fanned) with `positions` (3 per vertex).
 /// Throws TopologyError for non-manifold input (OpenMesh cannot hold it: the face is named), a
 /// vertex with more than kMaxFitValence faces around it,
-/// an empty mesh, or a target above the input's vertex (or face) count.
+/// an empty mesh, or a target above the input's vertex (or face) count; Cancelled when
+/// `options.progress` answers false.
 BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::span<const double> positions,
                           const BaseMeshOptions& options = {});
 

@@ -104,6 +104,35 @@ TEST(BaseMesh, OpenSheetKeepsItsBoundary) {
   EXPECT_LE(b.num_vertices, 60u + 4u);  // corners and boundary vertices only move along the boundary
 }
 
+// The decimation reports its progress (rising, within 0-1, close to 1 at the end) and stops when
+// the callback says so: Cancelled, and nothing returned.
+TEST(BaseMesh, ReportsProgressAndCancels) {
+  const fixtures::Polygons t = triangulated(fixtures::torus(64, 32));
+  for (const bool quads : {false, true}) {
+    SCOPED_TRACE(quads);
+    std::vector<double> seen;
+    BaseMeshOptions o;
+    o.target_vertices = quads ? 0 : 128;
+    o.target_faces = quads ? 100 : 0;
+    o.quads = quads;
+    o.progress = [&](double f) {
+      seen.push_back(f);
+      return true;
+    };
+    const BaseMesh b = decimate_to_base(t.num_vertices, t.faces, t.positions, o);
+    ASSERT_GE(seen.size(), 50u) << "about one report per 1 % of the collapses";
+    for (std::size_t k = 1; k < seen.size(); ++k) EXPECT_GT(seen[k], seen[k - 1]);
+    EXPECT_GT(seen.front(), 0.0);
+    EXPECT_LE(seen.back(), 1.0);
+    EXPECT_GT(seen.back(), 0.9);
+    EXPECT_EQ(b.euler_after, 0);
+    int calls = 0;
+    o.progress = [&](double f) { return ++calls < 10 && f < 0.5; };
+    EXPECT_THROW(decimate_to_base(t.num_vertices, t.faces, t.positions, o), Cancelled);
+    EXPECT_EQ(calls, 10) << "the decimation went on after the callback said stop";
+  }
+}
+
 TEST(BaseMesh, BadInputIsRefused) {
   fixtures::Polygons fin;  // three triangles on one edge
   fin.num_vertices = 5;

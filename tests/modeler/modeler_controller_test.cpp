@@ -1028,6 +1028,18 @@ TEST(ModelerFitTest, FitScriptCommand) {
                                          }),
                Cancelled);
   EXPECT_EQ(stages.size(), 4u);
+  // Cancel while the base is decimated (the progress reaches into OpenMesh's decimater).
+  std::vector<double> base_progress;
+  EXPECT_THROW(ModelerState::prepare_fit(path, settings,
+                                         [&](const char* stage, double f) {
+                                           if (std::string(stage) != "the base mesh") return true;
+                                           base_progress.push_back(f);
+                                           return f < 0.3;
+                                         }),
+               Cancelled);
+  ASSERT_GE(base_progress.size(), 3u);
+  EXPECT_GE(base_progress.back(), 0.3);
+  EXPECT_LT(base_progress.back(), 0.5) << "the decimation went on after Cancel";
   // Cancel from the window: the session stays as it was.
   ModelerController c2{false};
   c2.set_background_jobs(true);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string_view>
 #include <cstdio>
 #include <vector>
 
@@ -165,7 +166,11 @@ void draw_levels_section(const ModelerPanelData& d, ModelerPanelRequests& r) {
   }
   if (!d.rebuild_stop.empty()) {
     ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextColored(kMuted, "%s: %s", d.rebuild_levels > 0 ? "No more levels" : "Not a subdivided mesh", d.rebuild_stop.c_str());
+    // At level 0 the reason names "the mesh", which the heading already says.
+    const std::string_view own = "the mesh: ";
+    const char* why = d.rebuild_stop.c_str();
+    if (d.rebuild_levels == 0 && d.rebuild_stop.starts_with(own)) why += own.size();
+    ImGui::TextColored(kMuted, "%s: %s", d.rebuild_levels > 0 ? "No more levels" : "Not a subdivided mesh", why);
     ImGui::PopTextWrapPos();
     if (d.rebuild_stop_located && ImGui::Button("Show where")) r.rebuild_show_stop = true;
   }

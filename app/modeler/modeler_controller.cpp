@@ -828,11 +828,12 @@ void ModelerController::apply_requests(const ModelerPanelRequests& r) {
         });
       });
     }
-    if (r.fit_preview) {
-      model.preview_fit(fit_settings(*r.fit_preview));
-      const ModelerState::FitPreview& p = *model.fit_preview();
-      message = "The base a fit would start from: " + std::to_string(p.vertices) + " vertices, " + std::to_string(p.faces) + " faces, " +
-                std::to_string(p.creases) + " crease edges, " + std::to_string(p.corners) + " corners (drawn over the mesh)";
+    if (r.fit_preview && !job_) {  // a decimation: seconds for a large mesh, so a job
+      model.check_fit();
+      start_job("Previewing the base", [file = model.file_path(), settings = fit_settings(*r.fit_preview)](const FitProgress& progress) {
+        auto prepared = std::make_shared<ModelerState::FitPreview>(ModelerState::prepare_fit_preview(file, settings, progress));
+        return std::function<std::string(ModelerState&)>([prepared](ModelerState& m) { return m.install_fit_preview(std::move(*prepared)); });
+      });
     }
     if (r.fit_clear_preview) model.clear_fit_preview();
     if (r.fit && !job_) {

@@ -207,10 +207,13 @@ BaseMeshOptions base_options(const ModelerState::FitSettings& s) {
 
 }  // namespace
 
-void ModelerState::preview_fit(const FitSettings& settings) {
-  check_fit();
-  const Shape shape = read_shape(file_path_);
-  const BaseMesh b = decimate_to_base(shape.base.num_vertices, shape.base.faces, shape.positions, base_options(settings));
+ModelerState::FitPreview ModelerState::prepare_fit_preview(const std::string& file, const FitSettings& settings, const FitProgress& progress) {
+  if (progress && !progress("reading the mesh", 0.0)) throw Cancelled("previewing cancelled");
+  const Shape shape = read_shape(file);
+  if (shape.base.dim != 2) throw Error("fitting takes surface meshes");
+  BaseMeshOptions bo = base_options(settings);
+  if (progress) bo.progress = [&](double f) { return progress("the base mesh", f); };
+  const BaseMesh b = decimate_to_base(shape.base.num_vertices, shape.base.faces, shape.positions, bo);
   FitPreview p;
   p.positions = b.positions;
   p.vertices = b.num_vertices;
@@ -225,8 +228,20 @@ void ModelerState::preview_fit(const FitSettings& settings) {
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   for (const auto& [a, c] : edges) p.edges.insert(p.edges.end(), {a, c});
+  return p;
+}
+
+std::string ModelerState::install_fit_preview(FitPreview p) {
+  std::string m = "The base a fit would start from: " + std::to_string(p.vertices) + " vertices, " + std::to_string(p.faces) + " faces, " +
+                  std::to_string(p.creases) + " crease edges, " + std::to_string(p.corners) + " corners (drawn over the mesh)";
   fit_preview_ = std::move(p);
   update_.fit_preview = true;
+  return m;
+}
+
+std::string ModelerState::preview_fit(const FitSettings& settings) {
+  check_fit();
+  return install_fit_preview(prepare_fit_preview(file_path_, settings, {}));
 }
 
 void ModelerState::clear_fit_preview() {

@@ -135,9 +135,13 @@ class ModelerState {
   };
   /// True for an opened surface mesh file (not a project): what fitting takes.
   bool can_fit() const { return project_path_.empty() && !file_path_.empty() && session_ && dim() == 2; }
-  /// Computes the base the fit would start from (OpenMesh's decimater; about a second per 35 k
-  /// vertices) and keeps it for the view to draw over the mesh. Throws Error, keeping the last.
-  void preview_fit(const FitSettings& settings);
+  /// The base a fit would start from, for the view to draw over the mesh, in the same parts as
+  /// the fit: prepare_fit_preview on any thread (OpenMesh's decimater: about 20 s at a million
+  /// vertices, with progress and Cancel), install_fit_preview (returns what to tell the user).
+  /// preview_fit does all three at once (the script command). Throws Error, keeping the last.
+  static FitPreview prepare_fit_preview(const std::string& file, const FitSettings& settings, const FitProgress& progress);
+  std::string install_fit_preview(FitPreview preview);
+  std::string preview_fit(const FitSettings& settings);
   void clear_fit_preview();
   const FitPreview* fit_preview() const { return fit_preview_ ? &*fit_preview_ : nullptr; }
   void check_fit();

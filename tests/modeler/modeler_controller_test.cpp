@@ -999,7 +999,9 @@ TEST(ModelerFitTest, FitScriptCommand) {
   q.base_vertices = 80;
   ModelerPanelRequests preview;
   preview.fit_preview = q;
-  app.apply_panel_requests(preview);
+  app.apply_panel_requests(preview);  // a job too: a large mesh's decimation takes seconds
+  EXPECT_TRUE(app.job_running());
+  EXPECT_TRUE(app.poll_job(true));
   ASSERT_NE(app.model.fit_preview(), nullptr) << app.error;
   EXPECT_EQ(app.model.fit_preview()->vertices, 80u);
   // A sphere's: V - E + F = 2 (quads and triangles, for the default sqrt(2)).

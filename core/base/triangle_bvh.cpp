@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/base/errors.h"
+#include "core/base/parallel.h"
 
 namespace sublift {
 
@@ -46,26 +47,41 @@ TriangleBvh::TriangleBvh(const SurfaceMesh& mesh)
                                           3 * mesh.num_vertices()),
                   Csr{mesh.face_offsets, mesh.face_indices}) {}
 
+namespace {
+// From this many triangles the root's halves are built on two threads (the build is a tenth of
+// a fitting round's serial time); below it, one thread.
+constexpr std::uint32_t kSideBySide = 1u << 15;
+}  // namespace
+
 TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
-  std::vector<Tri> tris;
-  tris.reserve(faces.items.size());
+  // Each polygon's fan triangles at their place in polygon order, made in parallel chunks.
+  const std::uint32_t nf = static_cast<std::uint32_t>(faces.rows());
+  std::vector<std::size_t> first(std::size_t(nf) + 1, 0);
+  for (std::uint32_t f = 0; f < nf; ++f) first[f + 1] = first[f] + (faces.size(f) >= 3 ? faces.size(f) - 2 : 0);
+  if (first[nf] == 0) return;
+  if (first[nf] > std::numeric_limits<std::uint32_t>::max() / 2) throw Error("too many triangles for the triangle hierarchy");
+  std::vector<Tri> tris(first[nf]);
+  std::vector<glm::dvec3> centers(tris.size());
   auto at = [&](std::uint32_t v) { return glm::dvec3(p[3 * std::size_t(v)], p[3 * std::size_t(v) + 1], p[3 * std::size_t(v) + 2]); };
-  for (std::size_t f = 0; f < faces.rows(); ++f) {
-    const auto c = faces.row(f);
-    for (std::size_t i = 1; i + 1 < c.size(); ++i) {
-      const glm::dvec3 e1 = at(c[i]) - at(c[0]), e2 = at(c[i + 1]) - at(c[0]);
-      tris.push_back({at(c[0]), e1, e2, glm::cross(e1, e2), static_cast<std::uint32_t>(f)});
+  constexpr std::uint32_t kGrain = 8192;
+  std::vector<glm::dvec3> chunk_lo((nf + kGrain - 1) / kGrain, glm::dvec3(std::numeric_limits<double>::infinity()));
+  std::vector<glm::dvec3> chunk_hi(chunk_lo.size(), -chunk_lo[0]);
+  parallel_for(nf, kGrain, [&](std::uint32_t b, std::uint32_t e) {
+    for (std::uint32_t f = b; f < e; ++f) {
+      const auto c = faces.row(f);
+      glm::dvec3& lo = chunk_lo[f / kGrain];
+      glm::dvec3& hi = chunk_hi[f / kGrain];
+      for (std::size_t i = 1; i + 1 < c.size(); ++i) {
+        const glm::dvec3 e1 = at(c[i]) - at(c[0]), e2 = at(c[i + 1]) - at(c[0]);
+        const std::size_t t = first[f] + i - 1;
+        tris[t] = {at(c[0]), e1, e2, glm::cross(e1, e2), f};
+        centers[t] = tris[t].p0 + (e1 + e2) / 3.0;
+        for (const glm::dvec3& q : {tris[t].p0, tris[t].p0 + e1, tris[t].p0 + e2}) lo = glm::min(lo, q), hi = glm::max(hi, q);
+      }
     }
-  }
-  if (tris.empty()) return;
-  if (tris.size() > std::numeric_limits<std::uint32_t>::max() / 2) throw Error("too many triangles for the triangle hierarchy");
-  std::vector<glm::dvec3> centers;
-  centers.reserve(tris.size());
-  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const Tri& t : tris) {
-    centers.push_back(t.p0 + (t.e1 + t.e2) / 3.0);
-    for (const glm::dvec3& q : {t.p0, t.p0 + t.e1, t.p0 + t.e2}) lo = glm::min(lo, q), hi = glm::max(hi, q);
-  }
+  });
+  glm::dvec3 lo = chunk_lo[0], hi = chunk_hi[0];  // min and max are exact in any order
+  for (std::size_t k = 1; k < chunk_lo.size(); ++k) lo = glm::min(lo, chunk_lo[k]), hi = glm::max(hi, chunk_hi[k]);
   diagonal_ = glm::length(hi - lo);
   // Boxes grow by this much on every side, so that a ray grazing a box face (a triangle in an
   // axis plane) is not lost to rounding in the slab test.
@@ -73,9 +89,37 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
   std::vector<std::uint32_t> order(tris.size());
   for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
   nodes_.reserve(tris.size());
-  build(order, centers, tris, 0, static_cast<std::uint32_t>(order.size()));
+  const std::uint32_t n = static_cast<std::uint32_t>(order.size());
+  std::uint32_t mid = 0;
+  if (n < kSideBySide || parallel_threads() < 2 || !split(order, centers, 0, n, mid)) {
+    build(nodes_, order, centers, tris, 0, n);
+  } else {
+    // The root's two halves built side by side, then laid out as one depth-first build would:
+    // root, left subtree, right subtree (the right one's child links moved past the left's).
+    std::vector<Node> halves[2];
+    parallel_for(2, 1, [&](std::uint32_t b, std::uint32_t e) {
+      for (std::uint32_t k = b; k < e; ++k) {
+        halves[k].reserve(tris.size() / 2 + 1);
+        build(halves[k], order, centers, tris, k ? mid : 0, k ? n : mid);
+      }
+    });
+    Node root;
+    root.right = static_cast<std::uint32_t>(1 + halves[0].size());
+    root.lo = glm::min(halves[0][0].lo, halves[1][0].lo);
+    root.hi = glm::max(halves[0][0].hi, halves[1][0].hi);
+    nodes_.push_back(root);
+    for (std::uint32_t k = 0; k < 2; ++k) {
+      const std::uint32_t offset = static_cast<std::uint32_t>(nodes_.size());
+      for (Node node : halves[k]) {
+        if (node.count == 0) node.right += offset;
+        nodes_.push_back(node);
+      }
+    }
+  }
   tris_.resize(tris.size());
-  for (std::size_t i = 0; i < order.size(); ++i) tris_[i] = tris[order[i]];
+  parallel_for(n, 1u << 14, [&](std::uint32_t b, std::uint32_t e) {
+    for (std::uint32_t i = b; i < e; ++i) tris_[i] = tris[order[i]];
+  });
   Csr tri_face;  // triangle -> its polygon
   for (const Tri& t : tris_) {
     tri_face.items.push_back(t.face);
@@ -84,11 +128,8 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
   face_tris_ = transpose(tri_face, tris.back().face + 1);  // tris is in polygon order
 }
 
-std::uint32_t TriangleBvh::build(std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers,
-                                 const std::vector<Tri>& tris, std::uint32_t begin, std::uint32_t end) {
-  const std::uint32_t index = static_cast<std::uint32_t>(nodes_.size());
-  nodes_.emplace_back();
-  Node node;
+bool TriangleBvh::split(std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers, std::uint32_t begin,
+                        std::uint32_t end, std::uint32_t& mid) {
   glm::dvec3 clo(std::numeric_limits<double>::infinity()), chi = -clo;
   for (std::uint32_t i = begin; i < end; ++i) {
     clo = glm::min(clo, centers[order[i]]);
@@ -96,7 +137,20 @@ std::uint32_t TriangleBvh::build(std::vector<std::uint32_t>& order, const std::v
   }
   const glm::dvec3 extent = chi - clo;
   const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
-  if (end - begin <= 4 || extent[axis] <= 0.0) {
+  if (end - begin <= 4 || extent[axis] <= 0.0) return false;
+  mid = begin + (end - begin) / 2;
+  std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
+                   [&](std::uint32_t a, std::uint32_t b) { return centers[a][axis] < centers[b][axis]; });
+  return true;
+}
+
+std::uint32_t TriangleBvh::build(std::vector<Node>& nodes, std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers,
+                                 const std::vector<Tri>& tris, std::uint32_t begin, std::uint32_t end) const {
+  const std::uint32_t index = static_cast<std::uint32_t>(nodes.size());
+  nodes.emplace_back();
+  Node node;
+  std::uint32_t mid = 0;
+  if (!split(order, centers, begin, end, mid)) {
     node.lo = glm::dvec3(std::numeric_limits<double>::infinity());
     node.hi = -node.lo;
     for (std::uint32_t i = begin; i < end; ++i) {
@@ -110,19 +164,16 @@ std::uint32_t TriangleBvh::build(std::vector<std::uint32_t>& order, const std::v
     node.hi += glm::dvec3(pad_);
     node.first = begin;
     node.count = end - begin;
-    nodes_[index] = node;
+    nodes[index] = node;
     return index;
   }
-  const std::uint32_t mid = begin + (end - begin) / 2;
-  std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
-                   [&](std::uint32_t a, std::uint32_t b) { return centers[a][axis] < centers[b][axis]; });
-  build(order, centers, tris, begin, mid);  // the left child is index + 1
-  node.right = build(order, centers, tris, mid, end);
+  build(nodes, order, centers, tris, begin, mid);  // the left child is index + 1
+  node.right = build(nodes, order, centers, tris, mid, end);
   // The children's padded boxes joined: the box of the triangles, padded (x - pad rounds
   // monotonically, so min(a - pad, b - pad) is min(a, b) - pad), without a pass over them.
-  node.lo = glm::min(nodes_[index + 1].lo, nodes_[node.right].lo);
-  node.hi = glm::max(nodes_[index + 1].hi, nodes_[node.right].hi);
-  nodes_[index] = node;
+  node.lo = glm::min(nodes[index + 1].lo, nodes[node.right].lo);
+  node.hi = glm::max(nodes[index + 1].hi, nodes[node.right].hi);
+  nodes[index] = node;
   return index;
 }
 

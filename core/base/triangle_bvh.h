@@ -70,8 +70,14 @@ class TriangleBvh {
   // [0, limit()] (limit is asked again at each node, so a search can shrink it).
   template <class Limit, class Visit>
   void walk_ray(const glm::dvec3& origin, const glm::dvec3& dir, Limit limit, Visit visit) const;
-  std::uint32_t build(std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers,
-                      const std::vector<Tri>& tris, std::uint32_t begin, std::uint32_t end);
+  // Appends the subtree of order[begin, end) to `nodes` (depth first, left child next) and
+  // returns its root's index; `split` is the median split it makes at every inner node.
+  std::uint32_t build(std::vector<Node>& nodes, std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers,
+                      const std::vector<Tri>& tris, std::uint32_t begin, std::uint32_t end) const;
+  // Splits order[begin, end) at its middle along the centres' longest axis; false (nothing
+  // moved) when the range is a leaf: 4 triangles or fewer, or centres all alike.
+  static bool split(std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers, std::uint32_t begin,
+                    std::uint32_t end, std::uint32_t& mid);
 
   std::vector<Tri> tris_;
   std::vector<Node> nodes_;

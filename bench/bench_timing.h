@@ -35,7 +35,7 @@ inline double since_ms(Clock::time_point t0) {
 /// Runs this binary again as `flag` + `arg` (a fresh process: empty caches, fresh pages) and
 /// reads the numbers it prints; empty when it failed or printed fewer than `count`.
 inline std::vector<double> numbers_from_child(const std::string& flag, const std::string& arg, std::size_t count) {
-  const std::string cmd = "'" + std::filesystem::read_symlink("/proc/self/exe").string() + "' " + flag + arg;
+  const std::string cmd = std::string("'").append(std::filesystem::read_symlink("/proc/self/exe").string()).append("' ").append(flag).append(arg);
   std::vector<double> out;
   if (FILE* p = popen(cmd.c_str(), "r")) {
     double v;

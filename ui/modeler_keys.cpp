@@ -62,8 +62,10 @@ std::optional<double> TransformState::typed_value() const {
   if (typed.empty()) return std::nullopt;
   std::string text = typed;
   if (text.back() == '.') text.pop_back();
-  if (!text.empty() && text.front() == '.') text.insert(text.begin(), '0');
-  if (text.size() > 1 && text[0] == '-' && text[1] == '.') text.insert(1, "0");
+  // Leading zeros added by appending to a fresh string (an insert in place trips GCC 12's
+  // -Wrestrict false positive).
+  if (!text.empty() && text.front() == '.') text = std::string("0").append(text);
+  if (text.size() > 1 && text[0] == '-' && text[1] == '.') text = std::string("-0").append(text, 1);
   double value = 0.0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (text.empty() || error != std::errc() || end != text.data() + text.size()) return std::nullopt;

@@ -119,8 +119,9 @@ int run_animation(int argc, char** argv) {
     if (ext != "gltf" && ext != "glb" && ext != "obj" && ext != "ply" && ext != "sublift")
       throw UsageError("OUT must be .gltf, .glb (morph targets), .obj, .ply (one file per frame) or .sublift (the animation's project): " + *o);
   }
-  const std::optional<double> keep = a.value("--keep") ? std::optional(fraction_option(a, "--keep")) : std::nullopt;
-  const std::optional<double> linf = a.value("--linf") ? std::optional(fraction_option(a, "--linf")) : std::nullopt;
+  // At most one of the two (checked above): which, and its value.
+  const bool compress = a.value("--keep") || a.value("--linf"), keep = a.value("--keep").has_value();
+  const double compress_value = compress ? fraction_option(a, keep ? "--keep" : "--linf") : 0.0;
   std::vector<AnimationEdit> edits;
   if (const auto e = a.value("--edits")) edits = read_animation_edits(*e);
 
@@ -167,10 +168,10 @@ int run_animation(int argc, char** argv) {
   }
 
   nlohmann::json compression = nullptr;
-  if (keep || linf) {
+  if (compress) {
     t = std::chrono::steady_clock::now();
     const Compressor c(st.lattice);
-    const Compression r = keep ? c.run(CompressMode::Keep, *keep) : c.run(CompressMode::Linf, *linf);
+    const Compression r = c.run(keep ? CompressMode::Keep : CompressMode::Linf, compress_value);
     const double compress_ms = ms_since(t);
     const std::vector<FrameError> errors = frame_errors(st, r.finest, finest, c.diagonal());
     const std::size_t stored = nl0 + r.kept;

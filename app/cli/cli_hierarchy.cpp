@@ -30,7 +30,7 @@ Scheme scheme_option(const Args& a) {
   const auto v = a.value("--scheme");
   if (!v) {
     std::string names;
-    for (const SchemeInfo& s : all_schemes()) names += (names.empty() ? "" : "|") + std::string(s.name);
+    for (const SchemeInfo& s : all_schemes()) names.append(names.empty() ? "" : "|").append(s.name);
     throw UsageError("missing --scheme " + names);
   }
   try {

@@ -142,9 +142,9 @@ void ShapeBuilder::build(const std::string& file, std::uint32_t nv, std::span<co
         users.push_back({ci, forward});
         if (users.size() > 2) {
           std::string names, verts;
-          for (std::uint32_t v : key) verts += (verts.empty() ? "" : " ") + std::to_string(v);
+          for (std::uint32_t v : key) verts.append(verts.empty() ? "" : " ").append(std::to_string(v));
           for (const FaceUse& u : users)
-            names += (names.empty() ? "" : ", ") + cells_[u.cell].label + " on line " + std::to_string(cells_[u.cell].line);
+            names.append(names.empty() ? "" : ", ").append(cells_[u.cell].label).append(" on line ").append(std::to_string(cells_[u.cell].line));
           throw InputError(file, c.line, "face " + verts + " is shared by " + std::to_string(users.size()) + " cells: " + names +
                                              " (a face of a solid bounds at most two cells)");
         }

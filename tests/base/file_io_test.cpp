@@ -96,7 +96,9 @@ TEST(FileIo, SaveInterruptedBySigtermOrSigintLeavesNoTempFile) {
     EXPECT_EQ(during[0], "big.obj.tmp-" + std::to_string(pid) + "-0");
     const int status = kill_and_wait(pid, sig);
     EXPECT_TRUE(WIFSIGNALED(status)) << status;  // died of the signal, as without the cleanup
-    if (WIFSIGNALED(status)) EXPECT_EQ(WTERMSIG(status), sig);
+    if (WIFSIGNALED(status)) {
+      EXPECT_EQ(WTERMSIG(status), sig);
+    }
     EXPECT_EQ(names_in(dir.path()), std::vector<std::string>{});
   }
 }

@@ -61,7 +61,7 @@ Surface checked_surface(const std::string& path, const Csr& faces, std::span<con
       if (v >= nv) throw InputError(path, 0, "face " + std::to_string(f) + " names vertex " + std::to_string(v) + ", beyond " + std::to_string(nv));
   }
   check_writable_positions(path, xyz);
-  Surface s{faces, xyz, std::vector<double>(normals.begin(), normals.end()), {}};
+  Surface s{faces, xyz, std::vector<double>(normals.begin(), normals.end()), {}, {}, nullptr};
   for (std::size_t v = 0; v < nv; ++v) {
     double* n = &s.normals[3 * v];
     if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2]))

@@ -46,7 +46,7 @@ LimitSurface project_limit(const std::string& file, Hierarchy h, const ProjectEx
   return finest_limit_surface(h, synthesize_in_range(h, h.finest_level()));
 }
 
-SurfaceMesh mesh_to_render(const std::string& file, int level) {
+[[maybe_unused]] SurfaceMesh mesh_to_render(const std::string& file, int level) {  // with the renderer only
   if (is_project_path(file)) {
     ProjectExtras extras;
     Hierarchy h = read_project(file, &extras);
@@ -161,6 +161,7 @@ int run_render(int argc, char** argv) {
               << "\n";
   return 0;
 #else
+  (void)view_level;  // the options were checked all the same
   throw Error("this build has no renderer (configured with SUBLIFT_WITH_GUI=OFF)");
 #endif
 }

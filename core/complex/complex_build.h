@@ -21,7 +21,7 @@ struct FeatureTags {
   std::vector<std::vector<std::uint32_t>> feature_faces;               // dim 2 faces (lattices)
   // OpenSubdiv sharpness per crease edge / corner (empty: all infinitely sharp); finite values
   // make semi-sharp features (Complex::edge_sharpness).
-  std::vector<float> crease_sharpness, corner_sharpness;
+  std::vector<float> crease_sharpness = {}, corner_sharpness = {};  // (= {}: brace lists may stop before them)
 };
 
 /// Reads OpenSubdiv `t crease` (sharpness > 0, chains allowed) and `t corner` tags, sharpness

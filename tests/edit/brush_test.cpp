@@ -156,7 +156,9 @@ TEST(Brush, ADabAtLevelJChangesOnlyLevelJAndWhatSynthesisDerives) {
     std::vector<std::uint8_t> dabbed(s.num_vertices(j), 0);
     for (const std::uint32_t v : vs) dabbed[v] = 1;
     for (std::uint32_t v = 0; v < s.num_vertices(j); ++v)
-      if (!dabbed[v]) ASSERT_TRUE(same_bits(s.positions(j).subspan(3 * v, 3), std::span<const double>(net).subspan(3 * v, 3))) << v;
+      if (!dabbed[v]) {
+        ASSERT_TRUE(same_bits(s.positions(j).subspan(3 * v, 3), std::span<const double>(net).subspan(3 * v, 3))) << v;
+      }
     for (int l = 0; l <= s.finest_level(); ++l)
       EXPECT_LT(testing::max_abs_diff(synthesize(s.hierarchy(), l), s.positions(l)), 1e-11) << "level " << l;
     ASSERT_TRUE(s.undo());

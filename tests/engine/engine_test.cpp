@@ -103,7 +103,9 @@ TEST_P(Engine, SparseEqualsDense) {
         std::vector<std::uint8_t> listed(n, 0);
         for (std::uint32_t v : d.list) listed[v] = 1;
         for (std::uint32_t v = 0; v < n; ++v) {
-          if (!listed[v]) ASSERT_EQ(d.x[std::size_t(v) * 3], 0.0) << "vertex " << v << " changed but is not listed";
+          if (!listed[v]) {
+            ASSERT_EQ(d.x[std::size_t(v) * 3], 0.0) << "vertex " << v << " changed but is not listed";
+          }
         }
       }
     }

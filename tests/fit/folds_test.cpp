@@ -62,8 +62,9 @@ TEST(Folds, UntangleUnfoldsTheNet) {
   EXPECT_EQ(folds(c.faces, x), 0u);
   // Only the points of folded faces moved: the grid's rim is where it was.
   for (std::uint32_t v = 0; v < c.num_vertices; ++v)
-    if (c.vertex_dim[v] < 2)
+    if (c.vertex_dim[v] < 2) {
       for (int k = 0; k < 3; ++k) EXPECT_EQ(x[3 * v + k], flat[3 * v + k]) << v;
+    }
 }
 
 TEST(Folds, UntangleLimitUnfoldsTheLoopLimitSurface) {

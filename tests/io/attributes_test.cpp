@@ -169,7 +169,9 @@ TEST(Attributes, EditsMovePositionsAndKeepTheAttributes) {
     bool moved = false;
     for (std::size_t v = 0; v < a.size() / 7; ++v)
       for (int k = 0; k < 7; ++k) {
-        if (k >= 3) EXPECT_EQ(b[7 * v + std::size_t(k)], a[7 * v + std::size_t(k)]) << "level " << l << " vertex " << v << " channel " << k;
+        if (k >= 3) {
+          EXPECT_EQ(b[7 * v + std::size_t(k)], a[7 * v + std::size_t(k)]) << "level " << l << " vertex " << v << " channel " << k;
+        }
         moved = moved || b[7 * v + std::size_t(k)] != a[7 * v + std::size_t(k)];
       }
     EXPECT_TRUE(moved) << "level " << l;

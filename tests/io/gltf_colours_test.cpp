@@ -135,7 +135,9 @@ TEST(GltfColours, CompressReportsPositionAndColourGroups) {
   const Hierarchy full = read_project(dir.file("box.sublift")), colour = read_project(dir.file("colour.sublift"));
   std::size_t zeroed = 0;
   for (std::size_t i = 0; i < full.coeffs.size(); ++i) {
-    if (i % 7 < 3) EXPECT_EQ(colour.coeffs[i], full.coeffs[i]) << i;
+    if (i % 7 < 3) {
+      EXPECT_EQ(colour.coeffs[i], full.coeffs[i]) << i;
+    }
     zeroed += i % 7 >= 3 && colour.coeffs[i] == 0.0 && full.coeffs[i] != 0.0;
   }
   EXPECT_GT(zeroed, 0u);

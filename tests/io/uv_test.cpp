@@ -110,7 +110,9 @@ TEST(FaceVaryingUv, SeamsStayApartSharedEdgesStayShared) {
     else
       EXPECT_EQ(values, (std::set<std::array<double, 2>>{{1, 0.5}}));
     // Without seams there is one UV point per fine vertex, as in the base.
-    if (!with_seam) EXPECT_EQ(fine.num_points(), f.num_vertices);
+    if (!with_seam) {
+      EXPECT_EQ(fine.num_points(), f.num_vertices);
+    }
   }
 }
 

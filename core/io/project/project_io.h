@@ -70,12 +70,12 @@ struct ProjectExtras {
   FitSource fit_source;       // header key `fit_source` when not empty
   /// What channels 3.. hold beyond x, y, z (a file's colours and scalars): name and PLY type
   /// each, `values` empty. Header key `attributes`; as many as the channels after the third.
-  std::vector<VertexAttribute> attributes;
+  std::vector<VertexAttribute> attributes = {};
   /// Header key `animation` when the hierarchy is a swept space-time lattice.
-  AnimationExtras animation;
+  AnimationExtras animation = {};
   /// The base's face-varying texture coordinates (per corner of levels[0].faces), header key
   /// `uv`; every level's follow by the linear rule (core/multires/level_uv.h).
-  FaceVaryingUV uv;
+  FaceVaryingUV uv = {};
 };
 
 /// Level `order.level`'s complex numbered as the file: a surface with the file's faces (in the

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <mutex>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -63,25 +64,24 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
   std::vector<Tri> tris(first[nf]);
   std::vector<glm::dvec3> centers(tris.size());
   auto at = [&](std::uint32_t v) { return glm::dvec3(p[3 * std::size_t(v)], p[3 * std::size_t(v) + 1], p[3 * std::size_t(v) + 2]); };
-  constexpr std::uint32_t kGrain = 8192;
-  std::vector<glm::dvec3> chunk_lo((nf + kGrain - 1) / kGrain, glm::dvec3(std::numeric_limits<double>::infinity()));
-  std::vector<glm::dvec3> chunk_hi(chunk_lo.size(), -chunk_lo[0]);
-  parallel_for(nf, kGrain, [&](std::uint32_t b, std::uint32_t e) {
+  // The bounds: each chunk's own, joined under a lock (min and max are exact in any order).
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo;
+  std::mutex bounds;
+  parallel_for(nf, 8192, [&](std::uint32_t b, std::uint32_t e) {
+    glm::dvec3 clo(std::numeric_limits<double>::infinity()), chi = -clo;
     for (std::uint32_t f = b; f < e; ++f) {
       const auto c = faces.row(f);
-      glm::dvec3& lo = chunk_lo[f / kGrain];
-      glm::dvec3& hi = chunk_hi[f / kGrain];
       for (std::size_t i = 1; i + 1 < c.size(); ++i) {
         const glm::dvec3 e1 = at(c[i]) - at(c[0]), e2 = at(c[i + 1]) - at(c[0]);
         const std::size_t t = first[f] + i - 1;
         tris[t] = {at(c[0]), e1, e2, glm::cross(e1, e2), f};
         centers[t] = tris[t].p0 + (e1 + e2) / 3.0;
-        for (const glm::dvec3& q : {tris[t].p0, tris[t].p0 + e1, tris[t].p0 + e2}) lo = glm::min(lo, q), hi = glm::max(hi, q);
+        for (const glm::dvec3& q : {tris[t].p0, tris[t].p0 + e1, tris[t].p0 + e2}) clo = glm::min(clo, q), chi = glm::max(chi, q);
       }
     }
+    const std::lock_guard<std::mutex> g(bounds);
+    lo = glm::min(lo, clo), hi = glm::max(hi, chi);
   });
-  glm::dvec3 lo = chunk_lo[0], hi = chunk_hi[0];  // min and max are exact in any order
-  for (std::size_t k = 1; k < chunk_lo.size(); ++k) lo = glm::min(lo, chunk_lo[k]), hi = glm::max(hi, chunk_hi[k]);
   diagonal_ = glm::length(hi - lo);
   // Boxes grow by this much on every side, so that a ray grazing a box face (a triangle in an
   // axis plane) is not lost to rounding in the slab test.

@@ -76,14 +76,19 @@ void add_chain_creases(BaseMesh& out, const std::vector<std::uint32_t>& base_of)
 }
 
 // OpenMesh's decimation observer: the collapses done so far, as a fraction of those expected,
-// to the caller's callback, whose false stops the decimation.
+// to the caller's callback, whose false stops the decimation. A quad base's extra rounds count
+// their collapses from 0 again: the fraction reported never goes back.
 struct Progress : OpenMesh::Decimater::Observer {
   const std::function<bool(double)>& report;
   std::size_t expected;
+  double last = 0.0;
   bool cancelled = false;
   Progress(const std::function<bool(double)>& r, std::size_t e)
       : Observer(std::max<std::size_t>(1, e / 100)), report(r), expected(std::max<std::size_t>(1, e)) {}
-  void notify(std::size_t step) override { cancelled = !report(std::min(1.0, double(step) / double(expected))); }
+  void notify(std::size_t step) override {
+    last = std::max(last, std::min(1.0, double(step) / double(expected)));
+    cancelled = !report(last);
+  }
   bool abort() const override { return cancelled; }
 };
 
@@ -261,6 +266,7 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
     if (dec.decimate_to_faces(0, alive - 2 * over + (m.n_faces() - alive)) == 0) break;  // nothing more gives way
     result = extract(out);
   }
+  if (observer.cancelled) throw Cancelled("fitting cancelled");  // within the quads' extra rounds
   return result;
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <array>
 #include <map>
+#include <random>
 #include <algorithm>
 #include <span>
 #include <string>
@@ -22,6 +23,7 @@
 #include "core/engine/executor.h"
 #include "core/analysis/sphere_resample.h"
 #include "core/schemes/registry.h"
+#include "core/base/parallel.h"
 
 using namespace sublift;
 
@@ -42,6 +44,55 @@ Complex regular_torus(int w, int h) {
       tri(v(i + 1, j), v(i + 1, j + 1), v(i, j + 1));
     }
   return complex_from_polygons(static_cast<std::uint32_t>(w * h), faces);
+}
+
+// regular_torus with `flips` random edge flips, each keeping every valence at 4 or more and
+// making no edge twice: irregular everywhere, so nearly every edge and face has a
+// neighbourhood of its own (as on a fitted base).
+Complex flipped_torus(int w, int h, int flips, unsigned seed) {
+  const Complex reg = regular_torus(w, h);
+  std::vector<std::array<std::uint32_t, 3>> tris;
+  for (std::uint32_t f = 0; f < reg.num_faces(); ++f) tris.push_back({reg.faces.row(f)[0], reg.faces.row(f)[1], reg.faces.row(f)[2]});
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;  // undirected
+  std::vector<int> valence(reg.num_vertices, 0);
+  const auto key = [](std::uint32_t a, std::uint32_t b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
+  for (const auto& t : tris)
+    for (int k = 0; k < 3; ++k)
+      if (edges[key(t[k], t[(k + 1) % 3])]++ == 0) {
+        ++valence[t[k]];
+        ++valence[t[(k + 1) % 3]];
+      }
+  std::mt19937 rng(seed);
+  for (int done = 0, tries = 0; done < flips && tries < 100 * flips; ++tries) {
+    const std::size_t ti = rng() % tris.size();
+    const int k = static_cast<int>(rng() % 3);
+    const std::uint32_t a = tris[ti][k], b = tris[ti][(k + 1) % 3], c = tris[ti][(k + 2) % 3];
+    std::size_t ui = tris.size();
+    int kd = 0;
+    for (std::size_t u = 0; u < tris.size() && ui == tris.size(); ++u)
+      for (int q = 0; q < 3; ++q)
+        if (tris[u][q] == b && tris[u][(q + 1) % 3] == a) {
+          ui = u;
+          kd = (q + 2) % 3;
+        }
+    const std::uint32_t d = tris[ui][kd];
+    if (c == d || valence[a] <= 4 || valence[b] <= 4 || edges.count(key(c, d))) continue;
+    tris[ti] = {c, a, d};  // (a, b, c) and (b, a, d) become (c, a, d) and (d, b, c)
+    tris[ui] = {d, b, c};
+    edges.erase(key(a, b));
+    edges[key(c, d)] = 2;
+    --valence[a];
+    --valence[b];
+    ++valence[c];
+    ++valence[d];
+    ++done;
+  }
+  Csr faces;
+  for (const auto& t : tris) {
+    faces.items.insert(faces.items.end(), t.begin(), t.end());
+    faces.offsets.push_back(static_cast<std::uint32_t>(faces.items.size()));
+  }
+  return complex_from_polygons(reg.num_vertices, faces);
 }
 
 // All pairwise inner products of a mesh's scaling functions, face by face.
@@ -245,6 +296,63 @@ TEST(TriWavelets, OrthogonalToItsDiscAndRegularAtValenceSix) {
 // one: K = 3, 4, 5 with ratios 1/4, 1/16. Loop's control values approach the limit like
 // lambda^K next to the extraordinary vertex (lambda = 3/8 + cos(2 pi / n) / 4, its subdominant
 // eigenvalue), over an area 4^-K: K = 3..6 with ratios 1/4, lambda/4, 1/16.
+// The wavelets of a level's new neighbourhoods, solved together (their edges' parts on two
+// threads), equal those solved one edge at a time on one thread, bit for bit, and the face
+// type cache grows the same way: the types that are new are made in the same order.
+TEST(TriWavelets, SolvedTogetherOnTwoThreadsAsOneByOne) {
+  const int threads = parallel_threads();
+  // Butterfly's wide neighbourhoods make a type of nearly every face near a flip: fewer flips.
+  for (const auto& [s, flips] : {std::pair{Scheme::LinearTri, 40}, {Scheme::Loop, 40}, {Scheme::Butterfly, 4}}) {
+    SCOPED_TRACE(scheme_name(s));
+    const Complex c = flipped_torus(12, 10, flips, 7);
+    const Complex fine = refine_tri(c);
+    const TriRings rings = build_tri_rings(c);
+    const TriStencils st = build_tri_stencils(c, s);
+    const auto level = [&] {
+      auto lv = std::make_unique<TriLevel>();
+      lv->coarse = &c;
+      lv->coarse_rings = &rings;
+      lv->fine = &fine;
+      lv->stencils = &st;
+      return lv;
+    };
+    set_parallel_threads(1);
+    TriWaveletBuilder one(s, 1);
+    const auto lv1 = level();
+    std::vector<const EdgeWavelet*> by_one;
+    for (std::uint32_t e = 0; e < c.num_edges(); ++e) by_one.push_back(&one.edge_wavelet(*lv1, e, nullptr));
+
+    set_parallel_threads(2);
+    TriWaveletBuilder two(s, 1);
+    const auto lv2 = level();
+    std::vector<std::uint32_t> todo;
+    std::vector<std::string> signatures;
+    std::map<std::string, std::size_t> first;
+    std::vector<std::size_t> at(c.num_edges());
+    for (std::uint32_t e = 0; e < c.num_edges(); ++e) {
+      std::string sig = two.edge_key(*lv2, e).signature;
+      const auto [it, inserted] = first.try_emplace(sig, todo.size());
+      if (inserted) {
+        todo.push_back(e);
+        signatures.push_back(sig);
+      }
+      at[e] = it->second;
+    }
+    EXPECT_GT(todo.size(), c.num_edges() / 2) << "most neighbourhoods should be new";
+    const std::vector<const EdgeWavelet*> together = two.solve(*lv2, todo, signatures);
+    set_parallel_threads(threads);
+    EXPECT_EQ(two.num_face_types(), one.num_face_types());
+    for (std::uint32_t e = 0; e < c.num_edges(); ++e) {
+      const EdgeWavelet& x = *by_one[e];
+      const EdgeWavelet& y = *together[at[e]];
+      ASSERT_EQ(x.alpha, y.alpha) << "edge " << e;
+      ASSERT_EQ(x.norm2, y.norm2) << "edge " << e;
+      ASSERT_EQ(x.self, y.self) << "edge " << e;
+      ASSERT_LT(x.residual, 1e-12) << "edge " << e;
+    }
+  }
+}
+
 TEST(TriGram, ExtraordinaryVertexMatchesNumericalIntegration) {
   for (Scheme s : {Scheme::Loop, Scheme::Butterfly}) {
     for (int n : {3, 5, 8}) {

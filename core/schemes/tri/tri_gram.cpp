@@ -178,7 +178,25 @@ void FaceGramCache::solve_pending() {
   pending_.clear();
 }
 
+bool FaceGramCache::find(const Complex& c, const TriRings& r, std::uint32_t f, FaceGram& out) const {
+  // The order to the signature's radius only: its labels are the first ones of the patch's
+  // order (breadth first), and its signature is the one type_of takes from that order.
+  std::uint32_t seeds[3], starts[3];
+  face_seeds(c, f, seeds, starts);
+  thread_local LocalOrder o;
+  thread_local std::string sig;
+  local_order_and_signature(c, r, seeds, starts, radii_.signature, o, sig);
+  const auto it = index_.find(sig);
+  if (it == index_.end()) return false;
+  const Type& ty = types_[static_cast<std::size_t>(it->second)];
+  if (!ty.solved) return false;
+  out.verts.assign(o.vertex.begin(), o.vertex.begin() + ty.n);
+  out.G = &ty.G;
+  return true;
+}
+
 FaceGramCache::FaceGram FaceGramCache::face_gram(const Complex& c, const TriRings& r, std::uint32_t f) {
+  if (FaceGram g; find(c, r, f, g)) return g;
   LocalOrder o;
   const int t = type_of(c, r, f, &o);
   if (!pending_.empty()) solve_pending();

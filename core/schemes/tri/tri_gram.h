@@ -56,6 +56,9 @@ class FaceGramCache {
     const Eigen::MatrixXd* G = nullptr;
   };
   FaceGram face_gram(const Complex& c, const TriRings& r, std::uint32_t f);
+  /// The same when f's type is known already, else false. Only reads the cache, so faces may
+  /// be looked up from several threads while nothing is added.
+  bool find(const Complex& c, const TriRings& r, std::uint32_t f, FaceGram& out) const;
 
   std::size_t num_types() const { return types_.size(); }
   /// Largest change of the last solve's final sweep.

@@ -281,7 +281,7 @@ void local_order_and_signature(const Complex& c, const TriRings& r, std::span<co
   pack_signature(s.data(), s.data() + s.size(), out);
 }
 
-std::size_t SignatureHash::operator()(const std::string& s) const noexcept {
+std::size_t SignatureHash::operator()(std::string_view s) const noexcept {
   std::uint64_t h = 0x9e3779b97f4a7c15ull ^ s.size();
   std::size_t i = 0;
   for (; i + 8 <= s.size(); i += 8) {

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/complex/complex.h"
@@ -76,7 +77,8 @@ void local_order_and_signature(const Complex& c, const TriRings& r, std::span<co
 /// A hash for signatures that reads them 8 bytes at a time (they are kilobytes long and looked
 /// up once per irregular edge and face; equality is still checked in full).
 struct SignatureHash {
-  std::size_t operator()(const std::string& s) const noexcept;
+  std::size_t operator()(std::string_view s) const noexcept;
+  std::size_t operator()(const std::string& s) const noexcept { return (*this)(std::string_view(s)); }
 };
 
 /// The sub-mesh of the faces whose corners all carry labels, vertices numbered by label, with

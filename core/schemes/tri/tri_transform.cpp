@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <string_view>
 #include <tuple>
 #include <unordered_map>
 
@@ -353,12 +354,32 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
     }
     for (std::uint32_t e = 0; e < ne; ++e)
       if (w.regular[e]) out.norm2[e] = reg->norm2;
+    // The new neighbourhoods, each once (at its first edge), solved together.
+    {
+      std::unordered_map<std::string_view, std::uint32_t, SignatureHash> first;  // -> place in `todo`
+      std::vector<std::uint32_t> todo, todo_k, same_as(irregular.size(), UINT32_MAX);
+      for (std::uint32_t k = 0; k < irregular.size(); ++k) {
+        if (found[k]) continue;
+        const auto [it, inserted] = first.try_emplace(keys[k].signature, static_cast<std::uint32_t>(todo.size()));
+        if (inserted) {
+          todo.push_back(irregular[k]);
+          todo_k.push_back(k);
+        }
+        same_as[k] = it->second;
+      }
+      std::vector<std::string> signatures(todo.size());
+      for (std::size_t i = 0; i < todo.size(); ++i) signatures[i] = keys[todo_k[i]].signature;  // `first` views the keys'
+      first.clear();
+      const std::vector<const EdgeWavelet*> solved = b.solve(level, todo, signatures);
+      for (std::uint32_t k = 0; k < irregular.size(); ++k)
+        if (!found[k]) found[k] = solved[same_as[k]];
+    }
     w.discs.resize(irregular.size());
     w.alphas.resize(irregular.size());
     for (std::size_t k = 0; k < irregular.size(); ++k) {
       const std::uint32_t e = irregular[k];
       w.discs[k] = std::move(keys[k].disc);
-      const EdgeWavelet& wave = found[k] ? *found[k] : b.edge_wavelet(level, e, std::move(keys[k]));
+      const EdgeWavelet& wave = *found[k];
       if (wave.alpha.size() != w.discs[k].size()) throw std::logic_error("tri_transform: disc and alpha sizes differ");
       w.irregular_at[e] = static_cast<std::uint32_t>(k);
       w.alphas[k] = wave.alpha;

@@ -1,6 +1,7 @@
 #include "core/schemes/tri/tri_wavelets.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 #include <unordered_map>
@@ -8,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "core/base/epoch_table.h"
+#include "core/base/parallel.h"
 #include "core/complex/complex_build.h"
 #include "core/complex/refine_tri.h"
 
@@ -27,50 +29,57 @@ int TriWaveletBuilder::signature_radius() const {
   return disc_ + g.support + g.signature;
 }
 
-EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
-  if (lv.fine->vertex_faces.rows() != lv.fine->num_vertices) {
-    lv.fine_built = std::make_unique<Complex>(*lv.fine);
-    build_adjacency(*lv.fine_built);
-    lv.fine = lv.fine_built.get();
-  }
-  if (!lv.fine_rings) {
-    lv.fine_rings_built = std::make_unique<TriRings>(build_tri_rings(*lv.fine));
-    lv.fine_rings = lv.fine_rings_built.get();
-  }
+// What one edge's wavelet reads: D (coarse vertices, canonical order), the coarse faces that
+// touch D's supports and the fine faces around m, each list sorted.
+struct TriWaveletBuilder::EdgePlan {
+  std::uint32_t edge = 0;
+  std::vector<std::uint32_t> disc, coarse_faces, fine_faces;
+};
+
+void TriWaveletBuilder::plan(const TriLevel& lv, std::uint32_t e, EdgePlan& out) const {
   const TriGramRadii& g = gram_.radii();
   const Complex& c = *lv.coarse;
-  const Complex& fine = *lv.fine;
-  const TriStencils& st = *lv.stencils;
   const std::uint32_t a = c.edge_verts[2 * e], b = c.edge_verts[2 * e + 1];
   const std::uint32_t seeds[2] = {a, b}, starts[2] = {b, a};
-  // D and the vertices whose faces touch D's supports.
-  thread_local LocalOrder order, around_m;  // reused: compute runs once per new neighbourhood
+  thread_local LocalOrder order, around_m;  // reused: one per edge
   local_order(*lv.coarse_rings, seeds, starts, disc_ + g.support, order);
   std::uint32_t nd = 0;
   while (nd < order.dist.size() && order.dist[nd] <= disc_) ++nd;
+  out.edge = e;
+  out.disc.assign(order.vertex.begin(), order.vertex.begin() + nd);
+  const auto faces_of = [](const Complex& mesh, const LocalOrder& o, std::vector<std::uint32_t>& faces) {
+    faces.clear();
+    for (std::uint32_t v : o.vertex)
+      for (std::uint32_t f : mesh.vertex_faces.row(v)) faces.push_back(f);
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  };
+  faces_of(c, order, out.coarse_faces);
+  const std::uint32_t m = c.num_vertices + e;
+  const std::uint32_t mseed[1] = {m}, mstart[1] = {lv.fine_rings->ring.row(m)[0]};
+  local_order(*lv.fine_rings, mseed, mstart, g.support, around_m);
+  faces_of(*lv.fine, around_m, out.fine_faces);
+}
+
+EdgeWavelet TriWaveletBuilder::compute(const TriLevel& lv, const EdgePlan& plan) const {
+  const Complex& c = *lv.coarse;
+  const Complex& fine = *lv.fine;
+  const TriStencils& st = *lv.stencils;
+  const std::uint32_t nd = static_cast<std::uint32_t>(plan.disc.size());
   // Coarse vertex -> label in D; fine vertex -> its place in with_m (thousands of lookups).
   thread_local EpochTable disc_label, with_m_slot;
   disc_label.begin(c.num_vertices);
-  for (std::uint32_t l = 0; l < nd; ++l) disc_label.set(order.vertex[l], l);
+  for (std::uint32_t l = 0; l < nd; ++l) disc_label.set(plan.disc[l], l);
   const auto in_disc = [&](std::uint32_t v) { return disc_label.get(v); };
-  const auto gram_of = [&](std::unordered_map<std::uint32_t, FaceGramCache::FaceGram>& memo, const Complex& mesh,
-                           const TriRings& rings, std::uint32_t f) -> const FaceGramCache::FaceGram& {
-    auto it = memo.find(f);
-    if (it == memo.end()) it = memo.emplace(f, gram_.face_gram(mesh, rings, f)).first;
-    return it->second;
+  const auto gram_of = [](const FaceGrams& grams, std::uint32_t f) -> const FaceGramCache::FaceGram& {
+    return grams.gram[grams.slot[f]];
   };
 
   // Left side: <phi_i^j, phi_l^j> over the level-j faces that touch D's supports.
-  thread_local std::vector<std::uint32_t> faces;
-  faces.clear();
-  for (std::uint32_t v : order.vertex)
-    for (std::uint32_t f : c.vertex_faces.row(v)) faces.push_back(f);
-  std::sort(faces.begin(), faces.end());
-  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nd, nd);
   thread_local std::vector<std::pair<int, std::uint32_t>> in;  // (place in the face's N(f), label in D)
-  for (std::uint32_t f : faces) {
-    const auto& fg = gram_of(lv.coarse_faces, c, *lv.coarse_rings, f);
+  for (std::uint32_t f : plan.coarse_faces) {
+    const auto& fg = gram_of(lv.coarse_faces, f);
     in.clear();
     for (std::size_t p = 0; p < fg.verts.size(); ++p)
       if (const std::uint32_t l = in_disc(fg.verts[p]); l != UINT32_MAX) in.emplace_back(static_cast<int>(p), l);
@@ -81,21 +90,13 @@ EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
 
   // Right side: <phi_c^{j+1}, phi_m^{j+1}> over the level-(j+1) faces around m, pulled back.
   const std::uint32_t nv = c.num_vertices;
-  const std::uint32_t m = nv + e;
-  const std::uint32_t mseed[1] = {m}, mstart[1] = {lv.fine_rings->ring.row(m)[0]};
-  local_order(*lv.fine_rings, mseed, mstart, g.support, around_m);
-  thread_local std::vector<std::uint32_t> fine_faces;
-  fine_faces.clear();
-  for (std::uint32_t v : around_m.vertex)
-    for (std::uint32_t f : fine.vertex_faces.row(v)) fine_faces.push_back(f);
-  std::sort(fine_faces.begin(), fine_faces.end());
-  fine_faces.erase(std::unique(fine_faces.begin(), fine_faces.end()), fine_faces.end());
+  const std::uint32_t m = nv + plan.edge;
   // Fine vertex c -> <phi_c, phi_m>, summed in the order the faces are met (a short list).
   thread_local std::vector<std::pair<std::uint32_t, double>> with_m;
   with_m.clear();
   with_m_slot.begin(fine.num_vertices);
-  for (std::uint32_t f : fine_faces) {
-    const auto& fg = gram_of(lv.fine_faces, fine, *lv.fine_rings, f);
+  for (std::uint32_t f : plan.fine_faces) {
+    const auto& fg = gram_of(lv.fine_faces, f);
     int im = -1;
     for (std::size_t p = 0; p < fg.verts.size(); ++p)
       if (fg.verts[p] == m) im = static_cast<int>(p);
@@ -132,6 +133,83 @@ EdgeWavelet TriWaveletBuilder::compute(TriLevel& lv, std::uint32_t e) {
   return out;
 }
 
+std::vector<const EdgeWavelet*> TriWaveletBuilder::solve(TriLevel& lv, std::span<const std::uint32_t> edges,
+                                                         std::span<std::string> signatures) {
+  if (edges.size() != signatures.size()) throw std::logic_error("tri_wavelets: one signature per edge");
+  std::vector<const EdgeWavelet*> out(edges.size(), nullptr);
+  if (edges.empty()) return out;
+  if (lv.fine->vertex_faces.rows() != lv.fine->num_vertices) {
+    lv.fine_built = std::make_unique<Complex>(*lv.fine);
+    build_adjacency(*lv.fine_built);
+    lv.fine = lv.fine_built.get();
+  }
+  if (!lv.fine_rings) {
+    lv.fine_rings_built = std::make_unique<TriRings>(build_tri_rings(*lv.fine));
+    lv.fine_rings = lv.fine_rings_built.get();
+  }
+  const auto n = static_cast<std::uint32_t>(edges.size());
+  std::vector<EdgePlan> plans(n);
+  std::atomic<bool> failed{false};
+  parallel_for(n, 16, [&](std::uint32_t begin, std::uint32_t end) {
+    try {
+      for (std::uint32_t i = begin; i < end; ++i) plan(lv, edges[i], plans[i]);
+    } catch (...) {
+      failed = true;
+    }
+  });
+  if (failed) {  // the rings were checked, so this is a defect; the serial call names it
+    for (std::uint32_t i = 0; i < n; ++i) plan(lv, edges[i], plans[i]);
+    throw std::logic_error("tri_wavelets: an edge's neighbourhood could not be ordered");
+  }
+
+  // The faces not asked yet on this level, looked up in parallel where their type is known.
+  const auto look_up = [&](const Complex& mesh, const TriRings& rings, FaceGrams& grams,
+                           std::vector<std::uint32_t> EdgePlan::*faces) {
+    if (grams.slot.size() != mesh.num_faces()) grams.slot.assign(mesh.num_faces(), UINT32_MAX);
+    const auto first = static_cast<std::uint32_t>(grams.gram.size());
+    std::vector<std::uint32_t> asked;
+    for (const EdgePlan& p : plans)
+      for (std::uint32_t f : p.*faces)
+        if (grams.slot[f] == UINT32_MAX) {
+          grams.slot[f] = static_cast<std::uint32_t>(grams.gram.size());
+          grams.gram.emplace_back();
+          asked.push_back(f);
+        }
+    parallel_for(static_cast<std::uint32_t>(asked.size()), 64, [&](std::uint32_t begin, std::uint32_t end) {
+      for (std::uint32_t k = begin; k < end; ++k) {
+        FaceGramCache::FaceGram& g = grams.gram[first + k];
+        if (!gram_.find(mesh, rings, asked[k], g)) g = FaceGramCache::FaceGram{};
+      }
+    });
+  };
+  look_up(*lv.coarse, *lv.coarse_rings, lv.coarse_faces, &EdgePlan::coarse_faces);
+  look_up(*lv.fine, *lv.fine_rings, lv.fine_faces, &EdgePlan::fine_faces);
+  // New types, in the order the edges meet their faces (coarse, then fine): the order the
+  // cache grew in when the edges were solved one at a time.
+  for (const EdgePlan& p : plans) {
+    for (std::uint32_t f : p.coarse_faces)
+      if (auto& g = lv.coarse_faces.gram[lv.coarse_faces.slot[f]]; !g.G) g = gram_.face_gram(*lv.coarse, *lv.coarse_rings, f);
+    for (std::uint32_t f : p.fine_faces)
+      if (auto& g = lv.fine_faces.gram[lv.fine_faces.slot[f]]; !g.G) g = gram_.face_gram(*lv.fine, *lv.fine_rings, f);
+  }
+
+  std::vector<std::unique_ptr<EdgeWavelet>> solved(n);
+  parallel_for(n, 16, [&](std::uint32_t begin, std::uint32_t end) {
+    try {
+      for (std::uint32_t i = begin; i < end; ++i) solved[i] = std::make_unique<EdgeWavelet>(compute(lv, plans[i]));
+    } catch (...) {
+      failed = true;  // out of memory: nothing is cached
+    }
+  });
+  if (failed) throw std::bad_alloc();
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const auto [it, inserted] = edges_.try_emplace(std::move(signatures[i]), std::move(solved[i]));
+    if (!inserted) throw std::logic_error("tri_wavelets: an edge's signature was cached already, or asked twice");
+    out[i] = it->second.get();
+  }
+  return out;
+}
+
 TriWaveletBuilder::EdgeKey TriWaveletBuilder::edge_key(const TriLevel& lv, std::uint32_t e) const {
   EdgeKey key;
   edge_key(lv, e, key.disc, key.signature);
@@ -156,10 +234,8 @@ const EdgeWavelet* TriWaveletBuilder::find(const std::string& signature) const {
 }
 
 const EdgeWavelet& TriWaveletBuilder::edge_wavelet(TriLevel& lv, std::uint32_t e, EdgeKey&& key) {
-  auto it = edges_.find(key.signature);
-  if (it == edges_.end())
-    it = edges_.emplace(std::move(key.signature), std::make_unique<EdgeWavelet>(compute(lv, e))).first;
-  return *it->second;
+  if (const EdgeWavelet* w = find(key.signature)) return *w;
+  return *solve(lv, std::span<const std::uint32_t>(&e, 1), std::span<std::string>(&key.signature, 1))[0];
 }
 
 const EdgeWavelet& TriWaveletBuilder::edge_wavelet(TriLevel& lv, std::uint32_t e, std::vector<std::uint32_t>* disc_out,

@@ -22,6 +22,7 @@
 // computing a signature at all.
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -40,8 +41,14 @@ struct EdgeWavelet {
   double self = 0;             // <phi_m, phi_m> (level-j face area 1)
 };
 
-/// One level and its 1-to-4 refinement, as the wavelets of that step read them; the face Grams
-/// found on either mesh are kept per face (faces near many irregular edges are asked often).
+/// The face Grams found on one mesh, kept per face (faces near many irregular edges are asked
+/// often): `slot[f]` indexes `gram`, UINT32_MAX when face f has not been asked.
+struct FaceGrams {
+  std::vector<std::uint32_t> slot;
+  std::vector<FaceGramCache::FaceGram> gram;
+};
+
+/// One level and its 1-to-4 refinement, as the wavelets of that step read them.
 struct TriLevel {
   const Complex* coarse = nullptr;  // derived rows needed
   const TriRings* coarse_rings = nullptr;
@@ -50,7 +57,7 @@ struct TriLevel {
   std::unique_ptr<Complex> fine_built;
   std::unique_ptr<TriRings> fine_rings_built;
   const TriStencils* stencils = nullptr;  // build_tri_stencils(*coarse, scheme)
-  std::unordered_map<std::uint32_t, FaceGramCache::FaceGram> coarse_faces, fine_faces;
+  FaceGrams coarse_faces, fine_faces;
 };
 
 class TriWaveletBuilder {
@@ -76,6 +83,12 @@ class TriWaveletBuilder {
   const EdgeWavelet* find(const std::string& signature) const;
   /// The wavelet of the edge whose key this is: cached, or solved and cached.
   const EdgeWavelet& edge_wavelet(TriLevel& level, std::uint32_t e, EdgeKey&& key);
+  /// Solves and caches the wavelets of `edges` of `level`, whose `signatures` (moved from) are
+  /// pairwise distinct and not cached. The edges' own work runs on the pool; the face types
+  /// they meet that are new are made one by one in edge order, so the cache grows the same way
+  /// whatever the thread count. Returns the wavelets, aligned with `edges`.
+  std::vector<const EdgeWavelet*> solve(TriLevel& level, std::span<const std::uint32_t> edges,
+                                        std::span<std::string> signatures);
 
   /// The wavelet of coarse edge e of `level`. `disc_out` receives D as coarse vertices.
   /// `regular_hint`: the caller knows no irregular vertex lies within signature_radius().
@@ -86,9 +99,12 @@ class TriWaveletBuilder {
                                   std::vector<std::uint32_t>* disc_out);
 
   bool has_regular() const { return regular_ != nullptr; }
+  std::size_t num_face_types() const { return gram_.num_types(); }
 
  private:
-  EdgeWavelet compute(TriLevel& level, std::uint32_t e);
+  struct EdgePlan;
+  void plan(const TriLevel& level, std::uint32_t e, EdgePlan& out) const;
+  EdgeWavelet compute(const TriLevel& level, const EdgePlan& plan) const;
 
   int disc_;
   FaceGramCache gram_;

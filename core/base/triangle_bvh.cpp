@@ -88,33 +88,36 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
   pad_ = 1e-9 * std::max(diagonal_, 1e-300);
   std::vector<std::uint32_t> order(tris.size());
   for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-  nodes_.reserve(tris.size());
+  if (tris.size() > kMaxLeafFirst) throw Error("too many triangles for the triangle hierarchy");
+  nodes_.reserve(tris.size() / 2 + 1);
   const std::uint32_t n = static_cast<std::uint32_t>(order.size());
   std::uint32_t mid = 0;
   if (n < kSideBySide || parallel_threads() < 2 || !split(order, centers, 0, n, mid)) {
-    build(nodes_, order, centers, tris, 0, n);
+    root_ = build(nodes_, order, centers, tris, 0, n);
   } else {
     // The root's two halves built side by side, then laid out as one depth-first build would:
-    // root, left subtree, right subtree (the right one's child links moved past the left's).
+    // root, left subtree, right subtree (each half's node references moved to its place).
     std::vector<Node> halves[2];
+    Built half[2];
     parallel_for(2, 1, [&](std::uint32_t b, std::uint32_t e) {
       for (std::uint32_t k = b; k < e; ++k) {
-        halves[k].reserve(tris.size() / 2 + 1);
-        build(halves[k], order, centers, tris, k ? mid : 0, k ? n : mid);
+        halves[k].reserve(tris.size() / 4 + 1);
+        half[k] = build(halves[k], order, centers, tris, k ? mid : 0, k ? n : mid);
       }
     });
-    Node root;
-    root.right = static_cast<std::uint32_t>(1 + halves[0].size());
-    root.lo = glm::min(halves[0][0].lo, halves[1][0].lo);
-    root.hi = glm::max(halves[0][0].hi, halves[1][0].hi);
-    nodes_.push_back(root);
-    for (std::uint32_t k = 0; k < 2; ++k) {
+    nodes_.emplace_back();
+    for (int k = 0; k < 2; ++k) {
       const std::uint32_t offset = static_cast<std::uint32_t>(nodes_.size());
+      const auto moved = [&](std::uint32_t ref) { return is_leaf(ref) ? ref : ref + offset; };
       for (Node node : halves[k]) {
-        if (node.count == 0) node.right += offset;
+        node.child[0] = moved(node.child[0]);
+        node.child[1] = moved(node.child[1]);
         nodes_.push_back(node);
       }
+      half[k].ref = moved(half[k].ref);
+      set_child(nodes_[0], k, half[k]);
     }
+    root_ = {0, glm::min(half[0].lo, half[1].lo), glm::max(half[0].hi, half[1].hi)};
   }
   tris_.resize(tris.size());
   parallel_for(n, 1u << 14, [&](std::uint32_t b, std::uint32_t e) {
@@ -144,63 +147,95 @@ bool TriangleBvh::split(std::vector<std::uint32_t>& order, const std::vector<glm
   return true;
 }
 
-std::uint32_t TriangleBvh::build(std::vector<Node>& nodes, std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers,
-                                 const std::vector<Tri>& tris, std::uint32_t begin, std::uint32_t end) const {
-  const std::uint32_t index = static_cast<std::uint32_t>(nodes.size());
-  nodes.emplace_back();
-  Node node;
+namespace {
+
+// The float nearest x on the side of `down` (down: not above x; else not below): boxes rounded
+// outwards still hold their triangles.
+float rounded(double x, bool down) {
+  float f = static_cast<float>(x);
+  if (down ? double(f) > x : double(f) < x) f = std::nextafter(f, down ? -std::numeric_limits<float>::infinity()
+                                                                      : std::numeric_limits<float>::infinity());
+  return f;
+}
+
+}  // namespace
+
+void TriangleBvh::set_child(Node& n, int k, const Built& b) {
+  n.child[k] = b.ref;
+  for (int a = 0; a < 3; ++a) {
+    n.lo[k][a] = rounded(b.lo[a], true);
+    n.hi[k][a] = rounded(b.hi[a], false);
+  }
+}
+
+TriangleBvh::Built TriangleBvh::build(std::vector<Node>& nodes, std::vector<std::uint32_t>& order,
+                                      const std::vector<glm::dvec3>& centers, const std::vector<Tri>& tris,
+                                      std::uint32_t begin, std::uint32_t end) const {
   std::uint32_t mid = 0;
   if (!split(order, centers, begin, end, mid)) {
-    node.lo = glm::dvec3(std::numeric_limits<double>::infinity());
-    node.hi = -node.lo;
+    Built leaf;
+    leaf.ref = kLeaf | (end - begin) << 28 | begin;
+    leaf.lo = glm::dvec3(std::numeric_limits<double>::infinity());
+    leaf.hi = -leaf.lo;
     for (std::uint32_t i = begin; i < end; ++i) {
       const Tri& t = tris[order[i]];
       for (const glm::dvec3& p : {t.p0, t.p0 + t.e1, t.p0 + t.e2}) {
-        node.lo = glm::min(node.lo, p);
-        node.hi = glm::max(node.hi, p);
+        leaf.lo = glm::min(leaf.lo, p);
+        leaf.hi = glm::max(leaf.hi, p);
       }
     }
-    node.lo -= glm::dvec3(pad_);
-    node.hi += glm::dvec3(pad_);
-    node.first = begin;
-    node.count = end - begin;
-    nodes[index] = node;
-    return index;
+    leaf.lo -= glm::dvec3(pad_);
+    leaf.hi += glm::dvec3(pad_);
+    return leaf;
   }
-  build(nodes, order, centers, tris, begin, mid);  // the left child is index + 1
-  node.right = build(nodes, order, centers, tris, mid, end);
+  const std::uint32_t index = static_cast<std::uint32_t>(nodes.size());
+  nodes.emplace_back();
+  const Built left = build(nodes, order, centers, tris, begin, mid);
+  const Built right = build(nodes, order, centers, tris, mid, end);
+  set_child(nodes[index], 0, left);
+  set_child(nodes[index], 1, right);
   // The children's padded boxes joined: the box of the triangles, padded (x - pad rounds
   // monotonically, so min(a - pad, b - pad) is min(a, b) - pad), without a pass over them.
-  node.lo = glm::min(nodes[index + 1].lo, nodes[node.right].lo);
-  node.hi = glm::max(nodes[index + 1].hi, nodes[node.right].hi);
-  nodes[index] = node;
-  return index;
+  return {index, glm::min(left.lo, right.lo), glm::max(left.hi, right.hi)};
 }
+
+namespace {
+
+// The ray's parameter interval [tmin, tmax] inside a box (empty when tmin > tmax).
+template <class V>
+bool ray_meets_box(const V& lo, const V& hi, const glm::dvec3& origin, const glm::dvec3& inv, double tmax) {
+  double tmin = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double t1 = (double(lo[k]) - origin[k]) * inv[k], t2 = (double(hi[k]) - origin[k]) * inv[k];
+    tmin = std::max(tmin, std::min(t1, t2));
+    tmax = std::min(tmax, std::max(t1, t2));
+  }
+  return tmin <= tmax;
+}
+
+}  // namespace
 
 template <class Limit, class Visit>
 void TriangleBvh::walk_ray(const glm::dvec3& origin, const glm::dvec3& dir, Limit limit, Visit visit) const {
-  if (nodes_.empty()) return;
+  if (tris_.empty()) return;
   // A zero component gets a huge finite inverse: the slab test then needs no special case.
   glm::dvec3 inv;
   for (int k = 0; k < 3; ++k) inv[k] = dir[k] == 0.0 ? 1e300 : 1.0 / dir[k];
+  if (!ray_meets_box(root_.lo, root_.hi, origin, inv, limit())) return;
   std::array<std::uint32_t, 128> stack;
   std::size_t top = 0;
-  stack[top++] = 0;
+  stack[top++] = root_.ref;
   while (top > 0) {
-    const Node& n = nodes_[stack[--top]];
-    double tmin = 0.0, tmax = limit();
-    for (int k = 0; k < 3; ++k) {
-      const double t1 = (n.lo[k] - origin[k]) * inv[k], t2 = (n.hi[k] - origin[k]) * inv[k];
-      tmin = std::max(tmin, std::min(t1, t2));
-      tmax = std::min(tmax, std::max(t1, t2));
-    }
-    if (tmin > tmax) continue;
-    if (n.count == 0) {
-      stack[top++] = n.right;
-      stack[top++] = static_cast<std::uint32_t>(&n - nodes_.data()) + 1;
+    const std::uint32_t ref = stack[--top];
+    if (is_leaf(ref)) {
+      for (std::uint32_t i = leaf_first(ref); i < leaf_first(ref) + leaf_count(ref); ++i) visit(i);
       continue;
     }
-    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) visit(i);
+    const Node& n = nodes_[ref];
+    const double t = limit();
+    // The right child under the left, so the left is searched first.
+    if (ray_meets_box(n.lo[1], n.hi[1], origin, inv, t)) stack[top++] = n.child[1];
+    if (ray_meets_box(n.lo[0], n.hi[0], origin, inv, t)) stack[top++] = n.child[0];
   }
 }
 
@@ -252,10 +287,11 @@ glm::dvec3 closest_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const g
 }
 
 // Written out (glm's version was not inlined: a call per box, a seventh of a fit's time).
-inline double box_distance2(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& p) {
-  const double dx = std::max(std::max(lo.x - p.x, p.x - hi.x), 0.0);
-  const double dy = std::max(std::max(lo.y - p.y, p.y - hi.y), 0.0);
-  const double dz = std::max(std::max(lo.z - p.z, p.z - hi.z), 0.0);
+template <class V>
+inline double box_distance2(const V& lo, const V& hi, const glm::dvec3& p) {
+  const double dx = std::max(std::max(double(lo[0]) - p.x, p.x - double(hi[0])), 0.0);
+  const double dy = std::max(std::max(double(lo[1]) - p.y, p.y - double(hi[1])), 0.0);
+  const double dz = std::max(std::max(double(lo[2]) - p.z, p.z - double(hi[2])), 0.0);
   return (dx * dx + dy * dy) + dz * dz;
 }
 
@@ -278,27 +314,30 @@ TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p, const glm::dvec3*
   };
   if (hint < face_tris_.rows())
     for (std::uint32_t i : face_tris_.row(hint)) consider(i);
-  // Each entry keeps its box's distance, measured once when its parent was opened.
+  // Each entry keeps its box's distance, measured when its parent was opened.
   struct Entry {
-    std::uint32_t node;
+    std::uint32_t ref;
     double d2;
   };
   std::array<Entry, 128> stack;
   std::size_t top = 0;
-  if (!nodes_.empty()) stack[top++] = {0, box_distance2(nodes_[0].lo, nodes_[0].hi, p)};
+  if (!tris_.empty()) stack[top++] = {root_.ref, box_distance2(root_.lo, root_.hi, p)};
   while (top > 0) {
     const Entry e = stack[--top];
     if (e.d2 > best2) continue;  // (a box just as near may hold a lower polygon)
-    const Node& n = nodes_[e.node];
-    if (n.count == 0) {  // the nearer child last, so it is searched first
-      const Entry l{e.node + 1, box_distance2(nodes_[e.node + 1].lo, nodes_[e.node + 1].hi, p)};
-      const Entry r{n.right, box_distance2(nodes_[n.right].lo, nodes_[n.right].hi, p)};
-      const bool left_first = l.d2 <= r.d2;
-      stack[top++] = left_first ? r : l;
-      stack[top++] = left_first ? l : r;
+    if (is_leaf(e.ref)) {
+      for (std::uint32_t i = leaf_first(e.ref); i < leaf_first(e.ref) + leaf_count(e.ref); ++i) consider(i);
       continue;
     }
-    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) consider(i);
+    const Node& n = nodes_[e.ref];
+    const Entry l{n.child[0], box_distance2(n.lo[0], n.hi[0], p)};
+    const Entry r{n.child[1], box_distance2(n.lo[1], n.hi[1], p)};
+    // The nearer child last, so it is searched first; a child already beyond the best is not kept.
+    const bool left_first = l.d2 <= r.d2;
+    const Entry& near = left_first ? l : r;
+    const Entry& far = left_first ? r : l;
+    if (far.d2 <= best2) stack[top++] = far;
+    if (near.d2 <= best2) stack[top++] = near;
   }
   best.distance = std::sqrt(best2);
   return best;

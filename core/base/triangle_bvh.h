@@ -5,6 +5,7 @@
 // bounding volume hierarchy: median splits, leaves of at most 4 triangles, nodes in depth-first
 // order with the left child next; about log(n) box tests per query. Built once, queried
 // concurrently (the queries are const and allocation-free apart from the caller's buffer).
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -61,26 +62,42 @@ class TriangleBvh {
     glm::dvec3 n;  // cross(e1, e2), for the facing tests
     std::uint32_t face = 0;
   };
-  struct Node {
-    glm::dvec3 lo, hi;
-    std::uint32_t first = 0, count = 0;  // leaf: tris_[first, first + count); inner: count == 0
-    std::uint32_t right = 0;             // inner: index of the right child (left is this + 1)
+  // An inner node holds its two children's boxes (floats rounded outwards, so a box still
+  // holds its triangles and its distance is still a lower bound) and references: opening a node
+  // reads one cache line. A reference is a node index, or, with kLeaf set, a leaf: up to 4
+  // triangles tris_[first, first + count), count in bits 28-30.
+  struct alignas(64) Node {
+    std::array<float, 3> lo[2], hi[2];
+    std::uint32_t child[2] = {0, 0};
+  };
+  static constexpr std::uint32_t kLeaf = 1u << 31;
+  static constexpr std::uint32_t kMaxLeafFirst = (1u << 28) - 1;
+  static bool is_leaf(std::uint32_t ref) { return (ref & kLeaf) != 0; }
+  static std::uint32_t leaf_first(std::uint32_t ref) { return ref & kMaxLeafFirst; }
+  static std::uint32_t leaf_count(std::uint32_t ref) { return (ref >> 28) & 7u; }
+  // A subtree as built: its reference and its padded box.
+  struct Built {
+    std::uint32_t ref = 0;
+    glm::dvec3 lo{0.0}, hi{0.0};
   };
   // Calls visit(triangle index) for the triangles of every leaf whose box the ray meets within
-  // [0, limit()] (limit is asked again at each node, so a search can shrink it).
+  // [0, limit()] (limit is asked again at each node, so a search can shrink it), leaves in
+  // depth-first order, left child first.
   template <class Limit, class Visit>
   void walk_ray(const glm::dvec3& origin, const glm::dvec3& dir, Limit limit, Visit visit) const;
-  // Appends the subtree of order[begin, end) to `nodes` (depth first, left child next) and
-  // returns its root's index; `split` is the median split it makes at every inner node.
-  std::uint32_t build(std::vector<Node>& nodes, std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers,
-                      const std::vector<Tri>& tris, std::uint32_t begin, std::uint32_t end) const;
+  // Appends the inner nodes of the subtree of order[begin, end) to `nodes` (depth first, left
+  // subtree first) and returns it; `split` is the median split it makes at every inner node.
+  Built build(std::vector<Node>& nodes, std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers,
+              const std::vector<Tri>& tris, std::uint32_t begin, std::uint32_t end) const;
   // Splits order[begin, end) at its middle along the centres' longest axis; false (nothing
   // moved) when the range is a leaf: 4 triangles or fewer, or centres all alike.
   static bool split(std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers, std::uint32_t begin,
                     std::uint32_t end, std::uint32_t& mid);
+  static void set_child(Node& n, int k, const Built& b);
 
   std::vector<Tri> tris_;
   std::vector<Node> nodes_;
+  Built root_;  // the whole tree (unused when tris_ is empty)
   Csr face_tris_;  // the triangles (indices into tris_) of each polygon
   double diagonal_ = 0.0;
   double pad_ = 0.0;

@@ -43,9 +43,13 @@ struct Projector {
 
   // `reach`: no point moves farther (a longer move lands on another part of the surface and
   // leaves a spike in the net); with nothing that near, p stays for the solve to pull.
-  glm::dvec3 operator()(const glm::dvec3& p, const glm::dvec3& n, double reach) const {
-    TriangleBvh::Closest c = glm::dot(n, n) > 0.0 ? input.closest(p, n) : input.closest(p);
-    if (!std::isfinite(c.distance)) c = input.closest(p);
+  // `hint` (optional): the input face found for this point last time, updated (the answer does
+  // not depend on it; the search is shorter).
+  glm::dvec3 operator()(const glm::dvec3& p, const glm::dvec3& n, double reach, std::uint32_t* hint = nullptr) const {
+    const std::uint32_t from = hint ? *hint : UINT32_MAX;
+    TriangleBvh::Closest c = input.closest(p, glm::dot(n, n) > 0.0 ? &n : nullptr, from);
+    if (!std::isfinite(c.distance)) c = input.closest(p, nullptr, from);
+    if (hint) *hint = c.face;
     if (c.distance > reach) return p;
     if (glm::dot(n, n) == 0.0) return c.point;
     // 3x: a ray may meet the surface at a slant; farther than that it is another part's surface.
@@ -129,8 +133,10 @@ struct Mover {
   const FeatureLines& lines;
   std::uint32_t first_new;
   double relax;
+  std::uint32_t* hints = nullptr;  // per net vertex, for Projector (each call writes only its own)
 
   glm::dvec3 operator()(std::span<const double> x, std::span<const double> normal, std::uint32_t v) const {
+    std::uint32_t* hint = hints ? hints + v : nullptr;
     glm::dvec3 p = at(x, v);
     const glm::dvec3 nv = at(normal, v);
     const std::uint8_t dim = c.vertex_dim.empty() ? 2 : c.vertex_dim[v];
@@ -146,7 +152,7 @@ struct Mover {
     }
     if (dim == 1) {
       if (v >= first_new && on_line) p += relax * (line_mean / double(on_line) - p);
-      const glm::dvec3 on_surface = project(p, nv, 2 * edge);
+      const glm::dvec3 on_surface = project(p, nv, 2 * edge, hint);
       const glm::dvec3 q = lines.closest(p);
       return !lines.empty() && glm::distance(q, p) <= std::max(0.5 * edge, 2.0 * glm::distance(on_surface, p)) ? q : on_surface;
     }
@@ -155,7 +161,7 @@ struct Mover {
       d -= glm::dot(d, nv) * nv;
       p += relax * d;
     }
-    return project(p, nv, 2 * edge);
+    return project(p, nv, 2 * edge, hint);
   }
 };
 
@@ -206,7 +212,7 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
   std::vector<double> x;
   // Closest-point hints within a level (its faces and vertices keep their numbers there): input
   // vertex -> net face, net face -> input face, net vertex -> input face.
-  std::vector<std::uint32_t> input_hint, face_hint, vertex_hint;
+  std::vector<std::uint32_t> input_hint, face_hint, vertex_hint, move_hint;
   const auto measure = [&](int l, const Complex& c, const std::vector<double>& net) {
     FitLevelReport rep;
     rep.level = l;
@@ -227,7 +233,10 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
     Complex c = h.levels[static_cast<std::size_t>(l)];
     if (c.vertex_edges.rows() != c.num_vertices) build_adjacency(c);
     const std::uint32_t n = c.num_vertices;
-    const Mover move{c, project, lines, h.num_vertices(l - 1), o.relax};
+    // Net vertex -> the input face its last projection found; the old points keep their numbers,
+    // so they start from the coarser level's answers.
+    move_hint.resize(n, UINT32_MAX);
+    const Mover move{c, project, lines, h.num_vertices(l - 1), o.relax, move_hint.data()};
     const std::vector<double> hold = held(c);
     input_hint.assign(positions.size() / 3, UINT32_MAX);
     face_hint.assign(c.faces.rows(), UINT32_MAX);
@@ -260,7 +269,7 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
       // Its points projected as the net's were (no relaxing), the net solved under it.
       finest_limit = build_limit_stencils(h);
       const LimitStencils& ls = *finest_limit;
-      const Mover project_only{c, project, lines, n, 0.0};
+      const Mover project_only{c, project, lines, n, 0.0, move_hint.data()};
       std::vector<double> y(x.size()), targets(x.size());
       for (int round = 0; round < o.limit_rounds; ++round) {
         eval_limit(ls, x.data(), y.data());

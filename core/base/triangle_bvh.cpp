@@ -119,6 +119,19 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
     }
     root_ = {0, glm::min(half[0].lo, half[1].lo), glm::max(half[0].hi, half[1].hi)};
   }
+  // Each node's and each triangle's place under its parent (index << 1 | side), for searches
+  // that start at a leaf.
+  parent_.assign(nodes_.size(), kNoParent);
+  up_.assign(tris.size(), kNoParent);
+  for (std::uint32_t i = 0; i < nodes_.size(); ++i)
+    for (std::uint32_t k = 0; k < 2; ++k) {
+      const std::uint32_t ref = nodes_[i].child[k];
+      if (!is_leaf(ref)) {
+        parent_[ref] = i << 1 | k;
+        continue;
+      }
+      for (std::uint32_t t = leaf_first(ref); t < leaf_first(ref) + leaf_count(ref); ++t) up_[t] = i << 1 | k;
+    }
   tris_.resize(tris.size());
   parallel_for(n, 1u << 14, [&](std::uint32_t b, std::uint32_t e) {
     for (std::uint32_t i = b; i < e; ++i) tris_[i] = tris[order[i]];
@@ -312,32 +325,49 @@ TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p, const glm::dvec3*
     // order of the search (nor on a hint).
     if (d2 < best2 || (d2 == best2 && tris_[i].face < best.face)) best2 = d2, best.point = q, best.face = tris_[i].face;
   };
-  if (hint < face_tris_.rows())
-    for (std::uint32_t i : face_tris_.row(hint)) consider(i);
   // Each entry keeps its box's distance, measured when its parent was opened.
   struct Entry {
     std::uint32_t ref;
     double d2;
   };
   std::array<Entry, 128> stack;
-  std::size_t top = 0;
-  if (!tris_.empty()) stack[top++] = {root_.ref, box_distance2(root_.lo, root_.hi, p)};
-  while (top > 0) {
-    const Entry e = stack[--top];
-    if (e.d2 > best2) continue;  // (a box just as near may hold a lower polygon)
-    if (is_leaf(e.ref)) {
-      for (std::uint32_t i = leaf_first(e.ref); i < leaf_first(e.ref) + leaf_count(e.ref); ++i) consider(i);
-      continue;
+  const auto descend = [&](Entry from) {
+    std::size_t top = 0;
+    stack[top++] = from;
+    while (top > 0) {
+      const Entry e = stack[--top];
+      if (e.d2 > best2) continue;  // (a box just as near may hold a lower polygon)
+      if (is_leaf(e.ref)) {
+        for (std::uint32_t i = leaf_first(e.ref); i < leaf_first(e.ref) + leaf_count(e.ref); ++i) consider(i);
+        continue;
+      }
+      const Node& n = nodes_[e.ref];
+      const Entry l{n.child[0], box_distance2(n.lo[0], n.hi[0], p)};
+      const Entry r{n.child[1], box_distance2(n.lo[1], n.hi[1], p)};
+      // The nearer child last, so it is searched first; a child already beyond the best is not kept.
+      const bool left_first = l.d2 <= r.d2;
+      const Entry& near = left_first ? l : r;
+      const Entry& far = left_first ? r : l;
+      if (far.d2 <= best2) stack[top++] = far;
+      if (near.d2 <= best2) stack[top++] = near;
     }
-    const Node& n = nodes_[e.ref];
-    const Entry l{n.child[0], box_distance2(n.lo[0], n.hi[0], p)};
-    const Entry r{n.child[1], box_distance2(n.lo[1], n.hi[1], p)};
-    // The nearer child last, so it is searched first; a child already beyond the best is not kept.
-    const bool left_first = l.d2 <= r.d2;
-    const Entry& near = left_first ? l : r;
-    const Entry& far = left_first ? r : l;
-    if (far.d2 <= best2) stack[top++] = far;
-    if (near.d2 <= best2) stack[top++] = near;
+  };
+  if (tris_.empty()) {
+  } else if (hint < face_tris_.rows() && face_tris_.size(hint) > 0 && up_[face_tris_.row(hint)[0]] != kNoParent) {
+    // From the hint's leaf up to the root: its triangles first, then at each node on the way the
+    // other child's subtree unless its box lies beyond the best (every triangle is searched or
+    // pruned once, as from the root; the walk down to the hint is saved).
+    for (std::uint32_t i : face_tris_.row(hint)) consider(i);
+    std::uint32_t up = up_[face_tris_.row(hint)[0]];
+    descend({nodes_[up >> 1].child[up & 1], 0.0});
+    for (; up != kNoParent; up = parent_[up >> 1]) {
+      const Node& n = nodes_[up >> 1];
+      const std::uint32_t other = 1 - (up & 1);
+      const double d2 = box_distance2(n.lo[other], n.hi[other], p);
+      if (d2 <= best2) descend({n.child[other], d2});
+    }
+  } else {
+    descend({root_.ref, box_distance2(root_.lo, root_.hi, p)});
   }
   best.distance = std::sqrt(best2);
   return best;

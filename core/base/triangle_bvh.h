@@ -98,6 +98,10 @@ class TriangleBvh {
   std::vector<Tri> tris_;
   std::vector<Node> nodes_;
   Built root_;  // the whole tree (unused when tris_ is empty)
+  // Node -> its parent, triangle -> the node holding its leaf: index << 1 | side (1: right),
+  // kNoParent for the root (and for every triangle when the root is a leaf).
+  static constexpr std::uint32_t kNoParent = UINT32_MAX;
+  std::vector<std::uint32_t> parent_, up_;
   Csr face_tris_;  // the triangles (indices into tris_) of each polygon
   double diagonal_ = 0.0;
   double pad_ = 0.0;

@@ -131,6 +131,10 @@ TEST(TriangleBvh, BuiltOnTwoThreadsAsOnOne) {
     EXPECT_EQ(a.distance, b.distance);
     EXPECT_EQ(a.face, b.face);
     EXPECT_EQ(a.point, b.point);
+    // Searched up from a hint's leaf (in either half of the side-by-side build): the same answer.
+    const TriangleBvh::Closest c = two.closest(p, nullptr, static_cast<std::uint32_t>(rng() % s.faces.rows()));
+    EXPECT_EQ(c.distance, a.distance);
+    EXPECT_EQ(c.face, a.face);
     EXPECT_EQ(one.nearest_hit(p, dir, -dir, 10.0), two.nearest_hit(p, dir, -dir, 10.0));
     h1.clear(), h2.clear(), f1.clear(), f2.clear();
     one.all_hits(p, dir, h1, &f1);

@@ -1,10 +1,38 @@
 #include "core/engine/stencil_rows.h"
 
+#include <algorithm>
+#include <cstdint>
+
 namespace sublift {
+
+namespace {
+
+// Sorts 8 keys with the 19 compare-exchanges of Knuth's optimal network, branch-free (rows'
+// sources come in rule order, so an insertion sort's branches mispredicted).
+void sort8(std::uint64_t* k) {
+  constexpr int kPairs[19][2] = {{0, 2}, {1, 3}, {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}, {0, 1}, {2, 3},
+                                 {4, 5}, {6, 7}, {2, 4}, {3, 5}, {1, 4}, {3, 6}, {1, 2}, {3, 4}, {5, 6}};
+  for (const auto& [a, b] : kPairs) {
+    const std::uint64_t x = k[a], y = k[b];
+    k[a] = std::min(x, y);
+    k[b] = std::max(x, y);
+  }
+}
+
+}  // namespace
 
 void append_stencil_row(std::span<StencilTerm> terms, Csr& rows, std::vector<double>& weights) {
   const auto by_source = [](const StencilTerm& x, const StencilTerm& y) { return x.first < y.first; };
-  if (terms.size() <= 32) {  // stable insertion sort: no buffer to allocate per row
+  if (terms.size() <= 8) {
+    // Keys (source, place) are distinct, so their one sorted order is the stable one.
+    std::uint64_t k[8];
+    StencilTerm copy[8];
+    const std::size_t n = terms.size();
+    for (std::size_t i = 0; i < 8; ++i) k[i] = i < n ? std::uint64_t(terms[i].first) << 32 | i : UINT64_MAX;
+    std::copy(terms.begin(), terms.end(), copy);
+    sort8(k);
+    for (std::size_t i = 0; i < n; ++i) terms[i] = copy[k[i] & 0xffffffffu];
+  } else if (terms.size() <= 32) {  // stable insertion sort: no buffer to allocate per row
     for (std::size_t i = 1; i < terms.size(); ++i)
       for (std::size_t j = i; j > 0 && by_source(terms[j], terms[j - 1]); --j) std::swap(terms[j], terms[j - 1]);
   } else {

@@ -307,7 +307,8 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
 
   // Per edge its disc D (coarse vertices) and alpha. The regular edges, nearly all of a fine
   // level, share one alpha; the others are found by their neighbourhood's signature (keys
-  // taken in parallel) or solved, under the builders' lock.
+  // taken in parallel) or, when new, solved together (TriWaveletBuilder::solve), all under the
+  // builders' lock.
   EdgeWavelets w;
   {
     const std::lock_guard<std::mutex> lock(builders_mutex);

@@ -1,11 +1,16 @@
 #include "core/schemes/tri/tri_gram.h"
 
+#include <algorithm>
 #include <cmath>
+#include <exception>
+#include <memory>
+#include <mutex>
 #include <functional>
 #include <unordered_map>
 #include <stdexcept>
 
 #include "core/base/errors.h"
+#include "core/base/parallel.h"
 #include "core/complex/refine_tri.h"
 #include "core/schemes/registry.h"
 
@@ -34,24 +39,25 @@ void face_seeds(const Complex& c, std::uint32_t f, std::uint32_t seeds[3], std::
   }
 }
 
-int FaceGramCache::type_of(const Complex& c, const TriRings& r, std::uint32_t f, LocalOrder* order_out) {
-  std::uint32_t seeds[3], starts[3];
-  face_seeds(c, f, seeds, starts);
-  LocalOrder order = local_order(r, seeds, starts, radii_.patch);
-  std::string sig = local_signature(c, r, order, radii_.signature);
-  if (const auto it = index_.find(sig); it != index_.end()) {
-    if (order_out) *order_out = std::move(order);
-    return it->second;
-  }
-  const int id = static_cast<int>(types_.size());
-  const std::string key = sig;  // to take the type back if its patch cannot be built
-  index_.emplace(std::move(sig), id);
-  types_.emplace_back();
-  pending_.push_back(id);
+// A new type's patch subdivided, kept while the children read there are made.
+struct FaceGramCache::Made {
+  int n = 0;
+  std::array<Eigen::SparseMatrix<double>, 4> S;
+  std::array<std::string, 4> child_sig;
+  std::array<LocalOrder, 4> child_order;
+  struct Refined {
+    Complex fine;
+    TriRings rings;
+  };
+  std::shared_ptr<const Refined> refined;
+  std::uint32_t pf = 0;  // the face in the patch; its children are 4 pf + k of `fine`
+};
+
+FaceGramCache::Made FaceGramCache::make_type(const Complex& c, const LocalOrder& order, std::uint32_t f) const {
+  Made made;
   int n = 0;
   while (n < static_cast<int>(order.dist.size()) && order.dist[static_cast<std::size_t>(n)] <= radii_.support) ++n;
-  types_[static_cast<std::size_t>(id)].n = n;
-
+  made.n = n;
   // Subdivide a copy of the neighbourhood once; the face is the patch face on labels 0, 1, 2.
   const Complex patch = local_patch(c, order);
   std::uint32_t pf = UINT32_MAX;
@@ -60,26 +66,26 @@ int FaceGramCache::type_of(const Complex& c, const TriRings& r, std::uint32_t f,
     if (row[0] < 3 && row[1] < 3 && row[2] < 3) pf = g;
   }
   if (pf == UINT32_MAX) throw std::logic_error("tri_gram: the face is missing from its own patch");
-  Complex fine;
+  auto refined = std::make_shared<Made::Refined>();
   TriStencils st;
-  TriRings fine_rings;
   try {
-    fine = refine_tri(patch);
+    refined->fine = refine_tri(patch);
     st = build_tri_stencils(patch, scheme_);
-    fine_rings = build_tri_rings(fine);
+    refined->rings = build_tri_rings(refined->fine);
   } catch (const TopologyError& e) {
     // local_patch always yields a manifold (it splits rim vertices where the surface meets
-    // itself), so this is a defect; the builder is kept across calls: forget the half-made type.
-    index_.erase(key);
-    types_.pop_back();
-    pending_.pop_back();
+    // itself), so this is a defect.
     throw std::logic_error("tri_gram: the patch around face " + std::to_string(f) + " cannot be subdivided: " + e.what());
   }
   const std::uint32_t nvp = patch.num_vertices;
   for (int k = 0; k < 4; ++k) {
-    LocalOrder co;
-    const int ct = type_of(fine, fine_rings, 4 * pf + static_cast<std::uint32_t>(k), &co);
-    const int m = types_[static_cast<std::size_t>(ct)].n;
+    LocalOrder& co = made.child_order[static_cast<std::size_t>(k)];
+    std::uint32_t seeds[3], starts[3];
+    face_seeds(refined->fine, 4 * pf + static_cast<std::uint32_t>(k), seeds, starts);
+    local_order(refined->rings, seeds, starts, radii_.patch, co);
+    made.child_sig[static_cast<std::size_t>(k)] = local_signature(refined->fine, refined->rings, co, radii_.signature);
+    int m = 0;
+    while (m < static_cast<int>(co.dist.size()) && co.dist[static_cast<std::size_t>(m)] <= radii_.support) ++m;
     std::vector<Eigen::Triplet<double>> terms;
     for (int i = 0; i < m; ++i) {
       const std::uint32_t v = co.vertex[static_cast<std::size_t>(i)];
@@ -92,12 +98,104 @@ int FaceGramCache::type_of(const Complex& c, const TriRings& r, std::uint32_t f,
     }
     Eigen::SparseMatrix<double> S(m, n);
     S.setFromTriplets(terms.begin(), terms.end());  // repeated (i, a) summed, as += did
-    Type& t = types_[static_cast<std::size_t>(id)];
-    t.child[static_cast<std::size_t>(k)] = ct;
-    t.S[static_cast<std::size_t>(k)] = std::move(S);
+    made.S[static_cast<std::size_t>(k)] = std::move(S);
   }
-  if (order_out) *order_out = std::move(order);
-  return id;
+  made.refined = std::move(refined);
+  made.pf = pf;
+  return made;
+}
+
+void FaceGramCache::add_types(std::span<const FaceRef> faces) {
+  // A face whose type is asked: its order and signature once known (children come with theirs);
+  // `keep` holds the subdivided patch a child lies in.
+  struct Request {
+    FaceRef at;
+    std::shared_ptr<const Made::Refined> keep;
+    bool known = false;
+    std::string sig;
+    LocalOrder order;
+  };
+  // Chunks of faces bound the patches kept at once (a wave's children hold their parents').
+  constexpr std::size_t kChunk = 256;
+  for (std::size_t c0 = 0; c0 < faces.size(); c0 += kChunk) {
+    const std::size_t first_type = types_.size();
+    std::vector<std::string> claimed;
+    std::vector<std::pair<int, std::array<std::string, 4>>> children;  // a new type's child signatures
+    std::vector<Request> wave;
+    for (std::size_t i = c0; i < std::min(faces.size(), c0 + kChunk); ++i) {
+      Request q;
+      q.at = faces[i];
+      wave.push_back(std::move(q));
+    }
+    try {
+      while (!wave.empty()) {
+        const auto nw = static_cast<std::uint32_t>(wave.size());
+        parallel_for(nw, 16, [&](std::uint32_t b, std::uint32_t e) {
+          for (std::uint32_t i = b; i < e; ++i) {
+            Request& q = wave[i];
+            if (q.known) continue;
+            std::uint32_t seeds[3], starts[3];
+            face_seeds(*q.at.mesh, q.at.face, seeds, starts);
+            local_order(*q.at.rings, seeds, starts, radii_.patch, q.order);
+            q.sig = local_signature(*q.at.mesh, *q.at.rings, q.order, radii_.signature);
+            q.known = true;
+          }
+        });
+        // Numbered in wave order: the first request of each new signature makes it.
+        std::vector<std::uint32_t> fresh;
+        std::vector<int> fresh_id;
+        for (std::uint32_t i = 0; i < nw; ++i) {
+          const auto [it, inserted] = index_.try_emplace(wave[i].sig, static_cast<int>(types_.size()));
+          if (!inserted) continue;
+          claimed.push_back(wave[i].sig);
+          fresh.push_back(i);
+          fresh_id.push_back(it->second);
+          types_.emplace_back();
+          signature_.push_back(&it->first);  // keys of an unordered_map stay where they are
+          pending_.push_back(it->second);
+        }
+        std::vector<Made> made(fresh.size());
+        std::exception_ptr fault;
+        std::mutex fault_mutex;
+        parallel_for(static_cast<std::uint32_t>(fresh.size()), 4, [&](std::uint32_t b, std::uint32_t e) {
+          try {
+            for (std::uint32_t k = b; k < e; ++k) {
+              const Request& q = wave[fresh[k]];
+              made[k] = make_type(*q.at.mesh, q.order, q.at.face);
+            }
+          } catch (...) {
+            const std::lock_guard<std::mutex> lock(fault_mutex);
+            if (!fault) fault = std::current_exception();
+          }
+        });
+        if (fault) std::rethrow_exception(fault);
+        std::vector<Request> next;
+        for (std::size_t k = 0; k < made.size(); ++k) {
+          Made& m = made[k];
+          Type& t = types_[static_cast<std::size_t>(fresh_id[k])];
+          t.n = m.n;
+          t.S = std::move(m.S);
+          children.emplace_back(fresh_id[k], m.child_sig);
+          for (std::size_t j = 0; j < 4; ++j)
+            if (!index_.count(m.child_sig[j]))
+              next.push_back({{&m.refined->fine, &m.refined->rings, 4 * m.pf + static_cast<std::uint32_t>(j)},
+                              m.refined, true, std::move(m.child_sig[j]), std::move(m.child_order[j])});
+        }
+        wave = std::move(next);
+      }
+    } catch (...) {
+      // A defect (see make_type); the cache is kept across calls: forget the chunk's half-made types.
+      for (const std::string& sig : claimed) index_.erase(sig);
+      types_.resize(first_type);
+      signature_.resize(first_type);
+      pending_.erase(std::remove_if(pending_.begin(), pending_.end(), [&](int t) { return t >= static_cast<int>(first_type); }),
+                     pending_.end());
+      throw;
+    }
+    for (const auto& [id, sigs] : children)
+      for (std::size_t j = 0; j < 4; ++j) types_[static_cast<std::size_t>(id)].child[j] = index_.at(sigs[j]);
+    solve_pending();
+  }
 }
 
 void FaceGramCache::solve_pending() {
@@ -159,6 +257,9 @@ void FaceGramCache::solve_pending() {
     if (!cyclic) {
       eval(t);
     } else {
+      // Swept in the order of the types' signatures, not of their numbers: a component's values
+      // then depend on it alone, not on which face led to it first.
+      std::sort(comp.begin(), comp.end(), [&](int a, int b) { return *signature_[static_cast<std::size_t>(a)] < *signature_[static_cast<std::size_t>(b)]; });
       double prev = 1e300;
       for (int sweep = 0; sweep < 400; ++sweep) {
         double change = 0;
@@ -196,14 +297,11 @@ bool FaceGramCache::find(const Complex& c, const TriRings& r, std::uint32_t f, F
 }
 
 FaceGramCache::FaceGram FaceGramCache::face_gram(const Complex& c, const TriRings& r, std::uint32_t f) {
-  if (FaceGram g; find(c, r, f, g)) return g;
-  LocalOrder o;
-  const int t = type_of(c, r, f, &o);
-  if (!pending_.empty()) solve_pending();
   FaceGram g;
-  const Type& ty = types_[static_cast<std::size_t>(t)];
-  g.verts.assign(o.vertex.begin(), o.vertex.begin() + ty.n);
-  g.G = &ty.G;
+  if (find(c, r, f, g)) return g;
+  const FaceRef at{&c, &r, f};
+  add_types(std::span<const FaceRef>(&at, 1));
+  if (!find(c, r, f, g)) throw std::logic_error("tri_gram: a face's new type was not made");
   return g;
 }
 

@@ -15,13 +15,16 @@
 // isolated extraordinary vertex has the type of its parent (the self-similarity of sec. 5.2), and
 // faces near several extraordinary vertices reach such types after a few steps. The cached
 // types form a finite system G = T(G), solved by sweeps with every G_f rescaled to the area of
-// its face (its entries sum to 1: the functions sum to 1 on f). The sweeps contract by the
+// its face (its entries sum to 1: the functions sum to 1 on f). A type's matrices depend on its
+// labelled neighbourhood only (local_patch is canonical), so the cache does not depend on which
+// face met a type first, nor on the thread count. The sweeps contract by the
 // scheme's subdominant eigenvalue over 4 per step or better; they stop at 1e-16.
 //
 // Units: a face's area is 1 on its own level (level-j faces of a hierarchy have area 4^-j
 // times that of a base face).
 #include <array>
 #include <deque>
+#include <span>
 #include <cstdint>
 #include <string>
 #include <unordered_map>
@@ -60,6 +63,18 @@ class FaceGramCache {
   /// be looked up from several threads while nothing is added.
   bool find(const Complex& c, const TriRings& r, std::uint32_t f, FaceGram& out) const;
 
+  /// A face of a mesh, with the mesh's rings.
+  struct FaceRef {
+    const Complex* mesh = nullptr;
+    const TriRings* rings = nullptr;
+    std::uint32_t face = 0;
+  };
+  /// Makes and solves the types of `faces` that are not cached yet, with every type they lead to
+  /// (their children's, and so on). The patches are built and subdivided on the pool, wave by
+  /// wave (the faces, then the new children, ...) in chunks of faces; types are numbered in
+  /// that order, so the cache comes out the same whatever the thread count.
+  void add_types(std::span<const FaceRef> faces);
+
   std::size_t num_types() const { return types_.size(); }
   /// Largest change of the last solve's final sweep.
   double last_change() const { return last_change_; }
@@ -74,13 +89,16 @@ class FaceGramCache {
     Eigen::MatrixXd G;
     bool solved = false;
   };
-  int type_of(const Complex& c, const TriRings& r, std::uint32_t f, LocalOrder* order_out);
+  struct Made;
+  // What a new type is made of: its patch from `order` (around face f of c) subdivided.
+  Made make_type(const Complex& c, const LocalOrder& order, std::uint32_t f) const;
   void solve_pending();
 
   Scheme scheme_;
   TriGramRadii radii_;
   std::unordered_map<std::string, int, SignatureHash> index_;
   std::deque<Type> types_;  // stable addresses: FaceGram points into it
+  std::vector<const std::string*> signature_;  // per type, its key in index_
   std::vector<int> pending_;
   double last_change_ = 0;
 };

@@ -1,6 +1,7 @@
 #include "core/schemes/tri/tri_local.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <cstring>
@@ -370,21 +371,30 @@ Complex local_patch(const Complex& c, const LocalOrder& o) {
   label.reserve(o.vertex.size() * 2);
   for (std::uint32_t l = 0; l < o.vertex.size(); ++l) label.emplace(o.vertex[l], l);
   std::unordered_set<std::uint32_t> seen;
-  Csr faces;
+  std::vector<std::array<std::uint32_t, 3>> tris;
   for (std::uint32_t l = 0; l < o.vertex.size(); ++l)
     for (std::uint32_t f : c.vertex_faces.row(o.vertex[l])) {
       if (!seen.insert(f).second) continue;
-      std::uint32_t tri[3];
+      std::array<std::uint32_t, 3> tri;
       bool all = true;
       for (int k = 0; k < 3; ++k) {
         const auto it = label.find(c.faces.items[c.faces.offsets[f] + k]);
         if (it == label.end()) { all = false; break; }
-        tri[k] = it->second;
+        tri[static_cast<std::size_t>(k)] = it->second;
       }
       if (!all) continue;
-      faces.items.insert(faces.items.end(), tri, tri + 3);
-      faces.offsets.push_back(static_cast<std::uint32_t>(faces.items.size()));
+      // Lowest label first (the same way round), faces sorted: the patch, its subdivision and
+      // its stencils depend on the labelled neighbourhood only, not on the mesh's numbering, so
+      // every face of a type gives it the same matrices, bit for bit.
+      std::rotate(tri.begin(), std::min_element(tri.begin(), tri.end()), tri.end());
+      tris.push_back(tri);
     }
+  std::sort(tris.begin(), tris.end());
+  Csr faces;
+  for (const auto& tri : tris) {
+    faces.items.insert(faces.items.end(), tri.begin(), tri.end());
+    faces.offsets.push_back(static_cast<std::uint32_t>(faces.items.size()));
+  }
   std::vector<std::uint32_t> source;
   split_rim_arcs(faces, o, source);
   Complex p = complex_from_polygons(static_cast<std::uint32_t>(source.size()), faces);

@@ -81,7 +81,8 @@ struct SignatureHash {
   std::size_t operator()(const std::string& s) const noexcept { return (*this)(std::string_view(s)); }
 };
 
-/// The sub-mesh of the faces whose corners all carry labels, vertices numbered by label, with
+/// The sub-mesh of the faces whose corners all carry labels, vertices numbered by label, faces
+/// listed canonically (each from its lowest label, sorted: nothing of the mesh's numbering), with
 /// the original vertex and edge dims (so the fans of labels closer than the order's radius are
 /// complete copies). A rim vertex whose faces there form several arcs (the surface meets itself
 /// within the radius) gets a copy per extra arc, numbered after the labels: the patch is always

@@ -184,13 +184,33 @@ std::vector<const EdgeWavelet*> TriWaveletBuilder::solve(TriLevel& lv, std::span
   };
   look_up(*lv.coarse, *lv.coarse_rings, lv.coarse_faces, &EdgePlan::coarse_faces);
   look_up(*lv.fine, *lv.fine_rings, lv.fine_faces, &EdgePlan::fine_faces);
-  // New types, in the order the edges meet their faces (coarse, then fine): the order the
-  // cache grew in when the edges were solved one at a time.
-  for (const EdgePlan& p : plans) {
-    for (std::uint32_t f : p.coarse_faces)
-      if (auto& g = lv.coarse_faces.gram[lv.coarse_faces.slot[f]]; !g.G) g = gram_.face_gram(*lv.coarse, *lv.coarse_rings, f);
-    for (std::uint32_t f : p.fine_faces)
-      if (auto& g = lv.fine_faces.gram[lv.fine_faces.slot[f]]; !g.G) g = gram_.face_gram(*lv.fine, *lv.fine_rings, f);
+  // The faces whose type is new, each once, in the order the edges meet them (coarse, then
+  // fine): their types are made together (FaceGramCache::add_types), then the faces found.
+  std::vector<FaceGramCache::FaceRef> missing;
+  std::vector<FaceGramCache::FaceGram*> fill;
+  {
+    std::vector<std::uint8_t> listed_coarse(lv.coarse_faces.gram.size(), 0), listed_fine(lv.fine_faces.gram.size(), 0);
+    const auto note = [&](FaceGrams& grams, std::vector<std::uint8_t>& listed, const Complex* mesh, const TriRings* rings,
+                          std::uint32_t f) {
+      const std::uint32_t at = grams.slot[f];
+      if (grams.gram[at].G || listed[at]) return;
+      listed[at] = 1;
+      missing.push_back({mesh, rings, f});
+      fill.push_back(&grams.gram[at]);
+    };
+    for (const EdgePlan& p : plans) {
+      for (std::uint32_t f : p.coarse_faces) note(lv.coarse_faces, listed_coarse, lv.coarse, lv.coarse_rings, f);
+      for (std::uint32_t f : p.fine_faces) note(lv.fine_faces, listed_fine, lv.fine, lv.fine_rings, f);
+    }
+  }
+  if (!missing.empty()) {
+    gram_.add_types(missing);
+    std::atomic<bool> lost{false};
+    parallel_for(static_cast<std::uint32_t>(missing.size()), 64, [&](std::uint32_t begin, std::uint32_t end) {
+      for (std::uint32_t k = begin; k < end; ++k)
+        if (!gram_.find(*missing[k].mesh, *missing[k].rings, missing[k].face, *fill[k])) lost = true;
+    });
+    if (lost) throw std::logic_error("tri_wavelets: a face's new type was not made");
   }
 
   std::vector<std::unique_ptr<EdgeWavelet>> solved(n);

@@ -367,22 +367,19 @@ void split_rim_arcs(Csr& faces, const LocalOrder& o, std::vector<std::uint32_t>&
 }  // namespace
 
 Complex local_patch(const Complex& c, const LocalOrder& o) {
-  std::unordered_map<std::uint32_t, std::uint32_t> label;
-  label.reserve(o.vertex.size() * 2);
-  for (std::uint32_t l = 0; l < o.vertex.size(); ++l) label.emplace(o.vertex[l], l);
-  std::unordered_set<std::uint32_t> seen;
+  table.begin(c.num_vertices);  // vertex -> label
+  for (std::uint32_t l = 0; l < o.vertex.size(); ++l) table.set(o.vertex[l], l);
   std::vector<std::array<std::uint32_t, 3>> tris;
   for (std::uint32_t l = 0; l < o.vertex.size(); ++l)
     for (std::uint32_t f : c.vertex_faces.row(o.vertex[l])) {
-      if (!seen.insert(f).second) continue;
       std::array<std::uint32_t, 3> tri;
       bool all = true;
-      for (int k = 0; k < 3; ++k) {
-        const auto it = label.find(c.faces.items[c.faces.offsets[f] + k]);
-        if (it == label.end()) { all = false; break; }
-        tri[static_cast<std::size_t>(k)] = it->second;
+      for (int k = 0; k < 3 && all; ++k) {
+        tri[static_cast<std::size_t>(k)] = table.get(c.faces.items[c.faces.offsets[f] + k]);
+        all = tri[static_cast<std::size_t>(k)] != UINT32_MAX;
       }
-      if (!all) continue;
+      // Each face once: from its lowest label's corner (a face meets every corner's row).
+      if (!all || std::min({tri[0], tri[1], tri[2]}) != l) continue;
       // Lowest label first (the same way round), faces sorted: the patch, its subdivision and
       // its stencils depend on the labelled neighbourhood only, not on the mesh's numbering, so
       // every face of a type gives it the same matrices, bit for bit.

@@ -62,6 +62,8 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
   if (first[nf] == 0) return;
   if (first[nf] > std::numeric_limits<std::uint32_t>::max() / 2) throw Error("too many triangles for the triangle hierarchy");
   std::vector<Tri> tris(first[nf]);
+  std::vector<std::uint32_t> corners(3 * first[nf]);
+  num_vertices_ = p.size() / 3;
   std::vector<glm::dvec3> centers(tris.size());
   auto at = [&](std::uint32_t v) { return glm::dvec3(p[3 * std::size_t(v)], p[3 * std::size_t(v) + 1], p[3 * std::size_t(v) + 2]); };
   // The bounds: each chunk's own, joined under a lock (min and max are exact in any order).
@@ -75,6 +77,7 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
         const glm::dvec3 e1 = at(c[i]) - at(c[0]), e2 = at(c[i + 1]) - at(c[0]);
         const std::size_t t = first[f] + i - 1;
         tris[t] = {at(c[0]), e1, e2, glm::cross(e1, e2), f};
+        corners[3 * t] = c[0], corners[3 * t + 1] = c[i], corners[3 * t + 2] = c[i + 1];
         centers[t] = tris[t].p0 + (e1 + e2) / 3.0;
         for (const glm::dvec3& q : {tris[t].p0, tris[t].p0 + e1, tris[t].p0 + e2}) clo = glm::min(clo, q), chi = glm::max(chi, q);
       }
@@ -133,8 +136,12 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
       for (std::uint32_t t = leaf_first(ref); t < leaf_first(ref) + leaf_count(ref); ++t) up_[t] = i << 1 | k;
     }
   tris_.resize(tris.size());
+  corners_.resize(corners.size());
   parallel_for(n, 1u << 14, [&](std::uint32_t b, std::uint32_t e) {
-    for (std::uint32_t i = b; i < e; ++i) tris_[i] = tris[order[i]];
+    for (std::uint32_t i = b; i < e; ++i) {
+      tris_[i] = tris[order[i]];
+      for (int k = 0; k < 3; ++k) corners_[3 * std::size_t(i) + k] = corners[3 * std::size_t(order[i]) + k];
+    }
   });
   Csr tri_face;  // triangle -> its polygon
   for (const Tri& t : tris_) {
@@ -142,6 +149,54 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
     tri_face.offsets.push_back(static_cast<std::uint32_t>(tri_face.items.size()));
   }
   face_tris_ = transpose(tri_face, tris.back().face + 1);  // tris is in polygon order
+}
+
+void TriangleBvh::refit(std::span<const double> p) {
+  if (p.size() != 3 * num_vertices_) throw Error("TriangleBvh::refit: the positions are for another mesh");
+  if (tris_.empty()) return;
+  const auto at = [&](std::uint32_t v) { return glm::dvec3(p[3 * std::size_t(v)], p[3 * std::size_t(v) + 1], p[3 * std::size_t(v) + 2]); };
+  // The triangles as the constructor makes them, and their bounds.
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo;
+  std::mutex bounds;
+  parallel_for(static_cast<std::uint32_t>(tris_.size()), 8192, [&](std::uint32_t b, std::uint32_t e) {
+    glm::dvec3 clo(std::numeric_limits<double>::infinity()), chi = -clo;
+    for (std::uint32_t t = b; t < e; ++t) {
+      const std::uint32_t* c = corners_.data() + 3 * std::size_t(t);
+      const glm::dvec3 p0 = at(c[0]), e1 = at(c[1]) - p0, e2 = at(c[2]) - p0;
+      tris_[t] = {p0, e1, e2, glm::cross(e1, e2), tris_[t].face};
+      for (const glm::dvec3& q : {p0, p0 + e1, p0 + e2}) clo = glm::min(clo, q), chi = glm::max(chi, q);
+    }
+    const std::lock_guard<std::mutex> g(bounds);
+    lo = glm::min(lo, clo), hi = glm::max(hi, chi);
+  });
+  diagonal_ = glm::length(hi - lo);
+  pad_ = 1e-9 * std::max(diagonal_, 1e-300);
+  const auto leaf_box = [&](std::uint32_t ref) {
+    Built b{ref, glm::dvec3(std::numeric_limits<double>::infinity()), glm::dvec3(-std::numeric_limits<double>::infinity())};
+    for (std::uint32_t i = leaf_first(ref); i < leaf_first(ref) + leaf_count(ref); ++i)
+      for (const glm::dvec3& q : {tris_[i].p0, tris_[i].p0 + tris_[i].e1, tris_[i].p0 + tris_[i].e2})
+        b.lo = glm::min(b.lo, q), b.hi = glm::max(b.hi, q);
+    b.lo -= glm::dvec3(pad_);
+    b.hi += glm::dvec3(pad_);
+    return b;
+  };
+  // A node's box from its children's (rounded outwards, so still holding its triangles).
+  const auto node_box = [&](std::uint32_t i) {
+    const Node& n = nodes_[i];
+    Built b{i, glm::dvec3(0.0), glm::dvec3(0.0)};
+    for (int a = 0; a < 3; ++a) {
+      b.lo[a] = std::min(double(n.lo[0][a]), double(n.lo[1][a]));
+      b.hi[a] = std::max(double(n.hi[0][a]), double(n.hi[1][a]));
+    }
+    return b;
+  };
+  // Children come after their parent (depth-first layout): from the last node back.
+  for (std::uint32_t i = static_cast<std::uint32_t>(nodes_.size()); i-- > 0;)
+    for (int k = 0; k < 2; ++k) {
+      const std::uint32_t ref = nodes_[i].child[k];
+      set_child(nodes_[i], k, is_leaf(ref) ? leaf_box(ref) : node_box(ref));
+    }
+  root_ = is_leaf(root_.ref) ? leaf_box(root_.ref) : node_box(root_.ref);
 }
 
 bool TriangleBvh::split(std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers, std::uint32_t begin,

@@ -52,6 +52,12 @@ class TriangleBvh {
   /// is ignored.
   Closest closest(const glm::dvec3& p, const glm::dvec3* facing, std::uint32_t hint) const;
 
+  /// The same polygons at new positions (3 per vertex, as many vertices as built with): the
+  /// tree is kept and its boxes recomputed from the leaves up, a fraction of a build. Closest
+  /// points come out exactly as from a fresh build (any boxes that hold their triangles do);
+  /// a ray's hits may come in another order. Fitting moves a net a little per round.
+  void refit(std::span<const double> positions);
+
   std::size_t num_triangles() const { return tris_.size(); }
   /// Diagonal of the triangles' bounding box.
   double diagonal() const { return diagonal_; }
@@ -102,6 +108,8 @@ class TriangleBvh {
   // kNoParent for the root (and for every triangle when the root is a leaf).
   static constexpr std::uint32_t kNoParent = UINT32_MAX;
   std::vector<std::uint32_t> parent_, up_;
+  std::vector<std::uint32_t> corners_;  // per triangle (tris_ order) its three vertices, for refit
+  std::size_t num_vertices_ = 0;
   Csr face_tris_;  // the triangles (indices into tris_) of each polygon
   double diagonal_ = 0.0;
   double pad_ = 0.0;

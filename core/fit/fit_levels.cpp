@@ -213,12 +213,19 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
   // Closest-point hints within a level (its faces and vertices keep their numbers there): input
   // vertex -> net face, net face -> input face, net vertex -> input face.
   std::vector<std::uint32_t> input_hint, face_hint, vertex_hint, move_hint;
+  // The level's net (or limit surface) indexed once, refitted as it moves (TriangleBvh::refit).
+  std::optional<TriangleBvh> net_index;
+  const auto net_indexed = [&](const Complex& c, std::span<const double> net) -> const TriangleBvh& {
+    if (net_index) net_index->refit(net);
+    else net_index.emplace(net, c.faces);
+    return *net_index;
+  };
   const auto measure = [&](int l, const Complex& c, const std::vector<double>& net) {
     FitLevelReport rep;
     rep.level = l;
     rep.vertices = c.num_vertices;
     std::tie(rep.rms, rep.max) = distances(input, net, diag, vertex_hint);
-    std::tie(rep.back_rms, rep.back_max) = distances(TriangleBvh(net, c.faces), positions, diag, input_hint);
+    std::tie(rep.back_rms, rep.back_max) = distances(net_indexed(c, net), positions, diag, input_hint);
     rep.folded = static_cast<std::uint32_t>(folded_list(input, input_normals, faces, c.faces, net, face_hint).size());
     return rep;
   };
@@ -239,6 +246,7 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
     const Mover move{c, project, lines, h.num_vertices(l - 1), o.relax, move_hint.data()};
     const std::vector<double> hold = held(c);
     input_hint.assign(positions.size() / 3, UINT32_MAX);
+    net_index.reset();  // a new net
     face_hint.assign(c.faces.rows(), UINT32_MAX);
     vertex_hint.assign(n, UINT32_MAX);
     std::vector<double> next(x.size());
@@ -255,7 +263,7 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
       x.swap(next);
       untangle(c, project, lines, facing, x);  // before the solve, which pulls the moved points back
       if (o.two_way) {
-        std::vector<double> solved = solve_net(c, {x, x, x, nullptr, input_hint}, positions, input_normals, hold, o.weights);
+        std::vector<double> solved = solve_net(c, {x, x, x, nullptr, input_hint, &net_index}, positions, input_normals, hold, o.weights);
         keep_unfolded(c.faces, facing, x, solved);
         x.swap(solved);
       }
@@ -279,14 +287,14 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
         });
         untangle_limit(c, ls, project, lines, facing_of, x);
         eval_limit(ls, x.data(), y.data());
-        std::vector<double> solved = solve_net(c, {x, y, targets, &ls, input_hint}, positions, input_normals, hold, o.weights);
+        std::vector<double> solved = solve_net(c, {x, y, targets, &ls, input_hint, &net_index}, positions, input_normals, hold, o.weights);
         keep_unfolded(c.faces, facing_of(x), x, solved);
         x.swap(solved);
       }
       untangle_limit(c, ls, project, lines, facing_of, x);
       if (o.tolerance > 0) {
         eval_limit(ls, x.data(), y.data());
-        reach_max = std::max(distances(input, y, diag, vertex_hint).second, distances(TriangleBvh(y, c.faces), positions, diag, input_hint).second);
+        reach_max = std::max(distances(input, y, diag, vertex_hint).second, distances(net_indexed(c, y), positions, diag, input_hint).second);
       }
     }
     FitLevelReport rep = measure(l, c, x);

@@ -38,7 +38,11 @@ std::vector<double> solve_net(const Complex& c, const NetSolveState& st, std::sp
   const std::uint32_t ni = static_cast<std::uint32_t>(input.size() / 3);
   if (n == 0 || ni == 0) return {st.control.begin(), st.control.end()};
   // Each input vertex's closest point on the surface.
-  const TriangleBvh surface(st.surface, c.faces);
+  std::optional<TriangleBvh> own;
+  std::optional<TriangleBvh>& slot = st.index ? *st.index : own;
+  if (slot) slot->refit(st.surface);
+  else slot.emplace(st.surface, c.faces);
+  const TriangleBvh& surface = *slot;
   // On a polygon, the foot lies on one triangle of its fan (corners 0, t, t + 1), as the
   // hierarchy of closest points triangulates it.
   struct Foot {

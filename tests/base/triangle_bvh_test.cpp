@@ -13,6 +13,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/base/errors.h"
 #include "core/base/parallel.h"
 
 namespace sublift {
@@ -218,6 +219,54 @@ TEST(TriangleBvh, EquallyNearFacesNameTheLowest) {
       const glm::dvec3 up(0, 0, 1);
       EXPECT_EQ(bvh.closest(p, &up, 2 * (i + n * j)).face, lowest);
     }
+}
+
+
+// A refitted hierarchy answers closest-point queries exactly as one built on the moved points
+// (any side and one side, from the root and from hints), and a ray meets the same triangles:
+// small moves (a fitting round's) and large ones (every vertex anywhere, so the kept tree fits
+// badly), on both builds (one thread, and the halves side by side).
+TEST(TriangleBvh, RefitAnswersAsAFreshBuild) {
+  const int threads = parallel_threads();
+  // (The side-by-side build only with small moves: after large ones every query opens most of it.)
+  for (const auto& [faces, large] : {std::pair{300, false}, {300, true}, {40000, false}}) {
+    const Soup s = soup(faces, 8);
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> u(-0.3, 1.3), small(-0.01, 0.01);
+    {
+      SCOPED_TRACE(std::to_string(faces) + (large ? " faces, large moves" : " faces, small moves"));
+      Soup moved = s;
+      for (double& x : moved.xyz) x = large ? u(rng) : x + small(rng);
+      set_parallel_threads(faces > 1000 ? 2 : 1);
+      TriangleBvh refitted(s.xyz, s.faces);
+      set_parallel_threads(threads);
+      refitted.refit(moved.xyz);
+      const TriangleBvh fresh(moved.xyz, moved.faces);
+      EXPECT_EQ(refitted.diagonal(), fresh.diagonal());
+      std::vector<double> h1, h2;
+      for (int q = 0; q < 300; ++q) {
+        const glm::dvec3 p(u(rng), u(rng), u(rng)), facing(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
+        const std::uint32_t hint = static_cast<std::uint32_t>(rng() % s.faces.rows());
+        for (const glm::dvec3* side : {static_cast<const glm::dvec3*>(nullptr), &facing})
+          for (const std::uint32_t from : {UINT32_MAX, hint}) {
+            const TriangleBvh::Closest a = refitted.closest(p, side, from), b = fresh.closest(p, side, from);
+            ASSERT_EQ(a.distance, b.distance) << q;
+            ASSERT_EQ(a.face, b.face) << q;
+            ASSERT_EQ(a.point, b.point) << q;
+          }
+        const glm::dvec3 dir = facing;
+        EXPECT_EQ(refitted.nearest_hit(p, dir, -dir, 10.0), fresh.nearest_hit(p, dir, -dir, 10.0));
+        h1.clear(), h2.clear();
+        refitted.all_hits(p, dir, h1);
+        fresh.all_hits(p, dir, h2);
+        std::sort(h1.begin(), h1.end());
+        std::sort(h2.begin(), h2.end());
+        EXPECT_EQ(h1, h2);
+      }
+    }
+  }
+  TriangleBvh bvh(std::vector<double>(9, 0.0), Csr{{0, 3}, {0, 1, 2}});
+  EXPECT_THROW(bvh.refit(std::vector<double>(6, 0.0)), Error);
 }
 
 }  // namespace

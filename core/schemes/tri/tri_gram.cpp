@@ -130,17 +130,28 @@ void FaceGramCache::add_types(std::span<const FaceRef> faces) {
     try {
       while (!wave.empty()) {
         const auto nw = static_cast<std::uint32_t>(wave.size());
+        std::exception_ptr fault;
+        std::mutex fault_mutex;
+        const auto keep_fault = [&] {  // a pool task must not throw: the first fault is rethrown
+          const std::lock_guard<std::mutex> lock(fault_mutex);
+          if (!fault) fault = std::current_exception();
+        };
         parallel_for(nw, 16, [&](std::uint32_t b, std::uint32_t e) {
-          for (std::uint32_t i = b; i < e; ++i) {
-            Request& q = wave[i];
-            if (q.known) continue;
-            std::uint32_t seeds[3], starts[3];
-            face_seeds(*q.at.mesh, q.at.face, seeds, starts);
-            local_order(*q.at.rings, seeds, starts, radii_.patch, q.order);
-            q.sig = local_signature(*q.at.mesh, *q.at.rings, q.order, radii_.signature);
-            q.known = true;
+          try {
+            for (std::uint32_t i = b; i < e; ++i) {
+              Request& q = wave[i];
+              if (q.known) continue;
+              std::uint32_t seeds[3], starts[3];
+              face_seeds(*q.at.mesh, q.at.face, seeds, starts);
+              local_order(*q.at.rings, seeds, starts, radii_.patch, q.order);
+              q.sig = local_signature(*q.at.mesh, *q.at.rings, q.order, radii_.signature);
+              q.known = true;
+            }
+          } catch (...) {
+            keep_fault();
           }
         });
+        if (fault) std::rethrow_exception(fault);
         // Numbered in wave order: the first request of each new signature makes it.
         std::vector<std::uint32_t> fresh;
         std::vector<int> fresh_id;
@@ -155,8 +166,6 @@ void FaceGramCache::add_types(std::span<const FaceRef> faces) {
           pending_.push_back(it->second);
         }
         std::vector<Made> made(fresh.size());
-        std::exception_ptr fault;
-        std::mutex fault_mutex;
         parallel_for(static_cast<std::uint32_t>(fresh.size()), 4, [&](std::uint32_t b, std::uint32_t e) {
           try {
             for (std::uint32_t k = b; k < e; ++k) {
@@ -164,8 +173,7 @@ void FaceGramCache::add_types(std::span<const FaceRef> faces) {
               made[k] = make_type(*q.at.mesh, q.order, q.at.face);
             }
           } catch (...) {
-            const std::lock_guard<std::mutex> lock(fault_mutex);
-            if (!fault) fault = std::current_exception();
+            keep_fault();
           }
         });
         if (fault) std::rethrow_exception(fault);
@@ -281,7 +289,7 @@ void FaceGramCache::solve_pending() {
 
 bool FaceGramCache::find(const Complex& c, const TriRings& r, std::uint32_t f, FaceGram& out) const {
   // The order to the signature's radius only: its labels are the first ones of the patch's
-  // order (breadth first), and its signature is the one type_of takes from that order.
+  // order (breadth first), and its signature is the one add_types takes from that order.
   std::uint32_t seeds[3], starts[3];
   face_seeds(c, f, seeds, starts);
   thread_local LocalOrder o;

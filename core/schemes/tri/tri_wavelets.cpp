@@ -176,9 +176,13 @@ std::vector<const EdgeWavelet*> TriWaveletBuilder::solve(TriLevel& lv, std::span
           asked.push_back(f);
         }
     parallel_for(static_cast<std::uint32_t>(asked.size()), 64, [&](std::uint32_t begin, std::uint32_t end) {
-      for (std::uint32_t k = begin; k < end; ++k) {
-        FaceGramCache::FaceGram& g = grams.gram[first + k];
-        if (!gram_.find(mesh, rings, asked[k], g)) g = FaceGramCache::FaceGram{};
+      try {
+        for (std::uint32_t k = begin; k < end; ++k) {
+          FaceGramCache::FaceGram& g = grams.gram[first + k];
+          if (!gram_.find(mesh, rings, asked[k], g)) g = FaceGramCache::FaceGram{};
+        }
+      } catch (...) {
+        // The chunk's rest is left unfound: add_types meets those faces again and names the fault.
       }
     });
   };
@@ -207,8 +211,12 @@ std::vector<const EdgeWavelet*> TriWaveletBuilder::solve(TriLevel& lv, std::span
     gram_.add_types(missing);
     std::atomic<bool> lost{false};
     parallel_for(static_cast<std::uint32_t>(missing.size()), 64, [&](std::uint32_t begin, std::uint32_t end) {
-      for (std::uint32_t k = begin; k < end; ++k)
-        if (!gram_.find(*missing[k].mesh, *missing[k].rings, missing[k].face, *fill[k])) lost = true;
+      try {
+        for (std::uint32_t k = begin; k < end; ++k)
+          if (!gram_.find(*missing[k].mesh, *missing[k].rings, missing[k].face, *fill[k])) lost = true;
+      } catch (...) {
+        lost = true;
+      }
     });
     if (lost) throw std::logic_error("tri_wavelets: a face's new type was not made");
   }

@@ -284,27 +284,40 @@ bool ray_meets_box(const V& lo, const V& hi, const glm::dvec3& origin, const glm
 }  // namespace
 
 template <class Limit, class Visit>
-void TriangleBvh::walk_ray(const glm::dvec3& origin, const glm::dvec3& dir, Limit limit, Visit visit) const {
+void TriangleBvh::walk_ray(const glm::dvec3& origin, const glm::dvec3& dir, Limit limit, Visit visit, std::uint32_t hint) const {
   if (tris_.empty()) return;
   // A zero component gets a huge finite inverse: the slab test then needs no special case.
   glm::dvec3 inv;
   for (int k = 0; k < 3; ++k) inv[k] = dir[k] == 0.0 ? 1e300 : 1.0 / dir[k];
-  if (!ray_meets_box(root_.lo, root_.hi, origin, inv, limit())) return;
   std::array<std::uint32_t, 128> stack;
-  std::size_t top = 0;
-  stack[top++] = root_.ref;
-  while (top > 0) {
-    const std::uint32_t ref = stack[--top];
-    if (is_leaf(ref)) {
-      for (std::uint32_t i = leaf_first(ref); i < leaf_first(ref) + leaf_count(ref); ++i) visit(i);
-      continue;
+  const auto descend = [&](std::uint32_t from) {
+    std::size_t top = 0;
+    stack[top++] = from;
+    while (top > 0) {
+      const std::uint32_t ref = stack[--top];
+      if (is_leaf(ref)) {
+        for (std::uint32_t i = leaf_first(ref); i < leaf_first(ref) + leaf_count(ref); ++i) visit(i);
+        continue;
+      }
+      const Node& n = nodes_[ref];
+      const double t = limit();
+      // The right child under the left, so the left is searched first.
+      if (ray_meets_box(n.lo[1], n.hi[1], origin, inv, t)) stack[top++] = n.child[1];
+      if (ray_meets_box(n.lo[0], n.hi[0], origin, inv, t)) stack[top++] = n.child[0];
     }
-    const Node& n = nodes_[ref];
-    const double t = limit();
-    // The right child under the left, so the left is searched first.
-    if (ray_meets_box(n.lo[1], n.hi[1], origin, inv, t)) stack[top++] = n.child[1];
-    if (ray_meets_box(n.lo[0], n.hi[0], origin, inv, t)) stack[top++] = n.child[0];
+  };
+  if (hint < face_tris_.rows() && face_tris_.size(hint) > 0 && up_[face_tris_.row(hint)[0]] != kNoParent) {
+    // From the hint's leaf up (as closest does): each sibling subtree the ray meets within the limit.
+    std::uint32_t up = up_[face_tris_.row(hint)[0]];
+    descend(nodes_[up >> 1].child[up & 1]);
+    for (; up != kNoParent; up = parent_[up >> 1]) {
+      const Node& n = nodes_[up >> 1];
+      const std::uint32_t other = 1 - (up & 1);
+      if (ray_meets_box(n.lo[other], n.hi[other], origin, inv, limit())) descend(n.child[other]);
+    }
+    return;
   }
+  if (ray_meets_box(root_.lo, root_.hi, origin, inv, limit())) descend(root_.ref);
 }
 
 void TriangleBvh::all_hits(const glm::dvec3& origin, const glm::dvec3& dir, std::vector<double>& hits,
@@ -318,15 +331,19 @@ void TriangleBvh::all_hits(const glm::dvec3& origin, const glm::dvec3& dir, std:
   });
 }
 
-double TriangleBvh::nearest_hit(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& facing, double t_max) const {
+double TriangleBvh::nearest_hit(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& facing, double t_max,
+                                std::uint32_t hint) const {
   double best = std::numeric_limits<double>::infinity();
   const double dir_len = glm::length(dir);
-  walk_ray(origin, dir, [&] { return std::min(t_max, best); }, [&](std::uint32_t i) {
-    const Tri& t = tris_[i];
-    if (glm::dot(t.n, facing) <= 0.0) return;
-    const double th = ray_triangle(t, origin, dir, dir_len);
-    if (th >= 0.0 && th <= t_max && th < best) best = th;
-  });
+  walk_ray(
+      origin, dir, [&] { return std::min(t_max, best); },
+      [&](std::uint32_t i) {
+        const Tri& t = tris_[i];
+        if (glm::dot(t.n, facing) <= 0.0) return;
+        const double th = ray_triangle(t, origin, dir, dir_len);
+        if (th >= 0.0 && th <= t_max && th < best) best = th;
+      },
+      hint);
   return best;
 }
 

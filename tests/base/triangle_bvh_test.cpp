@@ -181,6 +181,13 @@ TEST(TriangleBvh, RayHitsAgreeWithBruteForce) {
     for (std::size_t k = 0; k < hits.size(); ++k) EXPECT_NEAR(hits[k], expected[k], 1e-9);
     hit_rays += !hits.empty();
     const double nh = bvh.nearest_hit(o, dir, facing, 1e30);
+    // From a hint's leaf up (the closest polygon, a random one, none): the same answer, bit for
+    // bit, with and without a bound.
+    for (const std::uint32_t hint : {bvh.closest(o).face, static_cast<std::uint32_t>(rng() % s.faces.rows()), UINT32_MAX}) {
+      EXPECT_EQ(bvh.nearest_hit(o, dir, facing, 1e30, hint), nh) << hint;
+      const double bound = std::isfinite(nh) ? 1.5 * nh : 0.7;
+      EXPECT_EQ(bvh.nearest_hit(o, dir, facing, bound, hint), bvh.nearest_hit(o, dir, facing, bound)) << hint;
+    }
     if (!std::isfinite(nearest_facing)) {
       EXPECT_TRUE(std::isinf(nh)) << nh;
     } else {

@@ -5,16 +5,15 @@
 // Prints ns per query. One thread: the queries are independent, fitting runs them on the pool.
 #include <benchmark/benchmark.h>
 
-#include <cmath>
 #include <cstdio>
 #include <chrono>
 #include <map>
 #include <memory>
-#include <numbers>
 #include <random>
 
 #include <glm/geometric.hpp>
 
+#include "bench/bumpy_torus.h"
 #include "core/base/parallel.h"
 #include "core/base/triangle_bvh.h"
 
@@ -23,41 +22,25 @@ namespace {
 using namespace sublift;
 
 struct Case {
-  std::vector<double> xyz;
-  Csr faces;
   std::unique_ptr<TriangleBvh> bvh;
   std::vector<glm::dvec3> points, normals;
   std::vector<std::uint32_t> hints;
 };
 
-// nu x nu/2 vertices, minor radius 0.3 with bumps of 0.01 (bench_fit's torus); the query points
-// are 100 k vertices moved off the surface by up to 0.002, their hints the faces found from
-// 0.0005 away (where the point was a round earlier).
+// bench_fit's torus (bench/bumpy_torus.h); the query points are 100 k vertices moved off the
+// surface by up to 0.002, their hints the faces found from 0.0005 away (where the point was a
+// round earlier).
 const Case& torus(std::uint32_t nu) {
   static std::map<std::uint32_t, Case> cache;
   if (auto it = cache.find(nu); it != cache.end()) return it->second;
+  const bench::BumpyTorus& t = bench::bumpy_torus(nu);
   Case c;
-  const std::uint32_t nv = nu / 2;
-  for (std::uint32_t j = 0; j < nv; ++j)
-    for (std::uint32_t i = 0; i < nu; ++i) {
-      const double u = 2 * std::numbers::pi * i / nu, v = 2 * std::numbers::pi * j / nv;
-      const double r = 0.3 + 0.01 * std::sin(7 * u) * std::sin(5 * v);
-      c.xyz.insert(c.xyz.end(), {(1 + r * std::cos(v)) * std::cos(u), (1 + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
-    }
-  const auto id = [&](std::uint32_t i, std::uint32_t j) { return (i % nu) + nu * (j % nv); };
-  for (std::uint32_t j = 0; j < nv; ++j)
-    for (std::uint32_t i = 0; i < nu; ++i) {
-      for (std::uint32_t v : {id(i, j), id(i + 1, j), id(i + 1, j + 1)}) c.faces.items.push_back(v);
-      c.faces.offsets.push_back(static_cast<std::uint32_t>(c.faces.items.size()));
-      for (std::uint32_t v : {id(i, j), id(i + 1, j + 1), id(i, j + 1)}) c.faces.items.push_back(v);
-      c.faces.offsets.push_back(static_cast<std::uint32_t>(c.faces.items.size()));
-    }
-  c.bvh = std::make_unique<TriangleBvh>(c.xyz, c.faces);
+  c.bvh = std::make_unique<TriangleBvh>(t.xyz, t.faces);
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const std::uint32_t n = nu * nv, step = std::max(1u, n / 100000);
-  for (std::uint32_t v = 0; v < n; v += step) {
-    const glm::dvec3 d(u(rng), u(rng), u(rng)), p(c.xyz[3 * v], c.xyz[3 * v + 1], c.xyz[3 * v + 2]);
+  const std::uint32_t step = std::max(1u, t.n / 100000);
+  for (std::uint32_t v = 0; v < t.n; v += step) {
+    const glm::dvec3 d(u(rng), u(rng), u(rng)), p(t.xyz[3 * v], t.xyz[3 * v + 1], t.xyz[3 * v + 2]);
     const glm::dvec3 q = p + 0.002 * d;
     c.points.push_back(q);
     c.normals.push_back(glm::normalize(p - glm::normalize(glm::dvec3(p.x, p.y, 0.0))));  // outwards

@@ -6,12 +6,10 @@
 // cores. The "base" column is OpenMesh's decimater alone: the peer's own cost of that stage.
 #include <benchmark/benchmark.h>
 
-#include <cmath>
 #include <cstdio>
-#include <map>
-#include <numbers>
 
 #include "bench/bench_timing.h"
+#include "bench/bumpy_torus.h"
 #include "core/fit/base_mesh.h"
 #include "core/fit/fit_levels.h"
 #include "core/schemes/registry.h"
@@ -20,35 +18,8 @@ namespace {
 
 using namespace sublift;
 
-struct Input {
-  std::uint32_t n = 0;
-  Csr faces;
-  std::vector<double> xyz;
-};
-
-// nu x nv vertices; minor radius 0.3 with bumps of 0.01 (7 x 5 of them).
-const Input& torus(std::uint32_t nu) {
-  static std::map<std::uint32_t, Input> cache;
-  if (auto it = cache.find(nu); it != cache.end()) return it->second;
-  const std::uint32_t nv = nu / 2;
-  Input in;
-  in.n = nu * nv;
-  for (std::uint32_t j = 0; j < nv; ++j)
-    for (std::uint32_t i = 0; i < nu; ++i) {
-      const double u = 2 * std::numbers::pi * i / nu, v = 2 * std::numbers::pi * j / nv;
-      const double r = 0.3 + 0.01 * std::sin(7 * u) * std::sin(5 * v);
-      in.xyz.insert(in.xyz.end(), {(1 + r * std::cos(v)) * std::cos(u), (1 + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
-    }
-  const auto id = [&](std::uint32_t i, std::uint32_t j) { return (i % nu) + nu * (j % nv); };
-  for (std::uint32_t j = 0; j < nv; ++j)
-    for (std::uint32_t i = 0; i < nu; ++i) {
-      for (std::uint32_t v : {id(i, j), id(i + 1, j), id(i + 1, j + 1)}) in.faces.items.push_back(v);
-      in.faces.offsets.push_back(static_cast<std::uint32_t>(in.faces.items.size()));
-      for (std::uint32_t v : {id(i, j), id(i + 1, j + 1), id(i, j + 1)}) in.faces.items.push_back(v);
-      in.faces.offsets.push_back(static_cast<std::uint32_t>(in.faces.items.size()));
-    }
-  return cache.emplace(nu, std::move(in)).first->second;
-}
+using Input = bench::BumpyTorus;
+const Input& torus(std::uint32_t nu) { return bench::bumpy_torus(nu); }
 
 constexpr std::uint32_t kSizes[] = {448, 1414};  // 100,352 and 999,698 vertices
 

@@ -23,8 +23,9 @@ void sort8(std::uint64_t* k) {
 
 void append_stencil_row(std::span<StencilTerm> terms, Csr& rows, std::vector<double>& weights) {
   const auto by_source = [](const StencilTerm& x, const StencilTerm& y) { return x.first < y.first; };
-  if (terms.size() <= 8) {
-    // Keys (source, place) are distinct, so their one sorted order is the stable one.
+  if (terms.size() >= 5 && terms.size() <= 8) {
+    // Keys (source, place) are distinct, so their one sorted order is the stable one. (Rows of
+    // 4 terms or fewer sort faster by insertion: a handful of compares.)
     std::uint64_t k[8];
     StencilTerm copy[8];
     const std::size_t n = terms.size();

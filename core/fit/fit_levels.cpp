@@ -323,7 +323,10 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
   // The last level's hints hold when it is the finest (no fitted level: none).
   if (face_hint.size() != h.levels.back().faces.rows() || vertex_hint.size() * 3 != limit.size()) input_hint = face_hint = vertex_hint = {};
   std::tie(out.limit_rms, out.limit_max) = distances(input, limit, diag, vertex_hint);
-  std::tie(out.limit_back_rms, out.limit_back_max) = distances(TriangleBvh(limit, h.levels.back().faces), positions, diag, input_hint);
+  // The last fitted level is the finest (levels are appended as they are fitted): its index is
+  // refitted to the limit points.
+  const TriangleBvh& limit_index = net_indexed(h.levels.back(), limit);
+  std::tie(out.limit_back_rms, out.limit_back_max) = distances(limit_index, positions, diag, input_hint);
   out.limit_folded = static_cast<std::uint32_t>(folded_list(input, input_normals, faces, h.levels.back().faces, limit, face_hint).size());
   // The input's feature lines against the fitted creases and boundaries (their limit curves).
   const Complex& fine = h.levels.back();

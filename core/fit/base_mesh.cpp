@@ -206,8 +206,11 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
   OpenMesh::Decimater::ModNormalFlippingT<Mesh>::Handle flips;
   OpenMesh::Decimater::ModAspectRatioT<Mesh>::Handle aspect;
   dec.add(quadric);
-  dec.add(flips);
+  // The binary modules in this order: a collapse must pass both, so the order only decides which
+  // is asked first. Aspect first costs less in all (perf, 100 k torus: the two modules' samples
+  // 1.95 -> 1.74 times the collapse check's), the base the same.
   dec.add(aspect);
+  dec.add(flips);
   dec.module(quadric).unset_max_err();
   dec.module(flips).set_max_normal_deviation(options.max_normal_deviation_deg);
   dec.module(aspect).set_aspect_ratio(10.0);

@@ -48,6 +48,19 @@ TriangleBvh::TriangleBvh(const SurfaceMesh& mesh)
                                           3 * mesh.num_vertices()),
                   Csr{mesh.face_offsets, mesh.face_indices}) {}
 
+TriangleBvh::Tri TriangleBvh::make_tri(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, std::uint32_t face) {
+  const glm::dvec3 e1 = b - a, e2 = c - a;
+  return {a, e1, e2, glm::cross(e1, e2), face};
+}
+
+void TriangleBvh::grow(const Tri& t, glm::dvec3& lo, glm::dvec3& hi) {
+  for (const glm::dvec3& q : {t.p0, t.p0 + t.e1, t.p0 + t.e2}) lo = glm::min(lo, q), hi = glm::max(hi, q);
+}
+
+std::uint32_t TriangleBvh::hint_up(std::uint32_t hint) const {
+  return hint < face_tris_.rows() && face_tris_.size(hint) > 0 ? up_[face_tris_.row(hint)[0]] : kNoParent;
+}
+
 namespace {
 // From this many triangles the root's halves are built on two threads (the build is a tenth of
 // a fitting round's serial time); below it, one thread.
@@ -60,7 +73,7 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
   std::vector<std::size_t> first(std::size_t(nf) + 1, 0);
   for (std::uint32_t f = 0; f < nf; ++f) first[f + 1] = first[f] + (faces.size(f) >= 3 ? faces.size(f) - 2 : 0);
   if (first[nf] == 0) return;
-  if (first[nf] > std::numeric_limits<std::uint32_t>::max() / 2) throw Error("too many triangles for the triangle hierarchy");
+  if (first[nf] > kMaxLeafFirst) throw Error("too many triangles for the triangle hierarchy");  // leaf references
   std::vector<Tri> tris(first[nf]);
   std::vector<std::uint32_t> corners(3 * first[nf]);
   num_vertices_ = p.size() / 3;
@@ -74,12 +87,11 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
     for (std::uint32_t f = b; f < e; ++f) {
       const auto c = faces.row(f);
       for (std::size_t i = 1; i + 1 < c.size(); ++i) {
-        const glm::dvec3 e1 = at(c[i]) - at(c[0]), e2 = at(c[i + 1]) - at(c[0]);
         const std::size_t t = first[f] + i - 1;
-        tris[t] = {at(c[0]), e1, e2, glm::cross(e1, e2), f};
+        tris[t] = make_tri(at(c[0]), at(c[i]), at(c[i + 1]), f);
         corners[3 * t] = c[0], corners[3 * t + 1] = c[i], corners[3 * t + 2] = c[i + 1];
-        centers[t] = tris[t].p0 + (e1 + e2) / 3.0;
-        for (const glm::dvec3& q : {tris[t].p0, tris[t].p0 + e1, tris[t].p0 + e2}) clo = glm::min(clo, q), chi = glm::max(chi, q);
+        centers[t] = tris[t].p0 + (tris[t].e1 + tris[t].e2) / 3.0;
+        grow(tris[t], clo, chi);
       }
     }
     const std::lock_guard<std::mutex> g(bounds);
@@ -91,7 +103,6 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
   pad_ = 1e-9 * std::max(diagonal_, 1e-300);
   std::vector<std::uint32_t> order(tris.size());
   for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-  if (tris.size() > kMaxLeafFirst) throw Error("too many triangles for the triangle hierarchy");
   nodes_.reserve(tris.size() / 2 + 1);
   const std::uint32_t n = static_cast<std::uint32_t>(order.size());
   std::uint32_t mid = 0;
@@ -162,9 +173,8 @@ void TriangleBvh::refit(std::span<const double> p) {
     glm::dvec3 clo(std::numeric_limits<double>::infinity()), chi = -clo;
     for (std::uint32_t t = b; t < e; ++t) {
       const std::uint32_t* c = corners_.data() + 3 * std::size_t(t);
-      const glm::dvec3 p0 = at(c[0]), e1 = at(c[1]) - p0, e2 = at(c[2]) - p0;
-      tris_[t] = {p0, e1, e2, glm::cross(e1, e2), tris_[t].face};
-      for (const glm::dvec3& q : {p0, p0 + e1, p0 + e2}) clo = glm::min(clo, q), chi = glm::max(chi, q);
+      tris_[t] = make_tri(at(c[0]), at(c[1]), at(c[2]), tris_[t].face);
+      grow(tris_[t], clo, chi);
     }
     const std::lock_guard<std::mutex> g(bounds);
     lo = glm::min(lo, clo), hi = glm::max(hi, chi);
@@ -173,9 +183,7 @@ void TriangleBvh::refit(std::span<const double> p) {
   pad_ = 1e-9 * std::max(diagonal_, 1e-300);
   const auto leaf_box = [&](std::uint32_t ref) {
     Built b{ref, glm::dvec3(std::numeric_limits<double>::infinity()), glm::dvec3(-std::numeric_limits<double>::infinity())};
-    for (std::uint32_t i = leaf_first(ref); i < leaf_first(ref) + leaf_count(ref); ++i)
-      for (const glm::dvec3& q : {tris_[i].p0, tris_[i].p0 + tris_[i].e1, tris_[i].p0 + tris_[i].e2})
-        b.lo = glm::min(b.lo, q), b.hi = glm::max(b.hi, q);
+    for (std::uint32_t i = leaf_first(ref); i < leaf_first(ref) + leaf_count(ref); ++i) grow(tris_[i], b.lo, b.hi);
     b.lo -= glm::dvec3(pad_);
     b.hi += glm::dvec3(pad_);
     return b;
@@ -245,13 +253,7 @@ TriangleBvh::Built TriangleBvh::build(std::vector<Node>& nodes, std::vector<std:
     leaf.ref = kLeaf | (end - begin) << 28 | begin;
     leaf.lo = glm::dvec3(std::numeric_limits<double>::infinity());
     leaf.hi = -leaf.lo;
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const Tri& t = tris[order[i]];
-      for (const glm::dvec3& p : {t.p0, t.p0 + t.e1, t.p0 + t.e2}) {
-        leaf.lo = glm::min(leaf.lo, p);
-        leaf.hi = glm::max(leaf.hi, p);
-      }
-    }
+    for (std::uint32_t i = begin; i < end; ++i) grow(tris[order[i]], leaf.lo, leaf.hi);
     leaf.lo -= glm::dvec3(pad_);
     leaf.hi += glm::dvec3(pad_);
     return leaf;
@@ -306,9 +308,8 @@ void TriangleBvh::walk_ray(const glm::dvec3& origin, const glm::dvec3& dir, Limi
       if (ray_meets_box(n.lo[0], n.hi[0], origin, inv, t)) stack[top++] = n.child[0];
     }
   };
-  if (hint < face_tris_.rows() && face_tris_.size(hint) > 0 && up_[face_tris_.row(hint)[0]] != kNoParent) {
+  if (std::uint32_t up = hint_up(hint); up != kNoParent) {
     // From the hint's leaf up (as closest does): each sibling subtree the ray meets within the limit.
-    std::uint32_t up = up_[face_tris_.row(hint)[0]];
     descend(nodes_[up >> 1].child[up & 1]);
     for (; up != kNoParent; up = parent_[up >> 1]) {
       const Node& n = nodes_[up >> 1];
@@ -425,12 +426,11 @@ TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p, const glm::dvec3*
     }
   };
   if (tris_.empty()) {
-  } else if (hint < face_tris_.rows() && face_tris_.size(hint) > 0 && up_[face_tris_.row(hint)[0]] != kNoParent) {
+  } else if (std::uint32_t up = hint_up(hint); up != kNoParent) {
     // From the hint's leaf up to the root: its triangles first, then at each node on the way the
     // other child's subtree unless its box lies beyond the best (every triangle is searched or
     // pruned once, as from the root; the walk down to the hint is saved).
     for (std::uint32_t i : face_tris_.row(hint)) consider(i);
-    std::uint32_t up = up_[face_tris_.row(hint)[0]];
     descend({nodes_[up >> 1].child[up & 1], 0.0});
     for (; up != kNoParent; up = parent_[up >> 1]) {
       const Node& n = nodes_[up >> 1];

@@ -2,8 +2,9 @@
 // Queries against a mesh's polygons, fan-triangulated: every intersection of a ray (sphere
 // resampling keeps the farthest and counts multiple hits, so it cannot stop at the first) and the
 // closest point (fitting attracts each level to the input and measures distances both ways). A
-// bounding volume hierarchy: median splits, leaves of at most 4 triangles, nodes in depth-first
-// order with the left child next; about log(n) box tests per query. Built once, queried
+// bounding volume hierarchy: median splits, leaves of at most 4 triangles, inner nodes in
+// depth-first order, each holding its children's boxes; about log(n) box tests per query, fewer
+// from a hint (a search climbs from the hint's leaf). Built once (refit moves it), queried
 // concurrently (the queries are const and allocation-free apart from the caller's buffer).
 #include <array>
 #include <cstdint>
@@ -105,6 +106,13 @@ class TriangleBvh {
   static bool split(std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers, std::uint32_t begin,
                     std::uint32_t end, std::uint32_t& mid);
   static void set_child(Node& n, int k, const Built& b);
+  // Triangle (a, b, c) of polygon `face`, as every build and refit makes it.
+  static Tri make_tri(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, std::uint32_t face);
+  // Grows the box [lo, hi] by t's corners.
+  static void grow(const Tri& t, glm::dvec3& lo, glm::dvec3& hi);
+  // Where a search from polygon `hint` starts: up_ of its first triangle; kNoParent when the
+  // hint is no polygon, has no triangle, or the whole tree is one leaf.
+  std::uint32_t hint_up(std::uint32_t hint) const;
 
   std::vector<Tri> tris_;
   std::vector<Node> nodes_;

@@ -162,7 +162,10 @@ std::vector<const EdgeWavelet*> TriWaveletBuilder::solve(TriLevel& lv, std::span
     throw std::logic_error("tri_wavelets: an edge's neighbourhood could not be ordered");
   }
 
-  // The faces not asked yet on this level, looked up in parallel where their type is known.
+  // The faces not asked yet on this level, looked up in parallel where their type is known;
+  // the others' types are made together (add_types), then those faces are looked up again.
+  std::vector<FaceGramCache::FaceRef> missing;
+  std::vector<FaceGramCache::FaceGram*> fill;  // aligned with `missing`
   const auto look_up = [&](const Complex& mesh, const TriRings& rings, FaceGrams& grams,
                            std::vector<std::uint32_t> EdgePlan::*faces) {
     if (grams.slot.size() != mesh.num_faces()) grams.slot.assign(mesh.num_faces(), UINT32_MAX);
@@ -177,36 +180,19 @@ std::vector<const EdgeWavelet*> TriWaveletBuilder::solve(TriLevel& lv, std::span
         }
     parallel_for(static_cast<std::uint32_t>(asked.size()), 64, [&](std::uint32_t begin, std::uint32_t end) {
       try {
-        for (std::uint32_t k = begin; k < end; ++k) {
-          FaceGramCache::FaceGram& g = grams.gram[first + k];
-          if (!gram_.find(mesh, rings, asked[k], g)) g = FaceGramCache::FaceGram{};
-        }
+        for (std::uint32_t k = begin; k < end; ++k) gram_.find(mesh, rings, asked[k], grams.gram[first + k]);
       } catch (...) {
         // The chunk's rest is left unfound: add_types meets those faces again and names the fault.
       }
     });
+    for (std::uint32_t k = 0; k < asked.size(); ++k)
+      if (!grams.gram[first + k].G) {
+        missing.push_back({&mesh, &rings, asked[k]});
+        fill.push_back(&grams.gram[first + k]);
+      }
   };
   look_up(*lv.coarse, *lv.coarse_rings, lv.coarse_faces, &EdgePlan::coarse_faces);
   look_up(*lv.fine, *lv.fine_rings, lv.fine_faces, &EdgePlan::fine_faces);
-  // The faces whose type is new, each once, in the order the edges meet them (coarse, then
-  // fine): their types are made together (FaceGramCache::add_types), then the faces found.
-  std::vector<FaceGramCache::FaceRef> missing;
-  std::vector<FaceGramCache::FaceGram*> fill;
-  {
-    std::vector<std::uint8_t> listed_coarse(lv.coarse_faces.gram.size(), 0), listed_fine(lv.fine_faces.gram.size(), 0);
-    const auto note = [&](FaceGrams& grams, std::vector<std::uint8_t>& listed, const Complex* mesh, const TriRings* rings,
-                          std::uint32_t f) {
-      const std::uint32_t at = grams.slot[f];
-      if (grams.gram[at].G || listed[at]) return;
-      listed[at] = 1;
-      missing.push_back({mesh, rings, f});
-      fill.push_back(&grams.gram[at]);
-    };
-    for (const EdgePlan& p : plans) {
-      for (std::uint32_t f : p.coarse_faces) note(lv.coarse_faces, listed_coarse, lv.coarse, lv.coarse_rings, f);
-      for (std::uint32_t f : p.fine_faces) note(lv.fine_faces, listed_fine, lv.fine, lv.fine_rings, f);
-    }
-  }
   if (!missing.empty()) {
     gram_.add_types(missing);
     std::atomic<bool> lost{false};

@@ -84,9 +84,10 @@ class TriWaveletBuilder {
   /// The wavelet of the edge whose key this is: cached, or solved and cached.
   const EdgeWavelet& edge_wavelet(TriLevel& level, std::uint32_t e, EdgeKey&& key);
   /// Solves and caches the wavelets of `edges` of `level`, whose `signatures` (moved from) are
-  /// pairwise distinct and not cached. The edges' own work runs on the pool; the face types
-  /// they meet that are new are made one by one in edge order, so the cache grows the same way
-  /// whatever the thread count. Returns the wavelets, aligned with `edges`.
+  /// pairwise distinct and not cached. Everything runs on the pool: the edges' own work, the
+  /// look-ups of the faces they meet, and the face types that are new (FaceGramCache::add_types,
+  /// whose types do not depend on the order they are met in). Returns the wavelets, aligned
+  /// with `edges`.
   std::vector<const EdgeWavelet*> solve(TriLevel& level, std::span<const std::uint32_t> edges,
                                         std::span<std::string> signatures);
 

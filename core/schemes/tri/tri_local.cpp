@@ -5,8 +5,6 @@
 #include <atomic>
 #include <cstdint>
 #include <cstring>
-#include <unordered_map>
-#include <unordered_set>
 
 #include "core/complex/complex_build.h"
 #include "core/base/epoch_table.h"

@@ -368,9 +368,9 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
         }
         same_as[k] = it->second;
       }
+      first.clear();  // it views the keys' signatures, which move now
       std::vector<std::string> signatures(todo.size());
-      for (std::size_t i = 0; i < todo.size(); ++i) signatures[i] = keys[todo_k[i]].signature;  // `first` views the keys'
-      first.clear();
+      for (std::size_t i = 0; i < todo.size(); ++i) signatures[i] = std::move(keys[todo_k[i]].signature);
       const std::vector<const EdgeWavelet*> solved = b.solve(level, todo, signatures);
       for (std::uint32_t k = 0; k < irregular.size(); ++k)
         if (!found[k]) found[k] = solved[same_as[k]];

@@ -1,16 +1,23 @@
 // The fitting base's own collapse check (core/fit/decimation_mesh.h) against the packaged
 // OpenMesh's TriConnectivity::is_collapse_ok, the oracle, on every halfedge of meshes with
 // boundaries, tight handles and small closed shapes, before and between rounds of a quadric
-// decimation (so deleted elements and collapsed neighbourhoods are met too).
+// decimation (so deleted elements and collapsed neighbourhoods are met too). And the base's
+// shape guard (core/fit/decimation_shape.h) against the two OpenMesh modules it fuses, verdict
+// by verdict and base by base.
 #include "core/fit/decimation_mesh.h"
+#include "core/fit/decimation_shape.h"
 
 #include <gtest/gtest.h>
 
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModAspectRatioT.hh>
+#include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 
 #include <cmath>
 #include <filesystem>
+#include <numbers>
+#include <optional>
 #include <string>
 
 #include "core/io/mesh/mesh_import.h"
@@ -20,6 +27,7 @@ namespace sublift {
 namespace {
 
 using fit_detail::Mesh;
+using fit_detail::ModFaceShape;
 
 Mesh om_mesh(const fixtures::Polygons& p) {
   Mesh m;
@@ -79,9 +87,24 @@ void check(const fixtures::Polygons& p, const std::string& name) {
   }
 }
 
-TEST(DecimationMesh, CollapseCheckEqualsOpenMeshs) {
-  fixtures::Polygons sheet;  // an open grid: boundary vertices and edges, corners of valence 2-3
-  const std::uint32_t n = 9;
+// The shared fandisk scan (sharp features), or nothing with a note when ../shared/data is absent.
+std::optional<fixtures::Polygons> fandisk() {
+  const std::filesystem::path path = std::filesystem::path(SUBLIFT_SHARED_DATA) / "scans" / "fandisk.off";
+  if (!std::filesystem::exists(path)) {
+    std::printf("fandisk skipped: no third-party data at %s (SUBLIFT_SHARED_DATA)\n", path.string().c_str());
+    return std::nullopt;
+  }
+  const LoadedMesh lm = import_surface_mesh(path.string());
+  fixtures::Polygons f{static_cast<std::uint32_t>(lm.mesh.num_vertices()), {}, {}};
+  for (const auto& p : lm.mesh.positions) f.positions.insert(f.positions.end(), {p.x, p.y, p.z});
+  f.faces.offsets = lm.mesh.face_offsets;
+  f.faces.items = lm.mesh.face_indices;
+  return f;
+}
+
+// An open n x n grid of triangles over a wavy height field.
+fixtures::Polygons bumpy_sheet(std::uint32_t n) {
+  fixtures::Polygons sheet;
   sheet.num_vertices = (n + 1) * (n + 1);
   for (std::uint32_t y = 0; y <= n; ++y)
     for (std::uint32_t x = 0; x <= n; ++x) sheet.positions.insert(sheet.positions.end(), {double(x), double(y), 0.2 * std::sin(0.7 * x * y)});
@@ -91,6 +114,35 @@ TEST(DecimationMesh, CollapseCheckEqualsOpenMeshs) {
       fixtures::push_row(sheet.faces, {a, a + 1, a + n + 2});
       fixtures::push_row(sheet.faces, {a, a + n + 2, a + n + 1});
     }
+  return sheet;
+}
+
+// A UV sphere: poles of valence nu (rings longer than the collapse check keeps), slivers there.
+fixtures::Polygons uv_sphere(std::uint32_t nu, std::uint32_t nv) {
+  fixtures::Polygons s;
+  s.positions = {0, 0, 1};
+  for (std::uint32_t j = 1; j < nv; ++j)
+    for (std::uint32_t i = 0; i < nu; ++i) {
+      const double t = std::numbers::pi * j / nv, p = 2 * std::numbers::pi * i / nu;
+      s.positions.insert(s.positions.end(), {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)});
+    }
+  s.positions.insert(s.positions.end(), {0, 0, -1});
+  s.num_vertices = static_cast<std::uint32_t>(s.positions.size() / 3);
+  const auto id = [&](std::uint32_t j, std::uint32_t i) { return 1 + (j - 1) * nu + i % nu; };
+  const std::uint32_t south = s.num_vertices - 1;
+  for (std::uint32_t i = 0; i < nu; ++i) fixtures::push_row(s.faces, {0, id(1, i), id(1, i + 1)});
+  for (std::uint32_t j = 1; j + 1 < nv; ++j)
+    for (std::uint32_t i = 0; i < nu; ++i) {
+      fixtures::push_row(s.faces, {id(j, i), id(j + 1, i), id(j + 1, i + 1)});
+      fixtures::push_row(s.faces, {id(j, i), id(j + 1, i + 1), id(j, i + 1)});
+    }
+  for (std::uint32_t i = 0; i < nu; ++i) fixtures::push_row(s.faces, {id(nv - 1, i + 1), id(nv - 1, i), south});
+  return s;
+}
+
+TEST(DecimationMesh, CollapseCheckEqualsOpenMeshs) {
+  const std::uint32_t n = 9;
+  const fixtures::Polygons sheet = bumpy_sheet(n);  // boundary vertices and edges, corners of valence 2-3
   fixtures::Polygons strip;  // one quad wide: every vertex on the boundary, diagonals inside
   strip.num_vertices = 2 * (n + 1);
   for (std::uint32_t x = 0; x <= n; ++x)
@@ -111,17 +163,126 @@ TEST(DecimationMesh, CollapseCheckEqualsOpenMeshs) {
   check(fixtures::triangle_cone(40), "open cone of 40 (a ring longer than the 32 the check keeps)");
   check(sheet, "sheet");
   check(strip, "strip");
-  const std::filesystem::path fandisk = std::filesystem::path(SUBLIFT_SHARED_DATA) / "scans" / "fandisk.off";
-  if (!std::filesystem::exists(fandisk)) {
-    std::printf("fandisk skipped: no third-party data at %s (SUBLIFT_SHARED_DATA)\n", fandisk.string().c_str());
-    return;
+  if (const auto f = fandisk()) check(*f, "fandisk");
+}
+
+// The shape guards as the fitting base sets them (base_mesh.cpp): aspect ratio 10, binary.
+constexpr float kAspect = 10.0f;
+
+// Every live halfedge whose collapse passes the connectivity check: the fused module's verdict
+// against the library's aspect-ratio and normal-flip modules', both freshly initialised on `m`
+// (normals current). Counts the legal and illegal verdicts.
+void compare_verdicts(Mesh& m, double max_deviation, const std::string& what, std::size_t& legal, std::size_t& illegal) {
+  OpenMesh::Decimater::ModAspectRatioT<Mesh> aspect(m);
+  aspect.set_aspect_ratio(kAspect);
+  aspect.set_binary(true);
+  aspect.initialize();
+  OpenMesh::Decimater::ModNormalFlippingT<Mesh> flips(m);
+  flips.set_max_normal_deviation(max_deviation);
+  flips.initialize();
+  ModFaceShape shape(m);
+  shape.set_aspect_ratio(kAspect);
+  shape.set_max_normal_deviation(max_deviation);
+  shape.initialize();
+  for (auto h : m.halfedges()) {
+    if (m.status(m.edge_handle(h)).deleted() || !m.is_collapse_ok(h)) continue;
+    const OpenMesh::Decimater::CollapseInfoT<Mesh> ci(m, h);
+    const bool theirs = aspect.collapse_priority(ci) >= 0 && flips.collapse_priority(ci) >= 0;
+    const bool ours = shape.collapse_priority(ci) >= 0;
+    EXPECT_EQ(ours, theirs) << what << ", halfedge " << h.idx();
+    ++(ours ? legal : illegal);
   }
-  const LoadedMesh lm = import_surface_mesh(fandisk.string());
-  fixtures::Polygons f{static_cast<std::uint32_t>(lm.mesh.num_vertices()), {}, {}};
-  for (const auto& p : lm.mesh.positions) f.positions.insert(f.positions.end(), {p.x, p.y, p.z});
-  f.faces.offsets = lm.mesh.face_offsets;
-  f.faces.items = lm.mesh.face_indices;
-  check(f, "fandisk");
+}
+
+// Decimates `p` to `target` vertices under the quadric and either the fused guard or the
+// library's two.
+Mesh decimated(const fixtures::Polygons& p, bool fused, std::size_t target, double max_deviation) {
+  Mesh m = om_mesh(p);
+  m.request_face_normals();
+  m.update_face_normals();
+  OpenMesh::Decimater::DecimaterT<Mesh> dec(m);
+  OpenMesh::Decimater::ModQuadricT<Mesh>::Handle q;
+  dec.add(q);
+  dec.module(q).unset_max_err();
+  OpenMesh::Decimater::ModAspectRatioT<Mesh>::Handle aspect;
+  OpenMesh::Decimater::ModNormalFlippingT<Mesh>::Handle flips;
+  ModFaceShape::Handle shape;
+  if (fused) {
+    dec.add(shape);
+    dec.module(shape).set_aspect_ratio(kAspect);
+    dec.module(shape).set_max_normal_deviation(max_deviation);
+  } else {
+    dec.add(aspect);
+    dec.add(flips);
+    dec.module(aspect).set_aspect_ratio(kAspect);
+    dec.module(aspect).set_binary(true);
+    dec.module(flips).set_max_normal_deviation(max_deviation);
+  }
+  EXPECT_TRUE(dec.initialize());
+  dec.decimate_to(target);
+  return m;
+}
+
+void check_shape(const fixtures::Polygons& p, const std::string& name) {
+  for (const double deviation : {15.0, 60.0}) {
+    const std::string what = name + " (" + std::to_string(int(deviation)) + " degrees)";
+    // Verdicts on the mesh as decimated round by round by the library's modules.
+    Mesh m = om_mesh(p);
+    m.request_face_normals();
+    m.update_face_normals();
+    OpenMesh::Decimater::DecimaterT<Mesh> dec(m);
+    OpenMesh::Decimater::ModQuadricT<Mesh>::Handle q;
+    OpenMesh::Decimater::ModAspectRatioT<Mesh>::Handle aspect;
+    OpenMesh::Decimater::ModNormalFlippingT<Mesh>::Handle flips;
+    dec.add(q);
+    dec.add(aspect);
+    dec.add(flips);
+    dec.module(aspect).set_aspect_ratio(kAspect);
+    dec.module(aspect).set_binary(true);
+    dec.module(flips).set_max_normal_deviation(deviation);
+    ASSERT_TRUE(dec.initialize());
+    std::size_t legal = 0, illegal = 0;
+    const std::size_t step = std::max<std::size_t>(1, m.n_vertices() / 8);
+    for (int round = 0; round < 6; ++round) {
+      // On a compacted copy: the library's modules initialise over deleted faces too.
+      Mesh c = m;
+      c.garbage_collection();
+      compare_verdicts(c, deviation, what + " after round " + std::to_string(round), legal, illegal);
+      if (dec.decimate(step) == 0) break;
+    }
+    EXPECT_GT(legal, 0u) << what;
+    EXPECT_GT(illegal, 0u) << what << ": the guards never said no, so the comparison proves little";
+    // The same base either way: every vertex's fate and place, every face's corners.
+    const std::size_t target = std::max<std::size_t>(4, p.num_vertices / 10);
+    const Mesh a = decimated(p, false, target, deviation), b = decimated(p, true, target, deviation);
+    ASSERT_EQ(a.n_vertices(), b.n_vertices());
+    std::size_t alive = 0;
+    for (auto v : a.vertices()) {
+      ASSERT_EQ(a.status(v).deleted(), b.status(v).deleted()) << what << ", vertex " << v.idx();
+      if (a.status(v).deleted()) continue;
+      ++alive;
+      EXPECT_EQ(a.point(v), b.point(v)) << what << ", vertex " << v.idx();
+    }
+    EXPECT_LT(alive, p.num_vertices) << what << ": nothing was decimated";
+    ASSERT_EQ(a.n_faces(), b.n_faces());
+    for (auto f : a.faces()) {
+      ASSERT_EQ(a.status(f).deleted(), b.status(f).deleted()) << what << ", face " << f.idx();
+      if (a.status(f).deleted()) continue;
+      std::vector<int> ca, cb;
+      for (auto v : a.fv_range(f)) ca.push_back(v.idx());
+      for (auto v : b.fv_range(OpenMesh::FaceHandle(f.idx()))) cb.push_back(v.idx());
+      EXPECT_EQ(ca, cb) << what << ", face " << f.idx();
+    }
+  }
+}
+
+TEST(DecimationShape, VerdictsAndBasesEqualOpenMeshsModules) {
+  // Topology fixtures get scattered positions (om_mesh): slivers and folds for the guards.
+  check_shape(fixtures::torus(16, 8), "torus 16 x 8, scattered");
+  check_shape(fixtures::triangle_cone(9), "open cone");
+  check_shape(bumpy_sheet(24), "bumpy sheet");
+  check_shape(uv_sphere(64, 32), "UV sphere 64 x 32");
+  if (const auto f = fandisk()) check_shape(*f, "fandisk");
 }
 
 }  // namespace

@@ -8,11 +8,11 @@
 #include <glm/vec3.hpp>
 
 #include "core/base/errors.h"
+#include "core/base/points.h"
 
 namespace sublift {
 namespace {
 
-glm::dvec3 point(std::span<const double> xyz, std::uint32_t v) { return {xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]}; }
 
 // Orients the faces of one closed cell consistently and outward. Scratch arrays are reused
 // across cells; `sign[i]` (+1 keep, -1 reverse) is filled for local face i of the cell.
@@ -52,7 +52,7 @@ class CellOrienter {
     }
     // Walk each connected set of faces, then make its volume positive.
     sign_.assign(m, 0);
-    const glm::dvec3 ref = point(xyz_, c_.faces.row(faces[0])[0]);
+    const glm::dvec3 ref = at(xyz_, c_.faces.row(faces[0])[0]);
     for (std::uint32_t start = 0; start < m; ++start) {
       if (sign_[start]) continue;
       sign_[start] = 1;
@@ -74,10 +74,10 @@ class CellOrienter {
       double volume = 0;
       for (std::uint32_t i : queue_) {
         const auto corners = c_.faces.row(faces[i]);
-        const glm::dvec3 p0 = point(xyz_, corners[0]) - ref;
+        const glm::dvec3 p0 = at(xyz_, corners[0]) - ref;
         double v = 0;
         for (std::size_t j = 1; j + 1 < corners.size(); ++j)
-          v += glm::dot(p0, glm::cross(point(xyz_, corners[j]) - ref, point(xyz_, corners[j + 1]) - ref));
+          v += glm::dot(p0, glm::cross(at(xyz_, corners[j]) - ref, at(xyz_, corners[j + 1]) - ref));
         volume += sign_[i] * v;
       }
       if (volume < 0)

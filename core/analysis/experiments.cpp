@@ -1,6 +1,8 @@
+#include "core/base/bounds.h"
 #include "core/analysis/experiments.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -181,14 +183,10 @@ CompressExperiment compress_experiment(const Complex& base, Scheme scheme, int l
 }
 
 std::vector<double> smooth_perturbation(std::span<const double> xyz, double amplitude, double waves) {
-  const double d = bbox_diagonal(xyz);
-  double lo[3] = {0, 0, 0};
-  if (xyz.size() >= 3)
-    for (int c = 0; c < 3; ++c) lo[c] = xyz[c];
-  for (std::size_t i = 0; i + 2 < xyz.size(); i += 3)
-    for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], xyz[i + c]);
   std::vector<double> out(xyz.begin(), xyz.end());
+  const double d = bbox_diagonal(xyz);
   if (!(d > 0)) return out;
+  const std::array<double, 3> lo = bounding_box(xyz.data(), xyz.size() / 3)[0];
   const double k = 2.0 * std::numbers::pi * waves / d;
   for (std::size_t i = 0; i + 2 < xyz.size(); i += 3)
     for (int c = 0; c < 3; ++c) out[i + c] += amplitude * d * std::sin(k * (xyz[i + (c + 1) % 3] - lo[(c + 1) % 3]));

@@ -1,4 +1,5 @@
 #include "core/analysis/mesh_stats.h"
+#include "core/base/edge_key.h"
 
 #include <algorithm>
 #include <numeric>
@@ -48,8 +49,8 @@ MeshStats compute_mesh_stats(const SurfaceMesh& mesh) {
   }
   std::vector<HalfEdge> half(nc);
   for (std::uint32_t c = 0; c < nc; ++c) {
-    const std::uint64_t a = mesh.face_indices[c], b = mesh.face_indices[next[c]];
-    half[c] = {std::min(a, b) << 32 | std::max(a, b), c, a < b};
+    const std::uint32_t a = mesh.face_indices[c], b = mesh.face_indices[next[c]];
+    half[c] = {edge_key(a, b), c, a < b};
   }
   std::sort(half.begin(), half.end(), [](const HalfEdge& x, const HalfEdge& y) {
     return x.key != y.key ? x.key < y.key : x.corner < y.corner;
@@ -115,7 +116,6 @@ MeshStats compute_mesh_stats(const SurfaceMesh& mesh) {
   s.components = 0;
   s.boundary_loops = 0;
   for (std::uint32_t v = 0; v < nv; ++v) {
-    s.polyline_vertices += on_line[v];
     if (!used[v]) {
       s.isolated_vertices += !on_line[v];
       continue;

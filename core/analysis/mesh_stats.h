@@ -36,7 +36,6 @@ struct MeshStats {
   std::size_t polylines = 0;         // OBJ `l` lines
   std::size_t closed_polylines = 0;  // first vertex == last vertex
   std::size_t polyline_segments = 0;
-  std::size_t polyline_vertices = 0;  // distinct vertices on polylines
   std::size_t components = 0;        // connected components of the faces
   long long euler_characteristic = 0;  // used_vertices - edges + faces
   glm::dvec3 bbox_min{0.0}, bbox_max{0.0};  // over used vertices (else polyline vertices, else all)

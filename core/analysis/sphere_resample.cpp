@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/base/edge_key.h"
 #include "core/complex/complex_build.h"
 #include "core/base/errors.h"
 #include "core/base/parallel.h"
@@ -43,7 +44,7 @@ bool edges_balanced(const SurfaceMesh& mesh) {
     const auto c = mesh.face(face);
     for (std::size_t i = 0; i < c.size(); ++i) {
       const std::uint32_t a = c[i], b = c[(i + 1) % c.size()];
-      dir.emplace_back(std::uint64_t(std::min(a, b)) << 32 | std::max(a, b), a < b ? 1 : -1);
+      dir.emplace_back(edge_key(a, b), a < b ? 1 : -1);
     }
   }
   std::sort(dir.begin(), dir.end());

@@ -1,3 +1,4 @@
+#include "core/base/bounds.h"
 #include "core/anim/animation_open.h"
 
 #include <chrono>
@@ -5,15 +6,12 @@
 
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
+#include "core/base/stopwatch.h"
 #include "core/complex/complex_build.h"
 #include "core/io/model/animation.h"
 
 namespace sublift {
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
 
 bool is_gltf(const std::string& path) {
   const std::string ext = file_extension(path);
@@ -93,9 +91,7 @@ OpenedAnimation open_animation(std::span<const std::string> inputs, const Animat
   a.frames = std::move(set.positions);
   a.fit = fit_frames(a.st, a.frames);
   a.fit_ms = ms_since(t);
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (std::size_t i = 0; i < a.frames.size(); ++i) lo[i % 3] = std::min(lo[i % 3], a.frames[i]), hi[i % 3] = std::max(hi[i % 3], a.frames[i]);
-  a.diagonal = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  a.diagonal = bbox_diagonal(a.frames);
   return a;
 }
 
@@ -140,9 +136,7 @@ OpenedAnimation reopen_animation(const std::string& file, const Hierarchy& latti
   a.times = x.times;
   a.loop_end = x.loop_end;
   const std::vector<double> finest = synthesize(a.st.lattice, a.st.levels());
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (std::size_t i = 0; i < finest.size(); ++i) lo[i % 3] = std::min(lo[i % 3], finest[i]), hi[i % 3] = std::max(hi[i % 3], finest[i]);
-  a.diagonal = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  a.diagonal = bbox_diagonal(finest);
   return a;
 }
 

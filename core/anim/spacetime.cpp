@@ -5,6 +5,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "core/base/edge_key.h"
 #include "core/base/errors.h"
 #include "core/base/parallel.h"
 #include "core/complex/complex_build.h"
@@ -13,11 +14,6 @@
 namespace sublift {
 
 namespace {
-
-std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (std::uint64_t(a) << 32) | b;
-}
 
 // The cell layer between adjacent vertex layers a and b; cyclic (layers >= 3), the last one
 // joins layers - 1 to 0.
@@ -32,10 +28,10 @@ struct SurfaceLookup {
   std::unordered_map<std::uint64_t, std::uint32_t> edge;
   explicit SurfaceLookup(const Complex& c) : s(c) {
     edge.reserve(c.num_edges());
-    for (std::uint32_t e = 0; e < c.num_edges(); ++e) edge.emplace(pair_key(c.edge_verts[2 * e], c.edge_verts[2 * e + 1]), e);
+    for (std::uint32_t e = 0; e < c.num_edges(); ++e) edge.emplace(edge_key(c.edge_verts[2 * e], c.edge_verts[2 * e + 1]), e);
   }
   std::uint32_t edge_of(std::uint32_t a, std::uint32_t b) const {
-    const auto it = edge.find(pair_key(a, b));
+    const auto it = edge.find(edge_key(a, b));
     if (it == edge.end()) throw Error("space-time map: no surface edge " + std::to_string(a) + "-" + std::to_string(b));
     return it->second;
   }

@@ -11,6 +11,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/parallel.h"
+#include "core/base/points.h"
 
 namespace sublift {
 
@@ -78,7 +79,6 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
   std::vector<std::uint32_t> corners(3 * first[nf]);
   num_vertices_ = p.size() / 3;
   std::vector<glm::dvec3> centers(tris.size());
-  auto at = [&](std::uint32_t v) { return glm::dvec3(p[3 * std::size_t(v)], p[3 * std::size_t(v) + 1], p[3 * std::size_t(v) + 2]); };
   // The bounds: each chunk's own, joined under a lock (min and max are exact in any order).
   glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo;
   std::mutex bounds;
@@ -88,7 +88,7 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
       const auto c = faces.row(f);
       for (std::size_t i = 1; i + 1 < c.size(); ++i) {
         const std::size_t t = first[f] + i - 1;
-        tris[t] = make_tri(at(c[0]), at(c[i]), at(c[i + 1]), f);
+        tris[t] = make_tri(at(p, c[0]), at(p, c[i]), at(p, c[i + 1]), f);
         corners[3 * t] = c[0], corners[3 * t + 1] = c[i], corners[3 * t + 2] = c[i + 1];
         centers[t] = tris[t].p0 + (tris[t].e1 + tris[t].e2) / 3.0;
         grow(tris[t], clo, chi);
@@ -165,7 +165,6 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
 void TriangleBvh::refit(std::span<const double> p) {
   if (p.size() != 3 * num_vertices_) throw Error("TriangleBvh::refit: the positions are for another mesh");
   if (tris_.empty()) return;
-  const auto at = [&](std::uint32_t v) { return glm::dvec3(p[3 * std::size_t(v)], p[3 * std::size_t(v) + 1], p[3 * std::size_t(v) + 2]); };
   // The triangles as the constructor makes them, and their bounds.
   glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo;
   std::mutex bounds;
@@ -173,7 +172,7 @@ void TriangleBvh::refit(std::span<const double> p) {
     glm::dvec3 clo(std::numeric_limits<double>::infinity()), chi = -clo;
     for (std::uint32_t t = b; t < e; ++t) {
       const std::uint32_t* c = corners_.data() + 3 * std::size_t(t);
-      tris_[t] = make_tri(at(c[0]), at(c[1]), at(c[2]), tris_[t].face);
+      tris_[t] = make_tri(at(p, c[0]), at(p, c[1]), at(p, c[2]), tris_[t].face);
       grow(tris_[t], clo, chi);
     }
     const std::lock_guard<std::mutex> g(bounds);

@@ -1,3 +1,4 @@
+#include "core/base/edge_key.h"
 #include "core/complex/complex_build.h"
 
 #include <algorithm>
@@ -11,10 +12,6 @@
 
 namespace sublift {
 namespace {
-
-std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
-  return std::uint64_t(std::min(a, b)) << 32 | std::max(a, b);
-}
 
 // Finds or creates edges while faces are added; keeps first-seen orientation.
 class EdgeTable {

@@ -1,3 +1,4 @@
+#include "core/base/edge_key.h"
 #include "core/complex/face_builder.h"
 
 #include <algorithm>
@@ -186,8 +187,7 @@ void PolylineBuilder::finish(SurfaceMesh& mesh, std::span<const std::size_t> unu
     own.clear();
     bool repeated = false;
     for (std::size_t i = 0; i + 1 < poly.size(); ++i) {
-      const std::uint64_t a = poly[i], b = poly[i + 1];
-      own.push_back(std::min(a, b) << 32 | std::max(a, b));
+      own.push_back(edge_key(poly[i], poly[i + 1]));
       repeated = repeated || segments.count(own.back());
     }
     std::vector<std::uint64_t> sorted = own;

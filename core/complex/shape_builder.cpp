@@ -1,3 +1,4 @@
+#include "core/base/edge_key.h"
 #include "core/complex/shape_builder.h"
 
 #include <algorithm>
@@ -12,7 +13,6 @@
 namespace sublift {
 namespace {
 
-std::uint64_t edge_key(std::uint64_t a, std::uint64_t b) { return std::min(a, b) << 32 | std::max(a, b); }
 
 }  // namespace
 

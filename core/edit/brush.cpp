@@ -8,6 +8,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/parallel.h"
+#include "core/base/points.h"
 #include "core/complex/polygon_normal.h"
 
 namespace sublift {
@@ -17,7 +18,6 @@ constexpr BrushKind kKinds[] = {BrushKind::Draw, BrushKind::Inflate, BrushKind::
                                 BrushKind::Grab, BrushKind::Flatten, BrushKind::Pinch};
 constexpr Falloff kFalloffs[] = {Falloff::Smooth, Falloff::Linear, Falloff::Sharp, Falloff::Constant};
 
-glm::dvec3 at(std::span<const double> p, std::size_t v) { return {p[3 * v], p[3 * v + 1], p[3 * v + 2]}; }
 
 }  // namespace
 

@@ -1,3 +1,4 @@
+#include "core/base/stopwatch.h"
 #include "core/edit/session.h"
 
 #include <algorithm>
@@ -17,10 +18,6 @@ namespace {
 // History block ids: positions of level l use l; these two follow.
 constexpr int kCoeffs = 100;
 constexpr int kLocal = 101;
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 }  // namespace
 
@@ -493,7 +490,6 @@ OpReport Session::subdivide(double max_vertices) {
   e.label = "Subdivide";
   e.levels_before = finest_level();
   add_level();
-  e.levels_after = finest_level();
   push_entry(std::move(e));
   set_all_changed(finest_level());
   report_ = {};

@@ -56,7 +56,7 @@ struct HistoryEntry {
   std::vector<Block> blocks;
   int gain_level = -1;                   // a gain change: level and values
   double gain_before = 1.0, gain_after = 1.0;
-  int levels_before = -1, levels_after = -1;  // a subdivide: finest level before and after
+  int levels_before = -1;  // a subdivide: the finest level before it
   std::size_t bytes() const;
 };
 
@@ -137,8 +137,6 @@ class Session {
   /// Dirty until the next save: a session that replaces an edited one (scheme switch, level
   /// deletion) holds changes no saved file has.
   void mark_unsaved() { saved_invalid_ = true; }
-  /// Oldest entries are dropped when the history holds more than this many bytes.
-  void set_history_limit(std::size_t bytes) { history_limit_ = bytes; }
 
   // ---- what changed, for the viewport ---------------------------------------------------------
   /// Vertices of `level` whose control points the last operation (edit, undo, redo) changed;

@@ -1,3 +1,4 @@
+#include "core/base/bounds.h"
 #include "core/edit/symmetry.h"
 
 #include <algorithm>
@@ -37,12 +38,7 @@ MirrorMap find_mirror(const Complex& c, std::span<const double> positions, int a
   m.axis = axis;
   m.mirror.assign(n, -1);
   if (n == 0) return m;
-  if (!(tolerance > 0.0)) {
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (std::uint32_t v = 0; v < n; ++v)
-      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], positions[3 * v + k]), hi[k] = std::max(hi[k], positions[3 * v + k]);
-    tolerance = 1e-4 * std::max(std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]), 1e-300);
-  }
+  if (!(tolerance > 0.0)) tolerance = 1e-4 * std::max(bbox_diagonal(positions), 1e-300);
   // By position: nearest reflected point within the tolerance, closest pairs first.
   Grid g{tolerance, {}};
   for (std::uint32_t v = 0; v < n; ++v)

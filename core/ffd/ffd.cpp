@@ -1,3 +1,4 @@
+#include "core/base/stopwatch.h"
 #include "core/ffd/ffd.h"
 
 #include <algorithm>
@@ -530,7 +531,7 @@ FfdBinding bind_model(const Complex& lattice, std::span<const double> lattice_xy
     }
   });
   b.users = transpose(b.stencil, c.num_vertices);
-  b.report.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  b.report.ms = ms_since(t0);
   return b;
 }
 

@@ -30,7 +30,6 @@ FfdScene make_ffd_scene(Model model, const Shape& lattice, const FfdSceneOptions
   Hierarchy h = make_hierarchy(lattice.base, options.extra_levels, options.scheme, 3);
   set_base(h, lattice.positions);
   FfdScene scene;
-  scene.options = options;
   scene.lattice = std::make_unique<Session>(std::move(h));
   const int J = scene.lattice->finest_level();
   FfdOptions bind;

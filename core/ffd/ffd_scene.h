@@ -28,7 +28,6 @@ struct FfdScene {
   std::unique_ptr<Session> lattice;
   FfdBinding binding;
   std::vector<double> deformed;  // the model's positions now (world, 3 per vertex)
-  FfdSceneOptions options;
   int finest() const { return lattice->finest_level(); }
 };
 

@@ -150,7 +150,6 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
     m.status(m.from_vertex_handle(h)).set_feature(true);
     out.input_feature_edges.push_back(static_cast<std::uint32_t>(m.from_vertex_handle(h).idx()));
     out.input_feature_edges.push_back(static_cast<std::uint32_t>(m.to_vertex_handle(h).idx()));
-    ++out.feature_edges;
   }
   // Corners: where feature lines meet or end, or where one turns by more than the feature angle
   // (a sheet's corners, a box's). They stay through the decimation and are tagged, so the schemes

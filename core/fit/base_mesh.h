@@ -42,7 +42,6 @@ struct BaseMesh {
   FeatureTags tags;                   // creases (sharp input edges kept) and corners, in base vertex numbers
   long long euler_before = 0, euler_after = 0;   // V - E + F of the input and of the base
   std::size_t boundary_loops_before = 0, boundary_loops_after = 0;
-  std::size_t feature_edges = 0;      // sharp or boundary input edges marked
   std::vector<std::uint32_t> input_feature_edges;  // those edges, 2 input vertices each
   std::size_t input_lines = 0;                     // feature lines of 8 or more of them
   std::vector<std::uint32_t> input_line_vertices;  // their vertices (what a fit must keep sharp)

@@ -1,3 +1,4 @@
+#include "core/base/edge_key.h"
 #include "core/fit/base_quads.h"
 
 #include <algorithm>
@@ -11,8 +12,6 @@
 namespace sublift {
 
 namespace {
-
-std::uint64_t key(std::uint32_t a, std::uint32_t b) { return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b); }
 
 struct Candidate {
   double deviation;  // the quad's worst corner, degrees from 90
@@ -36,11 +35,11 @@ std::size_t pair_into_quads(BaseMesh& base, double max_corner_deviation_deg) {
   for (std::uint32_t f = 0; f < faces.rows(); ++f) {
     const auto r = faces.row(f);
     if (r.size() != 3) continue;
-    for (std::uint32_t k = 0; k < 3; ++k) halves.push_back({key(r[k], r[(k + 1) % 3]), f, k});
+    for (std::uint32_t k = 0; k < 3; ++k) halves.push_back({edge_key(r[k], r[(k + 1) % 3]), f, k});
   }
   std::sort(halves.begin(), halves.end(), [](const Half& a, const Half& b) { return std::tie(a.edge, a.face) < std::tie(b.edge, b.face); });
   std::vector<std::uint64_t> creases;
-  for (const auto& [a, b] : base.tags.crease_edges) creases.push_back(key(a, b));
+  for (const auto& [a, b] : base.tags.crease_edges) creases.push_back(edge_key(a, b));
   std::sort(creases.begin(), creases.end());
 
   std::vector<Candidate> candidates;

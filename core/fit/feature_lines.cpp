@@ -7,6 +7,8 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "core/base/points.h"
+
 namespace sublift {
 
 namespace {
@@ -21,12 +23,11 @@ glm::dvec3 closest_on_segment(const glm::dvec3& p, const glm::dvec3& a, const gl
 }  // namespace
 
 FeatureLines::FeatureLines(std::span<const double> x, std::span<const std::uint32_t> edges) {
-  const auto at = [&](std::uint32_t v) { return glm::dvec3(x[3 * std::size_t(v)], x[3 * std::size_t(v) + 1], x[3 * std::size_t(v) + 2]); };
   glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo;
   double length = 0;
   for (std::size_t e = 0; e + 1 < edges.size(); e += 2) {
-    a_.push_back(at(edges[e]));
-    b_.push_back(at(edges[e + 1]));
+    a_.push_back(at(x, edges[e]));
+    b_.push_back(at(x, edges[e + 1]));
     lo = glm::min(lo, glm::min(a_.back(), b_.back()));
     hi = glm::max(hi, glm::max(a_.back(), b_.back()));
     length += glm::distance(a_.back(), b_.back());

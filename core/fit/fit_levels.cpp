@@ -1,3 +1,4 @@
+#include "core/base/stopwatch.h"
 #include "core/fit/fit_levels.h"
 
 #include <algorithm>
@@ -16,7 +17,7 @@
 #include "core/complex/polygon_normal.h"
 #include "core/fit/feature_lines.h"
 #include "core/fit/folds.h"
-#include "core/fit/points.h"
+#include "core/base/points.h"
 #include "core/fit/net_solve.h"
 #include "core/multires/limit.h"
 
@@ -302,7 +303,7 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
     const bool reached = o.tolerance > 0 && reach_max <= o.tolerance;
     // With a tolerance, a level four times as dense as the input is the last one tried.
     const bool last = l == o.levels || reached || (o.tolerance > 0 && n >= 4 * (positions.size() / 3));
-    rep.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count();
+    rep.ms = ms_since(t1);
     levels_ms += rep.ms;
     out.levels.push_back(rep);
     out.reached_tolerance = reached;

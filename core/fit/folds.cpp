@@ -1,5 +1,5 @@
 #include "core/fit/folds.h"
-#include "core/fit/points.h"
+#include "core/base/points.h"
 
 #include <algorithm>
 #include <array>

@@ -10,7 +10,7 @@
 
 #include "core/base/parallel.h"
 #include "core/base/triangle_bvh.h"
-#include "core/fit/points.h"
+#include "core/base/points.h"
 
 namespace sublift {
 

@@ -1,3 +1,4 @@
+#include "core/base/stopwatch.h"
 #include "core/multires/rebuild.h"
 
 #include <algorithm>
@@ -99,7 +100,6 @@ Rebuilt rebuild_stages(std::uint32_t num_vertices, std::span<const double> posit
     if (progress && !progress(stage, fraction)) throw Cancelled("rebuild cancelled");
   };
   using Clock = std::chrono::steady_clock;
-  auto ms_since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
   Rebuilt r;
   at("finding levels", 0.0);
   auto t = Clock::now();

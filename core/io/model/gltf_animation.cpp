@@ -10,6 +10,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "core/base/bounds.h"
 #include "core/base/errors.h"
 #include "core/base/memory_budget.h"
 #include "core/io/model/animation.h"
@@ -355,13 +356,7 @@ FrameSet sample_gltf_animation(const std::string& path, int animation, int frame
   for (std::size_t w = 0; w < nv; ++w) std::copy_n(&rig.model.positions[3 * std::size_t(weld.first[w])], 3, &fs.rest_positions[3 * w]);
 
   // Copies welded together that part: counted per model vertex, the largest gap kept.
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  double lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
-  for (std::size_t i = 0; i < rig.model.positions.size(); ++i) {
-    lo[i % 3] = std::min(lo[i % 3], rig.model.positions[i]);
-    hi[i % 3] = std::max(hi[i % 3], rig.model.positions[i]);
-  }
-  const double tolerance = 1e-9 * std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  const double tolerance = 1e-9 * bbox_diagonal(rig.model.positions);
   std::vector<char> parted(nm, 0);
   double worst_gap = 0;
   std::size_t worst_frame = 0;

@@ -99,7 +99,6 @@ class TriWaveletBuilder {
   const EdgeWavelet& edge_wavelet(const Complex& c, const TriRings& r, std::uint32_t e,
                                   std::vector<std::uint32_t>* disc_out);
 
-  bool has_regular() const { return regular_ != nullptr; }
   std::size_t num_face_types() const { return gram_.num_types(); }
 
  private:

@@ -1,5 +1,5 @@
 #pragma once
-// Points of the fitting layer's flat position arrays (3 doubles per vertex) as glm vectors.
+// Points of flat position arrays (3 doubles per vertex) as glm vectors.
 #include <cstdint>
 #include <span>
 #include <vector>

@@ -402,6 +402,11 @@ void find_centroid_rows(const CentroidStep& s, const Group* rev, SparseDelta& d,
 void evaluate_centroid_rows(const CentroidStep& s, const Complex& p, const Group* g, SparseDelta& d,
                             const std::vector<std::uint32_t>& rows);
 
+// Found rows in row order: their stencils and targets are then read in forward sweeps instead
+// of at random (each row writes its own target, so the values are the same in any order), and
+// the change's list, extended in this order, stays in order for the next step's search.
+void sort_rows(std::vector<std::uint32_t>& rows) { std::sort(rows.begin(), rows.end()); }
+
 // The centroid rows reading a changed source are found (`find`) into `rows` through the
 // reverse incidences, or `rows` holds them already (found for the same change before:
 // SparsePlan); they are evaluated on the change as the dense loop evaluates them.
@@ -440,6 +445,7 @@ void find_centroid_rows(const CentroidStep& s, const Group* rev, SparseDelta& d,
       }
     }
   }
+  sort_rows(rows);
 }
 
 // Rows are independent (each writes its own target, reads other classes).
@@ -480,6 +486,7 @@ void sparse_weighted(const WeightedStep& s, const Csr& readers, double sign, Spa
           rows.push_back(r);
         }
       }
+    sort_rows(rows);
   }
   for (const std::uint32_t r : rows) {
     double acc[3] = {0, 0, 0};

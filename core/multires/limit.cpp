@@ -674,6 +674,10 @@ void eval_limit_subset(const LimitStencils& s, const double* control, std::span<
     plan.control.assign(changed_control.begin(), changed_control.end());
     plan.limit_in = changed_limit;
     find_subset(s, changed_control, changed_limit, plan.fresh);
+    // In vertex order: the stencils are then read in a few forward sweeps instead of at random
+    // (the rows are independent, so the values are the same), here and in the caller's normals.
+    std::sort(plan.fresh.begin(), plan.fresh.end());
+    std::sort(changed_limit.begin() + std::ptrdiff_t(plan.limit_in.size()), changed_limit.end());
     plan.appended.assign(changed_limit.begin() + std::ptrdiff_t(plan.limit_in.size()), changed_limit.end());
   }
   const std::vector<std::uint32_t>& fresh = plan.fresh;

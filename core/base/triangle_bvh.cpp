@@ -426,10 +426,9 @@ TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p, const glm::dvec3*
   };
   if (tris_.empty()) {
   } else if (std::uint32_t up = hint_up(hint); up != kNoParent) {
-    // From the hint's leaf up to the root: its triangles first, then at each node on the way the
-    // other child's subtree unless its box lies beyond the best (every triangle is searched or
-    // pruned once, as from the root; the walk down to the hint is saved).
-    for (std::uint32_t i : face_tris_.row(hint)) consider(i);
+    // From the hint's leaf up to the root: its triangles first (the hint's among them), then at
+    // each node on the way the other child's subtree unless its box lies beyond the best (every
+    // triangle is searched or pruned once, as from the root; the walk down to the hint is saved).
     descend({nodes_[up >> 1].child[up & 1], 0.0});
     for (; up != kNoParent; up = parent_[up >> 1]) {
       const Node& n = nodes_[up >> 1];

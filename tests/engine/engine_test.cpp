@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -248,16 +249,14 @@ TEST(StencilRows, AppendEqualsStableSortAndSum) {
         const double w = trial % 5 == 0 && i > 0 && rng() % 2 ? -terms[i - 1].second : std::ldexp(double(rng() % 1000) - 500, -(int(rng() % 9)));
         terms.emplace_back(trial % 5 == 0 && i > 0 && rng() % 2 ? terms[i - 1].first : static_cast<std::uint32_t>(rng() % range), w);
       }
-      std::vector<StencilTerm> ref = terms;
-      std::stable_sort(ref.begin(), ref.end(), [](const StencilTerm& a, const StencilTerm& b) { return a.first < b.first; });
+      // The reference sorts nothing: each source's weights summed in the order the terms come
+      // (what a stable sort keeps), read back by source.
+      std::map<std::uint32_t, double> sum;
+      for (const StencilTerm& t : terms) sum[t.first] += t.second;
       Csr want, got;
       std::vector<double> want_w, got_w;
-      for (std::size_t i = 0; i < ref.size();) {
-        const std::uint32_t v = ref[i].first;
-        double w = 0;
-        for (; i < ref.size() && ref[i].first == v; ++i) w += ref[i].second;
+      for (const auto& [v, w] : sum)
         if (w != 0.0) want.items.push_back(v), want_w.push_back(w);
-      }
       want.offsets.push_back(static_cast<std::uint32_t>(want.items.size()));
       append_stencil_row(terms, got, got_w);
       ASSERT_EQ(got.items, want.items) << n << " terms, trial " << trial;

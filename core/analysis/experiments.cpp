@@ -1,4 +1,3 @@
-#include "core/base/bounds.h"
 #include "core/analysis/experiments.h"
 
 #include <algorithm>
@@ -9,6 +8,7 @@
 #include <string>
 
 #include "core/analysis/compress.h"
+#include "core/base/bounds.h"
 #include "core/base/errors.h"
 #include "core/base/parallel.h"
 

@@ -1,6 +1,6 @@
 #include "core/analysis/mesh_stats.h"
-#include "core/base/edge_key.h"
 
+#include "core/base/edge_key.h"
 #include <algorithm>
 #include <numeric>
 #include <string>

@@ -1,9 +1,9 @@
-#include "core/base/bounds.h"
 #include "core/anim/animation_open.h"
 
 #include <chrono>
 #include <cmath>
 
+#include "core/base/bounds.h"
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
 #include "core/base/stopwatch.h"

@@ -1,4 +1,3 @@
-#include "core/base/edge_key.h"
 #include "core/complex/complex_build.h"
 
 #include <algorithm>
@@ -6,6 +5,7 @@
 #include <map>
 #include <unordered_map>
 
+#include "core/base/edge_key.h"
 #include "core/base/errors.h"
 #include "core/base/text_lines.h"
 #include "core/complex/face_loop.h"

@@ -1,9 +1,9 @@
-#include "core/base/edge_key.h"
 #include "core/complex/face_builder.h"
 
 #include <algorithm>
 #include <unordered_set>
 
+#include "core/base/edge_key.h"
 #include "core/base/errors.h"
 #include "core/complex/face_loop.h"
 

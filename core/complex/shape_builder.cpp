@@ -1,4 +1,3 @@
-#include "core/base/edge_key.h"
 #include "core/complex/shape_builder.h"
 
 #include <algorithm>
@@ -6,6 +5,7 @@
 #include <set>
 #include <unordered_set>
 
+#include "core/base/edge_key.h"
 #include "core/complex/complex_build.h"
 #include "core/base/errors.h"
 #include "core/complex/face_loop.h"

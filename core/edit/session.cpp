@@ -1,4 +1,3 @@
-#include "core/base/stopwatch.h"
 #include "core/edit/session.h"
 
 #include <algorithm>
@@ -7,6 +6,7 @@
 #include <cstring>
 #include <unordered_map>
 
+#include "core/base/stopwatch.h"
 #include "core/edit/detail_frames.h"
 #include "core/base/errors.h"
 #include "core/io/project/project_io.h"

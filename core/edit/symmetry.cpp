@@ -1,10 +1,10 @@
-#include "core/base/bounds.h"
 #include "core/edit/symmetry.h"
 
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
+#include "core/base/bounds.h"
 #include "core/base/errors.h"
 
 namespace sublift {

@@ -1,4 +1,3 @@
-#include "core/base/stopwatch.h"
 #include "core/ffd/ffd.h"
 
 #include <algorithm>
@@ -13,6 +12,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/parallel.h"
+#include "core/base/stopwatch.h"
 
 namespace sublift {
 namespace {

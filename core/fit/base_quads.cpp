@@ -1,6 +1,6 @@
-#include "core/base/edge_key.h"
 #include "core/fit/base_quads.h"
 
+#include "core/base/edge_key.h"
 #include <algorithm>
 #include <cmath>
 #include <numbers>

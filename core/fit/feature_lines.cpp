@@ -1,5 +1,6 @@
 #include "core/fit/feature_lines.h"
 
+#include "core/base/points.h"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,7 +8,6 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "core/base/points.h"
 
 namespace sublift {
 

@@ -1,4 +1,3 @@
-#include "core/base/stopwatch.h"
 #include "core/fit/fit_levels.h"
 
 #include <algorithm>
@@ -12,12 +11,13 @@
 #include "core/base/memory_budget.h"
 #include "core/base/errors.h"
 #include "core/base/parallel.h"
+#include "core/base/points.h"
+#include "core/base/stopwatch.h"
 #include "core/base/triangle_bvh.h"
 #include "core/complex/complex_build.h"
 #include "core/complex/polygon_normal.h"
 #include "core/fit/feature_lines.h"
 #include "core/fit/folds.h"
-#include "core/base/points.h"
 #include "core/fit/net_solve.h"
 #include "core/multires/limit.h"
 

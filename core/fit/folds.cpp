@@ -1,5 +1,4 @@
 #include "core/fit/folds.h"
-#include "core/base/points.h"
 
 #include <algorithm>
 #include <array>
@@ -9,6 +8,7 @@
 #include <Eigen/Dense>
 #include <glm/geometric.hpp>
 
+#include "core/base/points.h"
 #include "core/complex/polygon_normal.h"
 
 namespace sublift {

@@ -9,8 +9,8 @@
 #include <glm/vec3.hpp>
 
 #include "core/base/parallel.h"
-#include "core/base/triangle_bvh.h"
 #include "core/base/points.h"
+#include "core/base/triangle_bvh.h"
 
 namespace sublift {
 

@@ -1,4 +1,3 @@
-#include "core/base/stopwatch.h"
 #include "core/multires/rebuild.h"
 
 #include <algorithm>
@@ -6,6 +5,7 @@
 #include <string>
 
 #include "core/base/errors.h"
+#include "core/base/stopwatch.h"
 #include "core/complex/complex_build.h"
 
 namespace sublift {

@@ -55,8 +55,7 @@ struct FaceGramCache::Made {
 
 FaceGramCache::Made FaceGramCache::make_type(const Complex& c, const LocalOrder& order, std::uint32_t f) const {
   Made made;
-  int n = 0;
-  while (n < static_cast<int>(order.dist.size()) && order.dist[static_cast<std::size_t>(n)] <= radii_.support) ++n;
+  const int n = static_cast<int>(labels_within(order, radii_.support));
   made.n = n;
   // Subdivide a copy of the neighbourhood once; the face is the patch face on labels 0, 1, 2.
   const Complex patch = local_patch(c, order);
@@ -84,8 +83,7 @@ FaceGramCache::Made FaceGramCache::make_type(const Complex& c, const LocalOrder&
     face_seeds(refined->fine, 4 * pf + static_cast<std::uint32_t>(k), seeds, starts);
     local_order(refined->rings, seeds, starts, radii_.patch, co);
     made.child_sig[static_cast<std::size_t>(k)] = local_signature(refined->fine, refined->rings, co, radii_.signature);
-    int m = 0;
-    while (m < static_cast<int>(co.dist.size()) && co.dist[static_cast<std::size_t>(m)] <= radii_.support) ++m;
+    const int m = static_cast<int>(labels_within(co, radii_.support));
     std::vector<Eigen::Triplet<double>> terms;
     for (int i = 0; i < m; ++i) {
       const std::uint32_t v = co.vertex[static_cast<std::size_t>(i)];

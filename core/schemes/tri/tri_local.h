@@ -40,6 +40,14 @@ struct LocalOrder {
   std::vector<std::uint32_t> fan0;    // label -> start's place in its fan (UINT32_MAX: not walked)
 };
 
+/// How many labels lie within `radius` of the seeds: labels are breadth first, so they are the
+/// first ones.
+inline std::uint32_t labels_within(const LocalOrder& o, int radius) {
+  std::uint32_t n = 0;
+  while (n < o.dist.size() && o.dist[n] <= radius) ++n;
+  return n;
+}
+
 [[noreturn]] void throw_not_a_neighbour(std::uint32_t v, std::uint32_t x);
 /// Position of neighbour `x` in v's fan; throws TopologyError when x is not a neighbour. Inline:
 /// the row templates' walks ask it for every label.

@@ -43,8 +43,7 @@ void TriWaveletBuilder::plan(const TriLevel& lv, std::uint32_t e, EdgePlan& out)
   const std::uint32_t seeds[2] = {a, b}, starts[2] = {b, a};
   thread_local LocalOrder order, around_m;  // reused: one per edge
   local_order(*lv.coarse_rings, seeds, starts, disc_ + g.support, order);
-  std::uint32_t nd = 0;
-  while (nd < order.dist.size() && order.dist[nd] <= disc_) ++nd;
+  const std::uint32_t nd = labels_within(order, disc_);
   out.edge = e;
   out.disc.assign(order.vertex.begin(), order.vertex.begin() + nd);
   const auto faces_of = [](const Complex& mesh, const LocalOrder& o, std::vector<std::uint32_t>& faces) {
@@ -237,8 +236,7 @@ void TriWaveletBuilder::edge_key(const TriLevel& lv, std::uint32_t e, std::vecto
   const std::uint32_t seeds[2] = {a, b}, starts[2] = {b, a};
   thread_local LocalOrder order;
   local_order_and_signature(c, *lv.coarse_rings, seeds, starts, signature_radius(), order, signature);
-  std::uint32_t nd = 0;
-  while (nd < order.dist.size() && order.dist[nd] <= disc_) ++nd;
+  const std::uint32_t nd = labels_within(order, disc_);
   disc.assign(order.vertex.begin(), order.vertex.begin() + nd);
 }
 

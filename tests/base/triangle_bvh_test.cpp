@@ -228,7 +228,6 @@ TEST(TriangleBvh, EquallyNearFacesNameTheLowest) {
     }
 }
 
-
 // A refitted hierarchy answers closest-point queries exactly as one built on the moved points
 // (any side and one side, from the root and from hints), and a ray meets the same triangles:
 // small moves (a fitting round's) and large ones (every vertex anywhere, so the kept tree fits

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <mutex>
-#include <functional>
-#include <unordered_map>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "core/base/errors.h"
 #include "core/base/parallel.h"

@@ -14,10 +14,6 @@
 
 namespace sublift {
 
-struct MatrixSolver {
-  Eigen::SparseMatrix<double, Eigen::RowMajor> P;
-};
-
 namespace {
 
 // ---------------------------------------------------------------------------------------------
@@ -286,7 +282,8 @@ void solve_channels(const Matrix& A, std::uint32_t n, double* x, int ch, const c
   std::vector<std::exception_ptr> failed(static_cast<std::size_t>(ch));  // rethrown below: bodies must not throw
   parallel_for(static_cast<std::uint32_t>(ch), 1, [&](std::uint32_t begin, std::uint32_t end) {
     try {
-      Eigen::BiCGSTAB<Matrix, Eigen::DiagonalPreconditioner<double>> solver;
+      // The solver refers to A (a compressed matrix or a Map of one) without copying it.
+      Eigen::BiCGSTAB<Eigen::SparseMatrix<double, Eigen::RowMajor, int>, Eigen::DiagonalPreconditioner<double>> solver;
       solver.setTolerance(1e-15);
       solver.setMaxIterations(1000);
       solver.compute(A);
@@ -312,7 +309,16 @@ void solve_channels(const Matrix& A, std::uint32_t n, double* x, int ch, const c
                   ", relative residual " + std::to_string(rel) + ")");
 }
 
-void unrun_matrix(const MatrixStep& m, double* x, int ch) { solve_channels(m.solver->P, m.n, x, ch, "P"); }
+// P as Eigen sees it, over the step's own arrays: no copy is kept. The rows are sorted and their
+// indices below 2^31 (make_matrix_step), and int may alias uint32_t.
+using RowMajorMap = Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>>;
+RowMajorMap matrix_of(const MatrixStep& m) {
+  return RowMajorMap(static_cast<int>(m.n), static_cast<int>(m.n), static_cast<int>(m.rows.items.size()),
+                     reinterpret_cast<const int*>(m.rows.offsets.data()),
+                     reinterpret_cast<const int*>(m.rows.items.data()), m.weights.data());
+}
+
+void unrun_matrix(const MatrixStep& m, double* x, int ch) { solve_channels(matrix_of(m), m.n, x, ch, "P"); }
 
 template <class... F>
 struct Overload : F... {
@@ -514,7 +520,7 @@ void sparse_scale(const ScaleStep& s, const Complex& p, bool inverse, SparseDelt
 
 // Forwards the rows reading a changed old vertex change; the solve is global (every old
 // vertex may change).
-void sparse_matrix(const MatrixStep& m, SparseDelta& d) {
+void sparse_matrix(const MatrixStep& m, const Csr& readers, SparseDelta& d) {
   std::unordered_map<std::uint32_t, std::array<double, 3>> du;
   for (std::uint32_t v : d.list)
     if (v < m.n) {
@@ -524,7 +530,7 @@ void sparse_matrix(const MatrixStep& m, SparseDelta& d) {
     }
   std::vector<std::uint32_t> rows;
   for (const auto& [k, value] : du)
-    for (std::uint32_t i : m.readers.row(k)) rows.push_back(i);
+    for (std::uint32_t i : readers.row(k)) rows.push_back(i);
   std::sort(rows.begin(), rows.end());
   rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
   for (std::uint32_t i : rows) {
@@ -565,7 +571,7 @@ void run_sparse_step(const Transition& t, const Complex& p, const SparseIndex& i
                       [&](const ScaleStep& sc) { sparse_scale(sc, p, inverse, d); },
                       [&](const MatrixStep& m) {
                         if (inverse) sparse_unmatrix(m, d);
-                        else sparse_matrix(m, d);
+                        else sparse_matrix(m, index.readers[k], d);
                       }},
              t.steps[k].op);
 }
@@ -605,32 +611,40 @@ void adjoint_weighted(const WeightedStep& s, double* y) {
 }  // namespace
 
 MatrixStep make_matrix_step(std::uint32_t n, Csr rows, std::vector<double> weights) {
+  if (rows.rows() != n) throw std::logic_error("make_matrix_step: " + std::to_string(rows.rows()) + " rows for " +
+                                               std::to_string(n) + " vertices");
+  if (rows.items.size() > std::size_t(INT32_MAX)) throw std::logic_error("make_matrix_step: too many terms for Eigen");
+  // Each row's columns strictly increasing, as a compressed Eigen matrix has them (stencil
+  // rows come so; any other order is sorted here and repeated columns summed).
+  Csr sorted;
+  std::vector<double> sorted_weights;
+  std::vector<std::pair<std::uint32_t, double>> row;
+  bool increasing = true;
+  for (std::uint32_t i = 0; i < n && increasing; ++i)
+    for (std::uint32_t q = rows.offsets[i]; q + 1 < rows.offsets[i + 1]; ++q)
+      increasing &= rows.items[q] < rows.items[q + 1];
+  if (!increasing) {
+    for (std::uint32_t i = 0; i < n; ++i) {
+      row.clear();
+      for (std::uint32_t q = rows.offsets[i]; q < rows.offsets[i + 1]; ++q) row.emplace_back(rows.items[q], weights[q]);
+      std::stable_sort(row.begin(), row.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      for (std::size_t k = 0; k < row.size(); ++k) {
+        if (k > 0 && row[k].first == row[k - 1].first) {
+          sorted_weights.back() += row[k].second;
+        } else {
+          sorted.items.push_back(row[k].first);
+          sorted_weights.push_back(row[k].second);
+        }
+      }
+      sorted.offsets.push_back(static_cast<std::uint32_t>(sorted.items.size()));
+    }
+    rows = std::move(sorted);
+    weights = std::move(sorted_weights);
+  }
   MatrixStep m;
   m.n = n;
   m.rows = std::move(rows);
   m.weights = std::move(weights);
-  m.readers = transpose(m.rows, n);
-  auto solver = std::make_shared<MatrixSolver>();
-  bool increasing = m.rows.rows() == n;  // then P is the rows as they are, without a sort
-  for (std::uint32_t i = 0; i < n && increasing; ++i)
-    for (std::uint32_t q = m.rows.offsets[i]; q + 1 < m.rows.offsets[i + 1]; ++q)
-      increasing &= m.rows.items[q] < m.rows.items[q + 1];
-  if (increasing) {
-    const std::vector<int> outer(m.rows.offsets.begin(), m.rows.offsets.end());
-    const std::vector<int> inner(m.rows.items.begin(), m.rows.items.end());
-    solver->P = Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor>>(
-        static_cast<int>(n), static_cast<int>(n), static_cast<int>(inner.size()), outer.data(), inner.data(),
-        m.weights.data());
-  } else {
-    std::vector<Eigen::Triplet<double>> trip;
-    trip.reserve(m.weights.size());
-    for (std::uint32_t i = 0; i < n; ++i)
-      for (std::uint32_t q = m.rows.offsets[i]; q < m.rows.offsets[i + 1]; ++q)
-        trip.emplace_back(static_cast<int>(i), static_cast<int>(m.rows.items[q]), m.weights[q]);
-    solver->P.resize(static_cast<int>(n), static_cast<int>(n));
-    solver->P.setFromTriplets(trip.begin(), trip.end());
-  }
-  m.solver = std::move(solver);
   return m;
 }
 
@@ -655,8 +669,7 @@ std::size_t Transition::bytes() const {
     if (const auto* w = std::get_if<WeightedStep>(&s.op))
       b += w->target.capacity() * 4 + w->sources.bytes() + w->weights.capacity() * 8 + w->weight_at.capacity() * 4;
     else if (const auto* m = std::get_if<MatrixStep>(&s.op))
-      b += m->rows.bytes() + m->readers.bytes() + m->weights.capacity() * 8 +
-           std::size_t(m->solver->P.nonZeros()) * (sizeof(double) + sizeof(int));
+      b += m->rows.bytes() + m->weights.capacity() * 8;
   }
   return b;
 }
@@ -690,8 +703,9 @@ SparseIndex build_sparse_index(const Transition& t) {
   SparseIndex idx;
   idx.readers.reserve(t.steps.size());
   for (const Step& s : t.steps) {
-    const auto* w = std::get_if<WeightedStep>(&s.op);
-    idx.readers.push_back(w ? transpose(w->sources, t.num_fine) : Csr{});
+    if (const auto* w = std::get_if<WeightedStep>(&s.op)) idx.readers.push_back(transpose(w->sources, t.num_fine));
+    else if (const auto* m = std::get_if<MatrixStep>(&s.op)) idx.readers.push_back(transpose(m->rows, m->n));
+    else idx.readers.emplace_back();
   }
   return idx;
 }
@@ -740,7 +754,7 @@ void run_analysis_adjoint(const Transition& t, const Complex& p, double* y) {
                         [&](const ScaleStep& sc) { run_scale(sc, p, y, 1, true); },  // diagonal
                         [&](const MatrixStep& m) {
                           // P^T only here (the dual basis), so it is not kept.
-                          const Eigen::SparseMatrix<double, Eigen::RowMajor> Pt = m.solver->P.transpose();
+                          const Eigen::SparseMatrix<double, Eigen::RowMajor> Pt = matrix_of(m).transpose();
                           solve_channels(Pt, m.n, y, 1, "P^T");
                         }},
                s.op);

@@ -39,8 +39,8 @@ struct SparsePlan {
   std::uint64_t replays = 0;                     // runs that reused them (for tests)
 };
 
-/// Per step: the rows that read each vertex (Weighted steps; empty for the others, whose
-/// reverse incidences the complex has). `plans` (synthesis, analysis) keep the rows the last
+/// Per step: the rows that read each vertex (Weighted and Matrix steps; empty for the others,
+/// whose reverse incidences the complex has). `plans` (synthesis, analysis) keep the rows the last
 /// sparse run found, reused while the next run starts from the same list (a drag): one index
 /// serves one thread at a time.
 struct SparseIndex {

@@ -20,7 +20,6 @@
 // row's increment is rounded (floor(x + 1/2)) the same way both ways and Scale is skipped (000
 // sec. 4), so analysis and synthesis are exact inverses; Matrix steps have no integer mode.
 #include <cstdint>
-#include <memory>
 #include <variant>
 #include <vector>
 
@@ -71,15 +70,13 @@ struct ScaleStep {
   double factor[3][4] = {};                                   // [class t][feature dim m]
 };
 
-struct MatrixSolver;  // executor.cpp: the factored P and P^T
 struct MatrixStep {
   std::uint32_t n = 0;
-  Csr rows;  // P's rows over the first n vertices
+  Csr rows;  // P's rows over the first n vertices, columns strictly increasing in each
   std::vector<double> weights;
-  Csr readers;  // per vertex < n: the rows that read it
-  std::shared_ptr<const MatrixSolver> solver;
 };
-/// A Matrix step with its readers and solver set up.
+/// A Matrix step of n rows, sorted and merged where they are not (analysis solves with P as
+/// it stands in these arrays: nothing else is kept).
 MatrixStep make_matrix_step(std::uint32_t n, Csr rows, std::vector<double> weights);
 
 struct Step {

@@ -264,3 +264,28 @@ TEST(StencilRows, AppendEqualsStableSortAndSum) {
       ASSERT_EQ(got_w, want_w) << n << " terms, trial " << trial;
     }
 }
+
+// A Matrix step's rows given in any order are sorted and a repeated column summed, since the
+// solve reads them as a compressed Eigen matrix; synthesis applies P and analysis solves it back.
+TEST(MatrixStep, UnsortedRowsAreSortedAndSolvedBack) {
+  Csr rows;
+  rows.items = {2, 0, 2, 1, 2, 0};  // row 0: x2, x0, x2 again; row 1: x1; row 2: x2, x0
+  rows.offsets = {0, 3, 4, 6};
+  const std::vector<double> weights = {0.125, 1.0, 0.0625, 2.0, 1.5, 0.25};
+  const MatrixStep m = make_matrix_step(3, rows, weights);
+  EXPECT_EQ(m.rows.items, (std::vector<std::uint32_t>{0, 2, 1, 0, 2}));
+  EXPECT_EQ(m.rows.offsets, (std::vector<std::uint32_t>{0, 2, 3, 5}));
+  EXPECT_EQ(m.weights, (std::vector<double>{1.0, 0.1875, 2.0, 0.25, 1.5}));
+  Transition t;
+  t.num_coarse = t.num_fine = 3;
+  t.add(m);
+  const Complex none;
+  std::vector<double> x = {1.0, -2.0, 4.0};
+  run_synthesis(t, none, x.data(), 1, false);
+  EXPECT_EQ(x, (std::vector<double>{1.0 + 0.1875 * 4.0, -4.0, 0.25 + 1.5 * 4.0}));
+  run_analysis(t, none, x.data(), 1, false);
+  EXPECT_NEAR(x[0], 1.0, 1e-14);
+  EXPECT_NEAR(x[1], -2.0, 1e-14);
+  EXPECT_NEAR(x[2], 4.0, 1e-14);
+  EXPECT_THROW(make_matrix_step(4, rows, weights), std::logic_error);  // a row missing
+}

@@ -271,9 +271,15 @@ int run_edit(int argc, char** argv) {
   }
   std::vector<MirrorMap> maps;
   std::vector<std::string> mirror_problems;
+  nlohmann::json mirror_maps = nlohmann::json::array();  // how each axis's images were found
   for (const int axis_index : mirror_axes) {
     maps.push_back(find_mirror(session.hierarchy().levels[static_cast<std::size_t>(level)], pos, axis_index));
-    if (!maps.back().problem().empty()) mirror_problems.push_back(maps.back().problem());
+    const MirrorMap& m = maps.back();
+    if (!m.problem().empty()) mirror_problems.push_back(m.problem());
+    mirror_maps.push_back({{"axis", std::string(1, "xyz"[axis_index])},
+                           {"by_position", m.by_position},
+                           {"by_topology", m.by_topology},
+                           {"unmatched", m.unmatched}});
   }
   for (const std::string& p : mirror_problems) std::cerr << in << ": warning: " << p << "\n";
   std::vector<const MirrorMap*> map_ptrs;
@@ -308,6 +314,7 @@ int run_edit(int argc, char** argv) {
                               {"moved", own},
                               {"mirrored", moved.size() - own},
                               {"mirror_problems", mirror_problems},
+                              {"mirror_maps", mirror_maps},
                               {"transform", brush_kind ? std::string("brush ") + brush_name(brush.kind)
                                             : dit != a.lists.end() ? std::string("move")
                                             : rit != a.lists.end() ? std::string("rotate") : std::string("scale")},

@@ -180,8 +180,14 @@ TEST(CliEdit, BrushDabAndMirror) {
   r = cli({"edit", dir.file("in.sublift"), "--level", "0", "--vertex", "0", "--delta", "0.1", "0", "0", "--mirror", "x",
            "-o", dir.file("m.sublift"), "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(nlohmann::json::parse(r.out)["mirror_problems"][0].get<std::string>().find("have no mirror image"),
-            std::string::npos) << r.out;
+  const auto jn = nlohmann::json::parse(r.out);
+  EXPECT_NE(jn["mirror_problems"][0].get<std::string>().find("have no mirror image"), std::string::npos) << r.out;
+  // Every control point is counted once: found by position, by topology or not at all.
+  const auto& mn = jn["mirror_maps"][0];
+  EXPECT_EQ(mn["axis"], "x");
+  EXPECT_GT(mn["unmatched"].get<std::size_t>(), 0u);
+  EXPECT_EQ(mn["by_position"].get<std::size_t>() + mn["by_topology"].get<std::size_t>() + mn["unmatched"].get<std::size_t>(),
+            read_project(dir.file("in.sublift")).levels[0].num_vertices);
   // An exactly symmetric one: the image of the moved point moves the mirrored way.
   const SurfaceMesh sm = make_quad_torus(12, 8);
   Hierarchy sym = make_hierarchy(complex_from_surface_mesh(sm), 2, Scheme::Cubic, 3);
@@ -194,6 +200,9 @@ TEST(CliEdit, BrushDabAndMirror) {
   EXPECT_EQ(jm["moved"], 1);
   EXPECT_EQ(jm["mirrored"], 1);
   EXPECT_TRUE(jm["mirror_problems"].empty());
+  EXPECT_EQ(jm["mirror_maps"][0]["by_position"], sm.num_vertices());  // exact positions: all by position
+  EXPECT_EQ(jm["mirror_maps"][0]["by_topology"], 0);
+  EXPECT_EQ(jm["mirror_maps"][0]["unmatched"], 0);
   Session before(sym);
   const Hierarchy m = read_project(dir.file("m.sublift"));
   Session after(m);

@@ -29,12 +29,6 @@ std::vector<ChannelGroup> channel_groups(int channels, std::span<const VertexAtt
 }
 namespace {
 
-double norm(const double* v, int channels) {
-  double s = 0;
-  for (int c = 0; c < channels; ++c) s += v[c] * v[c];
-  return std::sqrt(s);
-}
-
 void check_gains(const Hierarchy& h, std::span<const double> gains) {
   if (!gains.empty() && gains.size() != static_cast<std::size_t>(h.finest_level()))
     throw Error("compress: one gain per level 0.." + std::to_string(h.finest_level() - 1) + " is needed, got " +
@@ -161,7 +155,7 @@ std::vector<RankedWavelet> rank_wavelets(const Hierarchy& h, std::span<const dou
     const double g = gains.empty() ? 1.0 : gains[static_cast<std::size_t>(j)];
     for (std::uint32_t v = h.num_vertices(j); v < h.num_vertices(j + 1); ++v) {
       if (!candidates.empty() && !candidates[v - nv0]) continue;
-      const double m = norm(&h.coeffs[std::size_t(v) * ch + std::size_t(first)], count) * std::abs(g);
+      const double m = channel_norm(&h.coeffs[std::size_t(v) * ch + std::size_t(first)], count) * std::abs(g);
       all.push_back({norms.empty() ? m : m * norms[v - nv0], v});
     }
   }

@@ -1,5 +1,6 @@
 #pragma once
 // Values are stored vertex-major with `channels` numbers per vertex; the first three are x, y, z.
+#include <cmath>
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -7,6 +8,14 @@
 #include "core/base/surface_mesh.h"
 
 namespace sublift {
+
+/// The Euclidean length of one vertex's `channels` values (a wavelet's size in the rankings and
+/// level statistics).
+inline double channel_norm(const double* v, int channels) {
+  double s = 0;
+  for (int c = 0; c < channels; ++c) s += v[c] * v[c];
+  return std::sqrt(s);
+}
 
 /// x, y, z of every vertex (the first three channels; missing ones 0).
 inline std::vector<double> xyz_of(std::span<const double> values, int channels) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/engine/executor.h"
+#include "core/base/channels.h"
 #include "core/base/errors.h"
 #include "core/base/memory_budget.h"
 #include "core/base/magnitude.h"
@@ -222,12 +223,6 @@ void apply_gains(Hierarchy& h, std::span<const double> gains) {
   }
 }
 
-static double norm(const double* v, int ch) {
-  double s = 0;
-  for (int c = 0; c < ch; ++c) s += v[c] * v[c];
-  return std::sqrt(s);
-}
-
 std::vector<LevelStats> level_stats(const Hierarchy& h) {
   std::vector<LevelStats> out;
   for (int j = 0; j < h.finest_level(); ++j) {
@@ -238,7 +233,7 @@ std::vector<LevelStats> level_stats(const Hierarchy& h) {
     s.wavelets = e - b;
     double sum2 = 0;
     for (std::uint32_t i = b; i < e; ++i) {
-      const double n = norm(&h.coeffs[std::size_t(i) * h.channels], h.channels);
+      const double n = channel_norm(&h.coeffs[std::size_t(i) * h.channels], h.channels);
       s.wavelet_max = std::max(s.wavelet_max, n);
       sum2 += n * n;
     }

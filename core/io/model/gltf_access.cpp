@@ -14,11 +14,6 @@
 #include "core/base/errors.h"
 
 namespace sublift {
-namespace {
-
-std::string str(std::size_t v) { return std::to_string(v); }
-
-}  // namespace
 
 std::string prim_name(int mesh, int prim) { return "mesh " + std::to_string(mesh) + " primitive " + std::to_string(prim); }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Internal to the glTF readers of io_model (gltf_model.cpp, gltf_animation.cpp): accessors checked
+// Internal to the glTF readers of io_model (gltf_model.cpp, gltf_animation.cpp, gltf_channels.cpp): accessors checked
 // against their buffer before anything is read or allocated from their counts, node matrices and
 // the node hierarchy. Every throw is an InputError naming the file and the element.
 #include <cstddef>
@@ -19,6 +19,9 @@ struct AccessorSpan {
   std::size_t base = 0, stride = 0, elem = 0, count = 0;
   int component = 0;
 };
+
+/// A count or index in a message.
+inline std::string str(std::size_t v) { return std::to_string(v); }
 
 /// "mesh 2 primitive 0".
 std::string prim_name(int mesh, int prim);

@@ -22,8 +22,6 @@
 namespace sublift {
 namespace {
 
-std::string str(std::size_t v) { return std::to_string(v); }
-
 // A measurement in a note, to 6 significant digits ("0.5", "4.2", "1e-07").
 std::string num(double x) {
   char b[32];

@@ -12,8 +12,6 @@
 namespace sublift {
 namespace {
 
-std::string str(std::size_t v) { return std::to_string(v); }
-
 const char* path_name(ChannelPath p) {
   static constexpr const char* kNames[] = {"translation", "rotation", "scale", "weights"};
   return kNames[static_cast<int>(p)];

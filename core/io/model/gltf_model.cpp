@@ -33,8 +33,6 @@ namespace {
 constexpr std::size_t kMaxGltfBytes = std::size_t(1) << 31;  // tinygltf takes 32-bit lengths
 constexpr std::size_t kMaxQuotedUri = 256;  // a uri (or tinygltf's message quoting one) in a message
 
-std::string str(std::size_t v) { return std::to_string(v); }
-
 // Every buffer view lies inside its buffer (tinygltf 2.7 does not check; images read from views).
 void check_buffer_views(const tinygltf::Model& m, const std::string& file) {
   for (std::size_t i = 0; i < m.bufferViews.size(); ++i) {

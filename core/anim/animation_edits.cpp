@@ -1,41 +1,21 @@
 #include "core/anim/animation_edits.h"
 
+#include "core/base/edit_lines.h"
 #include "core/base/errors.h"
 #include "core/base/file_io.h"
-#include "core/base/text_lines.h"
 
 namespace sublift {
 
 std::vector<AnimationEdit> parse_animation_edits(std::string_view text, const std::string& file) {
-  LineReader lines(text, file, 1 << 16);
+  static constexpr EditField kFields[] = {{"level", 64}, {"frame", 1 << 30}, {"point", 0xffffffffLL}};
   std::vector<AnimationEdit> edits;
-  std::vector<std::string_view> tokens;
-  const char* names[3] = {"level", "frame", "point"};
-  while (next_tokens(lines, tokens)) {
-    const std::size_t line = lines.line_number();
-    if (tokens.size() != 6)
-      throw InputError(file, line, "expected 'level frame point dx dy dz', got " + std::to_string(tokens.size()) + " fields");
+  for (const EditLine& l : parse_edit_lines(text, file, kFields)) {
     AnimationEdit e;
-    e.line = line;
-    long long whole[3];
-    for (int k = 0; k < 3; ++k) {
-      const auto v = parse_int(tokens[std::size_t(k)]);
-      if (!v || *v < 0 || *v > 0xffffffffLL)
-        throw InputError(file, line, std::string(names[k]) + " must be a non-negative integer, got '" + printable(tokens[std::size_t(k)]) + "'");
-      whole[k] = *v;
-    }
-    if (whole[0] > 64) throw InputError(file, line, "level " + std::to_string(whole[0]) + " is not a level");
-    if (whole[1] > 1 << 30) throw InputError(file, line, "frame " + std::to_string(whole[1]) + " is not a frame");
-    e.level = int(whole[0]);
-    e.frame = int(whole[1]);
-    e.point = std::uint32_t(whole[2]);
-    for (int k = 0; k < 3; ++k) {
-      const auto d = parse_double(tokens[std::size_t(3 + k)]);
-      if (!d)
-        throw InputError(file, line, std::string("d") + char('x' + k) + " must be a finite number, got '" +
-                                         printable(tokens[std::size_t(3 + k)]) + "'");
-      e.delta[k] = *d;
-    }
+    e.line = l.line;
+    e.level = int(l.whole[0]);
+    e.frame = int(l.whole[1]);
+    e.point = std::uint32_t(l.whole[2]);
+    for (int k = 0; k < 3; ++k) e.delta[k] = l.delta[std::size_t(k)];
     edits.push_back(e);
   }
   return edits;

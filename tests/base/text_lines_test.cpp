@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/base/edit_lines.h"
 #include "core/base/errors.h"
 #include "core/base/text_lines.h"
 
@@ -85,4 +86,34 @@ TEST(FormatShortest, ReadsBackAndIsShort) {
   EXPECT_EQ(format_shortest(0.1), "0.1");
   EXPECT_EQ(format_shortest(1.0 / 3.0), "0.3333333333333333");
   EXPECT_EQ(format_shortest(-HUGE_VAL), "-inf");
+}
+
+// The edits files' one reader: comments and blank lines skipped, fields in order, and every
+// refusal naming the file, the line and the field.
+TEST(EditLines, ReadsFieldsAndNamesWhatIsWrong) {
+  static constexpr EditField kFields[] = {{"level", 64}, {"index", 1000}};
+  const std::vector<EditLine> e = parse_edit_lines("# level index dx dy dz\n\n2 7 0.5 -1 1e-3\n0 0 0 0 0\n", "e.txt", kFields);
+  ASSERT_EQ(e.size(), 2u);
+  EXPECT_EQ(e[0].line, 3u);
+  EXPECT_EQ(e[0].whole[0], 2);
+  EXPECT_EQ(e[0].whole[1], 7);
+  EXPECT_EQ(e[0].delta[0], 0.5);
+  EXPECT_EQ(e[0].delta[1], -1.0);
+  EXPECT_EQ(e[0].delta[2], 1e-3);
+  EXPECT_EQ(e[1].line, 4u);
+  const auto refused = [&](const char* text) {
+    try {
+      (void)parse_edit_lines(text, "e.txt", kFields);
+    } catch (const InputError& err) {
+      return std::string(err.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(refused("0 1 2 3\n").find("e.txt:1: expected 'level index dx dy dz', got 4 fields"), std::string::npos);
+  EXPECT_NE(refused("\n-1 0 0 0 0\n").find("e.txt:2: level must be a non-negative integer, got '-1'"), std::string::npos);
+  EXPECT_NE(refused("0 1.5 0 0 0\n").find("e.txt:1: index must be a non-negative integer"), std::string::npos);
+  EXPECT_NE(refused("65 0 0 0 0\n").find("e.txt:1: level 65 is too large (at most 64)"), std::string::npos);
+  EXPECT_NE(refused("0 1001 0 0 0\n").find("index 1001 is too large (at most 1000)"), std::string::npos);
+  EXPECT_NE(refused("0 1 0 nan 0\n").find("e.txt:1: dy must be a finite number"), std::string::npos);
+  EXPECT_NE(refused("0 1 0 0 1e999\n").find("e.txt:1: dz must be a finite number"), std::string::npos);
 }

@@ -23,7 +23,8 @@ std::vector<EditLine> parse_edit_lines(std::string_view text, const std::string&
     for (std::size_t k = 0; k < fields.size(); ++k) {
       const auto v = parse_int(tokens[k]);
       if (!v || *v < 0)
-        throw InputError(file, e.line, std::string(fields[k].name) + " must be a non-negative integer, got '" + printable(tokens[k]) + "'");
+        throw InputError(file, e.line,
+                         std::string(fields[k].name) + " must be a non-negative integer, got '" + printable(tokens[k]) + "'");
       if (*v > fields[k].max)
         throw InputError(file, e.line, std::string(fields[k].name) + " " + std::to_string(*v) + " is too large (at most " +
                                            std::to_string(fields[k].max) + ")");

@@ -11,6 +11,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/parallel.h"
+#include "core/engine/stencil_rows.h"
 
 namespace sublift {
 
@@ -614,29 +615,21 @@ MatrixStep make_matrix_step(std::uint32_t n, Csr rows, std::vector<double> weigh
   if (rows.rows() != n) throw std::logic_error("make_matrix_step: " + std::to_string(rows.rows()) + " rows for " +
                                                std::to_string(n) + " vertices");
   if (rows.items.size() > std::size_t(INT32_MAX)) throw std::logic_error("make_matrix_step: too many terms for Eigen");
-  // Each row's columns strictly increasing, as a compressed Eigen matrix has them (stencil
-  // rows come so; any other order is sorted here and repeated columns summed).
-  Csr sorted;
-  std::vector<double> sorted_weights;
-  std::vector<std::pair<std::uint32_t, double>> row;
+  // Each row's columns strictly increasing, as a compressed Eigen matrix has them: stencil rows
+  // come so; any other row is put so as a stencil row is (append_stencil_row: sorted, repeated
+  // columns summed in the order given).
   bool increasing = true;
   for (std::uint32_t i = 0; i < n && increasing; ++i)
     for (std::uint32_t q = rows.offsets[i]; q + 1 < rows.offsets[i + 1]; ++q)
       increasing &= rows.items[q] < rows.items[q + 1];
   if (!increasing) {
+    Csr sorted;
+    std::vector<double> sorted_weights;
+    std::vector<StencilTerm> row;
     for (std::uint32_t i = 0; i < n; ++i) {
       row.clear();
       for (std::uint32_t q = rows.offsets[i]; q < rows.offsets[i + 1]; ++q) row.emplace_back(rows.items[q], weights[q]);
-      std::stable_sort(row.begin(), row.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-      for (std::size_t k = 0; k < row.size(); ++k) {
-        if (k > 0 && row[k].first == row[k - 1].first) {
-          sorted_weights.back() += row[k].second;
-        } else {
-          sorted.items.push_back(row[k].first);
-          sorted_weights.push_back(row[k].second);
-        }
-      }
-      sorted.offsets.push_back(static_cast<std::uint32_t>(sorted.items.size()));
+      append_stencil_row(row, sorted, sorted_weights);
     }
     rows = std::move(sorted);
     weights = std::move(sorted_weights);

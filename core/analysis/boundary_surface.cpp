@@ -13,7 +13,6 @@
 namespace sublift {
 namespace {
 
-
 // Orients the faces of one closed cell consistently and outward. Scratch arrays are reused
 // across cells; `sign[i]` (+1 keep, -1 reverse) is filled for local face i of the cell.
 class CellOrienter {

@@ -1,12 +1,13 @@
 #include "core/analysis/mesh_stats.h"
 
-#include "core/base/edge_key.h"
 #include <algorithm>
 #include <numeric>
 #include <string>
 #include <vector>
 
 #include <glm/common.hpp>
+
+#include "core/base/edge_key.h"
 
 namespace sublift {
 namespace {

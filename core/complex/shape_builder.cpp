@@ -11,10 +11,6 @@
 #include "core/complex/face_loop.h"
 
 namespace sublift {
-namespace {
-
-
-}  // namespace
 
 std::size_t ShapeBuilder::add_loop(std::span<const std::int64_t> loop, std::size_t line) {
   loop_items_.insert(loop_items_.end(), loop.begin(), loop.end());

@@ -18,7 +18,6 @@ constexpr BrushKind kKinds[] = {BrushKind::Draw, BrushKind::Inflate, BrushKind::
                                 BrushKind::Grab, BrushKind::Flatten, BrushKind::Pinch};
 constexpr Falloff kFalloffs[] = {Falloff::Smooth, Falloff::Linear, Falloff::Sharp, Falloff::Constant};
 
-
 }  // namespace
 
 const char* brush_name(BrushKind k) {

@@ -1,6 +1,5 @@
 #include "core/fit/base_quads.h"
 
-#include "core/base/edge_key.h"
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -8,6 +7,8 @@
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+
+#include "core/base/edge_key.h"
 
 namespace sublift {
 

@@ -1,6 +1,5 @@
 #include "core/fit/feature_lines.h"
 
-#include "core/base/points.h"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,6 +7,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "core/base/points.h"
 
 namespace sublift {
 

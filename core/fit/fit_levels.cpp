@@ -25,7 +25,6 @@ namespace sublift {
 
 namespace {
 
-
 // Level j's net subdivided to level j + 1: one synthesis step with the level's wavelets zero.
 std::vector<double> subdivided(const Hierarchy& h, int j, std::span<const double> x) {
   std::vector<double> y(std::size_t(h.num_vertices(j + 1)) * 3, 0.0);

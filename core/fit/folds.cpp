@@ -15,7 +15,6 @@ namespace sublift {
 
 namespace {
 
-
 // Whether any face of v's star is turned against the input.
 bool star_turned(const Complex& c, std::uint32_t v, std::span<const double> x, const std::vector<glm::dvec3>& facing) {
   for (std::uint32_t f : c.vertex_faces.row(v))

@@ -16,7 +16,6 @@ namespace sublift {
 
 namespace {
 
-
 // Barycentric weights of q (on or near triangle a, b, c) clamped into the triangle.
 glm::dvec3 barycentric(const glm::dvec3& q, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
   const glm::dvec3 e1 = b - a, e2 = c - a, d = q - a;

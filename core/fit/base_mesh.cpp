@@ -1,7 +1,5 @@
 #include "core/fit/base_mesh.h"
 
-#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
-#include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 #include <OpenMesh/Tools/Decimater/Observer.hh>
 
 #include <algorithm>
@@ -13,15 +11,15 @@
 
 #include "core/base/errors.h"
 #include "core/fit/base_quads.h"
+#include "core/fit/decimater.h"
 #include "core/fit/decimation_mesh.h"
-#include "core/fit/decimation_shape.h"
 
 namespace sublift {
 
 namespace {
 
+using fit_detail::Decimater;
 using fit_detail::Mesh;
-using fit_detail::ModFaceShape;
 
 long long euler(const Mesh& m) {
   return static_cast<long long>(m.n_vertices()) - static_cast<long long>(m.n_edges()) + static_cast<long long>(m.n_faces());
@@ -199,15 +197,12 @@ BaseMesh decimate_to_base(std::uint32_t num_vertices, const Csr& faces, std::spa
   for (auto v : m.vertices())
     if (m.is_isolated(v)) m.status(v).set_locked(true);
 
-  using Decimater = OpenMesh::Decimater::DecimaterT<Mesh>;
+  // OpenMesh's decimation with the quadric, and its aspect-ratio and normal-flip guards in one
+  // walk (fit_detail::Decimater: DecimaterT's loop asking the quadric first).
   Decimater dec(m);
-  OpenMesh::Decimater::ModQuadricT<Mesh>::Handle quadric;
-  ModFaceShape::Handle shape;  // OpenMesh's aspect-ratio and normal-flip guards in one walk
-  dec.add(quadric);
-  dec.add(shape);
-  dec.module(quadric).unset_max_err();
-  dec.module(shape).set_aspect_ratio(10.0);
-  dec.module(shape).set_max_normal_deviation(options.max_normal_deviation_deg);
+  dec.quadric().unset_max_err();
+  dec.shape().set_aspect_ratio(10.0);
+  dec.shape().set_max_normal_deviation(options.max_normal_deviation_deg);
   dec.initialize();
   // Progress about every 1 % of the collapses expected (each removes a vertex and two faces).
   const std::size_t expected = options.target_faces ? (m.n_faces() - std::min(target_triangles, m.n_faces())) / 2 : used - target;

@@ -1,0 +1,130 @@
+#pragma once
+// Internal to core/fit: OpenMesh's DecimaterT loop (DecimaterT_impl.hh: a heap of vertices keyed
+// by their cheapest legal collapse, the old one-ring re-ranked after each collapse) for the
+// fitting base's two modules, the quadric and the fused shape guard (decimation_shape.h), asking
+// the quadric first. DecimaterT asks every outgoing halfedge's legality (the link condition, the
+// library's tests) and then the modules, before it compares priorities: three quarters of a 1 M
+// decimation went there (perf). A collapse whose quadric error is not below the best found so far
+// at its vertex cannot be chosen, legal or not, so only the others are checked here: the same
+// halfedge wins (the first of the least legal error), the heap gets the same keys in the same
+// order, the base is the same (tests/fit/decimation_mesh_test.cpp compares the two decimaters on
+// every vertex and face). The heap's keys live in flat arrays instead of mesh properties.
+#include <cfloat>
+#include <cstddef>
+#include <vector>
+
+#include <OpenMesh/Tools/Decimater/BaseDecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+#include <OpenMesh/Tools/Utils/HeapT.hh>
+
+#include "core/fit/decimation_mesh.h"
+#include "core/fit/decimation_shape.h"
+
+namespace sublift::fit_detail {
+
+class Decimater : public OpenMesh::Decimater::BaseDecimaterT<Mesh> {
+ public:
+  using Quadric = OpenMesh::Decimater::ModQuadricT<Mesh>;
+
+  /// With both modules added; set them up through quadric() and shape(), then initialize().
+  explicit Decimater(Mesh& m) : BaseDecimaterT<Mesh>(m), mesh_(m) {
+    add(quadric_);
+    add(shape_);
+  }
+
+  Quadric& quadric() { return module(quadric_); }
+  ModFaceShape& shape() { return module(shape_); }
+
+  /// DecimaterT::decimate_to_faces: collapses until at most `nv` vertices or `nf` faces remain
+  /// (both counting deleted ones, as OpenMesh does until garbage collection) or nothing gives
+  /// way; returns the collapses made.
+  std::size_t decimate_to_faces(std::size_t nv, std::size_t nf);
+  /// DecimaterT::decimate_to: the same with no face bound.
+  std::size_t decimate_to(std::size_t nv) { return decimate_to_faces(nv, 0); }
+
+ private:
+  using VertexHandle = Mesh::VertexHandle;
+  using HalfedgeHandle = Mesh::HalfedgeHandle;
+  struct Keys {
+    Decimater* d;
+    bool less(VertexHandle a, VertexHandle b) const { return d->priority_[a.idx()] < d->priority_[b.idx()]; }
+    bool greater(VertexHandle a, VertexHandle b) const { return d->priority_[a.idx()] > d->priority_[b.idx()]; }
+    int get_heap_position(VertexHandle v) const { return d->heap_position_[v.idx()]; }
+    void set_heap_position(VertexHandle v, int pos) { d->heap_position_[v.idx()] = pos; }
+  };
+  using Heap = OpenMesh::Utils::HeapT<VertexHandle, Keys>;
+
+  // DecimaterT::heap_vertex with the quadric asked first.
+  void heap_vertex(Heap& heap, VertexHandle v);
+
+  Mesh& mesh_;
+  Quadric::Handle quadric_;
+  ModFaceShape::Handle shape_;
+  std::vector<float> priority_;
+  std::vector<int> heap_position_;
+  std::vector<HalfedgeHandle> target_;
+};
+
+inline void Decimater::heap_vertex(Heap& heap, VertexHandle v) {
+  Quadric& q = quadric();
+  ModFaceShape& s = shape();
+  float best = FLT_MAX;
+  HalfedgeHandle target;
+  for (const HalfedgeHandle h : mesh_.voh_range(v)) {
+    const CollapseInfo ci(mesh_, h);
+    const float prio = q.collapse_priority(ci);
+    if (!(prio >= 0.0f && prio < best)) continue;  // not chosen whatever the checks say
+    if (!is_collapse_legal(ci) || s.collapse_priority(ci) < 0.0f) continue;
+    best = prio;
+    target = h;
+  }
+  target_[v.idx()] = target;
+  if (target.is_valid()) {
+    priority_[v.idx()] = best;
+    if (heap.is_stored(v)) heap.update(v);
+    else heap.insert(v);
+  } else {
+    if (heap.is_stored(v)) heap.remove(v);
+    priority_[v.idx()] = -1;
+  }
+}
+
+inline std::size_t Decimater::decimate_to_faces(std::size_t target_nv, std::size_t target_nf) {
+  if (!is_initialized()) return 0;
+  if (target_nv >= mesh_.n_vertices() || target_nf >= mesh_.n_faces()) return 0;
+  std::size_t nv = mesh_.n_vertices(), nf = mesh_.n_faces(), collapses = 0;
+  priority_.assign(nv, 0.0f);
+  heap_position_.assign(nv, -1);
+  target_.assign(nv, HalfedgeHandle());
+  Heap heap(Keys{this});
+  heap.reserve(nv);
+  for (const VertexHandle v : mesh_.vertices()) {
+    heap.reset_heap_position(v);
+    if (!mesh_.status(v).deleted()) heap_vertex(heap, v);
+  }
+  const bool update_normals = mesh_.has_face_normals();
+  std::vector<VertexHandle> support;
+  while (!heap.empty() && target_nv < nv && target_nf < nf) {
+    const VertexHandle vp = heap.front();
+    const HalfedgeHandle v0v1 = target_[vp.idx()];
+    heap.pop_front();
+    CollapseInfo ci(mesh_, v0v1);
+    if (!is_collapse_legal(ci)) continue;  // (checked again, as DecimaterT does)
+    support.clear();
+    for (const VertexHandle w : mesh_.vv_range(ci.v0)) support.push_back(w);
+    ++collapses;
+    --nv;
+    nf -= (mesh_.is_boundary(ci.v0v1) || mesh_.is_boundary(ci.v1v0)) ? 1 : 2;
+    preprocess_collapse(ci);
+    mesh_.collapse(v0v1);
+    if (update_normals)
+      for (const Mesh::FaceHandle f : mesh_.vf_range(ci.v1))
+        if (!mesh_.status(f).deleted()) mesh_.set_normal(f, mesh_.calc_face_normal(f));
+    postprocess_collapse(ci);
+    for (const VertexHandle w : support) heap_vertex(heap, w);
+    if (!notify_observer(collapses)) return collapses;
+  }
+  return collapses;
+}
+
+}  // namespace sublift::fit_detail

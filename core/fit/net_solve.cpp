@@ -98,26 +98,36 @@ std::vector<double> solve_net(const Complex& c, const NetSolveState& st, std::sp
     }
   }
   using Sparse = Eigen::SparseMatrix<double>;
-  const auto on_edges = [&](const std::vector<double>& d, const std::vector<double>& o, std::span<const Eigen::Triplet<double>> more) {
+  // The springs: kappa times the graph Laplacian (degree on the diagonal, -kappa per edge),
+  // towards x0's edge vectors.
+  std::vector<double> degree(n, 0.0);
+  for (std::uint32_t e = 0; e < ne; ++e) degree[c.edge_verts[2 * e]] += wt.kappa, degree[c.edge_verts[2 * e + 1]] += wt.kappa;
+  // `d` on the diagonal, `o` on the edges, `more` (fan diagonals) first, duplicates summed.
+  const auto on_edges = [&](const auto& d, const auto& o, std::span<const Eigen::Triplet<double>> more) {
     std::vector<Eigen::Triplet<double>> t;
     t.reserve(n + 2 * std::size_t(ne) + more.size());
     t.insert(t.end(), more.begin(), more.end());
-    for (std::uint32_t v = 0; v < n; ++v) t.emplace_back(v, v, d[v]);
+    for (std::uint32_t v = 0; v < n; ++v) t.emplace_back(v, v, d(v));
     for (std::uint32_t e = 0; e < ne; ++e) {
-      t.emplace_back(c.edge_verts[2 * e], c.edge_verts[2 * e + 1], o[e]);
-      t.emplace_back(c.edge_verts[2 * e + 1], c.edge_verts[2 * e], o[e]);
+      t.emplace_back(c.edge_verts[2 * e], c.edge_verts[2 * e + 1], o(e));
+      t.emplace_back(c.edge_verts[2 * e + 1], c.edge_verts[2 * e], o(e));
     }
     Sparse m(n, n);
     m.setFromTriplets(t.begin(), t.end());
     return m;
   };
-  const Sparse M = on_edges(diag, off, diagonals);
-  // The springs: kappa times the graph Laplacian, towards x0's edge vectors.
-  std::vector<double> degree(n, 0.0);
-  for (std::uint32_t e = 0; e < ne; ++e) degree[c.edge_verts[2 * e]] += wt.kappa, degree[c.edge_verts[2 * e + 1]] += wt.kappa;
-  const Sparse spring = on_edges(degree, std::vector<double>(ne, -wt.kappa), {});
+  const auto spring_diagonal = [&](std::uint32_t v) { return degree[v]; };
+  const auto spring_edge = [&](std::uint32_t) { return -wt.kappa; };
   Eigen::MatrixX3d x0(n, 3);
   for (std::uint32_t v = 0; v < n; ++v) x0.row(v) = Eigen::RowVector3d(st.control[3 * v], st.control[3 * v + 1], st.control[3 * v + 2]);
+  // b += springs * x0, added in the order Eigen's `b = y + springs * x0` adds it (into y,
+  // column by column of the springs), so bit for bit, without building the matrix.
+  const auto add_pull = [&](Eigen::MatrixX3d& b) {
+    for (std::uint32_t v = 0; v < n; ++v) {
+      b.row(v) += degree[v] * x0.row(v);
+      for (std::uint32_t e : c.vertex_edges.row(v)) b.row(edge_other_end(c, e, v)) += -wt.kappa * x0.row(v);
+    }
+  };
   Sparse A;
   Eigen::MatrixX3d b;
   if (st.limit) {
@@ -130,11 +140,17 @@ std::vector<double> solve_net(const Complex& c, const NetSolveState& st, std::sp
     Sparse L(n, n);
     L.setFromTriplets(t.begin(), t.end());
     const Sparse Lt = L.transpose();
-    A = Lt * M * L + spring;
-    b = Lt * rhs + spring * x0;
+    const Sparse M = on_edges([&](std::uint32_t v) { return diag[v]; }, [&](std::uint32_t e) { return off[e]; }, diagonals);
+    A = Lt * M * L + on_edges(spring_diagonal, spring_edge, {});
+    b = Lt * rhs;
+    add_pull(b);
   } else {
-    A = M + spring;
-    b = rhs + spring * x0;
+    // M + springs in one matrix: their diagonal and edge entries are one term each, so the sums
+    // are M + springs' bit for bit (rounded otherwise only where a face's diagonal is also an edge).
+    A = on_edges([&](std::uint32_t v) { return diag[v] + spring_diagonal(v); }, [&](std::uint32_t e) { return off[e] + spring_edge(e); },
+                 diagonals);
+    b = rhs;
+    add_pull(b);
   }
   // x, y and z are three independent solves: side by side, a solver each (Eigen's keeps its
   // iteration count in itself). Each column's arithmetic is the same as one after another.

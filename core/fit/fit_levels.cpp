@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 
@@ -245,7 +246,17 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
     move_hint.resize(n, UINT32_MAX);
     const Mover move{c, project, lines, h.num_vertices(l - 1), o.relax, move_hint.data()};
     const std::vector<double> hold = held(c);
-    input_hint.assign(positions.size() / 3, UINT32_MAX);
+    // An input vertex's search starts from a face around the first corner of the coarser face it
+    // was nearest (the old points keep their numbers); any hint gives the same answer, a near one
+    // sooner.
+    {
+      const Csr& coarse = h.levels[static_cast<std::size_t>(l - 1)].faces;
+      input_hint.resize(positions.size() / 3, UINT32_MAX);
+      for (std::uint32_t& hint : input_hint) {
+        const std::uint32_t v = hint < coarse.rows() && coarse.size(hint) > 0 ? coarse.row(hint)[0] : UINT32_MAX;
+        hint = v < c.vertex_faces.rows() && c.vertex_faces.size(v) > 0 ? c.vertex_faces.row(v)[0] : UINT32_MAX;
+      }
+    }
     net_index.reset();  // a new net
     face_hint.assign(c.faces.rows(), UINT32_MAX);
     vertex_hint.assign(n, UINT32_MAX);
@@ -257,6 +268,9 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
       parallel_for(n, 1024, [&](std::uint32_t b, std::uint32_t e) {
         for (std::uint32_t v = b; v < e; ++v) put(next, v, move(x, normal, v));
       });
+      // A new face's search for the input face under it starts where its first corner's did.
+      if (round == 0)
+        for (std::size_t f = 0; f < c.faces.rows(); ++f) face_hint[f] = move_hint[c.faces.row(f)[0]];
       // The input's way at each face, from before the moves (they are small): both guards use it.
       const std::vector<glm::dvec3> facing = input_facing(input, input_normals, faces, c.faces, x, face_hint);
       keep_unfolded(c.faces, facing, x, next);
@@ -297,6 +311,8 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
         reach_max = std::max(distances(input, y, diag, vertex_hint).second, distances(net_indexed(c, y), positions, diag, input_hint).second);
       }
     }
+    for (std::uint32_t v = 0; v < n; ++v)
+      if (vertex_hint[v] == UINT32_MAX) vertex_hint[v] = move_hint[v];  // where its last move landed
     FitLevelReport rep = measure(l, c, x);
     if (!approximating) reach_max = std::max(rep.max, rep.back_max);
     const bool reached = o.tolerance > 0 && reach_max <= o.tolerance;
@@ -320,14 +336,21 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
   const LimitStencils& ls = *finest_limit;
   std::vector<double> limit(x.size());
   eval_limit(ls, x.data(), limit.data());
-  // The last level's hints hold when it is the finest (no fitted level: none).
-  if (face_hint.size() != h.levels.back().faces.rows() || vertex_hint.size() * 3 != limit.size()) input_hint = face_hint = vertex_hint = {};
-  std::tie(out.limit_rms, out.limit_max) = distances(input, limit, diag, vertex_hint);
-  // The last fitted level is the finest (levels are appended as they are fitted): its index is
-  // refitted to the limit points.
-  const TriangleBvh& limit_index = net_indexed(h.levels.back(), limit);
-  std::tie(out.limit_back_rms, out.limit_back_max) = distances(limit_index, positions, diag, input_hint);
-  out.limit_folded = static_cast<std::uint32_t>(folded_list(input, input_normals, faces, h.levels.back().faces, limit, face_hint).size());
+  if (scheme_info(o.scheme).limit == LimitRule::ControlNet && !out.levels.empty()) {
+    // The limit surface is the finest net, the last level measured (levels are appended as they
+    // are fitted): the same points, the same distances and folds.
+    const FitLevelReport& last = out.levels.back();
+    std::tie(out.limit_rms, out.limit_max, out.limit_back_rms, out.limit_back_max) = std::tuple(last.rms, last.max, last.back_rms, last.back_max);
+    out.limit_folded = last.folded;
+  } else {
+    // The last level's hints hold when it is the finest (no fitted level: none).
+    if (face_hint.size() != h.levels.back().faces.rows() || vertex_hint.size() * 3 != limit.size()) input_hint = face_hint = vertex_hint = {};
+    std::tie(out.limit_rms, out.limit_max) = distances(input, limit, diag, vertex_hint);
+    // The last fitted level is the finest: its index is refitted to the limit points.
+    const TriangleBvh& limit_index = net_indexed(h.levels.back(), limit);
+    std::tie(out.limit_back_rms, out.limit_back_max) = distances(limit_index, positions, diag, input_hint);
+    out.limit_folded = static_cast<std::uint32_t>(folded_list(input, input_normals, faces, h.levels.back().faces, limit, face_hint).size());
+  }
   // The input's feature lines against the fitted creases and boundaries (their limit curves).
   const Complex& fine = h.levels.back();
   std::vector<std::uint32_t> crease_edges;

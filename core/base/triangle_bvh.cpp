@@ -51,7 +51,7 @@ TriangleBvh::TriangleBvh(const SurfaceMesh& mesh)
 
 TriangleBvh::Tri TriangleBvh::make_tri(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, std::uint32_t face) {
   const glm::dvec3 e1 = b - a, e2 = c - a;
-  return {a, e1, e2, glm::cross(e1, e2), face};
+  return {a, e1, e2, face};
 }
 
 void TriangleBvh::grow(const Tri& t, glm::dvec3& lo, glm::dvec3& hi) {
@@ -339,7 +339,7 @@ double TriangleBvh::nearest_hit(const glm::dvec3& origin, const glm::dvec3& dir,
       origin, dir, [&] { return std::min(t_max, best); },
       [&](std::uint32_t i) {
         const Tri& t = tris_[i];
-        if (glm::dot(t.n, facing) <= 0.0) return;
+        if (glm::dot(glm::cross(t.e1, t.e2), facing) <= 0.0) return;
         const double th = ray_triangle(t, origin, dir, dir_len);
         if (th >= 0.0 && th <= t_max && th < best) best = th;
       },
@@ -390,7 +390,7 @@ TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p, const glm::dvec3*
   Closest best;
   double best2 = std::numeric_limits<double>::infinity();
   const auto consider = [&](std::uint32_t i) {
-    if (facing && glm::dot(tris_[i].n, *facing) <= 0.0) return;
+    if (facing && glm::dot(glm::cross(tris_[i].e1, tris_[i].e2), *facing) <= 0.0) return;
     const glm::dvec3 q = closest_on_triangle(p, tris_[i].p0, tris_[i].e1, tris_[i].e2);
     const double d2 = glm::dot(q - p, q - p);
     // Of equally near triangles the lowest polygon wins, so the answer does not depend on the

@@ -24,20 +24,30 @@ constexpr double kBaryTolerance = 1e-10;
 // |det| below this times |e1| |e2| |dir|: the ray is parallel to the triangle's plane.
 constexpr double kParallelTolerance = 1e-12;
 
-// Moller-Trumbore: the ray parameter t >= 0 where origin + t * dir meets triangle `t`, or -1.
+// Moller-Trumbore: where origin + t * dir meets triangle `t`, the signed parameter into `th`
+// (negative: behind the origin); false when it misses. Along -dir every step is this one negated,
+// exactly, so its parameter is -th bit for bit.
 template <class Tri>
-double ray_triangle(const Tri& t, const glm::dvec3& origin, const glm::dvec3& dir, double dir_len) {
+bool ray_triangle_t(const Tri& t, const glm::dvec3& origin, const glm::dvec3& dir, double dir_len, double& th) {
   const glm::dvec3 p = glm::cross(dir, t.e2);
   const double det = glm::dot(t.e1, p);
-  if (std::abs(det) <= kParallelTolerance * glm::length(t.e1) * glm::length(t.e2) * dir_len) return -1.0;
+  if (std::abs(det) <= kParallelTolerance * glm::length(t.e1) * glm::length(t.e2) * dir_len) return false;
   const double inv_det = 1.0 / det;
   const glm::dvec3 s = origin - t.p0;
   const double u = glm::dot(s, p) * inv_det;
-  if (u < -kBaryTolerance || u > 1.0 + kBaryTolerance) return -1.0;
+  if (u < -kBaryTolerance || u > 1.0 + kBaryTolerance) return false;
   const glm::dvec3 q = glm::cross(s, t.e1);
   const double v = glm::dot(dir, q) * inv_det;
-  if (v < -kBaryTolerance || u + v > 1.0 + kBaryTolerance) return -1.0;
-  const double th = glm::dot(t.e2, q) * inv_det;
+  if (v < -kBaryTolerance || u + v > 1.0 + kBaryTolerance) return false;
+  th = glm::dot(t.e2, q) * inv_det;
+  return true;
+}
+
+// The ray parameter t >= 0 where origin + t * dir meets triangle `t`, or -1.
+template <class Tri>
+double ray_triangle(const Tri& t, const glm::dvec3& origin, const glm::dvec3& dir, double dir_len) {
+  double th = 0.0;
+  if (!ray_triangle_t(t, origin, dir, dir_len, th)) return -1.0;
   return th < 0.0 ? -1.0 : th;
 }
 
@@ -270,10 +280,9 @@ TriangleBvh::Built TriangleBvh::build(std::vector<Node>& nodes, std::vector<std:
 
 namespace {
 
-// The ray's parameter interval [tmin, tmax] inside a box (empty when tmin > tmax).
+// Whether the ray's parameter interval [tmin, tmax] meets a box.
 template <class V>
-bool ray_meets_box(const V& lo, const V& hi, const glm::dvec3& origin, const glm::dvec3& inv, double tmax) {
-  double tmin = 0.0;
+bool ray_meets_box(const V& lo, const V& hi, const glm::dvec3& origin, const glm::dvec3& inv, double tmin, double tmax) {
   for (int k = 0; k < 3; ++k) {
     const double t1 = (double(lo[k]) - origin[k]) * inv[k], t2 = (double(hi[k]) - origin[k]) * inv[k];
     tmin = std::max(tmin, std::min(t1, t2));
@@ -301,10 +310,10 @@ void TriangleBvh::walk_ray(const glm::dvec3& origin, const glm::dvec3& dir, Limi
         continue;
       }
       const Node& n = nodes_[ref];
-      const double t = limit();
+      const auto [t0, t1] = limit();
       // The right child under the left, so the left is searched first.
-      if (ray_meets_box(n.lo[1], n.hi[1], origin, inv, t)) stack[top++] = n.child[1];
-      if (ray_meets_box(n.lo[0], n.hi[0], origin, inv, t)) stack[top++] = n.child[0];
+      if (ray_meets_box(n.lo[1], n.hi[1], origin, inv, t0, t1)) stack[top++] = n.child[1];
+      if (ray_meets_box(n.lo[0], n.hi[0], origin, inv, t0, t1)) stack[top++] = n.child[0];
     }
   };
   if (std::uint32_t up = hint_up(hint); up != kNoParent) {
@@ -313,17 +322,19 @@ void TriangleBvh::walk_ray(const glm::dvec3& origin, const glm::dvec3& dir, Limi
     for (; up != kNoParent; up = parent_[up >> 1]) {
       const Node& n = nodes_[up >> 1];
       const std::uint32_t other = 1 - (up & 1);
-      if (ray_meets_box(n.lo[other], n.hi[other], origin, inv, limit())) descend(n.child[other]);
+      const auto [t0, t1] = limit();
+      if (ray_meets_box(n.lo[other], n.hi[other], origin, inv, t0, t1)) descend(n.child[other]);
     }
     return;
   }
-  if (ray_meets_box(root_.lo, root_.hi, origin, inv, limit())) descend(root_.ref);
+  const auto [t0, t1] = limit();
+  if (ray_meets_box(root_.lo, root_.hi, origin, inv, t0, t1)) descend(root_.ref);
 }
 
 void TriangleBvh::all_hits(const glm::dvec3& origin, const glm::dvec3& dir, std::vector<double>& hits,
                            std::vector<std::uint32_t>* faces) const {
   const double dir_len = glm::length(dir);
-  walk_ray(origin, dir, [] { return std::numeric_limits<double>::infinity(); }, [&](std::uint32_t i) {
+  walk_ray(origin, dir, [] { return std::pair(0.0, std::numeric_limits<double>::infinity()); }, [&](std::uint32_t i) {
     const double th = ray_triangle(tris_[i], origin, dir, dir_len);
     if (th < 0.0) return;
     hits.push_back(th);
@@ -336,7 +347,7 @@ double TriangleBvh::nearest_hit(const glm::dvec3& origin, const glm::dvec3& dir,
   double best = std::numeric_limits<double>::infinity();
   const double dir_len = glm::length(dir);
   walk_ray(
-      origin, dir, [&] { return std::min(t_max, best); },
+      origin, dir, [&] { return std::pair(0.0, std::min(t_max, best)); },
       [&](std::uint32_t i) {
         const Tri& t = tris_[i];
         if (glm::dot(glm::cross(t.e1, t.e2), facing) <= 0.0) return;
@@ -345,6 +356,25 @@ double TriangleBvh::nearest_hit(const glm::dvec3& origin, const glm::dvec3& dir,
       },
       hint);
   return best;
+}
+
+std::pair<double, double> TriangleBvh::nearest_hits(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& facing,
+                                                   double t_max, std::uint32_t hint) const {
+  double forward = std::numeric_limits<double>::infinity(), backward = forward;
+  const double dir_len = glm::length(dir);
+  walk_ray(
+      origin, dir, [&] { return std::pair(-std::min(t_max, backward), std::min(t_max, forward)); },
+      [&](std::uint32_t i) {
+        const Tri& t = tris_[i];
+        if (glm::dot(glm::cross(t.e1, t.e2), facing) <= 0.0) return;
+        double th = 0.0;
+        if (!ray_triangle_t(t, origin, dir, dir_len, th)) return;
+        if (th >= 0.0 && th <= t_max && th < forward) forward = th;
+        const double back = -th;  // nearest_hit along -dir meets it at exactly this
+        if (back >= 0.0 && back <= t_max && back < backward) backward = back;
+      },
+      hint);
+  return {forward, backward};
 }
 
 namespace {

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -38,6 +39,11 @@ class TriangleBvh {
   /// climbs, which saves the walk down from the root on a short ray; the same answer.
   double nearest_hit(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& facing, double t_max,
                      std::uint32_t hint = UINT32_MAX) const;
+
+  /// nearest_hit along dir and along -dir (the same facing, bound and hint) from one walk of the
+  /// tree: {forward, backward}, each bit for bit what its own call returns.
+  std::pair<double, double> nearest_hits(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& facing,
+                                         double t_max, std::uint32_t hint = UINT32_MAX) const;
 
   /// The closest point of the triangles to p and its distance (infinite with no triangles).
   struct Closest {
@@ -92,7 +98,7 @@ class TriangleBvh {
     glm::dvec3 lo{0.0}, hi{0.0};
   };
   // Calls visit(triangle index) for the triangles of every leaf whose box the ray meets within
-  // [0, limit()] (limit is asked again at each node, so a search can shrink it), leaves in
+  // the interval limit() = {t0, t1} (asked again at each node, so a search can shrink it), leaves in
   // depth-first order, left child first.
   // From polygon `hint`'s leaf up instead of from the root when it is one (leaves in another
   // order then).

@@ -55,8 +55,7 @@ struct Projector {
     if (glm::dot(n, n) == 0.0) return c.point;
     // 3x: a ray may meet the surface at a slant; farther than that it is another part's surface.
     const double limit = std::min(reach, 3.0 * c.distance + 1e-12 * input.diagonal());
-    const double up = input.nearest_hit(p, n, n, limit, c.face);
-    const double down = input.nearest_hit(p, -n, n, std::min(limit, up), c.face);
+    const auto [up, down] = input.nearest_hits(p, n, n, limit, c.face);
     if (down <= limit && down < up) return p - down * n;
     if (up <= limit) return p + up * n;
     return c.point;

@@ -157,7 +157,7 @@ TEST(TriangleBvh, RayHitsAgreeWithBruteForce) {
   const TriangleBvh bvh(s.xyz, s.faces);
   std::mt19937 rng(4);
   std::uniform_real_distribution<double> u(0.0, 1.0), w(-1.0, 1.0);
-  int hit_rays = 0;
+  int hit_rays = 0, both_ways = 0;
   for (int q = 0; q < 300; ++q) {
     const glm::dvec3 o(u(rng), u(rng), u(rng)), dir(w(rng), w(rng), w(rng)), facing(w(rng), w(rng), w(rng));
     std::vector<double> expected;
@@ -187,6 +187,13 @@ TEST(TriangleBvh, RayHitsAgreeWithBruteForce) {
       EXPECT_EQ(bvh.nearest_hit(o, dir, facing, 1e30, hint), nh) << hint;
       const double bound = std::isfinite(nh) ? 1.5 * nh : 0.7;
       EXPECT_EQ(bvh.nearest_hit(o, dir, facing, bound, hint), bvh.nearest_hit(o, dir, facing, bound)) << hint;
+      // Both ways in one walk: each side bit for bit its own call's, bounded or not.
+      for (const double t_max : {1e30, bound}) {
+        const auto [forward, backward] = bvh.nearest_hits(o, dir, facing, t_max, hint);
+        EXPECT_EQ(forward, bvh.nearest_hit(o, dir, facing, t_max)) << hint;
+        EXPECT_EQ(backward, bvh.nearest_hit(o, -dir, facing, t_max)) << hint;
+        both_ways += std::isfinite(forward) && std::isfinite(backward);
+      }
     }
     if (!std::isfinite(nearest_facing)) {
       EXPECT_TRUE(std::isinf(nh)) << nh;
@@ -198,6 +205,7 @@ TEST(TriangleBvh, RayHitsAgreeWithBruteForce) {
     }
   }
   EXPECT_GT(hit_rays, 100);  // the soup is dense enough that most rays meet something
+  EXPECT_GT(both_ways, 100);  // and often on both sides
 }
 
 

@@ -64,14 +64,13 @@ MeshStats compute_mesh_stats(const SurfaceMesh& mesh) {
   }
   const auto by_key = [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key; };
   for (std::size_t v = 0; v < nv; ++v) {
-    HalfEdge* const first = half.data() + start[v];
-    HalfEdge* const last = half.data() + start[v + 1];
+    const std::size_t first = start[v], last = start[v + 1];
     if (last - first > 32) {
-      std::stable_sort(first, last, by_key);
+      std::stable_sort(half.begin() + first, half.begin() + last, by_key);
       continue;
     }
-    for (HalfEdge* i = first + 1; i < last; ++i)  // insertion sort: stable, no buffer
-      for (HalfEdge* j = i; j > first && by_key(*j, *(j - 1)); --j) std::swap(*j, *(j - 1));
+    for (std::size_t i = first + 1; i < last; ++i)  // insertion sort: stable, no buffer
+      for (std::size_t j = i; j > first && by_key(half[j], half[j - 1]); --j) std::swap(half[j], half[j - 1]);
   }
 
   std::vector<char> used(nv, 0);

@@ -3,7 +3,8 @@
 // boundaries, tight handles and small closed shapes, before and between rounds of a quadric
 // decimation (so deleted elements and collapsed neighbourhoods are met too). And the base's
 // shape guard (core/fit/decimation_shape.h) against the two OpenMesh modules it fuses, verdict
-// by verdict and base by base.
+// by verdict and base by base; and the base's decimater (core/fit/decimater.h) against OpenMesh's
+// DecimaterT, collapse by collapse.
 #include "core/fit/decimater.h"
 #include "core/fit/decimation_mesh.h"
 #include "core/fit/decimation_shape.h"

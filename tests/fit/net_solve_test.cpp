@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 
@@ -16,6 +17,7 @@
 #include "core/complex/complex_build.h"
 #include "core/complex/polygon_normal.h"
 #include "core/fit/feature_lines.h"
+#include "core/fit/sparse_product.h"
 #include "core/multires/hierarchy.h"
 #include "tests/mesh_fixtures.h"
 #include "tests/test_shapes.h"
@@ -107,6 +109,53 @@ TEST(NetSolve, AQuadNetSolvesAsItsFanTriangulation) {
   const std::vector<double> b = solve_net(tris, {x, x, targets}, input, n, {}, w);
   EXPECT_LE(testing::max_abs_diff(a, b), 1e-9);
   EXPECT_GT(testing::max_abs_diff(a, x), 0.01);  // and the input did pull the net
+}
+
+// The solve's own sparse product against Eigen's, bit for bit: random matrices wider than one
+// chunk of columns, with empty columns and rows, entries that cancel to zero, and the shapes
+// L^T M L takes (square, and a product of products).
+TEST(SparseProduct, BitForBitEigens) {
+  using Sparse = Eigen::SparseMatrix<double>;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  const auto random_matrix = [&](int rows, int cols, int per_column) {
+    std::vector<Eigen::Triplet<double>> t;
+    for (int j = 0; j < cols; ++j) {
+      if (j % 97 == 5) continue;  // an empty column
+      for (int k = 0; k < per_column; ++k) {
+        const int i = static_cast<int>(rng() % static_cast<unsigned>(rows));
+        if (i % 89 == 3) continue;  // rows left empty
+        const double x = k == 0 ? 0.5 : value(rng);
+        t.emplace_back(i, j, x);
+        if (k == 1) t.emplace_back(i, j, -x);  // a duplicate that cancels: an explicit zero
+      }
+    }
+    Sparse m(rows, cols);
+    m.setFromTriplets(t.begin(), t.end());
+    return m;
+  };
+  const auto expect_same_bits = [](const Sparse& ours, const Sparse& eigens, const char* what) {
+    ASSERT_EQ(ours.rows(), eigens.rows()) << what;
+    ASSERT_EQ(ours.cols(), eigens.cols()) << what;
+    ASSERT_EQ(ours.nonZeros(), eigens.nonZeros()) << what;
+    ASSERT_TRUE(ours.isCompressed()) << what;
+    for (int j = 0; j < eigens.outerSize(); ++j) {
+      ASSERT_EQ(ours.outerIndexPtr()[j + 1], eigens.outerIndexPtr()[j + 1]) << what << ", column " << j;
+      for (Sparse::InnerIterator x(ours, j), y(eigens, j); y; ++x, ++y) {
+        EXPECT_EQ(x.index(), y.index()) << what << ", column " << j;
+        const double a = x.value(), b = y.value();
+        EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << what << ", entry (" << y.index() << ", " << j << "): " << a << " vs " << b;
+      }
+    }
+  };
+  const Sparse l = random_matrix(5000, 5000, 12), m = random_matrix(5000, 5000, 7);
+  const Sparse lt = l.transpose();
+  const Sparse lm = fit_detail::sparse_product(lt, m);
+  expect_same_bits(lm, Sparse(lt * m), "L^T M");
+  expect_same_bits(fit_detail::sparse_product(lm, l), Sparse(lt * m * l), "L^T M L");
+  const Sparse wide = random_matrix(300, 7000, 4), tall = random_matrix(7000, 40, 30);
+  expect_same_bits(fit_detail::sparse_product(wide, tall), Sparse(wide * tall), "300 x 7000 times 7000 x 40");
+  expect_same_bits(fit_detail::sparse_product(Sparse(0, 0), Sparse(0, 0)), Sparse(0, 0), "empty");
 }
 
 TEST(FeatureLines, ClosestPointIsTheBruteForceOne) {

@@ -34,62 +34,6 @@ using Sparse = Eigen::SparseMatrix<double>;
 
 }  // namespace
 
-// The limit solves' L^T M L was their largest serial part (665-738 ms a solve on the 100 k torus
-// with cubic).
-Eigen::SparseMatrix<double> fit_detail::sparse_product(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& b) {
-  const auto rows = static_cast<std::size_t>(a.rows());
-  const auto cols = static_cast<std::uint32_t>(b.cols());
-  constexpr std::uint32_t kColumns = 2048;
-  const std::uint32_t chunks = (cols + kColumns - 1) / kColumns;
-  struct Part {
-    std::vector<int> count, inner;
-    std::vector<double> value;
-  };
-  std::vector<Part> parts(chunks);
-  parallel_for(chunks, 1, [&](std::uint32_t c0, std::uint32_t c1) {
-    thread_local std::vector<double> sum;
-    thread_local std::vector<char> seen;  // all clear between columns
-    thread_local std::vector<int> at;
-    if (sum.size() < rows) sum.resize(rows), seen.resize(rows, 0);
-    for (std::uint32_t c = c0; c < c1; ++c) {
-      Part& part = parts[c];
-      for (std::uint32_t j = c * kColumns; j < std::min(cols, (c + 1) * kColumns); ++j) {
-        at.clear();
-        for (Sparse::InnerIterator bk(b, j); bk; ++bk) {
-          const double y = bk.value();
-          for (Sparse::InnerIterator ai(a, bk.index()); ai; ++ai) {
-            const auto i = static_cast<std::size_t>(ai.index());
-            if (!seen[i]) {
-              seen[i] = 1;
-              sum[i] = ai.value() * y;
-              at.push_back(static_cast<int>(i));
-            } else {
-              sum[i] += ai.value() * y;
-            }
-          }
-        }
-        std::sort(at.begin(), at.end());
-        for (const int i : at) part.inner.push_back(i), part.value.push_back(sum[i]), seen[i] = 0;
-        part.count.push_back(static_cast<int>(at.size()));
-      }
-    }
-  });
-  std::size_t total = 0;
-  for (const Part& part : parts) total += part.inner.size();
-  Sparse r(a.rows(), b.cols());
-  r.resizeNonZeros(static_cast<Eigen::Index>(total));
-  int* outer = r.outerIndexPtr();
-  std::size_t at = 0, j = 0;
-  outer[0] = 0;
-  for (const Part& part : parts) {
-    std::copy(part.inner.begin(), part.inner.end(), r.innerIndexPtr() + at);
-    std::copy(part.value.begin(), part.value.end(), r.valuePtr() + at);
-    at += part.inner.size();
-    for (const int k : part.count) outer[j + 1] = outer[j] + k, ++j;
-  }
-  return r;
-}
-
 std::vector<double> solve_net(const Complex& c, const NetSolveState& st, std::span<const double> input,
                               std::span<const double> input_normals, std::span<const double> hold, const NetSolveWeights& wt) {
   const std::uint32_t n = c.num_vertices, ne = c.num_edges();
@@ -182,8 +126,8 @@ std::vector<double> solve_net(const Complex& c, const NetSolveState& st, std::sp
   // column by column of the springs), so bit for bit, without building the matrix.
   const auto add_pull = [&](Eigen::MatrixX3d& b) {
     for (std::uint32_t v = 0; v < n; ++v) {
-      b.row(v) += degree[v] * x0.row(v);
-      for (std::uint32_t e : c.vertex_edges.row(v)) b.row(edge_other_end(c, e, v)) += -wt.kappa * x0.row(v);
+      b.row(v) += spring_diagonal(v) * x0.row(v);
+      for (std::uint32_t e : c.vertex_edges.row(v)) b.row(edge_other_end(c, e, v)) += spring_edge(e) * x0.row(v);
     }
   };
   Sparse A;

@@ -5,13 +5,13 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "core/engine/executor.h"
 #include "core/base/channels.h"
 #include "core/base/errors.h"
-#include "core/base/memory_budget.h"
 #include "core/base/magnitude.h"
+#include "core/base/memory_budget.h"
 #include "core/complex/level_counts.h"
 #include "core/complex/refine_sqrt2.h"
+#include "core/engine/executor.h"
 
 namespace sublift {
 

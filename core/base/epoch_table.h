@@ -10,29 +10,29 @@
 namespace sublift {
 
 struct EpochTable {
-  std::vector<std::uint32_t> value, stamp;
+  // A stamp and its value side by side: a look-up touches one cache line, not two.
+  struct Slot {
+    std::uint32_t stamp = 0, value = 0;
+  };
+  std::vector<Slot> slot;
   std::uint32_t epoch = 0;
 
   /// Starts an empty table over indices 0..n-1.
   void begin(std::uint32_t n) {
-    if (stamp.size() < n) {
-      value.resize(n);
-      stamp.assign(n, 0);
+    if (slot.size() < n) {
+      slot.assign(n, Slot{});
       epoch = 0;
     }
     if (++epoch == 0) {  // wrapped: every old stamp could match again
-      std::fill(stamp.begin(), stamp.end(), 0);
+      std::fill(slot.begin(), slot.end(), Slot{});
       epoch = 1;
     }
   }
-  bool has(std::uint32_t i) const { return stamp[i] == epoch; }
+  bool has(std::uint32_t i) const { return slot[i].stamp == epoch; }
   /// The value set for i since begin(), or UINT32_MAX.
-  std::uint32_t get(std::uint32_t i) const { return stamp[i] == epoch ? value[i] : UINT32_MAX; }
-  void mark(std::uint32_t i) { stamp[i] = epoch; }  // has(i) from now on, with no value
-  void set(std::uint32_t i, std::uint32_t v) {
-    stamp[i] = epoch;
-    value[i] = v;
-  }
+  std::uint32_t get(std::uint32_t i) const { return slot[i].stamp == epoch ? slot[i].value : UINT32_MAX; }
+  void mark(std::uint32_t i) { slot[i].stamp = epoch; }  // has(i) from now on, with no value
+  void set(std::uint32_t i, std::uint32_t v) { slot[i] = {epoch, v}; }
 };
 
 }  // namespace sublift

@@ -647,4 +647,14 @@ TEST(TriLocal, SignaturesWidenForHugeNeighbourhoodsAndStayDistinct) {
   EXPECT_EQ(signature(200, 180, 150), big);
   EXPECT_EQ(SignatureHash{}(big), SignatureHash{}(signature(200, 180, 150)));
   EXPECT_EQ(signature(200, 180, 3), small);
+  // The one-pass form (the edges' keys) widens alike, bit for bit.
+  const Complex c = regular_torus(200, 180);
+  const TriRings r = build_tri_rings(c);
+  const std::uint32_t seeds[1] = {0}, starts[1] = {r.ring.row(0)[0]};
+  LocalOrder o;
+  std::string fused;
+  local_order_and_signature(c, r, seeds, starts, 150, o, fused);
+  EXPECT_EQ(fused, big);
+  local_order_and_signature(c, r, seeds, starts, 3, o, fused);
+  EXPECT_EQ(fused, small);
 }

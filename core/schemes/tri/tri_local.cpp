@@ -184,42 +184,16 @@ void local_order(const TriRings& r, std::span<const std::uint32_t> seeds, std::s
 
 namespace {
 
-// The numbers of a signature as 16-bit ones when every one fits (nearly always), else 32-bit,
-// after a byte that says which.
-void pack_signature(const std::int32_t* s, const std::int32_t* w, std::string& out) {
-  const std::size_t count = static_cast<std::size_t>(w - s);
-  const bool narrow = std::all_of(s, w, [](std::int32_t x) { return x >= INT16_MIN && x <= INT16_MAX; });
-  out.assign(1 + count * (narrow ? sizeof(std::int16_t) : sizeof(std::int32_t)), narrow ? 'h' : 'w');
-  if (!narrow) {
-    std::memcpy(out.data() + 1, s, count * sizeof(std::int32_t));
-    return;
-  }
-  char* at = out.data() + 1;
-  for (const std::int32_t* v = s; v != w; ++v, at += sizeof(std::int16_t)) {
-    const auto x = static_cast<std::int16_t>(*v);
-    std::memcpy(at, &x, sizeof x);
-  }
-}
-
-thread_local std::vector<std::int32_t> signature_buffer;  // reused: no allocation per signature
-
-}  // namespace
-
-std::string local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius) {
-  table.begin(c.num_vertices);
-  std::size_t bound = 0;  // 4 numbers per label and 2 per fan entry
-  for (std::uint32_t l = 0; l < o.vertex.size(); ++l)
-    if (o.dist[l] <= radius) {
-      table.set(o.vertex[l], l);
-      bound += 4 + 2 * std::size_t(r.ring.size(o.vertex[l]));
-    }
-  std::vector<std::int32_t>& buffer = signature_buffer;
-  if (buffer.size() < bound) buffer.resize(bound);
+// A signature's numbers are 16-bit when every one fits (nearly always), else 32-bit, after a
+// byte that says which: 'h' or 'w'.
+template <class T>
+void write_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius, std::size_t count,
+                     std::string& out) {
+  thread_local std::vector<T> buffer;  // reused: no allocation per signature
+  if (buffer.size() < count) buffer.resize(count);
   // Plain pointers in the loop: the table's and the buffer's are thread-locals.
-  std::int32_t* const s = buffer.data();
-  std::int32_t* w = s;
-  const std::uint32_t* const stamp = table.stamp.data();
-  const std::uint32_t* const label = table.value.data();
+  T* w = buffer.data();
+  const EpochTable::Slot* const slot = table.slot.data();
   const std::uint32_t epoch = table.epoch;
   const std::uint32_t* const items = r.ring.items.data();
   const std::uint32_t* const edges = r.ring_edge.items.data();
@@ -227,37 +201,74 @@ std::string local_signature(const Complex& c, const TriRings& r, const LocalOrde
     if (o.dist[l] > radius) continue;
     const std::uint32_t u = o.vertex[l];
     const std::uint32_t begin = r.ring.offsets[u], n = r.ring.offsets[u + 1] - begin;
-    *w++ = -1000 - o.dist[l];
-    *w++ = r.closed[u];
-    *w++ = static_cast<std::int32_t>(n);
-    *w++ = c.vertex_dim.empty() ? 2 : c.vertex_dim[u];
+    *w++ = static_cast<T>(-1000 - o.dist[l]);
+    *w++ = static_cast<T>(r.closed[u]);
+    *w++ = static_cast<T>(n);
+    *w++ = static_cast<T>(c.vertex_dim.empty() ? 2 : c.vertex_dim[u]);
     if (n == 0) continue;
     const std::uint32_t i0 = l < o.fan0.size() && o.fan0[l] != UINT32_MAX ? o.fan0[l] : fan_index(r, u, o.start[l]);
     for (std::uint32_t k = 0, i = i0; k < n; ++k, i = i + 1 == n ? 0 : i + 1) {
       const std::uint32_t x = items[begin + i];
-      *w++ = stamp[x] == epoch ? static_cast<std::int32_t>(label[x]) : -1;
-      *w++ = c.edge_dim.empty() ? 2 : c.edge_dim[edges[begin + i]];
+      *w++ = slot[x].stamp == epoch ? static_cast<T>(slot[x].value) : T(-1);
+      *w++ = static_cast<T>(c.edge_dim.empty() ? 2 : c.edge_dim[edges[begin + i]]);
     }
   }
+  out.resize(1 + count * sizeof(T));
+  out[0] = sizeof(T) == sizeof(std::int16_t) ? 'h' : 'w';
+  std::memcpy(out.data() + 1, buffer.data(), count * sizeof(T));
+}
+
+}  // namespace
+
+std::string local_signature(const Complex& c, const TriRings& r, const LocalOrder& o, int radius) {
+  table.begin(c.num_vertices);
+  std::size_t count = 0;  // 4 numbers per label and 2 per fan entry
+  std::uint32_t labels = 0, max_valence = 0;
+  for (std::uint32_t l = 0; l < o.vertex.size(); ++l)
+    if (o.dist[l] <= radius) {
+      table.set(o.vertex[l], l);
+      ++labels;
+      max_valence = std::max(max_valence, r.ring.size(o.vertex[l]));
+      count += 4 + 2 * std::size_t(r.ring.size(o.vertex[l]));
+    }
   std::string out;
-  pack_signature(s, w, out);
+  if (labels <= std::uint32_t(INT16_MAX) + 1 && max_valence <= INT16_MAX) write_signature<std::int16_t>(c, r, o, radius, count, out);
+  else write_signature<std::int32_t>(c, r, o, radius, count, out);
   return out;
 }
+
+namespace {
+
+thread_local std::vector<std::int16_t> narrow_buffer;  // reused by local_order_and_signature
+
+}  // namespace
 
 void local_order_and_signature(const Complex& c, const TriRings& r, std::span<const std::uint32_t> seeds,
                                std::span<const std::uint32_t> seed_start, int radius, LocalOrder& o, std::string& out) {
   start_order(r, seeds, seed_start, o);
-  std::vector<std::int32_t>& s = signature_buffer;
-  s.clear();
+  // Written straight as 16-bit numbers (every one fits unless a valence or a label passes
+  // 32767); otherwise the order is finished here and local_signature writes the 32-bit form.
+  std::vector<std::int16_t>& s = narrow_buffer;
+  std::size_t used = 0;
+  bool narrow = true;
   const std::uint32_t* const items = r.ring.items.data();
   const std::uint32_t* const edges = r.ring_edge.items.data();
+  const std::uint32_t* const offsets = r.ring.offsets.data();
+  const std::uint8_t* const edge_dim = c.edge_dim.empty() ? nullptr : c.edge_dim.data();
   // Label order is breadth first, so every vertex within `radius` is labelled before the first
   // one at `radius` is walked: a neighbour without a label when it is read lies beyond.
   for (std::size_t l = 0; l < o.vertex.size(); ++l) {
     const std::uint32_t u = o.vertex[l];
     const std::uint8_t d = o.dist[l];
-    const std::uint32_t begin = r.ring.offsets[u], n = r.ring.offsets[u + 1] - begin;
-    s.insert(s.end(), {-1000 - d, std::int32_t(r.closed[u]), static_cast<std::int32_t>(n), c.vertex_dim.empty() ? 2 : c.vertex_dim[u]});
+    const std::uint32_t begin = offsets[u], n = offsets[u + 1] - begin;
+    narrow &= n <= INT16_MAX;
+    if (s.size() < used + 4 + 2 * std::size_t(n)) s.resize(2 * (used + 4 + 2 * std::size_t(n)));
+    std::int16_t* w = s.data() + used;
+    *w++ = static_cast<std::int16_t>(-1000 - d);
+    *w++ = static_cast<std::int16_t>(r.closed[u]);
+    *w++ = static_cast<std::int16_t>(n);
+    *w++ = static_cast<std::int16_t>(c.vertex_dim.empty() ? 2 : c.vertex_dim[u]);
+    used += 4 + 2 * std::size_t(n);
     if (n == 0) continue;
     const std::uint32_t i0 = fan_index(r, u, o.start[l]);
     const bool walk = d < radius;
@@ -273,14 +284,21 @@ void local_order_and_signature(const Complex& c, const TriRings& r, std::span<co
         o.start.push_back(u);
         o.fan0.push_back(UINT32_MAX);
       }
-      s.push_back(lx == UINT32_MAX ? -1 : static_cast<std::int32_t>(lx));
-      s.push_back(c.edge_dim.empty() ? 2 : c.edge_dim[edges[begin + i]]);
+      narrow &= lx == UINT32_MAX || lx <= INT16_MAX;
+      *w++ = lx == UINT32_MAX ? std::int16_t(-1) : static_cast<std::int16_t>(lx);
+      *w++ = static_cast<std::int16_t>(edge_dim ? edge_dim[edges[begin + i]] : 2);
     }
   }
-  pack_signature(s.data(), s.data() + s.size(), out);
+  if (!narrow) {
+    out = local_signature(c, r, o, radius);
+    return;
+  }
+  out.resize(1 + used * sizeof(std::int16_t));
+  out[0] = 'h';
+  std::memcpy(out.data() + 1, s.data(), used * sizeof(std::int16_t));
 }
 
-std::size_t SignatureHash::operator()(std::string_view s) const noexcept {
+std::size_t SignatureHash::operator()(std::string_view s) const {
   // Four independent lanes of 8 bytes (one chain of multiplies was latency-bound: a butterfly
   // level hashes thousands of 3 kB signatures), folded into one.
   std::uint64_t lane[4] = {0x9e3779b97f4a7c15ull ^ s.size(), 0xc2b2ae3d27d4eb4full, 0x165667b19e3779f9ull,

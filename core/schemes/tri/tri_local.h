@@ -84,9 +84,14 @@ void local_order_and_signature(const Complex& c, const TriRings& r, std::span<co
 
 /// A hash for signatures that reads them 8 bytes at a time (they are kilobytes long and looked
 /// up once per irregular edge and face; equality is still checked in full).
+///
+/// Deliberately not noexcept: libstdc++ keeps a node's hash code only when the hasher may throw
+/// (or is known to be slow), and without it every look-up rehashes the kilobyte keys it walks
+/// past in its bucket and every rehash all of them (15 % of a Loop hierarchy's setup on an
+/// irregular base, perf).
 struct SignatureHash {
-  std::size_t operator()(std::string_view s) const noexcept;
-  std::size_t operator()(const std::string& s) const noexcept { return (*this)(std::string_view(s)); }
+  std::size_t operator()(std::string_view s) const;
+  std::size_t operator()(const std::string& s) const { return (*this)(std::string_view(s)); }
 };
 
 /// The sub-mesh of the faces whose corners all carry labels, vertices numbered by label, faces

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <unordered_map>
+#include <vector>
 
 #include "core/base/edge_key.h"
 #include "core/base/errors.h"
@@ -13,22 +13,56 @@
 namespace sublift {
 namespace {
 
-// Finds or creates edges while faces are added; keeps first-seen orientation.
+// Finds or creates edges while faces are added; keeps first-seen orientation. Open addressing
+// in one flat array: a node-based map allocated once per edge, which dominated building the
+// many small patches of the triangle schemes' face types (perf).
 class EdgeTable {
  public:
-  explicit EdgeTable(Complex& c) : c_(c) {}
+  /// `expected`: about how many edges will be made (the table grows past it).
+  EdgeTable(Complex& c, std::size_t expected) : c_(c) { rehash(std::max<std::size_t>(16, 2 * expected)); }
   std::uint32_t get(std::uint32_t a, std::uint32_t b) {
-    auto [it, inserted] = map_.try_emplace(edge_key(a, b), c_.num_edges());
-    if (inserted) {
+    const std::uint64_t key = edge_key(a, b);
+    for (std::size_t i = slot_of(key);; i = (i + 1) & mask_) {
+      if (slots_[i].key == key) return slots_[i].edge;
+      if (slots_[i].key != kEmpty) continue;
+      const std::uint32_t e = c_.num_edges();
+      slots_[i] = {key, e};
       c_.edge_verts.push_back(a);
       c_.edge_verts.push_back(b);
+      if (2 * (std::size_t(e) + 1) > slots_.size()) rehash(2 * slots_.size());
+      return e;
     }
-    return it->second;
   }
 
  private:
+  static constexpr std::uint64_t kEmpty = UINT64_MAX;  // no edge has it: vertex numbers are below UINT32_MAX
+  struct Slot {
+    std::uint64_t key = kEmpty;
+    std::uint32_t edge = 0;
+  };
+  std::size_t slot_of(std::uint64_t key) const { return static_cast<std::size_t>((key * 0x9e3779b97f4a7c15ull) >> shift_); }
+  void rehash(std::size_t at_least) {
+    std::size_t n = 16;
+    int bits = 4;
+    while (n < at_least) {
+      n *= 2;
+      ++bits;
+    }
+    std::vector<Slot> old(n);
+    old.swap(slots_);
+    mask_ = n - 1;
+    shift_ = 64 - bits;
+    for (const Slot& s : old)
+      if (s.key != kEmpty) {
+        std::size_t i = slot_of(s.key);
+        while (slots_[i].key != kEmpty) i = (i + 1) & mask_;
+        slots_[i] = s;
+      }
+  }
   Complex& c_;
-  std::unordered_map<std::uint64_t, std::uint32_t> map_;
+  std::vector<Slot> slots_;
+  std::size_t mask_ = 0;
+  int shift_ = 64;
 };
 
 void add_face_loop(Complex& c, EdgeTable& edges, std::span<const std::uint32_t> loop, const std::string& what) {
@@ -207,7 +241,7 @@ Complex complex_from_polygons(std::uint32_t num_vertices, const Csr& faces, cons
   Complex c;
   c.dim = 2;
   c.num_vertices = num_vertices;
-  EdgeTable edges(c);
+  EdgeTable edges(c, faces.items.size() / 2 + 1);  // a closed surface has one edge per two corners
   c.edge_verts.reserve(faces.items.size());
   for (std::size_t f = 0; f < faces.rows(); ++f) add_face_loop(c, edges, faces.row(f), "face " + std::to_string(f));
   if (c.num_faces() == 0) throw TopologyError("a surface needs at least one face");
@@ -228,7 +262,7 @@ Complex complex_from_polylines(std::uint32_t num_vertices, const Csr& polylines,
   Complex c;
   c.dim = 1;
   c.num_vertices = num_vertices;
-  EdgeTable edges(c);
+  EdgeTable edges(c, polylines.items.size());
   for (std::size_t l = 0; l < polylines.rows(); ++l) {
     const auto p = polylines.row(l);
     if (p.size() < 2) throw TopologyError("polyline " + std::to_string(l) + " has fewer than 2 vertices");
@@ -253,7 +287,7 @@ Complex complex_from_cells(std::uint32_t num_vertices, const Csr& face_loops, co
   Complex c;
   c.dim = 3;
   c.num_vertices = num_vertices;
-  EdgeTable edges(c);
+  EdgeTable edges(c, face_loops.items.size() / 2 + 1);
   std::map<std::vector<std::uint32_t>, std::uint32_t> face_of;
   std::vector<std::uint32_t> loop_face(face_loops.rows());
   for (std::size_t l = 0; l < face_loops.rows(); ++l) {

@@ -46,12 +46,18 @@ void TriWaveletBuilder::plan(const TriLevel& lv, std::uint32_t e, EdgePlan& out)
   const std::uint32_t nd = labels_within(order, disc_);
   out.edge = e;
   out.disc.assign(order.vertex.begin(), order.vertex.begin() + nd);
+  // Each face once (a face meets up to three of the rows), then sorted.
+  thread_local EpochTable seen;
   const auto faces_of = [](const Complex& mesh, const LocalOrder& o, std::vector<std::uint32_t>& faces) {
     faces.clear();
+    seen.begin(mesh.num_faces());
     for (std::uint32_t v : o.vertex)
-      for (std::uint32_t f : mesh.vertex_faces.row(v)) faces.push_back(f);
+      for (std::uint32_t f : mesh.vertex_faces.row(v))
+        if (!seen.has(f)) {
+          seen.mark(f);
+          faces.push_back(f);
+        }
     std::sort(faces.begin(), faces.end());
-    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
   };
   faces_of(c, order, out.coarse_faces);
   const std::uint32_t m = c.num_vertices + e;

@@ -584,6 +584,44 @@ TEST(TriTransition, SharedUpdateRowsEqualListedOnARegularTorus) {
   expect_shared_rows_match(regular_torus(24, 20), Scheme::Loop, true);
 }
 
+// Edges keyed through an anchor (an irregular vertex's signature and the edge's ends as its
+// labels) find the wavelets their own signatures find: the update rows and norms are bit for bit
+// those keyed edge by edge. On the octahedron's deep levels (valence 4, far apart: each anchor
+// alone), a disc round a valence-5 vertex (its open rim crowded with anchors) and the creased
+// grid (anchors along the creases), for Loop and butterfly; the anchors must serve on each.
+TEST(TriTransition, AnchoredKeysFindTheEdgesOwnWavelets) {
+  Complex grid = read_shape(std::string(SUBLIFT_ASSETS_DIR) + "/tri_crease_grid.obj").base;
+  build_adjacency(grid);
+  Complex disc = extraordinary_disc(5, 4);
+  build_adjacency(disc);
+  // Each to a level whose transition meets anchors alone and known (the octahedron's valence-4
+  // vertices are alone within butterfly's 21 rings from level 5).
+  const std::pair<Complex, int> meshes[] = {{octahedron_complex(), 7}, {disc, 5}, {grid, 6}};
+  for (Scheme s : {Scheme::Loop, Scheme::Butterfly}) {
+    for (const auto& [base, levels] : meshes) {
+      SCOPED_TRACE(scheme_name(s) + " on a mesh of " + std::to_string(base.num_vertices) + " vertices");
+      std::uint32_t anchored = 0;
+      Complex c = base;
+      for (int j = 0; j < levels; ++j) {
+        const Complex fine = refine_tri(c);
+        const TriTransitionResult with = build_tri_transition(c, fine, s, 2, true, true);
+        const TriTransitionResult own = build_tri_transition(c, fine, s, 2, true, false);
+        EXPECT_EQ(own.anchored_edges, 0u);
+        anchored += with.anchored_edges;
+        const auto& a = std::get<WeightedStep>(with.transition.steps[0].op);
+        const auto& b = std::get<WeightedStep>(own.transition.steps[0].op);
+        ASSERT_EQ(a.sources.offsets, b.sources.offsets) << "level " << j;
+        ASSERT_EQ(a.sources.items, b.sources.items) << "level " << j;
+        ASSERT_EQ(a.weights, b.weights) << "level " << j;
+        ASSERT_EQ(a.weight_at, b.weight_at) << "level " << j;
+        ASSERT_EQ(with.norm2, own.norm2) << "level " << j;
+        c = fine;
+      }
+      EXPECT_GT(anchored, 100u);
+    }
+  }
+}
+
 TEST(TriTransition, ATorusTooThinForThePatternListsItsRows) {
   // Six cells round: a vertex's 3-ring closes on itself, so no row can follow the pattern.
   expect_shared_rows_match(regular_torus(6, 6), Scheme::Butterfly, false);

@@ -10,6 +10,7 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "core/base/epoch_table.h"
 #include "core/base/parallel.h"
 #include "core/schemes/tri/tri_local.h"
 #include "core/schemes/tri/tri_wavelets.h"
@@ -287,10 +288,86 @@ bool update_rows(const Complex& coarse, const TriRings& rings, const EdgeWavelet
   return true;
 }
 
+// Per irregular edge its anchored key (TriWaveletBuilder::anchor_type), UINT64_MAX where there
+// is none; empty where anchors do not pay: an anchor's signature costs about
+// (2R + 1)^2 / R^2, 4-5 edges' ones, so they serve where the irregular vertices are few and far
+// apart (every deep level). An edge's anchor is the irregular vertex nearest to its nearer end
+// (within R). An anchor type is kept when a second anchor here has it or when it is alone in its
+// neighbourhood (the same vertex then has the same type a level finer): a fitted base's
+// crowded irregular vertices are mostly unique and stay with their edges' own keys.
+std::vector<std::uint64_t> anchored_keys(TriWaveletBuilder& b, const Complex& coarse, const TriRings& rings,
+                                         const std::vector<std::uint8_t>& dist, const std::vector<std::uint32_t>& nearest,
+                                         const std::vector<std::uint32_t>& irregular) {
+  const std::uint32_t n = static_cast<std::uint32_t>(irregular.size());
+  std::vector<std::uint32_t> anchor_of(n), anchors, anchor_slot(coarse.num_vertices, UINT32_MAX);
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const std::uint32_t a = coarse.edge_verts[2 * irregular[k]], bb = coarse.edge_verts[2 * irregular[k] + 1];
+    const std::uint32_t v = dist[a] <= dist[bb] ? nearest[a] : nearest[bb];
+    if (anchor_slot[v] == UINT32_MAX) {
+      anchor_slot[v] = static_cast<std::uint32_t>(anchors.size());
+      anchors.push_back(v);
+    }
+    anchor_of[k] = anchor_slot[v];
+  }
+  if (anchors.empty() || n < 8 * anchors.size()) return {};
+  // Edges grouped by anchor.
+  Csr edges_of;
+  edges_of.offsets.assign(anchors.size() + 1, 0);
+  for (std::uint32_t k = 0; k < n; ++k) ++edges_of.offsets[anchor_of[k] + 1];
+  for (std::size_t i = 0; i < anchors.size(); ++i) edges_of.offsets[i + 1] += edges_of.offsets[i];
+  edges_of.items.resize(n);
+  {
+    std::vector<std::uint32_t> place(edges_of.offsets.begin(), edges_of.offsets.end() - 1);
+    for (std::uint32_t k = 0; k < n; ++k) edges_of.items[place[anchor_of[k]]++] = k;
+  }
+  // Each anchor's signature, and its edges' ends as labels of its order (20 bits each).
+  const int radius = 2 * b.signature_radius() + 1;
+  std::vector<std::string> signature(anchors.size());
+  std::vector<std::uint8_t> alone(anchors.size(), 1);
+  std::vector<std::uint64_t> labels(n, UINT64_MAX);
+  std::atomic<bool> failed{false};
+  parallel_for(static_cast<std::uint32_t>(anchors.size()), 1, [&](std::uint32_t begin, std::uint32_t end) {
+    thread_local LocalOrder order;
+    thread_local EpochTable label;
+    try {
+      for (std::uint32_t i = begin; i < end; ++i) {
+        const std::uint32_t seeds[1] = {anchors[i]}, starts[1] = {rings.ring.row(anchors[i])[0]};
+        local_order_and_signature(coarse, rings, seeds, starts, radius, order, signature[i]);
+        label.begin(coarse.num_vertices);
+        for (std::uint32_t l = 0; l < order.vertex.size(); ++l) {
+          label.set(order.vertex[l], l);
+          if (l > 0 && dist[order.vertex[l]] == 0) alone[i] = 0;
+        }
+        for (std::uint32_t k : edges_of.row(i)) {
+          const std::uint32_t la = label.get(coarse.edge_verts[2 * irregular[k]]);
+          const std::uint32_t lb = label.get(coarse.edge_verts[2 * irregular[k] + 1]);
+          if (la < (1u << 20) && lb < (1u << 20)) labels[k] = std::uint64_t(la) << 20 | lb;
+        }
+      }
+    } catch (...) {
+      failed = true;
+    }
+  });
+  if (failed) return {};  // the edges' own keys follow and name a fault
+  // Types in anchor order.
+  std::unordered_map<std::string_view, std::uint32_t, SignatureHash> count;
+  for (const std::string& sig : signature) ++count[sig];
+  std::vector<std::uint64_t> type(anchors.size(), UINT64_MAX);
+  for (std::size_t i = 0; i < anchors.size(); ++i) {
+    if (!alone[i] && count[signature[i]] < 2 && !b.knows_anchor_type(signature[i])) continue;
+    const std::uint32_t t = b.anchor_type(signature[i]);
+    if (t < (1u << 24)) type[i] = std::uint64_t(t) << 40;
+  }
+  std::vector<std::uint64_t> out(n, UINT64_MAX);
+  for (std::uint32_t k = 0; k < n; ++k)
+    if (type[anchor_of[k]] != UINT64_MAX && labels[k] != UINT64_MAX) out[k] = type[anchor_of[k]] | labels[k];
+  return out;
+}
+
 }  // namespace
 
 TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, Scheme s, int disc,
-                                         bool shared_rows) {
+                                         bool shared_rows, bool anchors) {
   const TriRings rings = build_tri_rings(coarse);
   TriStencils st = build_tri_stencils(coarse, s);  // moved into the steps at the end
   TriLevel level;
@@ -317,7 +394,8 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
     TriWaveletBuilder& b = *slot;
     w.radius = b.signature_radius();
     // Exact up to R + 2 disc + 1, the farthest an update row looks (update_rows).
-    w.dist = distance_to_irregular(coarse, rings, std::min(255, w.radius + 2 * disc + 2));
+    std::vector<std::uint32_t> nearest;
+    w.dist = distance_to_irregular(coarse, rings, std::min(255, w.radius + 2 * disc + 2), &nearest);
     w.regular.resize(ne);
     w.irregular_at.assign(ne, UINT32_MAX);
     std::vector<std::uint32_t> irregular;
@@ -332,19 +410,33 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
         reg = &b.edge_wavelet(level, e, nullptr, true);
         w.regular_alpha = reg->alpha;
       }
+    const std::vector<std::uint64_t> anchored =
+        anchors ? anchored_keys(b, coarse, rings, w.dist, nearest, irregular) : std::vector<std::uint64_t>{};
     // Keys in parallel, each looked up at once (the cache is only read here): a found one
     // keeps no signature, so a deep level's thousands of known neighbourhoods allocate nothing.
     std::vector<TriWaveletBuilder::EdgeKey> keys(irregular.size());
     std::vector<const EdgeWavelet*> found(irregular.size(), nullptr);
     std::atomic<bool> failed{false};
+    std::atomic<std::uint32_t> anchored_hits{0};
     parallel_for(static_cast<std::uint32_t>(irregular.size()), 64, [&](std::uint32_t begin, std::uint32_t end) {
       thread_local std::string signature;
+      thread_local LocalOrder disc_order;
+      std::uint32_t hits = 0;
       try {
         for (std::uint32_t k = begin; k < end; ++k) {
+          if (!anchored.empty() && anchored[k] != UINT64_MAX)
+            if (const EdgeWavelet* hit = b.find_anchored(anchored[k])) {
+              found[k] = hit;
+              ++hits;
+              edge_disc(coarse, rings, irregular[k], disc, disc_order);
+              keys[k].disc = disc_order.vertex;
+              continue;
+            }
           b.edge_key(level, irregular[k], keys[k].disc, signature);
           found[k] = b.find(signature);
           if (!found[k]) keys[k].signature = signature;
         }
+        anchored_hits += hits;
       } catch (...) {
         failed = true;
       }
@@ -375,6 +467,9 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
       for (std::uint32_t k = 0; k < irregular.size(); ++k)
         if (!found[k]) found[k] = solved[same_as[k]];
     }
+    for (std::size_t k = 0; k < anchored.size(); ++k)
+      if (anchored[k] != UINT64_MAX) b.add_anchored(anchored[k], found[k]);  // kept if known
+    out.anchored_edges = anchored_hits;
     w.discs.resize(irregular.size());
     w.alphas.resize(irregular.size());
     for (std::size_t k = 0; k < irregular.size(); ++k) {

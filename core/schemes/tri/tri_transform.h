@@ -26,6 +26,7 @@ namespace sublift {
 struct TriTransitionResult {
   Transition transition;
   std::vector<double> norm2;  // ||psi||^2 per coarse edge, a level-j face having area 1
+  std::uint32_t anchored_edges = 0;  // irregular edges whose wavelet was found through an anchor
 };
 
 /// Builds the sub-steps for the 1-to-4 split of `coarse` (derived rows needed) into `fine` (=
@@ -33,9 +34,11 @@ struct TriTransitionResult {
 /// k-disc wavelets. Uses a process-wide cache of face and edge types per (scheme, disc).
 /// Update rows that read only regular wavelets share one weight pattern (WeightedStep::weight_at:
 /// a third of the memory, no sort of their terms); `shared_rows` false lists every row's own
-/// weights in edge order, the reference the shared rows are tested against.
+/// weights in edge order, the reference the shared rows are tested against. Irregular edges
+/// near a few far-apart irregular vertices are keyed through those (TriWaveletBuilder's anchor
+/// types); `anchors` false keys every one by its own signature, the reference for that.
 TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, Scheme s, int disc,
-                                         bool shared_rows = true);
+                                         bool shared_rows = true, bool anchors = true);
 
 /// Loop's limit positions (rows over the vertices of `c`, a triangle mesh; derived rows not
 /// needed): smooth or dart vertex (1 - n g) v + g sum of neighbours, g = 1 / (3 / (8 beta) + n);

@@ -287,9 +287,20 @@ const EdgeWavelet& TriWaveletBuilder::edge_wavelet(const Complex& c, const TriRi
   return edge_wavelet(lv, e, disc_out);
 }
 
-std::vector<std::uint8_t> distance_to_irregular(const Complex& c, const TriRings& r, int cap) {
+std::uint32_t TriWaveletBuilder::anchor_type(const std::string& signature) {
+  return anchor_types_.try_emplace(signature, static_cast<std::uint32_t>(anchor_types_.size())).first->second;
+}
+
+const EdgeWavelet* TriWaveletBuilder::find_anchored(std::uint64_t key) const {
+  const auto it = anchored_.find(key);
+  return it == anchored_.end() ? nullptr : it->second;
+}
+
+std::vector<std::uint8_t> distance_to_irregular(const Complex& c, const TriRings& r, int cap,
+                                                std::vector<std::uint32_t>* nearest) {
   const std::uint32_t nv = c.num_vertices;
   std::vector<std::uint8_t> d(nv, static_cast<std::uint8_t>(cap));
+  if (nearest) nearest->assign(nv, UINT32_MAX);
   std::vector<std::uint32_t> frontier, next;
   for (std::uint32_t v = 0; v < nv; ++v) {
     bool irregular = r.ring.size(v) != 6 || !r.closed[v] || (!c.vertex_dim.empty() && c.vertex_dim[v] < 2);
@@ -298,6 +309,7 @@ std::vector<std::uint8_t> distance_to_irregular(const Complex& c, const TriRings
     if (irregular) {
       d[v] = 0;
       frontier.push_back(v);
+      if (nearest) (*nearest)[v] = v;
     }
   }
   for (int k = 1; k < cap && !frontier.empty(); ++k) {
@@ -307,6 +319,7 @@ std::vector<std::uint8_t> distance_to_irregular(const Complex& c, const TriRings
         if (d[w] > k) {
           d[w] = static_cast<std::uint8_t>(k);
           next.push_back(w);
+          if (nearest) (*nearest)[w] = (*nearest)[v];
         }
     frontier.swap(next);
   }

@@ -101,6 +101,17 @@ class TriWaveletBuilder {
 
   std::size_t num_face_types() const { return gram_.num_types(); }
 
+  /// Anchored look-ups (build_tri_transition): an edge within R = signature_radius() of an
+  /// irregular vertex v lies, with its whole R-neighbourhood, inside v's (2R + 1)-neighbourhood.
+  /// So v's signature at that radius (its anchor type) and the labels of the edge's ends there
+  /// decide the edge's signature, and with it the wavelet: one signature per irregular vertex
+  /// instead of one per edge near it. `anchor_type` numbers a signature (new or known);
+  /// anchored keys map to wavelets already cached.
+  std::uint32_t anchor_type(const std::string& signature);
+  bool knows_anchor_type(const std::string& signature) const { return anchor_types_.count(signature) != 0; }
+  const EdgeWavelet* find_anchored(std::uint64_t key) const;
+  void add_anchored(std::uint64_t key, const EdgeWavelet* w) { anchored_.emplace(key, w); }
+
  private:
   struct EdgePlan;
   void plan(const TriLevel& level, std::uint32_t e, EdgePlan& out) const;
@@ -110,11 +121,16 @@ class TriWaveletBuilder {
   FaceGramCache gram_;
   std::unordered_map<std::string, std::unique_ptr<EdgeWavelet>, SignatureHash> edges_;
   std::unique_ptr<EdgeWavelet> regular_;
+  std::unordered_map<std::string, std::uint32_t, SignatureHash> anchor_types_;
+  std::unordered_map<std::uint64_t, const EdgeWavelet*> anchored_;
 };
 
 /// Per vertex: graph distance to the nearest irregular vertex (valence != 6, open fan, vertex
-/// dim < 2, or on a feature edge), capped at `cap`.
-std::vector<std::uint8_t> distance_to_irregular(const Complex& c, const TriRings& r, int cap);
+/// dim < 2, or on a feature edge), capped at `cap`. `nearest` (optional) receives that vertex
+/// (the first found by a breadth-first search from all of them in vertex order; UINT32_MAX where
+/// the distance is capped).
+std::vector<std::uint8_t> distance_to_irregular(const Complex& c, const TriRings& r, int cap,
+                                                std::vector<std::uint32_t>* nearest = nullptr);
 
 /// A disc of `radius` rings around one vertex of valence n (vertex 0), every other inner
 /// vertex of valence 6: n wedges of the triangular lattice. Vertex 1 is on spoke 0. `xy`

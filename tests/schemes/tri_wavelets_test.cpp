@@ -15,6 +15,7 @@
 #include "core/analysis/inner_products.h"
 #include "core/complex/refine_tri.h"
 #include "core/io/lattice/shape_io.h"
+#include "core/schemes/tri/new_signatures.h"
 #include "core/schemes/tri/tri_gram.h"
 #include "core/schemes/tri/tri_local.h"
 #include "core/schemes/tri/tri_rules.h"
@@ -620,6 +621,43 @@ TEST(TriTransition, AnchoredKeysFindTheEdgesOwnWavelets) {
       EXPECT_GT(anchored, 100u);
     }
   }
+}
+
+// A level's new signatures, met by edges on several threads in any order, each kept once with
+// the lowest edge that has it; in_order lists them by that edge and every edge's entry names
+// its signature's place there. So what is solved, and in which order, does not depend on the
+// threads.
+TEST(TriTransition, NewSignaturesKeepEachOnceWithItsFirstEdge) {
+  constexpr std::uint32_t kEdges = 20000;
+  std::mt19937 rng(7);
+  std::vector<std::uint32_t> sig_of(kEdges), order(kEdges);
+  for (std::uint32_t k = 0; k < kEdges; ++k) {
+    sig_of[k] = rng() % 3000;  // some signatures met by many edges, some by none
+    order[k] = k;
+  }
+  std::shuffle(order.begin(), order.end(), rng);
+  const auto text = [](std::uint32_t i) { return std::string(300 + i % 17, char('a' + i % 26)) + std::to_string(i); };
+  NewSignatures fresh;
+  std::vector<NewSignatures::Entry*> entry(kEdges, nullptr);
+  const int threads = parallel_threads();
+  set_parallel_threads(2);
+  parallel_for(kEdges, 64, [&](std::uint32_t begin, std::uint32_t end) {
+    for (std::uint32_t i = begin; i < end; ++i) entry[order[i]] = fresh.add(text(sig_of[order[i]]), order[i]);
+  });
+  set_parallel_threads(threads);
+  std::vector<NewSignatures::Map::node_type> nodes = fresh.in_order();
+  std::map<std::uint32_t, std::uint32_t> first;  // signature -> lowest edge, found here directly
+  for (std::uint32_t k = 0; k < kEdges; ++k) first.try_emplace(sig_of[k], k);
+  ASSERT_EQ(nodes.size(), first.size());
+  std::vector<std::uint32_t> firsts;
+  for (const auto& [sig, k] : first) firsts.push_back(k);
+  std::sort(firsts.begin(), firsts.end());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    ASSERT_EQ(nodes[i].mapped().first, firsts[i]);
+    EXPECT_EQ(nodes[i].key(), text(sig_of[firsts[i]]));
+    EXPECT_EQ(nodes[i].mapped().place, i);
+  }
+  for (std::uint32_t k = 0; k < kEdges; ++k) ASSERT_EQ(nodes[entry[k]->place].key(), text(sig_of[k])) << k;
 }
 
 TEST(TriTransition, ATorusTooThinForThePatternListsItsRows) {

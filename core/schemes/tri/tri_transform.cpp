@@ -1,6 +1,7 @@
 #include "core/schemes/tri/tri_transform.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <map>
@@ -12,6 +13,7 @@
 
 #include "core/base/epoch_table.h"
 #include "core/base/parallel.h"
+#include "core/schemes/tri/new_signatures.h"
 #include "core/schemes/tri/tri_local.h"
 #include "core/schemes/tri/tri_wavelets.h"
 
@@ -133,7 +135,7 @@ struct EdgeWavelets {
   std::vector<double> regular_alpha;
   std::vector<std::uint32_t> irregular_at;  // per edge: index into discs, UINT32_MAX if regular
   std::vector<std::vector<std::uint32_t>> discs;
-  std::vector<std::vector<double>> alphas;
+  std::vector<const std::vector<double>*> alphas;  // into the builder's cache, which keeps them
 };
 
 // Update rows (old vertex i += sum -alpha_{i,m} d_m), rows by old vertex. Rows that read only
@@ -194,7 +196,7 @@ bool update_rows(const Complex& coarse, const TriRings& rings, const EdgeWavelet
   });
   if (mismatch) throw std::logic_error("tri_transform: a regular edge's disc has an unexpected size");
   const auto alpha_of = [&](std::uint32_t e) {
-    return w.regular[e] ? w.regular_alpha.data() : w.alphas[w.irregular_at[e]].data();
+    return w.regular[e] ? w.regular_alpha.data() : w.alphas[w.irregular_at[e]]->data();
   };
 
   // Terms listed one by one: a counting sort of the edges' entries by old vertex, over kBlocks
@@ -414,8 +416,11 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
         anchors ? anchored_keys(b, coarse, rings, w.dist, nearest, irregular) : std::vector<std::uint64_t>{};
     // Keys in parallel, each looked up at once (the cache is only read here): a found one
     // keeps no signature, so a deep level's thousands of known neighbourhoods allocate nothing.
+    // A new one is kept once, however many edges have it (NewSignatures).
     std::vector<TriWaveletBuilder::EdgeKey> keys(irregular.size());
     std::vector<const EdgeWavelet*> found(irregular.size(), nullptr);
+    NewSignatures fresh;
+    std::vector<NewSignatures::Entry*> fresh_of(irregular.size(), nullptr);
     std::atomic<bool> failed{false};
     std::atomic<std::uint32_t> anchored_hits{0};
     parallel_for(static_cast<std::uint32_t>(irregular.size()), 64, [&](std::uint32_t begin, std::uint32_t end) {
@@ -434,7 +439,7 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
             }
           b.edge_key(level, irregular[k], keys[k].disc, signature);
           found[k] = b.find(signature);
-          if (!found[k]) keys[k].signature = signature;
+          if (!found[k]) fresh_of[k] = fresh.add(signature, k);
         }
         anchored_hits += hits;
       } catch (...) {
@@ -447,25 +452,18 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
     }
     for (std::uint32_t e = 0; e < ne; ++e)
       if (w.regular[e]) out.norm2[e] = reg->norm2;
-    // The new neighbourhoods, each once (at its first edge), solved together.
+    // The new neighbourhoods, each once (at its first edge, in edge order), solved together.
     {
-      std::unordered_map<std::string_view, std::uint32_t, SignatureHash> first;  // -> place in `todo`
-      std::vector<std::uint32_t> todo, todo_k, same_as(irregular.size(), UINT32_MAX);
-      for (std::uint32_t k = 0; k < irregular.size(); ++k) {
-        if (found[k]) continue;
-        const auto [it, inserted] = first.try_emplace(keys[k].signature, static_cast<std::uint32_t>(todo.size()));
-        if (inserted) {
-          todo.push_back(irregular[k]);
-          todo_k.push_back(k);
-        }
-        same_as[k] = it->second;
+      std::vector<std::string> signatures;
+      std::vector<std::uint32_t> todo;
+      std::vector<NewSignatures::Map::node_type> nodes = fresh.in_order();  // keeps fresh_of's entries
+      for (auto& node : nodes) {
+        todo.push_back(irregular[node.mapped().first]);
+        signatures.push_back(std::move(node.key()));
       }
-      first.clear();  // it views the keys' signatures, which move now
-      std::vector<std::string> signatures(todo.size());
-      for (std::size_t i = 0; i < todo.size(); ++i) signatures[i] = std::move(keys[todo_k[i]].signature);
       const std::vector<const EdgeWavelet*> solved = b.solve(level, todo, signatures);
       for (std::uint32_t k = 0; k < irregular.size(); ++k)
-        if (!found[k]) found[k] = solved[same_as[k]];
+        if (!found[k]) found[k] = solved[fresh_of[k]->place];
     }
     for (std::size_t k = 0; k < anchored.size(); ++k)
       if (anchored[k] != UINT64_MAX) b.add_anchored(anchored[k], found[k]);  // kept if known
@@ -478,7 +476,7 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
       const EdgeWavelet& wave = *found[k];
       if (wave.alpha.size() != w.discs[k].size()) throw std::logic_error("tri_transform: disc and alpha sizes differ");
       w.irregular_at[e] = static_cast<std::uint32_t>(k);
-      w.alphas[k] = wave.alpha;
+      w.alphas[k] = &wave.alpha;
       out.norm2[e] = wave.norm2;
     }
   }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <array>
 #include <map>
 #include <random>
@@ -704,6 +705,97 @@ TEST(TriLocal, OrderAndSignatureInOnePassEqualTheTwoCalls) {
     }
   }
   EXPECT_GT(compared, 1000u);
+}
+
+// A key read back into its signature (tri_local.h says how it is written), given how many
+// seeds its order started from: that it can be, is why equal keys are equal signatures.
+std::string signature_from_key(const std::string& key, std::uint32_t seeds) {
+  std::size_t at = 0;
+  const auto varint = [&] {
+    std::uint64_t v = 0;
+    for (int shift = 0;; shift += 7) {
+      const auto byte = static_cast<unsigned char>(key.at(at++));
+      v |= std::uint64_t(byte & 0x7f) << shift;
+      if (!(byte & 0x80)) return v;
+    }
+  };
+  std::vector<std::int32_t> numbers;
+  std::int64_t next = seeds;  // the label the next "labelled here" gets
+  while (at < key.size()) {
+    const auto d = static_cast<unsigned char>(key[at++]);
+    const std::uint64_t head = varint();
+    const auto n = static_cast<std::int32_t>(head >> 3);
+    numbers.insert(numbers.end(), {-1000 - d, std::int32_t(head >> 2 & 1), n, std::int32_t(head & 3)});
+    for (std::int32_t k = 0; k < n; ++k) {
+      const std::uint64_t entry = varint(), token = entry >> 2;
+      numbers.push_back(token == 0 ? static_cast<std::int32_t>(next++) : token == 1 ? -1 : static_cast<std::int32_t>(token - 2));
+      numbers.push_back(static_cast<std::int32_t>(entry & 3));
+    }
+  }
+  const bool narrow = std::all_of(numbers.begin(), numbers.end(), [](std::int32_t x) { return x >= INT16_MIN && x <= INT16_MAX; });
+  std::string out(1, narrow ? 'h' : 'w');
+  for (std::int32_t x : numbers) {
+    char bytes[4];
+    if (narrow) {
+      const auto h = static_cast<std::int16_t>(x);
+      std::memcpy(bytes, &h, 2);
+      out.append(bytes, 2);
+    } else {
+      std::memcpy(bytes, &x, 4);
+      out.append(bytes, 4);
+    }
+  }
+  return out;
+}
+
+// The compact keys (what the edges' wavelets are cached by) come with the same order as
+// local_order and read back into the signature byte for byte, so equal keys are equal
+// signatures; on the refined octahedron, the open disc, the creased grid and the thin torus,
+// from edges and faces at radii 0 to 6, every pair of one radius is also compared both ways. A
+// key is about a third of the signature's bytes.
+TEST(TriLocal, KeysPartitionNeighbourhoodsAsSignaturesDo) {
+  Complex octa = octahedron_complex();
+  for (int j = 0; j < 3; ++j) octa = refine_tri(octa);
+  Complex grid = read_shape(std::string(SUBLIFT_ASSETS_DIR) + "/tri_crease_grid.obj").base;
+  build_adjacency(grid);
+  const Complex meshes[] = {octa, extraordinary_disc(5, 6), grid, regular_torus(6, 5)};
+  std::size_t key_bytes = 0, signature_bytes = 0, classes = 0;
+  for (int radius = 0; radius <= 6; ++radius) {
+    std::map<std::string, std::string> key_of;  // signature -> key
+    std::map<std::string, std::string> signature_of;  // key -> signature
+    for (const Complex& c : meshes) {
+      const TriRings r = build_tri_rings(c);
+      LocalOrder o;
+      std::string key;
+      const auto compare = [&](std::span<const std::uint32_t> seeds, std::span<const std::uint32_t> starts) {
+        const LocalOrder ref = local_order(r, seeds, starts, radius);
+        local_order_and_key(c, r, seeds, starts, radius, o, key);
+        ASSERT_EQ(o.vertex, ref.vertex);
+        ASSERT_EQ(o.dist, ref.dist);
+        ASSERT_EQ(o.start, ref.start);
+        ASSERT_EQ(o.fan0, ref.fan0);
+        const std::string sig = local_signature(c, r, ref, radius);
+        ASSERT_EQ(signature_from_key(key, static_cast<std::uint32_t>(seeds.size())), sig);
+        key_bytes += key.size();
+        signature_bytes += sig.size();
+        // One key per signature and one signature per key.
+        ASSERT_EQ(key_of.try_emplace(sig, key).first->second, key);
+        ASSERT_EQ(signature_of.try_emplace(key, sig).first->second, sig);
+      };
+      for (std::uint32_t e = 0; e < c.num_edges(); ++e) {
+        const std::uint32_t seeds[2] = {c.edge_verts[2 * e], c.edge_verts[2 * e + 1]}, starts[2] = {seeds[1], seeds[0]};
+        compare(seeds, starts);
+      }
+      for (std::uint32_t f = 0; f < c.num_faces(); ++f) {
+        std::uint32_t seeds[3], starts[3];
+        face_seeds(c, f, seeds, starts);
+        compare(seeds, starts);
+      }
+    }
+    classes += key_of.size();
+  }
+  EXPECT_GT(classes, 500u);  // many kinds of neighbourhood, not a few repeated
+  EXPECT_LT(3 * key_bytes, signature_bytes + signature_bytes / 5);
 }
 
 // Signatures are 16-bit where every number fits and 32-bit otherwise (more than 32767 labels),

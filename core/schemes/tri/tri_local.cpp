@@ -298,6 +298,71 @@ void local_order_and_signature(const Complex& c, const TriRings& r, std::span<co
   std::memcpy(out.data() + 1, s.data(), used * sizeof(std::int16_t));
 }
 
+namespace {
+
+thread_local std::vector<char> key_buffer;  // reused by local_order_and_key
+
+// Appends v in 7-bit groups, low first, the high bit set on every byte but the last.
+inline char* put_varint(char* w, std::uint64_t v) {
+  while (v >= 0x80) {
+    *w++ = static_cast<char>(v | 0x80);
+    v >>= 7;
+  }
+  *w++ = static_cast<char>(v);
+  return w;
+}
+
+}  // namespace
+
+void local_order_and_key(const Complex& c, const TriRings& r, std::span<const std::uint32_t> seeds,
+                         std::span<const std::uint32_t> seed_start, int radius, LocalOrder& o, std::string& out) {
+  start_order(r, seeds, seed_start, o);
+  std::vector<char>& buf = key_buffer;
+  std::size_t used = 0;
+  const std::uint32_t* const items = r.ring.items.data();
+  const std::uint32_t* const edges = r.ring_edge.items.data();
+  const std::uint32_t* const offsets = r.ring.offsets.data();
+  const std::uint8_t* const edge_dim = c.edge_dim.empty() ? nullptr : c.edge_dim.data();
+  const std::uint8_t* const vertex_dim = c.vertex_dim.empty() ? nullptr : c.vertex_dim.data();
+  // The same walk as local_order_and_signature's; what it writes is decodable, so equal keys
+  // are equal signatures (see the header).
+  for (std::size_t l = 0; l < o.vertex.size(); ++l) {
+    const std::uint32_t u = o.vertex[l];
+    const std::uint8_t d = o.dist[l];
+    const std::uint32_t begin = offsets[u], n = offsets[u + 1] - begin;
+    const std::size_t most = 1 + 10 + 10 * std::size_t(n);  // varints of at most 64 bits
+    if (buf.size() < used + most) buf.resize(2 * (used + most));
+    char* w = buf.data() + used;
+    *w++ = static_cast<char>(d);
+    w = put_varint(w, (std::uint64_t(n) << 1 | r.closed[u]) << 2 | (vertex_dim ? vertex_dim[u] : 2));
+    if (n != 0) {
+      const std::uint32_t i0 = fan_index(r, u, o.start[l]);
+      const bool walk = d < radius;
+      if (walk) o.fan0[l] = i0;
+      for (std::uint32_t k = 0, i = i0; k < n; ++k, i = i + 1 == n ? 0 : i + 1) {
+        const std::uint32_t x = items[begin + i];
+        const std::uint32_t lx = table.get(x);
+        std::uint64_t token;  // 0: labelled here (the next label), 1: beyond, else its label + 2
+        if (lx != UINT32_MAX) {
+          token = std::uint64_t(lx) + 2;
+        } else if (walk) {
+          table.set(x, static_cast<std::uint32_t>(o.vertex.size()));
+          o.vertex.push_back(x);
+          o.dist.push_back(static_cast<std::uint8_t>(d + 1));
+          o.start.push_back(u);
+          o.fan0.push_back(UINT32_MAX);
+          token = 0;
+        } else {
+          token = 1;
+        }
+        w = put_varint(w, token << 2 | (edge_dim ? edge_dim[edges[begin + i]] : 2));
+      }
+    }
+    used = static_cast<std::size_t>(w - buf.data());
+  }
+  out.assign(buf.data(), used);
+}
+
 std::size_t SignatureHash::operator()(std::string_view s) const {
   // Four independent lanes of 8 bytes (one chain of multiplies was latency-bound: a butterfly
   // level hashes thousands of 3 kB signatures), folded into one.

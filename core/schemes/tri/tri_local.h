@@ -82,6 +82,16 @@ std::string local_signature(const Complex& c, const TriRings& r, const LocalOrde
 void local_order_and_signature(const Complex& c, const TriRings& r, std::span<const std::uint32_t> seeds,
                                std::span<const std::uint32_t> seed_start, int radius, LocalOrder& o, std::string& out);
 
+/// The same order, and a key instead of the signature: the same facts, written compactly (per
+/// label its distance as a byte, then a varint of valence, closure and dim, then per fan entry a
+/// varint of the neighbour as "labelled here" (the next label, so not written), "beyond" or its
+/// label, with the edge's dim), about a third of the signature's bytes. The key can be decoded
+/// back into the signature, so equal keys <=> equal signatures; but keys and signatures are
+/// different strings, and only keys compare with keys. For caches keyed by the neighbourhood
+/// alone (the edges' wavelets: a 1 M fit keeps a quarter of a million).
+void local_order_and_key(const Complex& c, const TriRings& r, std::span<const std::uint32_t> seeds,
+                         std::span<const std::uint32_t> seed_start, int radius, LocalOrder& o, std::string& out);
+
 /// A hash for signatures that reads them 8 bytes at a time (they are kilobytes long and looked
 /// up once per irregular edge and face; equality is still checked in full).
 ///

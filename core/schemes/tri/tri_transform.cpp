@@ -334,7 +334,7 @@ std::vector<std::uint64_t> anchored_keys(TriWaveletBuilder& b, const Complex& co
     try {
       for (std::uint32_t i = begin; i < end; ++i) {
         const std::uint32_t seeds[1] = {anchors[i]}, starts[1] = {rings.ring.row(anchors[i])[0]};
-        local_order_and_signature(coarse, rings, seeds, starts, radius, order, signature[i]);
+        local_order_and_key(coarse, rings, seeds, starts, radius, order, signature[i]);
         label.begin(coarse.num_vertices);
         for (std::uint32_t l = 0; l < order.vertex.size(); ++l) {
           label.set(order.vertex[l], l);

@@ -241,7 +241,7 @@ void TriWaveletBuilder::edge_key(const TriLevel& lv, std::uint32_t e, std::vecto
   const std::uint32_t a = c.edge_verts[2 * e], b = c.edge_verts[2 * e + 1];
   const std::uint32_t seeds[2] = {a, b}, starts[2] = {b, a};
   thread_local LocalOrder order;
-  local_order_and_signature(c, *lv.coarse_rings, seeds, starts, signature_radius(), order, signature);
+  local_order_and_key(c, *lv.coarse_rings, seeds, starts, signature_radius(), order, signature);
   const std::uint32_t nd = labels_within(order, disc_);
   disc.assign(order.vertex.begin(), order.vertex.begin() + nd);
 }

@@ -69,7 +69,8 @@ class TriWaveletBuilder {
   /// supports of its functions and the faces' own signatures.
   int signature_radius() const;
 
-  /// What finds an edge's wavelet in the cache: its neighbourhood's signature, and its disc D
+  /// What finds an edge's wavelet in the cache: its neighbourhood's signature (written as the
+  /// compact key of local_order_and_key: a third of the bytes, the cache holds many), and its disc D
   /// as coarse vertices. Reads `level` only, so edges' keys may be taken in parallel.
   struct EdgeKey {
     std::string signature;

@@ -12,11 +12,11 @@
 
 namespace sublift {
 
-// The signatures a triangle level meets that are not cached (build_tri_transition), each kept once whichever thread meets it
-// first: a fitted base's 1 M level has 750 k irregular edges but 127 k new neighbourhoods of
-// 4-5 kB each, and copying one per edge was a third of its hierarchy stage (perf: page faults on
-// fresh memory). An entry remembers the lowest edge that has it, so the order they are solved
-// in, and their results, do not depend on the threads.
+// The signatures (keys) a triangle level meets that are not cached (build_tri_transition), each
+// kept once whichever thread meets it first: a fitted base's 1 M level has 750 k irregular edges
+// but 127 k new neighbourhoods, and copying one signature per edge was a third of its hierarchy
+// stage (perf: page faults on fresh memory). An entry remembers the lowest edge that has it, so
+// the order they are solved in, and their results, do not depend on the threads.
 class NewSignatures {
  public:
   struct Entry {

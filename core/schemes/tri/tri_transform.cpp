@@ -1,7 +1,6 @@
 #include "core/schemes/tri/tri_transform.h"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <cmath>
 #include <map>

@@ -666,17 +666,33 @@ TEST(TriTransition, ATorusTooThinForThePatternListsItsRows) {
   expect_shared_rows_match(regular_torus(6, 6), Scheme::Butterfly, false);
 }
 
+// The meshes the local orders are checked on: a refined octahedron (valence 4 and 6), an open
+// disc around a valence-5 vertex (open fans at the rim), a creased grid (edge and vertex dims)
+// and a thin torus whose neighbourhoods meet themselves.
+// Two orders field for field.
+::testing::AssertionResult same_order(const LocalOrder& a, const LocalOrder& b) {
+  if (a.vertex != b.vertex) return ::testing::AssertionFailure() << "vertices differ";
+  if (a.dist != b.dist) return ::testing::AssertionFailure() << "distances differ";
+  if (a.start != b.start) return ::testing::AssertionFailure() << "starts differ";
+  if (a.fan0 != b.fan0) return ::testing::AssertionFailure() << "fan starts differ";
+  return ::testing::AssertionSuccess();
+}
+
+std::vector<Complex> local_order_meshes() {
+  Complex octa = octahedron_complex();
+  for (int j = 0; j < 3; ++j) octa = refine_tri(octa);
+  Complex grid = read_shape(std::string(SUBLIFT_ASSETS_DIR) + "/tri_crease_grid.obj").base;
+  build_adjacency(grid);
+  return {octa, extraordinary_disc(5, 6), grid, regular_torus(6, 5)};
+}
+
 // The one-pass order and signature (what the edges' keys use) equal local_order followed by
 // local_signature, field for field and byte for byte: on a refined octahedron (valence 4 and
 // 6), an open disc around a valence-5 vertex (open fans at the rim), a creased grid (edge and
 // vertex dims) and a thin torus whose neighbourhoods meet themselves; from edges (two seeds)
 // and faces (three), at radii 0 to 5.
 TEST(TriLocal, OrderAndSignatureInOnePassEqualTheTwoCalls) {
-  Complex octa = octahedron_complex();
-  for (int j = 0; j < 3; ++j) octa = refine_tri(octa);
-  Complex grid = read_shape(std::string(SUBLIFT_ASSETS_DIR) + "/tri_crease_grid.obj").base;
-  build_adjacency(grid);
-  const Complex meshes[] = {octa, extraordinary_disc(5, 6), grid, regular_torus(6, 5)};
+  const std::vector<Complex> meshes = local_order_meshes();
   std::size_t compared = 0;
   for (const Complex& c : meshes) {
     const TriRings r = build_tri_rings(c);
@@ -685,10 +701,7 @@ TEST(TriLocal, OrderAndSignatureInOnePassEqualTheTwoCalls) {
     const auto compare = [&](std::span<const std::uint32_t> seeds, std::span<const std::uint32_t> starts, int radius) {
       const LocalOrder o = local_order(r, seeds, starts, radius);
       local_order_and_signature(c, r, seeds, starts, radius, fused, fused_signature);
-      ASSERT_EQ(fused.vertex, o.vertex);
-      ASSERT_EQ(fused.dist, o.dist);
-      ASSERT_EQ(fused.start, o.start);
-      ASSERT_EQ(fused.fan0, o.fan0);
+      ASSERT_TRUE(same_order(fused, o));
       ASSERT_EQ(fused_signature, local_signature(c, r, o, radius));
       ++compared;
     };
@@ -754,11 +767,7 @@ std::string signature_from_key(const std::string& key, std::uint32_t seeds) {
 // from edges and faces at radii 0 to 6, every pair of one radius is also compared both ways. A
 // key is about a third of the signature's bytes.
 TEST(TriLocal, KeysPartitionNeighbourhoodsAsSignaturesDo) {
-  Complex octa = octahedron_complex();
-  for (int j = 0; j < 3; ++j) octa = refine_tri(octa);
-  Complex grid = read_shape(std::string(SUBLIFT_ASSETS_DIR) + "/tri_crease_grid.obj").base;
-  build_adjacency(grid);
-  const Complex meshes[] = {octa, extraordinary_disc(5, 6), grid, regular_torus(6, 5)};
+  const std::vector<Complex> meshes = local_order_meshes();
   std::size_t key_bytes = 0, signature_bytes = 0, classes = 0;
   for (int radius = 0; radius <= 6; ++radius) {
     std::map<std::string, std::string> key_of;  // signature -> key
@@ -770,10 +779,7 @@ TEST(TriLocal, KeysPartitionNeighbourhoodsAsSignaturesDo) {
       const auto compare = [&](std::span<const std::uint32_t> seeds, std::span<const std::uint32_t> starts) {
         const LocalOrder ref = local_order(r, seeds, starts, radius);
         local_order_and_key(c, r, seeds, starts, radius, o, key);
-        ASSERT_EQ(o.vertex, ref.vertex);
-        ASSERT_EQ(o.dist, ref.dist);
-        ASSERT_EQ(o.start, ref.start);
-        ASSERT_EQ(o.fan0, ref.fan0);
+        ASSERT_TRUE(same_order(o, ref));
         const std::string sig = local_signature(c, r, ref, radius);
         ASSERT_EQ(signature_from_key(key, static_cast<std::uint32_t>(seeds.size())), sig);
         key_bytes += key.size();

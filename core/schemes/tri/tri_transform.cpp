@@ -290,15 +290,16 @@ bool update_rows(const Complex& coarse, const TriRings& rings, const EdgeWavelet
 }
 
 // Per irregular edge its anchored key (TriWaveletBuilder::anchor_type), UINT64_MAX where there
-// is none; empty where anchors do not pay: an anchor's signature costs about
-// (2R + 1)^2 / R^2, 4-5 edges' ones, so they serve where the irregular vertices are few and far
-// apart (every deep level). An edge's anchor is the irregular vertex nearest to its nearer end
+// is none; empty where anchors do not pay, fewer than `per_anchor` edges each: an anchor's
+// signature costs about (2R + 1)^2 / R^2, 4-5 edges' ones, so they serve where the irregular
+// vertices are few and far apart (every deep level). An edge's anchor is the irregular vertex nearest to its nearer end
 // (within R). An anchor type is kept when a second anchor here has it or when it is alone in its
 // neighbourhood (the same vertex then has the same type a level finer): a fitted base's
 // crowded irregular vertices are mostly unique and stay with their edges' own keys.
 std::vector<std::uint64_t> anchored_keys(TriWaveletBuilder& b, const Complex& coarse, const TriRings& rings,
                                          const std::vector<std::uint8_t>& dist, const std::vector<std::uint32_t>& nearest,
-                                         const std::vector<std::uint32_t>& irregular) {
+                                         const std::vector<std::uint32_t>& irregular, std::uint32_t per_anchor) {
+  if (per_anchor == 0) return {};
   const std::uint32_t n = static_cast<std::uint32_t>(irregular.size());
   std::vector<std::uint32_t> anchor_of(n), anchors, anchor_slot(coarse.num_vertices, UINT32_MAX);
   for (std::uint32_t k = 0; k < n; ++k) {
@@ -310,7 +311,7 @@ std::vector<std::uint64_t> anchored_keys(TriWaveletBuilder& b, const Complex& co
     }
     anchor_of[k] = anchor_slot[v];
   }
-  if (anchors.empty() || n < 8 * anchors.size()) return {};
+  if (anchors.empty() || n < std::size_t(per_anchor) * anchors.size()) return {};
   // Edges grouped by anchor.
   Csr edges_of;
   edges_of.offsets.assign(anchors.size() + 1, 0);
@@ -368,7 +369,7 @@ std::vector<std::uint64_t> anchored_keys(TriWaveletBuilder& b, const Complex& co
 }  // namespace
 
 TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, Scheme s, int disc,
-                                         bool shared_rows, bool anchors) {
+                                         bool shared_rows, std::uint32_t edges_per_anchor) {
   const TriRings rings = build_tri_rings(coarse);
   TriStencils st = build_tri_stencils(coarse, s);  // moved into the steps at the end
   TriLevel level;
@@ -412,7 +413,7 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
         w.regular_alpha = reg->alpha;
       }
     const std::vector<std::uint64_t> anchored =
-        anchors ? anchored_keys(b, coarse, rings, w.dist, nearest, irregular) : std::vector<std::uint64_t>{};
+        anchored_keys(b, coarse, rings, w.dist, nearest, irregular, edges_per_anchor);
     // Keys in parallel, each looked up at once (the cache is only read here): a found one
     // keeps no signature, so a deep level's thousands of known neighbourhoods allocate nothing.
     // A new one is kept once, however many edges have it (NewSignatures).

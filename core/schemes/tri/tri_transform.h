@@ -36,9 +36,12 @@ struct TriTransitionResult {
 /// a third of the memory, no sort of their terms); `shared_rows` false lists every row's own
 /// weights in edge order, the reference the shared rows are tested against. Irregular edges
 /// near a few far-apart irregular vertices are keyed through those (TriWaveletBuilder's anchor
-/// types); `anchors` false keys every one by its own signature, the reference for that.
+/// types) where they number at least `edges_per_anchor`: at 32, anchors that serve nothing
+/// (crowded and unique, as on a fitted base) cost at most about a seventh of the edges' own
+/// keys, and a deep level has hundreds per anchor. 0 keys every edge by its own signature, the
+/// reference the anchors are tested against.
 TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, Scheme s, int disc,
-                                         bool shared_rows = true, bool anchors = true);
+                                         bool shared_rows = true, std::uint32_t edges_per_anchor = 32);
 
 /// Loop's limit positions (rows over the vertices of `c`, a triangle mesh; derived rows not
 /// needed): smooth or dart vertex (1 - n g) v + g sum of neighbours, g = 1 / (3 / (8 beta) + n);

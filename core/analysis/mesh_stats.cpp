@@ -8,6 +8,7 @@
 #include <glm/common.hpp>
 
 #include "core/base/edge_key.h"
+#include "core/base/small_sort.h"
 
 namespace sublift {
 namespace {
@@ -63,15 +64,7 @@ MeshStats compute_mesh_stats(const SurfaceMesh& mesh) {
     }
   }
   const auto by_key = [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key; };
-  for (std::size_t v = 0; v < nv; ++v) {
-    const std::size_t first = start[v], last = start[v + 1];
-    if (last - first > 32) {
-      std::stable_sort(half.begin() + first, half.begin() + last, by_key);
-      continue;
-    }
-    for (std::size_t i = first + 1; i < last; ++i)  // insertion sort: stable, no buffer
-      for (std::size_t j = i; j > first && by_key(half[j], half[j - 1]); --j) std::swap(half[j], half[j - 1]);
-  }
+  for (std::size_t v = 0; v < nv; ++v) stable_sort_small(half.begin() + start[v], half.begin() + start[v + 1], by_key);
 
   std::vector<char> used(nv, 0);
   for (std::uint32_t v : mesh.face_indices) used[v] = 1;

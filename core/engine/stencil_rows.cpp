@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "core/base/small_sort.h"
+
 namespace sublift {
 
 namespace {
@@ -33,11 +35,8 @@ void append_stencil_row(std::span<StencilTerm> terms, Csr& rows, std::vector<dou
     std::copy(terms.begin(), terms.end(), copy);
     sort8(k);
     for (std::size_t i = 0; i < n; ++i) terms[i] = copy[k[i] & 0xffffffffu];
-  } else if (terms.size() <= 32) {  // stable insertion sort: no buffer to allocate per row
-    for (std::size_t i = 1; i < terms.size(); ++i)
-      for (std::size_t j = i; j > 0 && by_source(terms[j], terms[j - 1]); --j) std::swap(terms[j], terms[j - 1]);
   } else {
-    std::stable_sort(terms.begin(), terms.end(), by_source);
+    stable_sort_small(terms.begin(), terms.end(), by_source);
   }
   for (std::size_t i = 0; i < terms.size();) {
     const std::uint32_t v = terms[i].first;

@@ -156,30 +156,53 @@ void start_order(const TriRings& r, std::span<const std::uint32_t> seeds, std::s
   }
 }
 
+// The walk every order takes (tri_local.h): the seeds labelled, then each label's fan walked
+// from where it was reached, in label order, a neighbour labelled when first met by a label
+// closer than `radius`. `on_label(u, d, n)` sees each label (vertex u at distance d, valence n)
+// in order, before its fan; with kEntries every label's fan is read, also at `radius`, and
+// `on_entry(x's label or UINT32_MAX beyond, labelled just now, the fan slot)` sees each entry.
+template <bool kEntries, class OnLabel, class OnEntry>
+void walk_order(const TriRings& r, std::span<const std::uint32_t> seeds, std::span<const std::uint32_t> seed_start, int radius,
+                LocalOrder& o, OnLabel&& on_label, OnEntry&& on_entry) {
+  start_order(r, seeds, seed_start, o);
+  const std::uint32_t* const items = r.ring.items.data();
+  const std::uint32_t* const offsets = r.ring.offsets.data();
+  // Label order is breadth first, so every vertex within `radius` is labelled before the first
+  // one at `radius` is walked: a neighbour without a label when it is read lies beyond.
+  for (std::size_t l = 0; l < o.vertex.size(); ++l) {
+    const std::uint32_t u = o.vertex[l];
+    const std::uint8_t d = o.dist[l];
+    const bool walk = d < radius;
+    if (!kEntries && !walk) continue;
+    const std::uint32_t begin = offsets[u], n = offsets[u + 1] - begin;
+    on_label(u, d, n);
+    if (n == 0) continue;
+    const std::uint32_t i0 = fan_index(r, u, o.start[l]);
+    if (walk) o.fan0[l] = i0;
+    // The fan from i0 round to i0 - 1, without a modulo per neighbour.
+    for (std::uint32_t k = 0, i = i0; k < n; ++k, i = i + 1 == n ? 0 : i + 1) {
+      const std::uint32_t x = items[begin + i];
+      std::uint32_t lx = table.get(x);
+      const bool fresh = lx == UINT32_MAX && walk;
+      if (fresh) {
+        lx = static_cast<std::uint32_t>(o.vertex.size());
+        table.set(x, lx);
+        o.vertex.push_back(x);
+        o.dist.push_back(static_cast<std::uint8_t>(d + 1));
+        o.start.push_back(u);
+        o.fan0.push_back(UINT32_MAX);
+      }
+      if constexpr (kEntries) on_entry(lx, fresh, begin + i);
+    }
+  }
+}
+
 }  // namespace
 
 void local_order(const TriRings& r, std::span<const std::uint32_t> seeds, std::span<const std::uint32_t> seed_start,
                  int radius, LocalOrder& o) {
-  start_order(r, seeds, seed_start, o);
-  for (std::size_t l = 0; l < o.vertex.size(); ++l) {
-    if (o.dist[l] >= radius) continue;
-    const std::uint32_t u = o.vertex[l];
-    const auto row = r.ring.row(u);
-    if (row.empty()) continue;
-    const std::uint32_t i0 = fan_index(r, u, o.start[l]);
-    o.fan0[l] = i0;
-    const auto visit = [&](std::uint32_t x) {
-      if (table.has(x)) return;
-      table.set(x, static_cast<std::uint32_t>(o.vertex.size()));
-      o.vertex.push_back(x);
-      o.dist.push_back(static_cast<std::uint8_t>(o.dist[l] + 1));
-      o.start.push_back(u);
-      o.fan0.push_back(UINT32_MAX);
-    };
-    // The fan from i0 round to i0 - 1, without a modulo per neighbour.
-    for (std::uint32_t k = i0; k < row.size(); ++k) visit(row[k]);
-    for (std::uint32_t k = 0; k < i0; ++k) visit(row[k]);
-  }
+  walk_order<false>(r, seeds, seed_start, radius, o, [](std::uint32_t, std::uint8_t, std::uint32_t) {},
+                    [](std::uint32_t, bool, std::uint32_t) {});
 }
 
 namespace {
@@ -245,50 +268,31 @@ thread_local std::vector<std::int16_t> narrow_buffer;  // reused by local_order_
 
 void local_order_and_signature(const Complex& c, const TriRings& r, std::span<const std::uint32_t> seeds,
                                std::span<const std::uint32_t> seed_start, int radius, LocalOrder& o, std::string& out) {
-  start_order(r, seeds, seed_start, o);
   // Written straight as 16-bit numbers (every one fits unless a valence or a label passes
   // 32767); otherwise the order is finished here and local_signature writes the 32-bit form.
   std::vector<std::int16_t>& s = narrow_buffer;
   std::size_t used = 0;
+  std::int16_t* w = nullptr;
   bool narrow = true;
-  const std::uint32_t* const items = r.ring.items.data();
   const std::uint32_t* const edges = r.ring_edge.items.data();
-  const std::uint32_t* const offsets = r.ring.offsets.data();
   const std::uint8_t* const edge_dim = c.edge_dim.empty() ? nullptr : c.edge_dim.data();
-  // Label order is breadth first, so every vertex within `radius` is labelled before the first
-  // one at `radius` is walked: a neighbour without a label when it is read lies beyond.
-  for (std::size_t l = 0; l < o.vertex.size(); ++l) {
-    const std::uint32_t u = o.vertex[l];
-    const std::uint8_t d = o.dist[l];
-    const std::uint32_t begin = offsets[u], n = offsets[u + 1] - begin;
-    narrow &= n <= INT16_MAX;
-    if (s.size() < used + 4 + 2 * std::size_t(n)) s.resize(2 * (used + 4 + 2 * std::size_t(n)));
-    std::int16_t* w = s.data() + used;
-    *w++ = static_cast<std::int16_t>(-1000 - d);
-    *w++ = static_cast<std::int16_t>(r.closed[u]);
-    *w++ = static_cast<std::int16_t>(n);
-    *w++ = static_cast<std::int16_t>(c.vertex_dim.empty() ? 2 : c.vertex_dim[u]);
-    used += 4 + 2 * std::size_t(n);
-    if (n == 0) continue;
-    const std::uint32_t i0 = fan_index(r, u, o.start[l]);
-    const bool walk = d < radius;
-    if (walk) o.fan0[l] = i0;
-    for (std::uint32_t k = 0, i = i0; k < n; ++k, i = i + 1 == n ? 0 : i + 1) {
-      const std::uint32_t x = items[begin + i];
-      std::uint32_t lx = table.get(x);
-      if (lx == UINT32_MAX && walk) {
-        lx = static_cast<std::uint32_t>(o.vertex.size());
-        table.set(x, lx);
-        o.vertex.push_back(x);
-        o.dist.push_back(static_cast<std::uint8_t>(d + 1));
-        o.start.push_back(u);
-        o.fan0.push_back(UINT32_MAX);
-      }
-      narrow &= lx == UINT32_MAX || lx <= INT16_MAX;
-      *w++ = lx == UINT32_MAX ? std::int16_t(-1) : static_cast<std::int16_t>(lx);
-      *w++ = static_cast<std::int16_t>(edge_dim ? edge_dim[edges[begin + i]] : 2);
-    }
-  }
+  walk_order<true>(
+      r, seeds, seed_start, radius, o,
+      [&](std::uint32_t u, std::uint8_t d, std::uint32_t n) {
+        narrow &= n <= INT16_MAX;
+        if (s.size() < used + 4 + 2 * std::size_t(n)) s.resize(2 * (used + 4 + 2 * std::size_t(n)));
+        w = s.data() + used;
+        *w++ = static_cast<std::int16_t>(-1000 - d);
+        *w++ = static_cast<std::int16_t>(r.closed[u]);
+        *w++ = static_cast<std::int16_t>(n);
+        *w++ = static_cast<std::int16_t>(c.vertex_dim.empty() ? 2 : c.vertex_dim[u]);
+        used += 4 + 2 * std::size_t(n);
+      },
+      [&](std::uint32_t lx, bool, std::uint32_t slot) {
+        narrow &= lx == UINT32_MAX || lx <= INT16_MAX;
+        *w++ = lx == UINT32_MAX ? std::int16_t(-1) : static_cast<std::int16_t>(lx);
+        *w++ = static_cast<std::int16_t>(edge_dim ? edge_dim[edges[slot]] : 2);
+      });
   if (!narrow) {
     out = local_signature(c, r, o, radius);
     return;
@@ -316,51 +320,28 @@ inline char* put_varint(char* w, std::uint64_t v) {
 
 void local_order_and_key(const Complex& c, const TriRings& r, std::span<const std::uint32_t> seeds,
                          std::span<const std::uint32_t> seed_start, int radius, LocalOrder& o, std::string& out) {
-  start_order(r, seeds, seed_start, o);
   std::vector<char>& buf = key_buffer;
-  std::size_t used = 0;
-  const std::uint32_t* const items = r.ring.items.data();
+  char* w = buf.data();
   const std::uint32_t* const edges = r.ring_edge.items.data();
-  const std::uint32_t* const offsets = r.ring.offsets.data();
   const std::uint8_t* const edge_dim = c.edge_dim.empty() ? nullptr : c.edge_dim.data();
   const std::uint8_t* const vertex_dim = c.vertex_dim.empty() ? nullptr : c.vertex_dim.data();
-  // The same walk as local_order_and_signature's; what it writes is decodable, so equal keys
-  // are equal signatures (see the header).
-  for (std::size_t l = 0; l < o.vertex.size(); ++l) {
-    const std::uint32_t u = o.vertex[l];
-    const std::uint8_t d = o.dist[l];
-    const std::uint32_t begin = offsets[u], n = offsets[u + 1] - begin;
-    const std::size_t most = 1 + 10 + 10 * std::size_t(n);  // varints of at most 64 bits
-    if (buf.size() < used + most) buf.resize(2 * (used + most));
-    char* w = buf.data() + used;
-    *w++ = static_cast<char>(d);
-    w = put_varint(w, (std::uint64_t(n) << 1 | r.closed[u]) << 2 | (vertex_dim ? vertex_dim[u] : 2));
-    if (n != 0) {
-      const std::uint32_t i0 = fan_index(r, u, o.start[l]);
-      const bool walk = d < radius;
-      if (walk) o.fan0[l] = i0;
-      for (std::uint32_t k = 0, i = i0; k < n; ++k, i = i + 1 == n ? 0 : i + 1) {
-        const std::uint32_t x = items[begin + i];
-        const std::uint32_t lx = table.get(x);
-        std::uint64_t token;  // 0: labelled here (the next label), 1: beyond, else its label + 2
-        if (lx != UINT32_MAX) {
-          token = std::uint64_t(lx) + 2;
-        } else if (walk) {
-          table.set(x, static_cast<std::uint32_t>(o.vertex.size()));
-          o.vertex.push_back(x);
-          o.dist.push_back(static_cast<std::uint8_t>(d + 1));
-          o.start.push_back(u);
-          o.fan0.push_back(UINT32_MAX);
-          token = 0;
-        } else {
-          token = 1;
-        }
-        w = put_varint(w, token << 2 | (edge_dim ? edge_dim[edges[begin + i]] : 2));
-      }
-    }
-    used = static_cast<std::size_t>(w - buf.data());
-  }
-  out.assign(buf.data(), used);
+  // What it writes is decodable, so equal keys are equal signatures (see the header).
+  walk_order<true>(
+      r, seeds, seed_start, radius, o,
+      [&](std::uint32_t u, std::uint8_t d, std::uint32_t n) {
+        const auto used = static_cast<std::size_t>(w - buf.data());
+        const std::size_t most = 1 + 10 + 10 * std::size_t(n);  // varints of at most 64 bits
+        if (buf.size() < used + most) buf.resize(2 * (used + most));
+        w = buf.data() + used;
+        *w++ = static_cast<char>(d);
+        w = put_varint(w, (std::uint64_t(n) << 1 | r.closed[u]) << 2 | (vertex_dim ? vertex_dim[u] : 2));
+      },
+      [&](std::uint32_t lx, bool fresh, std::uint32_t slot) {
+        // 0: labelled here (the next label), 1: beyond, else its label + 2.
+        const std::uint64_t token = fresh ? 0 : lx == UINT32_MAX ? 1 : std::uint64_t(lx) + 2;
+        w = put_varint(w, token << 2 | (edge_dim ? edge_dim[edges[slot]] : 2));
+      });
+  out.assign(buf.data(), static_cast<std::size_t>(w - buf.data()));
 }
 
 std::size_t SignatureHash::operator()(std::string_view s) const {

@@ -3,15 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/IterativeLinearSolvers>
-#include <Eigen/SparseCore>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include "core/base/parallel.h"
 #include "core/base/points.h"
 #include "core/base/triangle_bvh.h"
-#include "core/fit/sparse_product.h"
+#include "core/fit/net_system.h"
 
 namespace sublift {
 
@@ -29,8 +27,6 @@ glm::dvec3 barycentric(const glm::dvec3& q, const glm::dvec3& a, const glm::dvec
   w = std::clamp(w, 0.0, 1.0 - v);
   return {1.0 - v - w, v, w};
 }
-
-using Sparse = Eigen::SparseMatrix<double>;
 
 }  // namespace
 
@@ -73,100 +69,60 @@ std::vector<double> solve_net(const Complex& c, const NetSolveState& st, std::sp
   });
   // The data terms on the surface points: M = D + s B^T B lives on the net's vertices and edges
   // (B^T B couples the corners of a face only), with right-hand side D c + s B^T q. A polygon's
-  // fan diagonals are no edges: their couplings go to `diagonals`.
+  // fan diagonals (0, m), m = 2 .. k - 2, are no edges: their couplings go to `fan`.
   const double scale = double(n) / double(ni);
-  std::vector<double> diag(n), off(ne, 0.0);
-  std::vector<Eigen::Triplet<double>> diagonals;
-  Eigen::MatrixX3d rhs(n, 3);
+  std::vector<double> diag(n), off(ne, 0.0), rhs(3 * std::size_t(n));
+  std::vector<std::uint32_t> fan_at(c.faces.rows() + 1, 0);
+  for (std::size_t f = 0; f < c.faces.rows(); ++f) fan_at[f + 1] = fan_at[f] + std::max<std::uint32_t>(c.faces.size(f), 3) - 3;
+  std::vector<double> fan(fan_at.back(), 0.0);
   for (std::uint32_t v = 0; v < n; ++v) {
     diag[v] = wt.alpha * (hold.empty() ? 1.0 : hold[v]);
-    rhs.row(v) = diag[v] * Eigen::RowVector3d(st.targets[3 * v], st.targets[3 * v + 1], st.targets[3 * v + 2]);
+    for (int k = 0; k < 3; ++k) rhs[3 * std::size_t(v) + k] = diag[v] * st.targets[3 * std::size_t(v) + k];
   }
   for (std::uint32_t i = 0; i < ni; ++i) {
-    const auto r = c.faces.row(foot[i].face);
-    const auto es = c.face_edges.row(foot[i].face);
+    const std::uint32_t f = foot[i].face;
+    const auto r = c.faces.row(f);
+    const auto es = c.face_edges.row(f);
     const std::uint32_t t = foot[i].fan, k = static_cast<std::uint32_t>(r.size());
     const std::uint32_t corner[3] = {0, t, t + 1};
-    const glm::dvec3 q = at(input, i);
     for (int j = 0; j < 3; ++j) {
       const double bj = foot[i].b[j];
       const std::uint32_t a = corner[j], b = corner[(j + 1) % 3];
       diag[r[a]] += scale * bj * bj;
-      rhs.row(r[a]) += scale * bj * Eigen::RowVector3d(q.x, q.y, q.z);
+      for (int d = 0; d < 3; ++d) rhs[3 * std::size_t(r[a]) + d] += scale * bj * input[3 * std::size_t(i) + d];
       const double w = scale * bj * foot[i].b[(j + 1) % 3];
-      // face edge m joins corners m and m + 1 (mod k)
-      if (b == a + 1) off[es[a]] += w;
-      else if (a == k - 1 && b == 0) off[es[a]] += w;
-      else diagonals.emplace_back(r[a], r[b], w), diagonals.emplace_back(r[b], r[a], w);
+      // face edge m joins corners m and m + 1 (mod k); otherwise a diagonal (0, a + b)
+      if (b == a + 1 || (a == k - 1 && b == 0)) off[es[a]] += w;
+      else fan[fan_at[f] + a + b - 2] += w;
     }
   }
-  // The springs: kappa times the graph Laplacian (degree on the diagonal, -kappa per edge),
-  // towards x0's edge vectors.
-  std::vector<double> degree(n, 0.0);
-  for (std::uint32_t e = 0; e < ne; ++e) degree[c.edge_verts[2 * e]] += wt.kappa, degree[c.edge_verts[2 * e + 1]] += wt.kappa;
-  // `d` on the diagonal, `o` on the edges, `more` (fan diagonals) first, duplicates summed.
-  const auto on_edges = [&](const auto& d, const auto& o, std::span<const Eigen::Triplet<double>> more) {
-    std::vector<Eigen::Triplet<double>> t;
-    t.reserve(n + 2 * std::size_t(ne) + more.size());
-    t.insert(t.end(), more.begin(), more.end());
-    for (std::uint32_t v = 0; v < n; ++v) t.emplace_back(v, v, d(v));
-    for (std::uint32_t e = 0; e < ne; ++e) {
-      t.emplace_back(c.edge_verts[2 * e], c.edge_verts[2 * e + 1], o(e));
-      t.emplace_back(c.edge_verts[2 * e + 1], c.edge_verts[2 * e], o(e));
-    }
-    Sparse m(n, n);
-    m.setFromTriplets(t.begin(), t.end());
-    return m;
-  };
-  const auto spring_diagonal = [&](std::uint32_t v) { return degree[v]; };
-  const auto spring_edge = [&](std::uint32_t) { return -wt.kappa; };
-  Eigen::MatrixX3d x0(n, 3);
-  for (std::uint32_t v = 0; v < n; ++v) x0.row(v) = Eigen::RowVector3d(st.control[3 * v], st.control[3 * v + 1], st.control[3 * v + 2]);
-  // b += springs * x0, added in the order Eigen's `b = y + springs * x0` adds it (into y,
-  // column by column of the springs), so bit for bit, without building the matrix.
-  const auto add_pull = [&](Eigen::MatrixX3d& b) {
-    for (std::uint32_t v = 0; v < n; ++v) {
-      b.row(v) += spring_diagonal(v) * x0.row(v);
-      for (std::uint32_t e : c.vertex_edges.row(v)) b.row(edge_other_end(c, e, v)) += spring_edge(e) * x0.row(v);
-    }
-  };
-  Sparse A;
-  Eigen::MatrixX3d b;
+  std::vector<fit_detail::Coupling> couplings;
+  for (std::size_t f = 0; f < c.faces.rows(); ++f)
+    for (std::uint32_t m = fan_at[f]; m < fan_at[f + 1]; ++m)
+      if (fan[m] != 0.0) couplings.push_back({c.faces.row(f)[0], c.faces.row(f)[m - fan_at[f] + 2], fan[m]});
+  // The springs K: kappa times the graph Laplacian, towards x0's edge vectors (b += K x0).
+  // Without L, K goes into M's rows.
+  fit_detail::NetSystem a;
+  a.net = &c;
   if (st.limit) {
-    std::vector<Eigen::Triplet<double>> t;
-    t.reserve(st.limit->weights.size());
-    for (std::uint32_t v = 0; v < n; ++v) {
-      const std::uint32_t o = st.limit->rows.offsets[v];
-      for (std::uint32_t k = o; k < st.limit->rows.offsets[v + 1]; ++k) t.emplace_back(v, st.limit->rows.items[k], st.limit->weights[k]);
-    }
-    Sparse L(n, n);
-    L.setFromTriplets(t.begin(), t.end());
-    const Sparse Lt = L.transpose();
-    const Sparse M = on_edges([&](std::uint32_t v) { return diag[v]; }, [&](std::uint32_t e) { return off[e]; }, diagonals);
-    A = fit_detail::sparse_product(fit_detail::sparse_product(Lt, M), L) + on_edges(spring_diagonal, spring_edge, {});
-    b = Lt * rhs;
-    add_pull(b);
+    a.limit = {st.limit->rows.offsets, st.limit->rows.items, st.limit->weights};
+    a.limit_t = fit_detail::transposed(a.limit, n);
+    a.kappa = wt.kappa;
   } else {
-    // M + springs in one matrix: their diagonal and edge entries are one term each, so the sums
-    // are M + springs' bit for bit (rounded otherwise only where a face's diagonal is also an edge).
-    A = on_edges([&](std::uint32_t v) { return diag[v] + spring_diagonal(v); }, [&](std::uint32_t e) { return off[e] + spring_edge(e); },
-                 diagonals);
-    b = rhs;
-    add_pull(b);
+    for (std::uint32_t v = 0; v < n; ++v) diag[v] += wt.kappa * c.vertex_edges.size(v);
+    for (double& o : off) o -= wt.kappa;
   }
-  // x, y and z are three independent solves: side by side, a solver each (Eigen's keeps its
-  // iteration count in itself). Each column's arithmetic is the same as one after another.
-  std::vector<double> out(3 * std::size_t(n));
-  parallel_for(3, 1, [&](std::uint32_t begin, std::uint32_t end) {
-    for (std::uint32_t k = begin; k < end; ++k) {
-      Eigen::ConjugateGradient<Sparse, Eigen::Lower | Eigen::Upper> cg;
-      cg.setTolerance(1e-10);
-      cg.setMaxIterations(500);
-      cg.compute(A);
-      const Eigen::VectorXd col = cg.solveWithGuess(b.col(k), x0.col(k));
-      for (std::uint32_t v = 0; v < n; ++v) out[3 * std::size_t(v) + k] = col[v];
-    }
+  a.data = fit_detail::net_rows(c, diag, off, couplings);
+  std::vector<double> b(rhs.size());
+  if (st.limit) fit_detail::multiply(a.limit_t, rhs, b);
+  else b = rhs;
+  parallel_for(n, 4096, [&](std::uint32_t lo, std::uint32_t hi) {
+    for (std::uint32_t v = lo; v < hi; ++v)
+      for (const std::uint32_t e : c.vertex_edges.row(v))
+        for (int d = 0; d < 3; ++d) b[3 * std::size_t(v) + d] += wt.kappa * (st.control[3 * std::size_t(v) + d] - st.control[3 * std::size_t(edge_other_end(c, e, v)) + d]);
   });
+  std::vector<double> out(st.control.begin(), st.control.end());
+  fit_detail::solve_cg3(a, b, out, 1e-10, 500);
   return out;
 }
 

@@ -298,10 +298,11 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
         parallel_for(n, 1024, [&](std::uint32_t b, std::uint32_t e) {
           for (std::uint32_t v = b; v < e; ++v) put(targets, v, project_only(y, normal, v));
         });
-        untangle_limit(c, ls, project, lines, facing_of, x);
+        std::vector<glm::dvec3> facing;  // the input's way at x's faces
+        untangle_limit(c, ls, project, lines, facing_of, x, &facing);
         eval_limit(ls, x.data(), y.data());
         std::vector<double> solved = solve_net(c, {x, y, targets, &ls, input_hint, &net_index}, positions, input_normals, hold, o.weights);
-        keep_unfolded(c.faces, facing_of(x), x, solved);
+        keep_unfolded(c.faces, facing, x, solved);
         x.swap(solved);
       }
       untangle_limit(c, ls, project, lines, facing_of, x);

@@ -186,23 +186,27 @@ void untangle(const Complex& c, const ProjectFn& project, const FeatureLines& li
 }
 
 void untangle_limit(const Complex& c, const LimitStencils& ls, const ProjectFn& project, const FeatureLines& lines, const FacingFn& facing_of,
-                    std::vector<double>& x, int rounds) {
-  const auto folds = [&](std::span<const double> p) {
-    const std::vector<glm::dvec3> facing = facing_of(p);
+                    std::vector<double>& x, std::vector<glm::dvec3>* net_facing, int rounds) {
+  // Each fold count also gives the input's way at the limit surface's faces, for the next round:
+  // finding it is a closest-point query per face, most of an untangling's time.
+  const auto folds = [&](std::span<const double> p, const std::vector<glm::dvec3>& facing) {
     std::size_t n = 0;
     for (std::size_t f = 0; f < c.faces.rows(); ++f) n += turned(c.faces, f, p, facing[f]);
     return n;
   };
-  std::vector<double> y(x.size());
-  const auto both = [&](const std::vector<double>& net) {
-    eval_limit(ls, net.data(), y.data());
-    return folds(y) + folds(net);
+  // Folds of the limit surface L net and of the net; lim = L net, and the facings of both.
+  const auto both = [&](const std::vector<double>& net, std::vector<double>& lim, std::vector<glm::dvec3>& lim_facing,
+                        std::vector<glm::dvec3>& facing) {
+    eval_limit(ls, net.data(), lim.data());
+    lim_facing = facing_of(lim);
+    facing = facing_of(net);
+    return folds(lim, lim_facing) + folds(net, facing);
   };
-  for (int round = 0; round < rounds; ++round) {
-    const std::size_t before = both(x);  // leaves y = L x
-    if (before == 0) return;
+  std::vector<double> y(x.size()), y_kept(x.size());
+  std::vector<glm::dvec3> facing_y, facing_kept, facing_x, facing_next;
+  std::size_t before = both(x, y, facing_y, facing_x);
+  for (int round = 0; round < rounds && before > 0; ++round) {
     std::vector<double> moved = y;
-    const std::vector<glm::dvec3> facing_y = facing_of(y);
     untangle(c, project, lines, facing_y, moved);
     // The moved limit points in clusters (sharing a face): each cluster's control change is
     // kept only when fewer faces fold around it, so one stubborn corner spoils no other.
@@ -222,7 +226,7 @@ void untangle_limit(const Complex& c, const LimitStencils& ls, const ProjectFn& 
             if (cluster[w] == UINT32_MAX && at(moved, w) != at(y, w)) cluster[w] = cluster[v], stack.push_back(w);
       }
     }
-    if (clusters.empty()) return;
+    if (clusters.empty()) break;
     std::vector<double> next = x, y_next = y;
     for (const std::vector<std::uint32_t>& k : clusters) {
       std::vector<std::uint32_t> controls;
@@ -272,9 +276,12 @@ void untangle_limit(const Complex& c, const LimitStencils& ls, const ProjectFn& 
     // The net under the moved limit points, as far as it comes right; the round stays when fewer
     // faces fold in all (a limit surface can come right only with its net folded under it).
     untangle(c, project, lines, facing_of(next), next);
-    if (both(next) >= before) return;
-    x.swap(next);
+    const std::size_t after = both(next, y_kept, facing_kept, facing_next);
+    if (after >= before) break;
+    x.swap(next), y.swap(y_kept), facing_y.swap(facing_kept), facing_x.swap(facing_next);
+    before = after;
   }
+  if (net_facing) net_facing->swap(facing_x);
 }
 
 }  // namespace sublift

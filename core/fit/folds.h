@@ -46,7 +46,8 @@ void untangle(const Complex& c, const ProjectFn& project, const FeatureLines& li
 /// L dx = dy over every limit point they reach (dy: the untangling moves, zero elsewhere), so the
 /// rest of the limit surface stays. A round is kept only when fewer faces fold, of the limit
 /// surface and the net together (a limit surface can come right only with its net folded).
+/// `net_facing` (optional): set to facing_of(x) of the x returned.
 void untangle_limit(const Complex& c, const LimitStencils& ls, const ProjectFn& project, const FeatureLines& lines, const FacingFn& facing_of,
-                    std::vector<double>& x, int rounds = 4);
+                    std::vector<double>& x, std::vector<glm::dvec3>* net_facing = nullptr, int rounds = 4);
 
 }  // namespace sublift

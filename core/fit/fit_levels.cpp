@@ -85,33 +85,86 @@ std::pair<double, double> distances(const TriangleBvh& to, std::span<const doubl
 
 // Per face of the net (`faces` over x), the way the input faces there: the mean of the vertex
 // normals of the input face closest to the face's centroid (a scan's noise flips single small
-// triangles; their vertex normals hold).
-std::vector<glm::dvec3> input_facing(const TriangleBvh& input, std::span<const double> input_normals, const Csr& input_faces,
-                                     const Csr& faces, std::span<const double> x, std::span<std::uint32_t> hints = {}) {
-  std::vector<glm::dvec3> out(faces.rows());
-  parallel_for(static_cast<std::uint32_t>(faces.rows()), 2048, [&](std::uint32_t b, std::uint32_t e) {
-    for (std::uint32_t f = b; f < e; ++f) {
-      glm::dvec3 m(0.0);
-      for (std::uint32_t v : faces.row(f)) m += at(x, v);
-      const TriangleBvh::Closest cl = input.closest(m / double(faces.size(f)), nullptr, hint_of(hints, f));
-      if (!hints.empty()) hints[f] = cl.face;
-      glm::dvec3 n(0.0);
-      for (std::uint32_t v : input_faces.row(cl.face)) n += at(input_normals, v);
-      out[f] = n;
-    }
-  });
-  return out;
-}
+// triangles; their vertex normals hold). The answers for the last two point sets asked are kept:
+// a face whose corners have not moved since gets the same answer without a search (the answer
+// depends on the centroid alone), and fitting asks again after moving a few points (untangling)
+// or none (the report after the last round).
+class Facings {
+ public:
+  Facings(const TriangleBvh& input, std::span<const double> normals, const Csr& input_faces)
+      : input_(input), normals_(normals), input_faces_(input_faces) {}
 
-// The faces of the net that are folded over: turned away from the way the input faces there.
-std::vector<std::uint32_t> folded_list(const TriangleBvh& input, std::span<const double> input_normals, const Csr& input_faces,
-                                       const Csr& faces, std::span<const double> x, std::span<std::uint32_t> hints = {}) {
-  const std::vector<glm::dvec3> facing = input_facing(input, input_normals, input_faces, faces, x, hints);
-  std::vector<std::uint32_t> out;
-  for (std::size_t f = 0; f < faces.rows(); ++f)
-    if (turned(faces, f, x, facing[f])) out.push_back(static_cast<std::uint32_t>(f));
-  return out;
-}
+  /// A new net (`faces`, which must outlive the calls): nothing kept, no hints.
+  void reset(const Csr& faces) {
+    faces_ = &faces;
+    hints_.assign(faces.rows(), UINT32_MAX);
+    for (Kept& k : kept_) k = {};
+  }
+  /// Per face, the input face to start its next search from.
+  void set_hints(std::vector<std::uint32_t> hints) { hints_ = std::move(hints); }
+
+  std::vector<glm::dvec3> operator()(std::span<const double> x) {
+    const Csr& faces = *faces_;
+    // The kept set with the most points unmoved, else the one asked longest ago.
+    const auto unmoved = [&](const Kept& k, std::size_t v) {
+      return k.points.size() == x.size() && std::equal(&x[3 * v], &x[3 * v] + 3, &k.points[3 * v]);
+    };
+    std::size_t best = kept_[0].asked <= kept_[1].asked ? 0 : 1, best_count = 0;
+    for (std::size_t k = 0; k < kept_.size(); ++k) {
+      std::size_t count = 0;
+      for (std::size_t v = 0; v < x.size() / 3; ++v) count += unmoved(kept_[k], v);
+      if (count > best_count) best = k, best_count = count;
+    }
+    std::vector<std::uint8_t> same(x.size() / 3, 0);
+    for (std::size_t v = 0; v < same.size() && best_count; ++v) same[v] = unmoved(kept_[best], v);
+    Kept& kept = kept_[best];
+    std::vector<glm::dvec3> out(faces.rows());
+    parallel_for(static_cast<std::uint32_t>(faces.rows()), 2048, [&](std::uint32_t b, std::uint32_t e) {
+      for (std::uint32_t f = b; f < e; ++f) {
+        const auto r = faces.row(f);
+        if (best_count && std::all_of(r.begin(), r.end(), [&](std::uint32_t v) { return same[v] != 0; })) {
+          out[f] = kept.facing[f];
+          continue;
+        }
+        glm::dvec3 m(0.0);
+        for (std::uint32_t v : r) m += at(x, v);
+        const TriangleBvh::Closest cl = input_.closest(m / double(r.size()), nullptr, hint_of(hints_, f));
+        if (!hints_.empty()) hints_[f] = cl.face;
+        glm::dvec3 n(0.0);
+        for (std::uint32_t v : input_faces_.row(cl.face)) n += at(normals_, v);
+        out[f] = n;
+      }
+    });
+    kept.points.assign(x.begin(), x.end());
+    kept.facing = out;
+    kept.asked = ++asked_;
+    return out;
+  }
+
+  const Csr* faces() const { return faces_; }
+
+  /// The faces of the net over x that are folded over: turned away from the way the input faces.
+  std::uint32_t folded(std::span<const double> x) {
+    const std::vector<glm::dvec3> facing = (*this)(x);
+    std::uint32_t n = 0;
+    for (std::size_t f = 0; f < faces_->rows(); ++f) n += turned(*faces_, f, x, facing[f]);
+    return n;
+  }
+
+ private:
+  struct Kept {
+    std::vector<double> points;
+    std::vector<glm::dvec3> facing;
+    std::uint64_t asked = 0;
+  };
+  const TriangleBvh& input_;
+  std::span<const double> normals_;
+  const Csr& input_faces_;
+  const Csr* faces_ = nullptr;
+  std::vector<std::uint32_t> hints_;
+  std::array<Kept, 2> kept_;
+  std::uint64_t asked_ = 0;
+};
 
 // How strongly the solve holds each net point on its projection: corners stay, crease and
 // boundary points stay on the input's lines (the input's pull would round a crease off).
@@ -212,7 +265,8 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
   std::vector<double> x;
   // Closest-point hints within a level (its faces and vertices keep their numbers there): input
   // vertex -> net face, net face -> input face, net vertex -> input face.
-  std::vector<std::uint32_t> input_hint, face_hint, vertex_hint, move_hint;
+  std::vector<std::uint32_t> input_hint, vertex_hint, move_hint;
+  Facings facings(input, input_normals, faces);  // the input's way at the level's net faces
   // The level's net (or limit surface) indexed once, refitted as it moves (TriangleBvh::refit).
   std::optional<TriangleBvh> net_index;
   const auto net_indexed = [&](const Complex& c, std::span<const double> net) -> const TriangleBvh& {
@@ -226,7 +280,7 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
     rep.vertices = c.num_vertices;
     std::tie(rep.rms, rep.max) = distances(input, net, diag, vertex_hint);
     std::tie(rep.back_rms, rep.back_max) = distances(net_indexed(c, net), positions, diag, input_hint);
-    rep.folded = static_cast<std::uint32_t>(folded_list(input, input_normals, faces, c.faces, net, face_hint).size());
+    rep.folded = facings.folded(net);
     return rep;
   };
   for (int l = 1; l <= o.levels; ++l) {
@@ -257,8 +311,8 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
       }
     }
     net_index.reset();  // a new net
-    face_hint.assign(c.faces.rows(), UINT32_MAX);
     vertex_hint.assign(n, UINT32_MAX);
+    facings.reset(h.levels[static_cast<std::size_t>(l)].faces);  // c's faces, kept in h
     std::vector<double> next(x.size());
     for (int round = 0; round < o.relax_rounds; ++round) {
       // Every point onto the input, then the two-way solve (core/fit/net_solve.h); neither step
@@ -268,10 +322,13 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
         for (std::uint32_t v = b; v < e; ++v) put(next, v, move(x, normal, v));
       });
       // A new face's search for the input face under it starts where its first corner's did.
-      if (round == 0)
+      if (round == 0) {
+        std::vector<std::uint32_t> face_hint(c.faces.rows());
         for (std::size_t f = 0; f < c.faces.rows(); ++f) face_hint[f] = move_hint[c.faces.row(f)[0]];
+        facings.set_hints(std::move(face_hint));
+      }
       // The input's way at each face, from before the moves (they are small): both guards use it.
-      const std::vector<glm::dvec3> facing = input_facing(input, input_normals, faces, c.faces, x, face_hint);
+      const std::vector<glm::dvec3> facing = facings(x);
       keep_unfolded(c.faces, facing, x, next);
       x.swap(next);
       untangle(c, project, lines, facing, x);  // before the solve, which pulls the moved points back
@@ -281,7 +338,7 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
         x.swap(solved);
       }
     }
-    const auto facing_of = [&](std::span<const double> net) { return input_facing(input, input_normals, faces, c.faces, net, face_hint); };
+    const auto facing_of = [&](std::span<const double> net) { return facings(net); };
     // An approximating scheme's finest level gets its limit surface fitted; with a tolerance,
     // every level does, since the limit surface is what the tolerance is about there.
     const bool approximating = o.two_way && scheme_info(o.scheme).limit != LimitRule::ControlNet;
@@ -344,12 +401,15 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
     out.limit_folded = last.folded;
   } else {
     // The last level's hints hold when it is the finest (no fitted level: none).
-    if (face_hint.size() != h.levels.back().faces.rows() || vertex_hint.size() * 3 != limit.size()) input_hint = face_hint = vertex_hint = {};
+    if (facings.faces() != &h.levels.back().faces || vertex_hint.size() * 3 != limit.size()) {
+      input_hint = vertex_hint = {};
+      facings.reset(h.levels.back().faces);
+    }
     std::tie(out.limit_rms, out.limit_max) = distances(input, limit, diag, vertex_hint);
     // The last fitted level is the finest: its index is refitted to the limit points.
     const TriangleBvh& limit_index = net_indexed(h.levels.back(), limit);
     std::tie(out.limit_back_rms, out.limit_back_max) = distances(limit_index, positions, diag, input_hint);
-    out.limit_folded = static_cast<std::uint32_t>(folded_list(input, input_normals, faces, h.levels.back().faces, limit, face_hint).size());
+    out.limit_folded = facings.folded(limit);
   }
   // The input's feature lines against the fitted creases and boundaries (their limit curves).
   const Complex& fine = h.levels.back();

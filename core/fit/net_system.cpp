@@ -88,11 +88,10 @@ WeightedRows net_rows(const Complex& c, std::span<const double> diagonal, std::s
 
 void NetSystem::apply(std::span<const double> x, std::span<double> y) const {
   if (limit.rows() == 0) return multiply(data, x, y);
-  thread_local std::vector<double> u, w;  // L x and M L x
-  u.resize(x.size()), w.resize(x.size());
-  multiply(limit, x, u);
-  multiply(data, u, w);
-  multiply(limit_t, w, y);
+  lx_.resize(x.size()), mlx_.resize(x.size());
+  multiply(limit, x, lx_);
+  multiply(data, lx_, mlx_);
+  multiply(limit_t, mlx_, y);
   // + K x: kappa times each edge's difference.
   const Complex& c = *net;
   parallel_for(c.num_vertices, kGrain, [&](std::uint32_t b, std::uint32_t e) {
@@ -143,31 +142,24 @@ int solve_cg3(const NetSystem& a, std::span<const double> b, std::span<double> x
   for (double& d : inv) d = d != 0.0 ? 1.0 / d : 1.0;
   std::vector<double> r(b.size()), p(b.size()), q(b.size());
   a.apply(x, q);
-  const Sums bb = block_sums(n, [&](std::uint32_t v, Sums& s) {
+  // r = b - A x, p = z = r / diag; |b|^2, |r|^2 and r . z per coordinate.
+  const std::array<double, 9> start = block_sums<9>(n, [&](std::uint32_t v, std::array<double, 9>& s) {
     for (int k = 0; k < 3; ++k) {
       const std::size_t i = 3 * std::size_t(v) + k;
       r[i] = b[i] - q[i];
-      s[k] += b[i] * b[i];
+      p[i] = inv[v] * r[i];
+      s[k] += b[i] * b[i], s[3 + k] += r[i] * r[i], s[6 + k] += r[i] * p[i];
     }
   });
   std::array<bool, 3> active{};
   Sums threshold{}, rz{};
-  const Sums rr0 = block_sums(n, [&](std::uint32_t v, Sums& s) {
-    for (int k = 0; k < 3; ++k) s[k] += r[3 * std::size_t(v) + k] * r[3 * std::size_t(v) + k];
-  });
   for (int k = 0; k < 3; ++k) {
-    threshold[k] = std::max(tol * tol * bb[k], std::numeric_limits<double>::min());
-    if (bb[k] == 0.0)  // Eigen's answer to a zero right-hand side
+    threshold[k] = std::max(tol * tol * start[k], std::numeric_limits<double>::min());
+    if (start[k] == 0.0)  // Eigen's answer to a zero right-hand side
       for (std::uint32_t v = 0; v < n; ++v) x[3 * std::size_t(v) + k] = 0.0;
-    active[k] = bb[k] != 0.0 && rr0[k] >= threshold[k];
+    active[k] = start[k] != 0.0 && start[3 + k] >= threshold[k];
+    rz[k] = start[6 + k];
   }
-  rz = block_sums(n, [&](std::uint32_t v, Sums& s) {
-    for (int k = 0; k < 3; ++k) {
-      const std::size_t i = 3 * std::size_t(v) + k;
-      p[i] = inv[v] * r[i];
-      s[k] += r[i] * p[i];
-    }
-  });
   int iterations = 0;
   while (iterations < max_iterations && (active[0] || active[1] || active[2])) {
     a.apply(p, q);

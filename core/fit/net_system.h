@@ -56,10 +56,13 @@ struct NetSystem {
   WeightedRows data;         // M, or M + K without a limit
   double kappa = 0;          // K, applied through the net's edges (with `limit`)
 
-  /// y = A x; x and y hold three coordinates per vertex, interleaved.
+  /// y = A x; x and y hold three coordinates per vertex, interleaved. One caller at a time.
   void apply(std::span<const double> x, std::span<double> y) const;
   /// A's diagonal.
   std::vector<double> diagonal() const;
+
+ private:
+  mutable std::vector<double> lx_, mlx_;  // apply's L x and M L x
 };
 
 /// x (in: the first guess) solves A x = b per coordinate to |r| <= tol |b| or `max_iterations`

@@ -6,12 +6,14 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <optional>
 #include <filesystem>
 
 #include "core/analysis/sphere_resample.h"
 #include "core/base/bounds.h"
+#include "core/base/parallel.h"
 #include "core/base/triangle_bvh.h"
 #include "core/io/mesh/mesh_import.h"
 #include "core/schemes/registry.h"
@@ -244,6 +246,38 @@ TEST(FitLevels, PerfectReconstructionAndCoarseEditsCarryTheDetail) {
     for (std::size_t i = 0; i < a.size(); ++i) moved[i] = a[i] - f.finest[i];
     EXPECT_LE(testing::max_abs_diff(moved, b), 1e-12);
     EXPECT_GT(*std::max_element(b.begin(), b.end()), 0.01);  // the edit reached the finest level
+  }
+}
+
+// A fit is the same to the bit on one thread and on two: every parallel sum (the solve's dot
+// products among them) is taken in an order fixed by the data. The sheet (a boundary, four
+// corners) with cubic, whose finest level solves under its limit surface, and with sqrt(2);
+// their finest nets have more than 4,096 points, so the solve's sums span several blocks.
+TEST(FitLevels, SameBitsOnOneThreadAndTwo) {
+  const Input in = sheet();
+  const int threads_before = parallel_threads();
+  for (Scheme s : {Scheme::Cubic, Scheme::Sqrt2}) {
+    SCOPED_TRACE(scheme_name(s));
+    BaseMeshOptions bo;
+    bo.target_vertices = 120;
+    bo.quads = fit_base_quads(s);
+    const BaseMesh base = decimate_to_base(in.n, in.faces, in.xyz, bo);
+    FitOptions o;
+    o.scheme = s;
+    o.levels = 3 * scheme_levels_per_split(s);
+    std::vector<Fitted> fits;
+    for (const int threads : {1, 2}) {
+      set_parallel_threads(threads);
+      fits.push_back(fit_levels(base, in.faces, in.xyz, o));
+    }
+    set_parallel_threads(threads_before);
+    ASSERT_GT(fits[0].finest.size(), 3u * 4096);
+    ASSERT_EQ(fits[0].finest.size(), fits[1].finest.size());
+    EXPECT_EQ(std::memcmp(fits[0].finest.data(), fits[1].finest.data(), fits[0].finest.size() * sizeof(double)), 0);
+    ASSERT_EQ(fits[0].hierarchy.coeffs.size(), fits[1].hierarchy.coeffs.size());
+    EXPECT_EQ(std::memcmp(fits[0].hierarchy.coeffs.data(), fits[1].hierarchy.coeffs.data(), fits[0].hierarchy.coeffs.size() * sizeof(double)), 0);
+    EXPECT_EQ(fits[0].limit_max, fits[1].limit_max);
+    EXPECT_EQ(fits[0].limit_back_max, fits[1].limit_back_max);
   }
 }
 

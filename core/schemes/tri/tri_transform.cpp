@@ -419,6 +419,16 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
     // Keys in parallel, each looked up at once (the cache is only read here): a found one
     // keeps no signature, so a deep level's thousands of known neighbourhoods allocate nothing.
     // A new one is kept once, however many edges have it (NewSignatures).
+    // Edges of one anchored key have one wavelet: where the key is new, only its first edge
+    // computes its signature and the others take that edge's wavelet (a level where the anchors
+    // are first seen: the octahedron's six alike vertices key a sixth of their edges).
+    std::vector<std::uint32_t> same_as(anchored.size(), UINT32_MAX);  // -> the first edge of its key
+    {
+      std::unordered_map<std::uint64_t, std::uint32_t> first;
+      for (std::uint32_t k = 0; k < anchored.size(); ++k)
+        if (anchored[k] != UINT64_MAX)
+          if (const auto [it, fresh_key] = first.try_emplace(anchored[k], k); !fresh_key) same_as[k] = it->second;
+    }
     std::vector<TriWaveletBuilder::EdgeKey> keys(irregular.size());
     std::vector<const EdgeWavelet*> found(irregular.size(), nullptr);
     NewSignatures fresh;
@@ -431,14 +441,16 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
       std::uint32_t hits = 0;
       try {
         for (std::uint32_t k = begin; k < end; ++k) {
-          if (!anchored.empty() && anchored[k] != UINT64_MAX)
-            if (const EdgeWavelet* hit = b.find_anchored(anchored[k])) {
-              found[k] = hit;
-              ++hits;
+          if (!anchored.empty() && anchored[k] != UINT64_MAX) {
+            const EdgeWavelet* hit = b.find_anchored(anchored[k]);
+            if (hit || same_as[k] != UINT32_MAX) {
+              found[k] = hit;  // else taken from same_as[k] below
+              hits += hit != nullptr;
               edge_disc(coarse, rings, irregular[k], disc, disc_order);
               keys[k].disc = disc_order.vertex;
               continue;
             }
+          }
           b.edge_key(level, irregular[k], keys[k].disc, signature);
           found[k] = b.find(signature);
           if (!found[k]) fresh_of[k] = fresh.add(signature, k);
@@ -465,7 +477,9 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
       }
       const std::vector<const EdgeWavelet*> solved = b.solve(level, todo, signatures);
       for (std::uint32_t k = 0; k < irregular.size(); ++k)
-        if (!found[k]) found[k] = solved[fresh_of[k]->place];
+        if (!found[k] && fresh_of[k]) found[k] = solved[fresh_of[k]->place];
+      for (std::uint32_t k = 0; k < same_as.size(); ++k)  // first edges come first
+        if (!found[k]) found[k] = found[same_as[k]];
     }
     for (std::size_t k = 0; k < anchored.size(); ++k)
       if (anchored[k] != UINT64_MAX) b.add_anchored(anchored[k], found[k]);  // kept if known

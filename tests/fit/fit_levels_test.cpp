@@ -171,6 +171,22 @@ const GeneratedCase kGenerated[] = {
     {"torus_sqrt2", [] { return torus(); }, 0, 0, Scheme::Sqrt2},
     {"sheet_linear", [] { return sheet(); }, 1, 1, Scheme::Linear}};
 
+// The input's base of about `base_vertices` for scheme s (quads where the scheme refines them)
+// and the options that fit it three splits deep.
+struct ThreeSplits {
+  BaseMesh base;
+  FitOptions o;
+};
+ThreeSplits three_splits(const Input& in, Scheme s, std::uint32_t base_vertices) {
+  BaseMeshOptions bo;
+  bo.target_vertices = base_vertices;
+  bo.quads = fit_base_quads(s);
+  ThreeSplits t{decimate_to_base(in.n, in.faces, in.xyz, bo), {}};
+  t.o.scheme = s;
+  t.o.levels = 3 * scheme_levels_per_split(s);
+  return t;
+}
+
 class GeneratedSurfaces : public ::testing::TestWithParam<int> {};
 
 TEST_P(GeneratedSurfaces, FitBothWays) {
@@ -178,15 +194,9 @@ TEST_P(GeneratedSurfaces, FitBothWays) {
   {
     const Input in = k.make();
     SCOPED_TRACE(k.name);
-    BaseMeshOptions bo;
-    bo.target_vertices = std::max<std::uint32_t>(60, in.n / 50);
-    bo.quads = fit_base_quads(k.scheme);
-    const BaseMesh base = decimate_to_base(in.n, in.faces, in.xyz, bo);
+    const auto [base, o] = three_splits(in, k.scheme, std::max<std::uint32_t>(60, in.n / 50));
     EXPECT_EQ(base.euler_after, k.euler);
     EXPECT_EQ(base.boundary_loops_after, k.loops);
-    FitOptions o;
-    o.scheme = k.scheme;
-    o.levels = 3 * scheme_levels_per_split(k.scheme);
     const Fitted f = fit_levels(base, in.faces, in.xyz, o);
     ASSERT_EQ(f.levels.size(), std::size_t(o.levels));
     for (const FitLevelReport& r : f.levels)
@@ -225,13 +235,7 @@ TEST(FitLevels, PerfectReconstructionAndCoarseEditsCarryTheDetail) {
   const Input in = sphere();
   for (Scheme s : {Scheme::Loop, Scheme::Cubic, Scheme::Sqrt2}) {
     SCOPED_TRACE(scheme_name(s));
-    BaseMeshOptions bo;
-    bo.target_vertices = 80;
-    bo.quads = fit_base_quads(s);
-    const BaseMesh base = decimate_to_base(in.n, in.faces, in.xyz, bo);
-    FitOptions o;
-    o.scheme = s;
-    o.levels = 3 * scheme_levels_per_split(s);
+    const auto [base, o] = three_splits(in, s, 80);
     const Fitted f = fit_levels(base, in.faces, in.xyz, o);
     const int J = f.hierarchy.finest_level();
     ASSERT_EQ(J, o.levels);
@@ -258,13 +262,7 @@ TEST(FitLevels, SameBitsOnOneThreadAndTwo) {
   const int threads_before = parallel_threads();
   for (Scheme s : {Scheme::Cubic, Scheme::Sqrt2}) {
     SCOPED_TRACE(scheme_name(s));
-    BaseMeshOptions bo;
-    bo.target_vertices = 120;
-    bo.quads = fit_base_quads(s);
-    const BaseMesh base = decimate_to_base(in.n, in.faces, in.xyz, bo);
-    FitOptions o;
-    o.scheme = s;
-    o.levels = 3 * scheme_levels_per_split(s);
+    const auto [base, o] = three_splits(in, s, 120);
     std::vector<Fitted> fits;
     for (const int threads : {1, 2}) {
       set_parallel_threads(threads);

@@ -429,7 +429,7 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
         if (anchored[k] != UINT64_MAX)
           if (const auto [it, fresh_key] = first.try_emplace(anchored[k], k); !fresh_key) same_as[k] = it->second;
     }
-    std::vector<TriWaveletBuilder::EdgeKey> keys(irregular.size());
+    w.discs.resize(irregular.size());  // each edge's disc, as its key or its anchored look-up finds it
     std::vector<const EdgeWavelet*> found(irregular.size(), nullptr);
     NewSignatures fresh;
     std::vector<NewSignatures::Entry*> fresh_of(irregular.size(), nullptr);
@@ -447,11 +447,11 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
               found[k] = hit;  // else taken from same_as[k] below
               hits += hit != nullptr;
               edge_disc(coarse, rings, irregular[k], disc, disc_order);
-              keys[k].disc = disc_order.vertex;
+              w.discs[k] = disc_order.vertex;
               continue;
             }
           }
-          b.edge_key(level, irregular[k], keys[k].disc, signature);
+          b.edge_key(level, irregular[k], w.discs[k], signature);
           found[k] = b.find(signature);
           if (!found[k]) fresh_of[k] = fresh.add(signature, k);
         }
@@ -484,11 +484,9 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
     for (std::size_t k = 0; k < anchored.size(); ++k)
       if (anchored[k] != UINT64_MAX) b.add_anchored(anchored[k], found[k]);  // kept if known
     out.anchored_edges = anchored_hits;
-    w.discs.resize(irregular.size());
     w.alphas.resize(irregular.size());
     for (std::size_t k = 0; k < irregular.size(); ++k) {
       const std::uint32_t e = irregular[k];
-      w.discs[k] = std::move(keys[k].disc);
       const EdgeWavelet& wave = *found[k];
       if (wave.alpha.size() != w.discs[k].size()) throw std::logic_error("tri_transform: disc and alpha sizes differ");
       w.irregular_at[e] = static_cast<std::uint32_t>(k);

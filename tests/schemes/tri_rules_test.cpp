@@ -37,6 +37,7 @@
 #include "core/complex/refine_tri.h"
 #include "core/io/lattice/shape_io.h"
 #include "core/complex/shapes.h"
+#include "core/schemes/registry.h"
 #include "core/schemes/tri/tri_rules.h"
 #include "tests/mesh_fixtures.h"
 #include "tests/test_shapes.h"
@@ -635,6 +636,33 @@ TEST(TriRules, ButterflyCreaseEndsAndCornersReflect) {
   for (std::uint32_t i = 1; i < 5; ++i) {
     const auto row = st.new_rows.row(sublift::testing::edge_of(edges, id(i, 3), id(i + 1, 3)));
     for (std::uint32_t v : row) EXPECT_EQ(v / (n + 1), 3u) << "crease edge " << i << " reads vertex " << v;
+  }
+}
+
+// A face type's patch asks a few rows of TriRowRules, in its own order: each row must be the
+// one build_tri_stencils writes (old vertices of the interpolating schemes: themselves, 1).
+TEST(TriRules, RowRulesGiveTheStencilsRowsInAnyOrder) {
+  const std::uint32_t n = 7;
+  auto id = [&](std::uint32_t i, std::uint32_t j) { return j * (n + 1) + i; };
+  FeatureTags tags;
+  for (std::uint32_t i = 1; i < 5; ++i) tags.crease_edges.push_back({id(i, 3), id(i + 1, 3)});
+  tags.corner_vertices.push_back(id(3, 3));
+  const Mesh g = tri_grid(n, 6, false, tags);  // irregular valences, a boundary, a crease, a corner
+  const std::uint32_t nv = g.c.num_vertices, nf = nv + g.c.num_edges();
+  for (Scheme s : {Scheme::LinearTri, Scheme::Butterfly, Scheme::Loop}) {
+    const TriStencils st = build_tri_stencils(g.c, s);
+    const TriRowRules rules(g.c, s);
+    Csr rows;
+    std::vector<double> weights;
+    std::vector<std::uint32_t> asked;
+    for (std::uint32_t k = 0; k < nf; ++k) asked.push_back((k * 7919u + 13u) % nf);  // every row, scattered
+    for (std::uint32_t v : asked) rules.append_row(v, rows, weights);
+    for (std::uint32_t r = 0; r < asked.size(); ++r) {
+      std::vector<std::pair<std::uint32_t, double>> want, got;
+      for_each_stencil_weight(st, nv, asked[r], [&](std::uint32_t a, double w) { want.emplace_back(a, w); });
+      for (std::uint32_t q = rows.offsets[r]; q < rows.offsets[r + 1]; ++q) got.emplace_back(rows.items[q], weights[q]);
+      EXPECT_EQ(got, want) << scheme_name(s) << ", fine vertex " << asked[r];
+    }
   }
 }
 

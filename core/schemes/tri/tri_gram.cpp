@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -66,17 +67,23 @@ FaceGramCache::Made FaceGramCache::make_type(const Complex& c, const LocalOrder&
   }
   if (pf == UINT32_MAX) throw std::logic_error("tri_gram: the face is missing from its own patch");
   auto refined = std::make_shared<Made::Refined>();
-  TriStencils st;
+  std::optional<TriRowRules> rules;
   try {
     refined->fine = refine_tri(patch);
-    st = build_tri_stencils(patch, scheme_);
+    rules.emplace(patch, scheme_);
     refined->rings = build_tri_rings(refined->fine);
   } catch (const TopologyError& e) {
     // local_patch always yields a manifold (it splits rim vertices where the surface meets
     // itself), so this is a defect.
     throw std::logic_error("tri_gram: the patch around face " + std::to_string(f) + " cannot be subdivided: " + e.what());
   }
-  const std::uint32_t nvp = patch.num_vertices;
+  // Only the rows of N(child) are read, about a tenth of the patch's: made when first asked.
+  thread_local std::vector<std::uint32_t> row_of;
+  thread_local Csr rows;
+  thread_local std::vector<double> weights;
+  row_of.assign(refined->fine.num_vertices, UINT32_MAX);
+  rows.clear();
+  weights.clear();
   for (int k = 0; k < 4; ++k) {
     LocalOrder& co = made.child_order[static_cast<std::size_t>(k)];
     std::uint32_t seeds[3], starts[3];
@@ -92,7 +99,11 @@ FaceGramCache::Made FaceGramCache::make_type(const Complex& c, const LocalOrder&
           throw std::logic_error("tri_gram: N(f) does not close under subdivision (support radius too small)");
         terms.emplace_back(i, static_cast<int>(a), w);
       };
-      for_each_stencil_weight(st, nvp, v, add);
+      if (row_of[v] == UINT32_MAX) {
+        row_of[v] = static_cast<std::uint32_t>(rows.rows());
+        rules->append_row(v, rows, weights);
+      }
+      for (std::uint32_t q = rows.offsets[row_of[v]]; q < rows.offsets[row_of[v] + 1]; ++q) add(rows.items[q], weights[q]);
     }
     Eigen::SparseMatrix<double> S(m, n);
     S.setFromTriplets(terms.begin(), terms.end());  // repeated (i, a) summed, as += did

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -121,11 +122,9 @@ struct TriTopo {
 
 // ---- Linear ------------------------------------------------------------------------------
 
-void linear_rules(const TriTopo& t, TriStencils& st) {
-  build_rows(t.c.num_edges(), st.new_rows, st.new_weights, [&](std::uint32_t e, RowBuilder& row) {
-    row.add(t.c.edge_verts[2 * e], 0.5);  // 004 sec. 4.1, Fig. 2: midpoints
-    row.add(t.c.edge_verts[2 * e + 1], 0.5);
-  });
+void linear_edge_row(const TriTopo& t, std::uint32_t e, RowBuilder& row) {
+  row.add(t.c.edge_verts[2 * e], 0.5);  // 004 sec. 4.1, Fig. 2: midpoints
+  row.add(t.c.edge_verts[2 * e + 1], 0.5);
 }
 
 // ---- Butterfly ---------------------------------------------------------------------------
@@ -152,21 +151,31 @@ std::vector<double> butterfly_weights(std::uint32_t K) {
   return w;
 }
 
-void butterfly_rules(const TriTopo& t, TriStencils& st) {
-  const Complex& c = t.c;
-  const std::uint32_t nv = c.num_vertices;
-  // OpenMesh's is_boundary(vertex), on the mesh cut along creases; plus the vertices OpenMesh
-  // cannot hold (valence < 3 inside, non-manifold), which get no K-point stencil either.
-  std::vector<std::uint8_t> open(nv);
-  for (std::uint32_t v = 0; v < nv; ++v)
-    open[v] = t.feature_count[v] > 0 || !t.manifold[v] || c.vertex_edges.size(v) < 3;
+// What the butterfly's rows read besides the topology.
+struct ButterflyTables {
+  std::vector<std::uint8_t> open;            // no K-point stencil at this vertex
   std::vector<std::vector<double>> weights;  // by valence, for the valences present
-  for (std::uint32_t v = 0; v < nv; ++v) {
-    const std::uint32_t K = c.vertex_edges.size(v);
-    if (open[v] || K == 6) continue;
-    if (weights.size() <= K) weights.resize(K + 1);
-    if (weights[K].empty()) weights[K] = butterfly_weights(K);
+
+  explicit ButterflyTables(const TriTopo& t) {
+    const Complex& c = t.c;
+    const std::uint32_t nv = c.num_vertices;
+    // OpenMesh's is_boundary(vertex), on the mesh cut along creases; plus the vertices OpenMesh
+    // cannot hold (valence < 3 inside, non-manifold), which get no K-point stencil either.
+    open.resize(nv);
+    for (std::uint32_t v = 0; v < nv; ++v)
+      open[v] = t.feature_count[v] > 0 || !t.manifold[v] || c.vertex_edges.size(v) < 3;
+    for (std::uint32_t v = 0; v < nv; ++v) {
+      const std::uint32_t K = c.vertex_edges.size(v);
+      if (open[v] || K == 6) continue;
+      if (weights.size() <= K) weights.resize(K + 1);
+      if (weights[K].empty()) weights[K] = butterfly_weights(K);
+    }
   }
+};
+
+void butterfly_edge_row(const TriTopo& t, const ButterflyTables& tables, std::uint32_t e, RowBuilder& row) {
+  const Complex& c = t.c;
+  const std::vector<std::uint8_t>& open = tables.open;
 
   // The curve neighbour across end a of feature edge e, or the reflection 2a - b.
   auto curve_neighbour = [&](RowBuilder& row, std::uint32_t e, std::uint32_t a, std::uint32_t b, double w) {
@@ -181,7 +190,7 @@ void butterfly_rules(const TriTopo& t, TriStencils& st) {
   // through the faces: r_0 is the other end of e (ZSS96; weights symmetric in j <-> K - j).
   auto k_point = [&](RowBuilder& row, std::uint32_t e, std::uint32_t a, double scale) {
     const std::uint32_t K = c.vertex_edges.size(a);
-    const std::vector<double>& w = weights[K];
+    const std::vector<double>& w = tables.weights[K];
     std::uint32_t edge = e, face = c.edge_faces.row(e)[0];
     for (std::uint32_t j = 0; j < K; ++j) {
       row.add(edge_other_end(c, edge, a), scale * w[j]);
@@ -192,7 +201,7 @@ void butterfly_rules(const TriTopo& t, TriStencils& st) {
     row.add(a, scale * w[K]);
   };
 
-  build_rows(c.num_edges(), st.new_rows, st.new_weights, [&](std::uint32_t e, RowBuilder& row) {
+  {
     const std::uint32_t a0 = c.edge_verts[2 * e], a1 = c.edge_verts[2 * e + 1];
     if (t.feature_edge[e]) {
       // 4-point rule along the boundary / crease curve (OpenMesh: boundary edges).
@@ -225,23 +234,25 @@ void butterfly_rules(const TriTopo& t, TriStencils& st) {
         if (k1) k_point(row, e, a1, scale);
       }
     }
-  });
+  }
 }
 
 // ---- Loop --------------------------------------------------------------------------------
 
-void loop_rules(const TriTopo& t, TriStencils& st) {
+void loop_edge_row(const TriTopo& t, std::uint32_t e, RowBuilder& row) {
   const Complex& c = t.c;
-  build_rows(c.num_edges(), st.new_rows, st.new_weights, [&](std::uint32_t e, RowBuilder& row) {
-    const std::uint32_t a0 = c.edge_verts[2 * e], a1 = c.edge_verts[2 * e + 1];
-    if (t.feature_edge[e]) {
-      row.add(a0, 0.5), row.add(a1, 0.5);  // Sdc Loop crease edge mask
-    } else {
-      row.add(a0, 3.0 / 8), row.add(a1, 3.0 / 8);  // Loop 1987 edge mask: 3/8, 3/8, 1/8, 1/8
-      for (std::uint32_t f : c.edge_faces.row(e)) row.add(t.opposite(f, e), 1.0 / 8);
-    }
-  });
-  build_rows(c.num_vertices, st.old_rows, st.old_weights, [&](std::uint32_t v, RowBuilder& row) {
+  const std::uint32_t a0 = c.edge_verts[2 * e], a1 = c.edge_verts[2 * e + 1];
+  if (t.feature_edge[e]) {
+    row.add(a0, 0.5), row.add(a1, 0.5);  // Sdc Loop crease edge mask
+  } else {
+    row.add(a0, 3.0 / 8), row.add(a1, 3.0 / 8);  // Loop 1987 edge mask: 3/8, 3/8, 1/8, 1/8
+    for (std::uint32_t f : c.edge_faces.row(e)) row.add(t.opposite(f, e), 1.0 / 8);
+  }
+}
+
+void loop_vertex_row(const TriTopo& t, std::uint32_t v, RowBuilder& row) {
+  const Complex& c = t.c;
+  {
     const auto edges = c.vertex_edges.row(v);
     const std::uint32_t s = t.feature_count[v];
     if (c.vertex_dim[v] == 0 || s > 2 || edges.empty() || !t.manifold[v]) {
@@ -264,10 +275,54 @@ void loop_rules(const TriTopo& t, TriStencils& st) {
       row.add(v, v_weight);
       for (std::uint32_t e : edges) row.add(edge_other_end(c, e, v), e_weight);
     }
-  });
+  }
 }
 
 }  // namespace
+
+struct TriRowRules::Impl {
+  Scheme scheme;
+  TriTopo topo;
+  std::optional<ButterflyTables> butterfly;
+
+  Impl(const Complex& c, Scheme s) : scheme(s), topo(c) {
+    if (s == Scheme::Butterfly) butterfly.emplace(topo);
+  }
+};
+
+TriRowRules::TriRowRules(const Complex& coarse, Scheme s) {
+  check_surface(coarse);
+  if (s != Scheme::LinearTri && s != Scheme::Butterfly && s != Scheme::Loop)
+    throw Error(scheme_name(s) + " is not a triangle scheme");
+  impl_ = std::make_unique<const Impl>(coarse, s);
+}
+
+TriRowRules::~TriRowRules() = default;
+
+void TriRowRules::add_terms(std::uint32_t v, RowBuilder& row) const {
+  const Impl& r = *impl_;
+  const std::uint32_t nv = r.topo.c.num_vertices;
+  if (v < nv) {
+    if (r.scheme == Scheme::Loop) {
+      loop_vertex_row(r.topo, v, row);
+    } else {
+      row.add(v, 1.0);  // interpolating: old vertices are kept
+    }
+    return;
+  }
+  const std::uint32_t e = v - nv;
+  switch (r.scheme) {
+    case Scheme::LinearTri: linear_edge_row(r.topo, e, row); break;
+    case Scheme::Butterfly: butterfly_edge_row(r.topo, *r.butterfly, e, row); break;
+    default: loop_edge_row(r.topo, e, row); break;
+  }
+}
+
+void TriRowRules::append_row(std::uint32_t v, Csr& rows, std::vector<double>& weights) const {
+  thread_local RowBuilder b;
+  add_terms(v, b);
+  b.flush(rows, weights);
+}
 
 TriStencils build_tri_stencils(const Complex& coarse, Scheme s) {
   const bool derived = coarse.vertex_edges.rows() == coarse.num_vertices &&
@@ -279,15 +334,12 @@ TriStencils build_tri_stencils(const Complex& coarse, Scheme s) {
     build_adjacency(copy);
   }
   const Complex& c = derived ? coarse : copy;
-  check_surface(c);
-  const TriTopo topo(c);
+  const TriRowRules rules(c, s);
+  const std::uint32_t nv = c.num_vertices;
   TriStencils st;
-  switch (s) {
-    case Scheme::LinearTri: linear_rules(topo, st); break;
-    case Scheme::Butterfly: butterfly_rules(topo, st); break;
-    case Scheme::Loop: loop_rules(topo, st); break;
-    default: throw Error(scheme_name(s) + " is not a triangle scheme");
-  }
+  build_rows(c.num_edges(), st.new_rows, st.new_weights, [&](std::uint32_t e, RowBuilder& row) { rules.add_terms(nv + e, row); });
+  if (s == Scheme::Loop)  // the interpolating schemes keep their old vertices: no rows
+    build_rows(nv, st.old_rows, st.old_weights, [&](std::uint32_t v, RowBuilder& row) { rules.add_terms(v, row); });
   return st;
 }
 

@@ -80,10 +80,12 @@
 // Peers (tests/schemes/tri_rules_test.cpp): Butterfly vs OpenMesh ModifiedButterflyT, Loop vs OpenSubdiv
 // Far (TopologyRefiner + PrimvarRefiner). See docs/triangle_schemes.md.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/complex/complex.h"
 #include "core/base/csr.h"
+#include "core/engine/stencil_rows.h"
 #include "core/schemes/scheme.h"
 
 namespace sublift {
@@ -96,6 +98,28 @@ struct TriStencils {
   std::vector<double> new_weights;
   Csr old_rows;
   std::vector<double> old_weights;
+};
+
+/// The scheme's rules over one coarse surface, a fine vertex's row at a time: for callers that
+/// read a few rows of a mesh (a face type's subdivided patch reads about a tenth of its rows).
+/// The rows are build_tri_stencils' bit for bit (it is made of them).
+class TriRowRules {
+ public:
+  /// `coarse` needs its derived rows and must outlive this. Throws as build_tri_stencils.
+  TriRowRules(const Complex& coarse, Scheme s);
+  ~TriRowRules();
+  TriRowRules(const TriRowRules&) = delete;
+  TriRowRules& operator=(const TriRowRules&) = delete;
+
+  /// Fine vertex v's terms (refine_tri numbering), in rule order; an old vertex of an
+  /// interpolating scheme is itself with weight 1.
+  void add_terms(std::uint32_t v, RowBuilder& row) const;
+  /// Appends v's row to rows/weights: sources increasing, repeated ones summed.
+  void append_row(std::uint32_t v, Csr& rows, std::vector<double>& weights) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<const Impl> impl_;
 };
 
 /// `coarse`: a triangle surface with its derived rows (build_adjacency; built on a copy when

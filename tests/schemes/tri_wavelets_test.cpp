@@ -204,7 +204,7 @@ TEST(TriGram, CoarseTorusMatchesTwoScaleRelation) {
       std::uint32_t seeds[3], starts[3];
       face_seeds(c, f, seeds, starts);
       const LocalOrder o = local_order(r, seeds, starts, radius);
-      n += local_patch(c, o).num_vertices != o.vertex.size();
+      n += local_patch(c, r, o).num_vertices != o.vertex.size();
     }
     return n;
   };
@@ -690,6 +690,42 @@ std::vector<Complex> local_order_meshes() {
   Complex grid = read_shape(std::string(SUBLIFT_ASSETS_DIR) + "/tri_crease_grid.obj").base;
   build_adjacency(grid);
   return {octa, extraordinary_disc(5, 6), grid, regular_torus(6, 5)};
+}
+
+// The refined mesh's rings, written from the coarse rings, equal those searched on the refined
+// mesh, entry for entry, two steps deep: on the local_order meshes (closed, open, creased, a
+// thin torus) and on face patches cut from them (open fans at the rim, rim vertices split where
+// a patch meets itself), as face types refine their patches.
+TEST(TriLocal, RefinedRingsFromTheCoarseRingsEqualTheSearchedOnes) {
+  std::vector<Complex> meshes = local_order_meshes();
+  const std::size_t whole = meshes.size();
+  for (std::size_t i = 0; i < whole; ++i) {
+    const TriRings r = build_tri_rings(meshes[i]);
+    for (std::uint32_t f = 0; f < meshes[i].num_faces(); f += 17) {
+      std::uint32_t seeds[3], starts[3];
+      face_seeds(meshes[i], f, seeds, starts);
+      meshes.push_back(local_patch(meshes[i], r, local_order(r, seeds, starts, 4)));
+    }
+  }
+  std::size_t compared = 0, open = 0;
+  for (const Complex& mesh : meshes) {
+    Complex c = mesh;
+    TriRings r = build_tri_rings(c);
+    for (int step = 0; step < 2; ++step) {
+      const TriRings derived = refine_tri_rings(c, r);
+      c = refine_tri(c);
+      r = build_tri_rings(c);
+      ASSERT_EQ(derived.ring.offsets, r.ring.offsets);
+      ASSERT_EQ(derived.ring.items, r.ring.items);
+      ASSERT_EQ(derived.ring_edge.offsets, r.ring_edge.offsets);
+      ASSERT_EQ(derived.ring_edge.items, r.ring_edge.items);
+      ASSERT_EQ(derived.closed, r.closed);
+      open += static_cast<std::size_t>(std::count(r.closed.begin(), r.closed.end(), 0));
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 40u);
+  EXPECT_GT(open, 1000u);  // open fans were met
 }
 
 // The one-pass order and signature (what the edges' keys use) equal local_order followed by

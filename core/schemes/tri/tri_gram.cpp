@@ -54,12 +54,13 @@ struct FaceGramCache::Made {
   std::uint32_t pf = 0;  // the face in the patch; its children are 4 pf + k of `fine`
 };
 
-FaceGramCache::Made FaceGramCache::make_type(const Complex& c, const LocalOrder& order, std::uint32_t f) const {
+FaceGramCache::Made FaceGramCache::make_type(const Complex& c, const TriRings& r, const LocalOrder& order,
+                                             std::uint32_t f) const {
   Made made;
   const int n = static_cast<int>(labels_within(order, radii_.support));
   made.n = n;
   // Subdivide a copy of the neighbourhood once; the face is the patch face on labels 0, 1, 2.
-  const Complex patch = local_patch(c, order);
+  const Complex patch = local_patch(c, r, order);
   std::uint32_t pf = UINT32_MAX;
   for (std::uint32_t g = 0; g < patch.num_faces() && pf == UINT32_MAX; ++g) {
     const auto row = patch.faces.row(g);
@@ -69,9 +70,10 @@ FaceGramCache::Made FaceGramCache::make_type(const Complex& c, const LocalOrder&
   auto refined = std::make_shared<Made::Refined>();
   std::optional<TriRowRules> rules;
   try {
-    refined->fine = refine_tri(patch);
+    refined->fine = refine_tri(patch, false);  // its rings serve its children (local_patch)
     rules.emplace(patch, scheme_);
-    refined->rings = build_tri_rings(refined->fine);
+    // The patch's rings, then the refined patch's from them (a quarter of the searching).
+    refined->rings = refine_tri_rings(patch, build_tri_rings(patch));
   } catch (const TopologyError& e) {
     // local_patch always yields a manifold (it splits rim vertices where the surface meets
     // itself), so this is a defect.
@@ -179,7 +181,7 @@ void FaceGramCache::add_types(std::span<const FaceRef> faces) {
           try {
             for (std::uint32_t k = b; k < e; ++k) {
               const Request& q = wave[fresh[k]];
-              made[k] = make_type(*q.at.mesh, q.order, q.at.face);
+              made[k] = make_type(*q.at.mesh, *q.at.rings, q.order, q.at.face);
             }
           } catch (...) {
             keep_fault();

@@ -91,7 +91,7 @@ class FaceGramCache {
   };
   struct Made;
   // What a new type is made of: its patch from `order` (around face f of c) subdivided.
-  Made make_type(const Complex& c, const LocalOrder& order, std::uint32_t f) const;
+  Made make_type(const Complex& c, const TriRings& r, const LocalOrder& order, std::uint32_t f) const;
   void solve_pending();
 
   Scheme scheme_;

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
 
 #include "core/complex/complex_build.h"
 #include "core/base/epoch_table.h"
@@ -119,6 +120,76 @@ thread_local EpochTable table;  // vertex -> label
 
 void throw_not_a_neighbour(std::uint32_t v, std::uint32_t x) {
   throw TopologyError("vertex " + std::to_string(x) + " is not a neighbour of " + std::to_string(v));
+}
+
+TriRings refine_tri_rings(const Complex& c, const TriRings& r) {
+  const std::uint32_t nv = c.num_vertices, ne = c.num_edges();
+  if (c.edge_faces.rows() != ne || r.ring.rows() != nv)
+    throw std::logic_error("refine_tri_rings: the coarse mesh needs its derived rows and its rings");
+  TriRings out;
+  out.ring.offsets.resize(std::size_t(nv) + ne + 1);
+  out.ring.offsets[0] = 0;
+  for (std::uint32_t v = 0; v < nv; ++v) out.ring.offsets[v + 1] = out.ring.offsets[v] + r.ring.size(v);
+  for (std::uint32_t e = 0; e < ne; ++e) {
+    const std::uint32_t n = c.edge_faces.size(e);  // at most 2: the rings were built
+    out.ring.offsets[nv + e + 1] = out.ring.offsets[nv + e] + (n == 2 ? 6 : n == 1 ? 4 : 0);
+  }
+  out.ring_edge.offsets = out.ring.offsets;
+  out.ring.items.resize(out.ring.offsets.back());
+  out.ring_edge.items.resize(out.ring.offsets.back());
+  out.closed.resize(std::size_t(nv) + ne);
+  // The half of coarse edge e at its end x (refine_tri.h: 2e touches edge_verts[2e]).
+  const auto half = [&](std::uint32_t e, std::uint32_t x) { return 2 * e + (c.edge_verts[2 * e] == x ? 0u : 1u); };
+  parallel_for(nv, 8192, [&](std::uint32_t v0, std::uint32_t v1) {
+    for (std::uint32_t v = v0; v < v1; ++v) {
+      // An old vertex: the midpoints of its edges, in its coarse ring's order and from the same
+      // place (its lowest face's corner triangle is its lowest fine face).
+      std::uint32_t* ring = out.ring.items.data() + out.ring.offsets[v];
+      std::uint32_t* ring_edge = out.ring_edge.items.data() + out.ring.offsets[v];
+      for (std::uint32_t e : r.ring_edge.row(v)) *ring++ = nv + e, *ring_edge++ = half(e, v);
+      out.closed[v] = r.closed[v];
+    }
+  });
+  parallel_for(ne, 8192, [&](std::uint32_t e0, std::uint32_t e1) {
+    for (std::uint32_t e = e0; e < e1; ++e) {
+      // A midpoint m of e = e_k of face f (running a_k -> a_{k+1}) meets, in f, corner triangle
+      // k + 1, the middle and corner triangle k: its neighbours there, counterclockwise, are
+      // a_{k+1}, m_{k+1}, m_{k-1} (edges: e's half at a_{k+1}, inner i_k, inner i_{k-1}), then
+      // a_k, which starts the other face's three.
+      const auto faces = c.edge_faces.row(e);
+      if (faces.empty()) continue;
+      std::array<std::uint32_t, 6> nb, ed;
+      std::uint32_t k_of[2] = {0, 0};
+      for (std::size_t i = 0; i < faces.size(); ++i) {
+        const std::uint32_t f = faces[i], b = c.faces.offsets[f];
+        std::uint32_t k = 0;
+        while (k < 3 && c.face_edges.items[b + k] != e) ++k;
+        if (k == 3) throw std::logic_error("refine_tri_rings: an edge's face does not hold it");
+        k_of[i] = k;
+        const std::uint32_t k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+        nb[3 * i] = c.faces.items[b + k1], ed[3 * i] = half(e, c.faces.items[b + k1]);
+        nb[3 * i + 1] = nv + c.face_edges.items[b + k1], ed[3 * i + 1] = 2 * ne + 3 * f + k;
+        nb[3 * i + 2] = nv + c.face_edges.items[b + k2], ed[3 * i + 2] = 2 * ne + 3 * f + k2;
+      }
+      std::uint32_t* ring = out.ring.items.data() + out.ring.offsets[nv + e];
+      std::uint32_t* ring_edge = out.ring_edge.items.data() + out.ring.offsets[nv + e];
+      if (faces.size() == 1) {  // open: from a_{k+1} round to a_k
+        const std::uint32_t f = faces[0], b = c.faces.offsets[f];
+        std::copy(nb.begin(), nb.begin() + 3, ring), std::copy(ed.begin(), ed.begin() + 3, ring_edge);
+        ring[3] = c.faces.items[b + k_of[0]], ring_edge[3] = half(e, ring[3]);
+        out.closed[nv + e] = 0;
+        continue;
+      }
+      // Closed: the other face's three follow (it runs e the other way, so its first is a_k).
+      // The ring starts at m's wedge in its lowest fine face: in the lower coarse face (the
+      // first: edge_faces rows are sorted) at slot k, corner triangle k, whose next is m_{k-1},
+      // unless k = 2, when corner triangle 0 is lower and its next is a_{k+1}.
+      const std::size_t start = k_of[0] == 2 ? 0 : 2;
+      for (std::size_t j = 0; j < 6; ++j) ring[j] = nb[(start + j) % 6], ring_edge[j] = ed[(start + j) % 6];
+      out.closed[nv + e] = 1;
+    }
+  });
+  return out;
 }
 
 bool all_distinct(std::span<const std::uint32_t> vs, std::uint32_t n) {
@@ -386,17 +457,23 @@ void split_rim_arcs(Csr& faces, const LocalOrder& o, std::vector<std::uint32_t>&
   for (std::uint32_t l = 0; l < num_labels; ++l) source[l] = l;
   if (num_labels == 0) return;
   const std::uint8_t rim = *std::max_element(o.dist.begin(), o.dist.end());
-  std::vector<std::vector<std::uint32_t>> corners(num_labels);  // rim label -> its corner slots
+  // Rim labels' corner slots, grouped by label, slots increasing (per-thread scratch: face
+  // types make millions of patches).
+  thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>> rim_corners;  // (label, slot)
+  thread_local std::vector<std::uint32_t> cs, parent, copy;
+  thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>> by_neighbour;  // (neighbour, corner index)
+  rim_corners.clear();
   for (std::uint32_t s = 0; s < faces.items.size(); ++s)
-    if (o.dist[faces.items[s]] == rim) corners[faces.items[s]].push_back(s);
-  std::vector<std::uint32_t> parent, copy;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> by_neighbour;  // (neighbour, corner index)
+    if (o.dist[faces.items[s]] == rim) rim_corners.emplace_back(faces.items[s], s);
+  std::sort(rim_corners.begin(), rim_corners.end());
   const auto find = [&](std::uint32_t x) {
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   };
-  for (std::uint32_t l = 0; l < num_labels; ++l) {
-    const auto& cs = corners[l];
+  for (std::size_t g = 0; g < rim_corners.size();) {
+    const std::uint32_t l = rim_corners[g].first;
+    cs.clear();
+    for (; g < rim_corners.size() && rim_corners[g].first == l; ++g) cs.push_back(rim_corners[g].second);
     if (cs.size() < 2) continue;
     // Two faces around l are in one arc when they share an edge (l, x): the same neighbour.
     parent.resize(cs.size());
@@ -428,41 +505,43 @@ void split_rim_arcs(Csr& faces, const LocalOrder& o, std::vector<std::uint32_t>&
 
 }  // namespace
 
-Complex local_patch(const Complex& c, const LocalOrder& o) {
+Complex local_patch(const Complex& c, const TriRings& r, const LocalOrder& o) {
   table.begin(c.num_vertices);  // vertex -> label
   for (std::uint32_t l = 0; l < o.vertex.size(); ++l) table.set(o.vertex[l], l);
-  std::vector<std::array<std::uint32_t, 3>> tris;
-  for (std::uint32_t l = 0; l < o.vertex.size(); ++l)
-    for (std::uint32_t f : c.vertex_faces.row(o.vertex[l])) {
-      std::array<std::uint32_t, 3> tri;
-      bool all = true;
-      for (int k = 0; k < 3 && all; ++k) {
-        tri[static_cast<std::size_t>(k)] = table.get(c.faces.items[c.faces.offsets[f] + k]);
-        all = tri[static_cast<std::size_t>(k)] != UINT32_MAX;
-      }
-      // Each face once: from its lowest label's corner (a face meets every corner's row).
-      if (!all || std::min({tri[0], tri[1], tri[2]}) != l) continue;
+  thread_local std::vector<std::array<std::uint32_t, 3>> tris;
+  tris.clear();
+  for (std::uint32_t l = 0; l < o.vertex.size(); ++l) {
+    // The faces around v are (v, ring[i], ring[i + 1]), the way round they run.
+    const auto ring = r.ring.row(o.vertex[l]);
+    const std::size_t n = ring.size(), faces = n == 0 ? 0 : r.closed[o.vertex[l]] ? n : n - 1;
+    for (std::size_t i = 0; i < faces; ++i) {
+      std::array<std::uint32_t, 3> tri{l, table.get(ring[i]), table.get(ring[(i + 1) % n])};
+      // Each face once: from its lowest label's corner (it is in every corner's ring).
+      if (tri[1] == UINT32_MAX || tri[2] == UINT32_MAX || std::min(tri[1], tri[2]) < l) continue;
       // Lowest label first (the same way round), faces sorted: the patch, its subdivision and
       // its stencils depend on the labelled neighbourhood only, not on the mesh's numbering, so
       // every face of a type gives it the same matrices, bit for bit.
-      std::rotate(tri.begin(), std::min_element(tri.begin(), tri.end()), tri.end());
       tris.push_back(tri);
     }
+  }
   std::sort(tris.begin(), tris.end());
   Csr faces;
+  faces.items.reserve(3 * tris.size());
+  faces.offsets.reserve(tris.size() + 1);
   for (const auto& tri : tris) {
     faces.items.insert(faces.items.end(), tri.begin(), tri.end());
     faces.offsets.push_back(static_cast<std::uint32_t>(faces.items.size()));
   }
-  std::vector<std::uint32_t> source;
+  thread_local std::vector<std::uint32_t> source;
   split_rim_arcs(faces, o, source);
   Complex p = complex_from_polygons(static_cast<std::uint32_t>(source.size()), faces);
   // Original dims: the patch's own rim is not a feature of the surface.
   for (std::uint32_t v = 0; v < source.size(); ++v) p.vertex_dim[v] = c.vertex_dim[o.vertex[source[v]]];
   for (std::uint32_t e = 0; e < p.num_edges(); ++e) {
     const std::uint32_t a = o.vertex[source[p.edge_verts[2 * e]]], b = o.vertex[source[p.edge_verts[2 * e + 1]]];
-    for (std::uint32_t oe : c.vertex_edges.row(a))
-      if (c.edge_verts[2 * oe] == b || c.edge_verts[2 * oe + 1] == b) p.edge_dim[e] = c.edge_dim[oe];
+    const auto ring = r.ring.row(a);
+    for (std::size_t i = 0; i < ring.size(); ++i)
+      if (ring[i] == b) p.edge_dim[e] = c.edge_dim[r.ring_edge.row(a)[i]];
   }
   return p;
 }

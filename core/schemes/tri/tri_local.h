@@ -32,6 +32,10 @@ struct TriRings {
 /// whose faces do not form one fan. `c` needs its derived rows.
 TriRings build_tri_rings(const Complex& c);
 
+/// The rings of refine_tri(c), from c's rings without searching the fine mesh: equal to
+/// build_tri_rings(refine_tri(c)) entry for entry. `c` needs its derived rows; `r` its rings.
+TriRings refine_tri_rings(const Complex& c, const TriRings& r);
+
 /// Canonical labelling of the vertices within graph distance `radius` of the seeds.
 struct LocalOrder {
   std::vector<std::uint32_t> vertex;  // label -> mesh vertex
@@ -109,7 +113,7 @@ struct SignatureHash {
 /// the original vertex and edge dims (so the fans of labels closer than the order's radius are
 /// complete copies). A rim vertex whose faces there form several arcs (the surface meets itself
 /// within the radius) gets a copy per extra arc, numbered after the labels: the patch is always
-/// a manifold. Derived rows built.
-Complex local_patch(const Complex& c, const LocalOrder& o);
+/// a manifold. Derived rows built. Reads c's dims and its rings `r` only (not its derived rows).
+Complex local_patch(const Complex& c, const TriRings& r, const LocalOrder& o);
 
 }  // namespace sublift

@@ -47,9 +47,10 @@ struct TriTopo {
   const Complex& c;
   std::vector<std::uint8_t> feature_edge;    // boundary or edge_dim 1
   std::vector<std::uint32_t> feature_count;  // feature edges per vertex
-  std::vector<std::uint8_t> manifold;        // faces around the vertex form at most one fan
+  std::vector<std::uint8_t> manifold_;       // per vertex, when every row is made
 
-  explicit TriTopo(const Complex& cx) : c(cx) {
+  // `every_row`: the flags of every vertex are worked out at once (in parallel), else per ask.
+  TriTopo(const Complex& cx, bool every_row) : c(cx) {
     const std::uint32_t nv = c.num_vertices, ne = c.num_edges();
     feature_edge.resize(ne);
     feature_count.assign(nv, 0);
@@ -57,11 +58,15 @@ struct TriTopo {
       feature_edge[e] = c.edge_faces.size(e) != 2 || c.edge_dim[e] == 1;
       if (feature_edge[e]) ++feature_count[c.edge_verts[2 * e]], ++feature_count[c.edge_verts[2 * e + 1]];
     }
-    manifold.resize(nv);
+    if (!every_row) return;
+    manifold_.resize(nv);
     parallel_for(nv, 8192, [&](std::uint32_t v0, std::uint32_t v1) {
-      for (std::uint32_t v = v0; v < v1; ++v) manifold[v] = fans(v) <= 1;
+      for (std::uint32_t v = v0; v < v1; ++v) manifold_[v] = fans(v) <= 1;
     });
   }
+
+  // Whether the faces around v form at most one fan.
+  bool manifold(std::uint32_t v) const { return manifold_.empty() ? fans(v) <= 1 : manifold_[v] != 0; }
 
   // The corner of triangle f that is not on edge e.
   std::uint32_t opposite(std::uint32_t f, std::uint32_t e) const {
@@ -153,20 +158,13 @@ std::vector<double> butterfly_weights(std::uint32_t K) {
 
 // What the butterfly's rows read besides the topology.
 struct ButterflyTables {
-  std::vector<std::uint8_t> open;            // no K-point stencil at this vertex
-  std::vector<std::vector<double>> weights;  // by valence, for the valences present
+  std::vector<std::vector<double>> weights;  // by valence, for the valences present but 6
 
   explicit ButterflyTables(const TriTopo& t) {
     const Complex& c = t.c;
-    const std::uint32_t nv = c.num_vertices;
-    // OpenMesh's is_boundary(vertex), on the mesh cut along creases; plus the vertices OpenMesh
-    // cannot hold (valence < 3 inside, non-manifold), which get no K-point stencil either.
-    open.resize(nv);
-    for (std::uint32_t v = 0; v < nv; ++v)
-      open[v] = t.feature_count[v] > 0 || !t.manifold[v] || c.vertex_edges.size(v) < 3;
-    for (std::uint32_t v = 0; v < nv; ++v) {
+    for (std::uint32_t v = 0; v < c.num_vertices; ++v) {
       const std::uint32_t K = c.vertex_edges.size(v);
-      if (open[v] || K == 6) continue;
+      if (K == 6 || K < 3) continue;
       if (weights.size() <= K) weights.resize(K + 1);
       if (weights[K].empty()) weights[K] = butterfly_weights(K);
     }
@@ -175,7 +173,9 @@ struct ButterflyTables {
 
 void butterfly_edge_row(const TriTopo& t, const ButterflyTables& tables, std::uint32_t e, RowBuilder& row) {
   const Complex& c = t.c;
-  const std::vector<std::uint8_t>& open = tables.open;
+  // OpenMesh's is_boundary(vertex), on the mesh cut along creases; plus the vertices OpenMesh
+  // cannot hold (valence < 3 inside, non-manifold), which get no K-point stencil either.
+  const auto open = [&](std::uint32_t v) { return t.feature_count[v] > 0 || c.vertex_edges.size(v) < 3 || !t.manifold(v); };
 
   // The curve neighbour across end a of feature edge e, or the reflection 2a - b.
   auto curve_neighbour = [&](RowBuilder& row, std::uint32_t e, std::uint32_t a, std::uint32_t b, double w) {
@@ -210,7 +210,7 @@ void butterfly_edge_row(const TriTopo& t, const ButterflyTables& tables, std::ui
       curve_neighbour(row, e, a1, a0, -1.0 / 16);
     } else {
       const std::uint32_t K0 = c.vertex_edges.size(a0), K1 = c.vertex_edges.size(a1);
-      const bool o0 = open[a0], o1 = open[a1];
+      const bool o0 = open(a0), o1 = open(a1);
       if ((K0 == 6 && K1 == 6) || (o0 && K1 == 6) || (o1 && K0 == 6) || (o0 && o1)) {
         // 8-point rule (ZSS96 regular butterfly): 1/2, 1/8, -1/16.
         row.add(a0, 0.5), row.add(a1, 0.5);
@@ -255,7 +255,7 @@ void loop_vertex_row(const TriTopo& t, std::uint32_t v, RowBuilder& row) {
   {
     const auto edges = c.vertex_edges.row(v);
     const std::uint32_t s = t.feature_count[v];
-    if (c.vertex_dim[v] == 0 || s > 2 || edges.empty() || !t.manifold[v]) {
+    if (c.vertex_dim[v] == 0 || s > 2 || edges.empty() || !t.manifold(v)) {
       row.add(v, 1.0);  // corner: fixed
     } else if (s == 2) {
       row.add(v, 0.75);  // crease vertex: 1/8, 3/4, 1/8 along the crease
@@ -285,16 +285,16 @@ struct TriRowRules::Impl {
   TriTopo topo;
   std::optional<ButterflyTables> butterfly;
 
-  Impl(const Complex& c, Scheme s) : scheme(s), topo(c) {
+  Impl(const Complex& c, Scheme s, bool every_row) : scheme(s), topo(c, every_row) {
     if (s == Scheme::Butterfly) butterfly.emplace(topo);
   }
 };
 
-TriRowRules::TriRowRules(const Complex& coarse, Scheme s) {
+TriRowRules::TriRowRules(const Complex& coarse, Scheme s, bool every_row) {
   check_surface(coarse);
   if (s != Scheme::LinearTri && s != Scheme::Butterfly && s != Scheme::Loop)
     throw Error(scheme_name(s) + " is not a triangle scheme");
-  impl_ = std::make_unique<const Impl>(coarse, s);
+  impl_ = std::make_unique<const Impl>(coarse, s, every_row);
 }
 
 TriRowRules::~TriRowRules() = default;
@@ -334,7 +334,7 @@ TriStencils build_tri_stencils(const Complex& coarse, Scheme s) {
     build_adjacency(copy);
   }
   const Complex& c = derived ? coarse : copy;
-  const TriRowRules rules(c, s);
+  const TriRowRules rules(c, s, true);
   const std::uint32_t nv = c.num_vertices;
   TriStencils st;
   build_rows(c.num_edges(), st.new_rows, st.new_weights, [&](std::uint32_t e, RowBuilder& row) { rules.add_terms(nv + e, row); });

@@ -106,7 +106,9 @@ struct TriStencils {
 class TriRowRules {
  public:
   /// `coarse` needs its derived rows and must outlive this. Throws as build_tri_stencils.
-  TriRowRules(const Complex& coarse, Scheme s);
+  /// `every_row`: what the rules ask of each vertex is worked out for all of them at once, in
+  /// parallel (for making every row), else when a row asks it.
+  TriRowRules(const Complex& coarse, Scheme s, bool every_row = false);
   ~TriRowRules();
   TriRowRules(const TriRowRules&) = delete;
   TriRowRules& operator=(const TriRowRules&) = delete;

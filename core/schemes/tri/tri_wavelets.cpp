@@ -149,7 +149,7 @@ std::vector<const EdgeWavelet*> TriWaveletBuilder::solve(TriLevel& lv, std::span
     lv.fine = lv.fine_built.get();
   }
   if (!lv.fine_rings) {
-    lv.fine_rings_built = std::make_unique<TriRings>(build_tri_rings(*lv.fine));
+    lv.fine_rings_built = std::make_unique<TriRings>(refine_tri_rings(*lv.coarse, *lv.coarse_rings));
     lv.fine_rings = lv.fine_rings_built.get();
   }
   const auto n = static_cast<std::uint32_t>(edges.size());
@@ -276,7 +276,7 @@ const EdgeWavelet& TriWaveletBuilder::edge_wavelet(TriLevel& lv, std::uint32_t e
 const EdgeWavelet& TriWaveletBuilder::edge_wavelet(const Complex& c, const TriRings& r, std::uint32_t e,
                                                    std::vector<std::uint32_t>* disc_out) {
   const Complex fine = refine_tri(c);
-  const TriRings fr = build_tri_rings(fine);
+  const TriRings fr = refine_tri_rings(c, r);
   const TriStencils st = build_tri_stencils(c, gram_.scheme());
   TriLevel lv;
   lv.coarse = &c;

@@ -53,7 +53,8 @@ struct TriLevel {
   const Complex* coarse = nullptr;  // derived rows needed
   const TriRings* coarse_rings = nullptr;
   const Complex* fine = nullptr;    // refine_tri(*coarse); its derived rows and rings are built
-  const TriRings* fine_rings = nullptr;  // on the first wavelet that is solved, if absent
+  const TriRings* fine_rings = nullptr;  // on the first wavelet that is solved, if absent (the
+                                         // rings from coarse_rings: refine_tri_rings)
   std::unique_ptr<Complex> fine_built;
   std::unique_ptr<TriRings> fine_rings_built;
   const TriStencils* stencils = nullptr;  // build_tri_stencils(*coarse, scheme)

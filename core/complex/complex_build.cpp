@@ -65,12 +65,14 @@ class EdgeTable {
   int shift_ = 64;
 };
 
-void add_face_loop(Complex& c, EdgeTable& edges, std::span<const std::uint32_t> loop, const std::string& what) {
-  if (loop.size() < 3) throw TopologyError(what + " has fewer than 3 vertices");
+// `face`: the input's number for the loop, named in errors (the message is made only then).
+void add_face_loop(Complex& c, EdgeTable& edges, std::span<const std::uint32_t> loop, std::size_t face) {
+  const auto what = [&] { return "face " + std::to_string(face); };
+  if (loop.size() < 3) throw TopologyError(what() + " has fewer than 3 vertices");
   for (std::size_t i = 0; i < loop.size(); ++i) {
-    if (loop[i] >= c.num_vertices) throw TopologyError(what + " names missing vertex " + std::to_string(loop[i]));
+    if (loop[i] >= c.num_vertices) throw TopologyError(what() + " names missing vertex " + std::to_string(loop[i]));
     for (std::size_t j = i + 1; j < loop.size(); ++j)
-      if (loop[i] == loop[j]) throw TopologyError(what + " repeats vertex " + std::to_string(loop[i]));
+      if (loop[i] == loop[j]) throw TopologyError(what() + " repeats vertex " + std::to_string(loop[i]));
   }
   c.faces.items.insert(c.faces.items.end(), loop.begin(), loop.end());
   c.faces.offsets.push_back(static_cast<std::uint32_t>(c.faces.items.size()));
@@ -243,7 +245,7 @@ Complex complex_from_polygons(std::uint32_t num_vertices, const Csr& faces, cons
   c.num_vertices = num_vertices;
   EdgeTable edges(c, faces.items.size() / 2 + 1);  // a closed surface has one edge per two corners
   c.edge_verts.reserve(faces.items.size());
-  for (std::size_t f = 0; f < faces.rows(); ++f) add_face_loop(c, edges, faces.row(f), "face " + std::to_string(f));
+  for (std::size_t f = 0; f < faces.rows(); ++f) add_face_loop(c, edges, faces.row(f), f);
   if (c.num_faces() == 0) throw TopologyError("a surface needs at least one face");
   assign_feature_dims(c, tags);
   return c;
@@ -295,7 +297,7 @@ Complex complex_from_cells(std::uint32_t num_vertices, const Csr& face_loops, co
     if (loop.size() < 3) throw TopologyError("face " + std::to_string(l) + " has fewer than 3 vertices");
     auto key = canonical_loop(loop);
     auto [it, inserted] = face_of.try_emplace(std::move(key), c.num_faces());
-    if (inserted) add_face_loop(c, edges, loop, "face " + std::to_string(l));
+    if (inserted) add_face_loop(c, edges, loop, l);
     loop_face[l] = it->second;
   }
   for (std::size_t k = 0; k < cell_faces.rows(); ++k) {

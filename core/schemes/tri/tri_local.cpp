@@ -457,23 +457,26 @@ void split_rim_arcs(Csr& faces, const LocalOrder& o, std::vector<std::uint32_t>&
   for (std::uint32_t l = 0; l < num_labels; ++l) source[l] = l;
   if (num_labels == 0) return;
   const std::uint8_t rim = *std::max_element(o.dist.begin(), o.dist.end());
-  // Rim labels' corner slots, grouped by label, slots increasing (per-thread scratch: face
-  // types make millions of patches).
-  thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>> rim_corners;  // (label, slot)
-  thread_local std::vector<std::uint32_t> cs, parent, copy;
+  // Rim labels' corner slots, grouped by label (the rim's labels are the last: breadth first),
+  // slots increasing; in per-thread scratch, as face types make millions of patches.
+  const std::uint32_t first_rim = rim == 0 ? 0 : labels_within(o, rim - 1);
+  thread_local std::vector<std::uint32_t> at, slots, parent, copy;
   thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>> by_neighbour;  // (neighbour, corner index)
-  rim_corners.clear();
+  at.assign(num_labels - first_rim + 1, 0);
+  for (std::uint32_t x : faces.items)
+    if (x >= first_rim) ++at[x - first_rim + 1];
+  for (std::size_t i = 1; i < at.size(); ++i) at[i] += at[i - 1];
+  slots.resize(at.back());
   for (std::uint32_t s = 0; s < faces.items.size(); ++s)
-    if (o.dist[faces.items[s]] == rim) rim_corners.emplace_back(faces.items[s], s);
-  std::sort(rim_corners.begin(), rim_corners.end());
+    if (faces.items[s] >= first_rim) slots[at[faces.items[s] - first_rim]++] = s;
+  // (`at` now holds each group's end)
   const auto find = [&](std::uint32_t x) {
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   };
-  for (std::size_t g = 0; g < rim_corners.size();) {
-    const std::uint32_t l = rim_corners[g].first;
-    cs.clear();
-    for (; g < rim_corners.size() && rim_corners[g].first == l; ++g) cs.push_back(rim_corners[g].second);
+  for (std::uint32_t l = first_rim; l < num_labels; ++l) {
+    const std::uint32_t begin = l == first_rim ? 0 : at[l - first_rim - 1];
+    const std::span<const std::uint32_t> cs(slots.data() + begin, at[l - first_rim] - begin);
     if (cs.size() < 2) continue;
     // Two faces around l are in one arc when they share an edge (l, x): the same neighbour.
     parent.resize(cs.size());

@@ -728,6 +728,42 @@ TEST(TriLocal, RefinedRingsFromTheCoarseRingsEqualTheSearchedOnes) {
   EXPECT_GT(open, 1000u);  // open fans were met
 }
 
+// A refined face's type is its parent's child type (what the wavelets' look-ups take instead
+// of a signature): on the local_order meshes (closed, open, creased, a thin torus whose patches
+// split rim vertices), for Loop and butterfly, every face of one and two refinements: the type
+// found by signature, the child type and the labelled vertices agree.
+TEST(TriGram, ChildTypesAreTheRefinedFacesTypes) {
+  std::size_t compared = 0;
+  for (Scheme s : {Scheme::Loop, Scheme::Butterfly}) {
+    FaceGramCache cache(s);
+    for (Complex c : local_order_meshes()) {
+      TriRings r = build_tri_rings(c);
+      std::vector<int> type(c.num_faces());
+      for (std::uint32_t f = 0; f < c.num_faces(); ++f) type[f] = cache.face_gram(c, r, f).type;
+      for (int step = 0; step < (s == Scheme::Loop ? 2 : 1); ++step) {
+        const Complex fine = refine_tri(c);
+        const TriRings fr = build_tri_rings(fine);
+        std::vector<int> fine_type(fine.num_faces());
+        for (std::uint32_t g = 0; g < fine.num_faces(); ++g) {
+          const FaceGramCache::FaceGram found = cache.face_gram(fine, fr, g);
+          const int child = cache.child_type(type[g / 4], static_cast<int>(g % 4));
+          ASSERT_EQ(found.type, child) << "face " << g;
+          FaceGramCache::FaceGram inherited;
+          ASSERT_TRUE(cache.from_type(fine, fr, g, child, inherited));
+          ASSERT_EQ(inherited.verts, found.verts);
+          ASSERT_EQ(inherited.G, found.G);
+          fine_type[g] = found.type;
+          ++compared;
+        }
+        c = fine;
+        r = fr;
+        type = std::move(fine_type);
+      }
+    }
+  }
+  EXPECT_GT(compared, 10000u);
+}
+
 // The one-pass order and signature (what the edges' keys use) equal local_order followed by
 // local_signature, field for field and byte for byte: on a refined octahedron (valence 4 and
 // 6), an open disc around a valence-5 vertex (open fans at the rim), a creased grid (edge and

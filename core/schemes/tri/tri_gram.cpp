@@ -312,6 +312,23 @@ bool FaceGramCache::find(const Complex& c, const TriRings& r, std::uint32_t f, F
   if (!ty.solved) return false;
   out.verts.assign(o.vertex.begin(), o.vertex.begin() + ty.n);
   out.G = &ty.G;
+  out.type = it->second;
+  return true;
+}
+
+bool FaceGramCache::from_type(const Complex& c, const TriRings& r, std::uint32_t f, int type, FaceGram& out) const {
+  const Type& ty = types_[static_cast<std::size_t>(type)];
+  if (!ty.solved) return false;
+  std::uint32_t seeds[3], starts[3];
+  face_seeds(c, f, seeds, starts);
+  thread_local LocalOrder o;
+  local_order(r, seeds, starts, radii_.support, o);
+  if (o.vertex.size() != static_cast<std::size_t>(ty.n))
+    throw std::logic_error("tri_gram: face " + std::to_string(f) + " has " + std::to_string(o.vertex.size()) +
+                           " functions, its type " + std::to_string(ty.n));
+  out.verts.assign(o.vertex.begin(), o.vertex.end());
+  out.G = &ty.G;
+  out.type = type;
   return true;
 }
 

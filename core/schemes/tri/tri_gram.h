@@ -57,11 +57,22 @@ class FaceGramCache {
   struct FaceGram {
     std::vector<std::uint32_t> verts;
     const Eigen::MatrixXd* G = nullptr;
+    int type = -1;
   };
   FaceGram face_gram(const Complex& c, const TriRings& r, std::uint32_t f);
   /// The same when f's type is known already, else false. Only reads the cache, so faces may
   /// be looked up from several threads while nothing is added.
   bool find(const Complex& c, const TriRings& r, std::uint32_t f, FaceGram& out) const;
+  /// The same when f's type is known to be `type`: the child type (child_type) of f's parent
+  /// face in the coarser mesh c refines. Orders f's neighbourhood to the support radius only,
+  /// not to the signature's, and searches no cache. False when the type is not solved.
+  bool from_type(const Complex& c, const TriRings& r, std::uint32_t f, int type, FaceGram& out) const;
+  /// The type of child k (refine_tri's face 4 g + k) of a face g of type t. A child's type is
+  /// the one its signature has in the refined mesh: it is taken in the parent's subdivided
+  /// patch, which holds the child's whole signature neighbourhood (TriGramRadii).
+  int child_type(int t, int k) const {
+    return types_[static_cast<std::size_t>(t)].child[static_cast<std::size_t>(k)];
+  }
 
   /// A face of a mesh, with the mesh's rings.
   struct FaceRef {

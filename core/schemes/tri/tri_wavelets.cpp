@@ -171,8 +171,11 @@ std::vector<const EdgeWavelet*> TriWaveletBuilder::solve(TriLevel& lv, std::span
   // the others' types are made together (add_types), then those faces are looked up again.
   std::vector<FaceGramCache::FaceRef> missing;
   std::vector<FaceGramCache::FaceGram*> fill;  // aligned with `missing`
+  // `parents`: the coarse level's faces, when `mesh` is the fine level: a fine face whose parent
+  // was found takes its type from the parent's (refine_tri's face 4 g + k is child k of g),
+  // without a signature; the fine faces are three quarters of those asked.
   const auto look_up = [&](const Complex& mesh, const TriRings& rings, FaceGrams& grams,
-                           std::vector<std::uint32_t> EdgePlan::*faces) {
+                           std::vector<std::uint32_t> EdgePlan::*faces, const FaceGrams* parents) {
     if (grams.slot.size() != mesh.num_faces()) grams.slot.assign(mesh.num_faces(), UINT32_MAX);
     const auto first = static_cast<std::uint32_t>(grams.gram.size());
     std::vector<std::uint32_t> asked;
@@ -185,7 +188,16 @@ std::vector<const EdgeWavelet*> TriWaveletBuilder::solve(TriLevel& lv, std::span
         }
     parallel_for(static_cast<std::uint32_t>(asked.size()), 64, [&](std::uint32_t begin, std::uint32_t end) {
       try {
-        for (std::uint32_t k = begin; k < end; ++k) gram_.find(mesh, rings, asked[k], grams.gram[first + k]);
+        for (std::uint32_t k = begin; k < end; ++k) {
+          const std::uint32_t f = asked[k];
+          FaceGramCache::FaceGram& out = grams.gram[first + k];
+          if (parents && parents->slot[f / 4] != UINT32_MAX) {
+            const int parent = parents->gram[parents->slot[f / 4]].type;
+            if (parent >= 0 && gram_.from_type(mesh, rings, f, gram_.child_type(parent, static_cast<int>(f % 4)), out))
+              continue;
+          }
+          gram_.find(mesh, rings, f, out);
+        }
       } catch (...) {
         // The chunk's rest is left unfound: add_types meets those faces again and names the fault.
       }
@@ -196,8 +208,8 @@ std::vector<const EdgeWavelet*> TriWaveletBuilder::solve(TriLevel& lv, std::span
         fill.push_back(&grams.gram[first + k]);
       }
   };
-  look_up(*lv.coarse, *lv.coarse_rings, lv.coarse_faces, &EdgePlan::coarse_faces);
-  look_up(*lv.fine, *lv.fine_rings, lv.fine_faces, &EdgePlan::fine_faces);
+  look_up(*lv.coarse, *lv.coarse_rings, lv.coarse_faces, &EdgePlan::coarse_faces, nullptr);
+  look_up(*lv.fine, *lv.fine_rings, lv.fine_faces, &EdgePlan::fine_faces, &lv.coarse_faces);
   if (!missing.empty()) {
     gram_.add_types(missing);
     std::atomic<bool> lost{false};

@@ -16,7 +16,8 @@
 namespace sublift {
 
 std::size_t Hierarchy::bytes() const {
-  std::size_t b = coeffs.capacity() * sizeof(double) + wavelet_norms.capacity() * sizeof(double);
+  std::size_t b = coeffs.capacity() * sizeof(double) + wavelet_norms.capacity() * sizeof(double) +
+                  carry.capacity() * sizeof(std::int32_t);
   for (const Complex& c : levels) b += c.bytes();
   for (const Transition& t : transitions) b += t.bytes();
   for (const ChildSites& s : sites) b += (s.site.capacity() + s.edge_child.capacity() + s.face_child.capacity()) * 4;
@@ -48,7 +49,7 @@ void append_level(Hierarchy& h, bool adjacency) {
   if (predicted_level_counts(parent, 1, h.scheme, h.first_level + j).back() > 4.0e9)
     throw Error("level " + std::to_string(j + 1) + " would have more than 2^32 vertices");
   check_levels_memory(h.levels.front(), j + 1, h.scheme, h.first_level);
-  LevelBuild b = scheme_info(h.scheme).build(parent, {h.first_level + j, h.disc, adjacency});
+  LevelBuild b = scheme_info(h.scheme).build(parent, {h.first_level + j, h.disc, adjacency, h.carry.empty() ? nullptr : &h.carry});
   if (!b.norms.empty()) {
     h.wavelet_norms.resize(std::size_t(parent.num_vertices) - h.levels.front().num_vertices);
     h.wavelet_norms.insert(h.wavelet_norms.end(), b.norms.begin(), b.norms.end());
@@ -56,12 +57,14 @@ void append_level(Hierarchy& h, bool adjacency) {
   h.transitions.push_back(std::move(b.transition));
   if (b.has_sites) h.sites.push_back(std::move(b.sites));
   h.levels.push_back(std::move(b.fine));
+  h.carry = std::move(b.carry);
 }
 
 void pop_level(Hierarchy& h) {
   if (h.levels.size() < 2) throw Error("the hierarchy has no level to remove");
   h.levels.pop_back();
   h.transitions.pop_back();
+  h.carry.clear();  // it was the popped level's
   if (!h.sites.empty()) h.sites.pop_back();
   if (!h.wavelet_norms.empty())
     h.wavelet_norms.resize(std::size_t(h.levels.back().num_vertices) - h.levels.front().num_vertices);

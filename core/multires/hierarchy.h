@@ -36,6 +36,8 @@ struct Hierarchy {
   // knows it exactly (SchemeInfo::exact_norms); empty otherwise, and then the area scaling
   // wavelet_scale stands in.
   std::vector<double> wavelet_norms;
+  // The finest level's LevelBuild::carry, handed to append_level's next build (empty: none).
+  std::vector<std::int32_t> carry;
 
   int finest_level() const { return static_cast<int>(levels.size()) - 1; }
   std::uint32_t num_vertices(int level) const { return levels[static_cast<std::size_t>(level)].num_vertices; }

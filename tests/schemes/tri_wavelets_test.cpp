@@ -9,6 +9,7 @@
 #include <random>
 #include <algorithm>
 #include <span>
+#include <set>
 #include <string>
 #include <variant>
 
@@ -351,6 +352,54 @@ TEST(TriWavelets, SolvedTogetherOnTwoThreadsAsOneByOne) {
       ASSERT_EQ(x.norm2, y.norm2) << "edge " << e;
       ASSERT_EQ(x.self, y.self) << "edge " << e;
       ASSERT_LT(x.residual, 1e-12) << "edge " << e;
+    }
+  }
+}
+
+// The face types a level hands on (fine_face_types -> the next level's coarse_types, looked
+// up without signatures) give the next level's new wavelets bit for bit as a builder that finds
+// every face's type by its signature: on a torus with flipped edges (valences 4 to 8), two
+// levels, for the three schemes.
+TEST(TriWavelets, FaceTypesHandedOnSolveAsSignaturesDo) {
+  for (const auto& [s, flips] : {std::pair{Scheme::LinearTri, 40}, {Scheme::Loop, 40}, {Scheme::Butterfly, 4}}) {
+    SCOPED_TRACE(scheme_name(s));
+    const Complex c0 = flipped_torus(12, 10, flips, 7);
+    const Complex c1 = refine_tri(c0);
+    const Complex c2 = refine_tri(c1);
+    const TriRings r0 = build_tri_rings(c0), r1 = build_tri_rings(c1);
+    const TriStencils st0 = build_tri_stencils(c0, s), st1 = build_tri_stencils(c1, s);
+    // Every edge of `lv` whose signature `b` has not cached, one per signature.
+    const auto new_edges = [](TriWaveletBuilder& b, TriLevel& lv, std::vector<std::uint32_t>& todo,
+                              std::vector<std::string>& signatures) {
+      std::set<std::string> seen;
+      for (std::uint32_t e = 0; e < lv.coarse->num_edges(); ++e) {
+        std::string sig = b.edge_key(lv, e).signature;
+        if (!b.find(sig) && seen.insert(sig).second) todo.push_back(e), signatures.push_back(sig);
+      }
+    };
+    TriWaveletBuilder handing(s, 1), fresh(s, 1);
+    TriLevel l0;
+    l0.coarse = &c0, l0.coarse_rings = &r0, l0.fine = &c1, l0.stencils = &st0;
+    std::vector<std::uint32_t> todo;
+    std::vector<std::string> signatures;
+    new_edges(handing, l0, todo, signatures);
+    handing.solve(l0, todo, signatures);
+    const std::vector<std::int32_t> carry = handing.fine_face_types(l0);
+    ASSERT_EQ(carry.size(), c1.num_faces());
+    EXPECT_GT(std::count_if(carry.begin(), carry.end(), [](std::int32_t t) { return t >= 0; }), 0.9 * double(carry.size()));
+
+    TriLevel with, without;
+    for (TriLevel* lv : {&with, &without}) lv->coarse = &c1, lv->coarse_rings = &r1, lv->fine = &c2, lv->stencils = &st1;
+    with.coarse_types = &carry;
+    todo.clear(), signatures.clear();
+    new_edges(handing, with, todo, signatures);
+    ASSERT_GT(todo.size(), 50u);
+    std::vector<std::string> copy = signatures;
+    const auto a = handing.solve(with, todo, signatures);
+    const auto b = fresh.solve(without, todo, copy);
+    for (std::size_t i = 0; i < todo.size(); ++i) {
+      ASSERT_EQ(a[i]->alpha, b[i]->alpha) << "edge " << todo[i];
+      ASSERT_EQ(a[i]->norm2, b[i]->norm2) << "edge " << todo[i];
     }
   }
 }

@@ -13,7 +13,8 @@ LevelBuild build_tri_level(Complex& parent, Scheme scheme, const LevelContext& c
   // The child's derived rows only when the next level wants them (a wavelet that has to be solved
   // builds its own copy of them).
   b.fine = refine_tri(parent, ctx.adjacency);
-  TriTransitionResult r = build_tri_transition(parent, b.fine, scheme, ctx.disc);
+  TriTransitionResult r = build_tri_transition(parent, b.fine, scheme, ctx.disc, true, 32, ctx.carry);
+  b.carry = std::move(r.fine_face_types);
   const std::uint32_t nv = parent.num_vertices, ne = parent.num_edges();
   b.has_sites = true;
   b.sites.site.resize(ne);

@@ -371,7 +371,8 @@ std::vector<std::uint64_t> anchored_keys(TriWaveletBuilder& b, const Complex& co
 }  // namespace
 
 TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, Scheme s, int disc,
-                                         bool shared_rows, std::uint32_t edges_per_anchor) {
+                                         bool shared_rows, std::uint32_t edges_per_anchor,
+                                         const std::vector<std::int32_t>* coarse_face_types) {
   const TriRings rings = build_tri_rings(coarse);
   TriStencils st = build_tri_stencils(coarse, s);  // moved into the steps at the end
   TriLevel level;
@@ -379,6 +380,7 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
   level.coarse_rings = &rings;
   level.fine = &fine;  // its rings are built only if a wavelet has to be solved
   level.stencils = &st;
+  level.coarse_types = coarse_face_types;
   const std::uint32_t nv = coarse.num_vertices, ne = coarse.num_edges();
   TriTransitionResult out;
   Transition& t = out.transition;
@@ -484,6 +486,7 @@ TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& f
     for (std::size_t k = 0; k < anchored.size(); ++k)
       if (anchored[k] != UINT64_MAX) b.add_anchored(anchored[k], found[k]);  // kept if known
     out.anchored_edges = anchored_hits;
+    out.fine_face_types = b.fine_face_types(level);
     w.alphas.resize(irregular.size());
     for (std::size_t k = 0; k < irregular.size(); ++k) {
       const std::uint32_t e = irregular[k];

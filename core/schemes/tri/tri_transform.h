@@ -27,6 +27,7 @@ struct TriTransitionResult {
   Transition transition;
   std::vector<double> norm2;  // ||psi||^2 per coarse edge, a level-j face having area 1
   std::uint32_t anchored_edges = 0;  // irregular edges whose wavelet was found through an anchor
+  std::vector<std::int32_t> fine_face_types;  // for the next level (TriLevel::coarse_types)
 };
 
 /// Builds the sub-steps for the 1-to-4 split of `coarse` (derived rows needed) into `fine` (=
@@ -39,9 +40,12 @@ struct TriTransitionResult {
 /// types) where they number at least `edges_per_anchor`: at 32, anchors that serve nothing
 /// (crowded and unique, as on a fitted base) cost at most about a seventh of the edges' own
 /// keys, and a deep level has hundreds per anchor. 0 keys every edge by its own signature, the
-/// reference the anchors are tested against.
+/// reference the anchors are tested against. `coarse_face_types`: the previous level's
+/// fine_face_types, when `coarse` is that level's fine mesh (faces whose type it knows are looked
+/// up without a signature); may be null.
 TriTransitionResult build_tri_transition(const Complex& coarse, const Complex& fine, Scheme s, int disc,
-                                         bool shared_rows = true, std::uint32_t edges_per_anchor = 32);
+                                         bool shared_rows = true, std::uint32_t edges_per_anchor = 32,
+                                         const std::vector<std::int32_t>* coarse_face_types = nullptr);
 
 /// Loop's limit positions (rows over the vertices of `c`, a triangle mesh; derived rows not
 /// needed): smooth or dart vertex (1 - n g) v + g sum of neighbours, g = 1 / (3 / (8 beta) + n);

@@ -171,11 +171,12 @@ std::vector<const EdgeWavelet*> TriWaveletBuilder::solve(TriLevel& lv, std::span
   // the others' types are made together (add_types), then those faces are looked up again.
   std::vector<FaceGramCache::FaceRef> missing;
   std::vector<FaceGramCache::FaceGram*> fill;  // aligned with `missing`
-  // `parents`: the coarse level's faces, when `mesh` is the fine level: a fine face whose parent
-  // was found takes its type from the parent's (refine_tri's face 4 g + k is child k of g),
-  // without a signature; the fine faces are three quarters of those asked.
+  // A face whose type is known takes it without a signature: a coarse face from `known` (handed
+  // on from the coarser level), a fine face from its parent's (`parents`: the coarse faces;
+  // refine_tri's face 4 g + k is child k of g). The fine faces are three quarters of those asked.
   const auto look_up = [&](const Complex& mesh, const TriRings& rings, FaceGrams& grams,
-                           std::vector<std::uint32_t> EdgePlan::*faces, const FaceGrams* parents) {
+                           std::vector<std::uint32_t> EdgePlan::*faces, const std::vector<std::int32_t>* known,
+                           const FaceGrams* parents) {
     if (grams.slot.size() != mesh.num_faces()) grams.slot.assign(mesh.num_faces(), UINT32_MAX);
     const auto first = static_cast<std::uint32_t>(grams.gram.size());
     std::vector<std::uint32_t> asked;
@@ -191,6 +192,7 @@ std::vector<const EdgeWavelet*> TriWaveletBuilder::solve(TriLevel& lv, std::span
         for (std::uint32_t k = begin; k < end; ++k) {
           const std::uint32_t f = asked[k];
           FaceGramCache::FaceGram& out = grams.gram[first + k];
+          if (known && (*known)[f] >= 0 && gram_.from_type(mesh, rings, f, (*known)[f], out)) continue;
           if (parents && parents->slot[f / 4] != UINT32_MAX) {
             const int parent = parents->gram[parents->slot[f / 4]].type;
             if (parent >= 0 && gram_.from_type(mesh, rings, f, gram_.child_type(parent, static_cast<int>(f % 4)), out))
@@ -208,8 +210,10 @@ std::vector<const EdgeWavelet*> TriWaveletBuilder::solve(TriLevel& lv, std::span
         fill.push_back(&grams.gram[first + k]);
       }
   };
-  look_up(*lv.coarse, *lv.coarse_rings, lv.coarse_faces, &EdgePlan::coarse_faces, nullptr);
-  look_up(*lv.fine, *lv.fine_rings, lv.fine_faces, &EdgePlan::fine_faces, &lv.coarse_faces);
+  const std::vector<std::int32_t>* known =
+      lv.coarse_types && lv.coarse_types->size() == lv.coarse->num_faces() ? lv.coarse_types : nullptr;
+  look_up(*lv.coarse, *lv.coarse_rings, lv.coarse_faces, &EdgePlan::coarse_faces, known, nullptr);
+  look_up(*lv.fine, *lv.fine_rings, lv.fine_faces, &EdgePlan::fine_faces, nullptr, &lv.coarse_faces);
   if (!missing.empty()) {
     gram_.add_types(missing);
     std::atomic<bool> lost{false};
@@ -238,6 +242,23 @@ std::vector<const EdgeWavelet*> TriWaveletBuilder::solve(TriLevel& lv, std::span
     if (!inserted) throw std::logic_error("tri_wavelets: an edge's signature was cached already, or asked twice");
     out[i] = it->second.get();
   }
+  return out;
+}
+
+std::vector<std::int32_t> TriWaveletBuilder::fine_face_types(const TriLevel& lv) const {
+  const std::uint32_t nf = lv.coarse->num_faces();
+  const bool known = lv.coarse_types && lv.coarse_types->size() == nf;
+  std::vector<std::int32_t> out(std::size_t(nf) * 4, -1);
+  const auto type_in = [](const FaceGrams& grams, std::uint32_t f) {
+    return f < grams.slot.size() && grams.slot[f] != UINT32_MAX ? grams.gram[grams.slot[f]].type : -1;
+  };
+  parallel_for(nf, 4096, [&](std::uint32_t begin, std::uint32_t end) {
+    for (std::uint32_t f = begin; f < end; ++f) {
+      const std::int32_t t = known && (*lv.coarse_types)[f] >= 0 ? (*lv.coarse_types)[f] : type_in(lv.coarse_faces, f);
+      for (std::uint32_t k = 0; k < 4; ++k)
+        out[4 * f + k] = t >= 0 ? gram_.child_type(t, static_cast<int>(k)) : type_in(lv.fine_faces, 4 * f + k);
+    }
+  });
   return out;
 }
 

@@ -58,6 +58,10 @@ struct TriLevel {
   std::unique_ptr<Complex> fine_built;
   std::unique_ptr<TriRings> fine_rings_built;
   const TriStencils* stencils = nullptr;  // build_tri_stencils(*coarse, scheme)
+  // Per coarse face its type (-1: not known), handed on from the coarser level's build
+  // (TriWaveletBuilder::fine_face_types): a face whose type is known is looked up without a
+  // signature. May be null.
+  const std::vector<std::int32_t>* coarse_types = nullptr;
   FaceGrams coarse_faces, fine_faces;
 };
 
@@ -102,6 +106,10 @@ class TriWaveletBuilder {
                                   std::vector<std::uint32_t>* disc_out);
 
   std::size_t num_face_types() const { return gram_.num_types(); }
+  /// The type of each face of level.fine (-1: not known), for the next level's coarse_types: a
+  /// face's child types where its type is known (handed on, or looked up on this level), else
+  /// the fine face's own where it was looked up. Reads the cache only.
+  std::vector<std::int32_t> fine_face_types(const TriLevel& level) const;
 
   /// Anchored look-ups (build_tri_transition): an edge within R = signature_radius() of an
   /// irregular vertex v lies, with its whole R-neighbourhood, inside v's (2R + 1)-neighbourhood.

@@ -88,10 +88,14 @@ EdgeWavelet TriWaveletBuilder::compute(const TriLevel& lv, const EdgePlan& plan)
     in.clear();
     for (std::size_t p = 0; p < fg.verts.size(); ++p)
       if (const std::uint32_t l = in_disc(fg.verts[p]); l != UINT32_MAX) in.emplace_back(static_cast<int>(p), l);
-    // Column by column: the Grams are column-major and mostly out of cache.
+    // Column by column: the Grams are column-major and mostly out of cache. The lower triangle
+    // only: each face's Gram is exactly symmetric, so the upper one would get the same sums.
     for (const auto& [q, lq] : in)
-      for (const auto& [p, lp] : in) G(lp, lq) += (*fg.G)(p, q);
+      for (const auto& [p, lp] : in)
+        if (lp >= lq) G(lp, lq) += (*fg.G)(p, q);
   }
+  for (Eigen::Index c = 1; c < G.cols(); ++c)
+    for (Eigen::Index r = 0; r < c; ++r) G(r, c) = G(c, r);
 
   // Right side: <phi_c^{j+1}, phi_m^{j+1}> over the level-(j+1) faces around m, pulled back.
   const std::uint32_t nv = c.num_vertices;

@@ -159,9 +159,14 @@ std::vector<double> butterfly_weights(std::uint32_t K) {
 // What the butterfly's rows read besides the topology.
 struct ButterflyTables {
   std::vector<std::vector<double>> weights;  // by valence, for the valences present but 6
+  std::vector<std::uint8_t> open_;           // per vertex, when every row is made
 
-  explicit ButterflyTables(const TriTopo& t) {
+  ButterflyTables(const TriTopo& t, bool every_row) {
     const Complex& c = t.c;
+    if (every_row) {
+      open_.resize(c.num_vertices);
+      for (std::uint32_t v = 0; v < c.num_vertices; ++v) open_[v] = find_open(t, v);
+    }
     for (std::uint32_t v = 0; v < c.num_vertices; ++v) {
       const std::uint32_t K = c.vertex_edges.size(v);
       if (K == 6 || K < 3) continue;
@@ -169,13 +174,18 @@ struct ButterflyTables {
       if (weights[K].empty()) weights[K] = butterfly_weights(K);
     }
   }
+
+  // OpenMesh's is_boundary(vertex), on the mesh cut along creases; plus the vertices OpenMesh
+  // cannot hold (valence < 3 inside, non-manifold), which get no K-point stencil either.
+  static bool find_open(const TriTopo& t, std::uint32_t v) {
+    return t.feature_count[v] > 0 || t.c.vertex_edges.size(v) < 3 || !t.manifold(v);
+  }
+  bool open(const TriTopo& t, std::uint32_t v) const { return open_.empty() ? find_open(t, v) : open_[v] != 0; }
 };
 
 void butterfly_edge_row(const TriTopo& t, const ButterflyTables& tables, std::uint32_t e, RowBuilder& row) {
   const Complex& c = t.c;
-  // OpenMesh's is_boundary(vertex), on the mesh cut along creases; plus the vertices OpenMesh
-  // cannot hold (valence < 3 inside, non-manifold), which get no K-point stencil either.
-  const auto open = [&](std::uint32_t v) { return t.feature_count[v] > 0 || c.vertex_edges.size(v) < 3 || !t.manifold(v); };
+  const auto open = [&](std::uint32_t v) { return tables.open(t, v); };
 
   // The curve neighbour across end a of feature edge e, or the reflection 2a - b.
   auto curve_neighbour = [&](RowBuilder& row, std::uint32_t e, std::uint32_t a, std::uint32_t b, double w) {
@@ -286,7 +296,7 @@ struct TriRowRules::Impl {
   std::optional<ButterflyTables> butterfly;
 
   Impl(const Complex& c, Scheme s, bool every_row) : scheme(s), topo(c, every_row) {
-    if (s == Scheme::Butterfly) butterfly.emplace(topo);
+    if (s == Scheme::Butterfly) butterfly.emplace(topo, every_row);
   }
 };
 
@@ -335,11 +345,25 @@ TriStencils build_tri_stencils(const Complex& coarse, Scheme s) {
   }
   const Complex& c = derived ? coarse : copy;
   const TriRowRules rules(c, s, true);
-  const std::uint32_t nv = c.num_vertices;
+  const TriRowRules::Impl& r = *rules.impl_;
   TriStencils st;
-  build_rows(c.num_edges(), st.new_rows, st.new_weights, [&](std::uint32_t e, RowBuilder& row) { rules.add_terms(nv + e, row); });
-  if (s == Scheme::Loop)  // the interpolating schemes keep their old vertices: no rows
-    build_rows(nv, st.old_rows, st.old_weights, [&](std::uint32_t v, RowBuilder& row) { rules.add_terms(v, row); });
+  // The rule called straight, not through add_terms: a million rows of the same scheme.
+  const std::uint32_t ne = c.num_edges();
+  switch (s) {
+    case Scheme::LinearTri:
+      build_rows(ne, st.new_rows, st.new_weights, [&](std::uint32_t e, RowBuilder& row) { linear_edge_row(r.topo, e, row); });
+      break;
+    case Scheme::Butterfly:
+      build_rows(ne, st.new_rows, st.new_weights,
+                 [&](std::uint32_t e, RowBuilder& row) { butterfly_edge_row(r.topo, *r.butterfly, e, row); });
+      break;
+    default:
+      build_rows(ne, st.new_rows, st.new_weights, [&](std::uint32_t e, RowBuilder& row) { loop_edge_row(r.topo, e, row); });
+      // The interpolating schemes keep their old vertices: no rows.
+      build_rows(c.num_vertices, st.old_rows, st.old_weights,
+                 [&](std::uint32_t v, RowBuilder& row) { loop_vertex_row(r.topo, v, row); });
+      break;
+  }
   return st;
 }
 

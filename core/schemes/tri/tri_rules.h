@@ -120,6 +120,7 @@ class TriRowRules {
   void append_row(std::uint32_t v, Csr& rows, std::vector<double>& weights) const;
 
  private:
+  friend TriStencils build_tri_stencils(const Complex& coarse, Scheme s);
   struct Impl;
   std::unique_ptr<const Impl> impl_;
 };

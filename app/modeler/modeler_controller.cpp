@@ -27,6 +27,15 @@ ModelerState::FitSettings fit_settings(const FitRequest& r) {
   return s;
 }
 
+FitRequest fit_request(const ModelerState::FitSettings& s) {
+  FitRequest r;
+  r.base_vertices = static_cast<int>(std::min<std::uint32_t>(s.base_vertices, INT32_MAX));
+  r.feature_angle_deg = static_cast<float>(s.feature_angle_deg);
+  r.levels = s.levels;
+  r.scheme = static_cast<int>(s.scheme);
+  return r;
+}
+
 constexpr double kPickRadiusPx = 10.0;
 constexpr double kAutosaveSeconds = 120.0;
 constexpr float kStatusHeight = 28.0f;
@@ -1051,7 +1060,14 @@ void ModelerController::fill_basis_data(BasisPanelData& b) const {
   }
 }
 
+void ModelerController::sync_fit_form() {
+  if (model.scripted_fit_count() == scripted_fit_seen_) return;
+  scripted_fit_seen_ = model.scripted_fit_count();
+  fields.fit = fit_request(model.scripted_fit());
+}
+
 void ModelerController::draw_frame(ModelerView& view, int fb_width, int fb_height) {
+  sync_fit_form();
   const ImGuiIO& io = ImGui::GetIO();
   const float dw = io.DisplaySize.x, dh = io.DisplaySize.y;
   const PanelLayout layout;

@@ -71,6 +71,9 @@ class ModelerController {
   bool quit_confirmed() const { return quit_confirmed_; }
   /// Autosave when due; `now` in seconds.
   void tick(double now);
+  /// The Fit panel's form takes the settings of a fit or base preview a script asked for since
+  /// the last call (ModelerState::scripted_fit); what was typed there stays otherwise. Each frame.
+  void sync_fit_form();
   /// An animation is playing (the window then draws continuously).
   bool playing() const { return model.has_session() && model.animation() && model.animation()->playing; }
   /// Removes the recovery file (clean exit).
@@ -200,6 +203,7 @@ class ModelerController {
   double last_autosave_ = -1.0;
   bool stats_dirty_ = true;
   std::size_t stats_key_[4] = {~std::size_t(0), 0, 0, 0};  // undo position, history size, topology, session
+  std::uint64_t scripted_fit_seen_ = 0;  // model.scripted_fit_count() the form last took
   std::vector<LevelStats> level_cache_;
   std::vector<std::string> recent_;
   BasisSettings basis_request_;  // the Basis section's settings while the mode is off

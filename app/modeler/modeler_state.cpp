@@ -240,6 +240,8 @@ std::string ModelerState::install_fit_preview(FitPreview p) {
 }
 
 std::string ModelerState::preview_fit(const FitSettings& settings) {
+  scripted_fit_ = settings;
+  ++scripted_fit_count_;
   check_fit();
   return install_fit_preview(prepare_fit_preview(file_path_, settings, {}));
 }
@@ -301,6 +303,8 @@ std::string ModelerState::install_fit(PreparedFit p) {
 }
 
 void ModelerState::fit_base(const FitSettings& s) {
+  scripted_fit_ = s;
+  ++scripted_fit_count_;
   check_fit();
   install_fit(prepare_fit(file_path_, s, {}));
 }

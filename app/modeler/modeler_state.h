@@ -150,6 +150,10 @@ class ModelerState {
   std::string install_fit(PreparedFit prepared);
   /// check_fit, prepare_fit and install_fit in one (the script command `fit`).
   void fit_base(const FitSettings& settings);
+  /// The settings the last scripted fit or base preview asked for (fit_base, preview_fit), and
+  /// how many have asked: the Fit panel's form shows them, as if typed there.
+  const FitSettings& scripted_fit() const { return scripted_fit_; }
+  std::uint64_t scripted_fit_count() const { return scripted_fit_count_; }
   static PreparedRebuild prepare_rebuild(const std::string& file, const RebuildOffer& offer, int levels, const RebuildProgress& progress);
   void install_rebuild(PreparedRebuild prepared);
   /// The file order of a rebuilt mesh (empty otherwise); saved with the project.
@@ -470,6 +474,8 @@ class ModelerState {
   std::unique_ptr<AnimationViewState> anim_;
   RebuildOffer rebuild_offer_;
   std::optional<FitPreview> fit_preview_;
+  FitSettings scripted_fit_;
+  std::uint64_t scripted_fit_count_ = 0;
   std::uint32_t file_vertices_ = 0;
   InputOrder input_order_;
   FitSource fit_source_;

@@ -1070,6 +1070,37 @@ TEST(ModelerFitTest, FitScriptCommand) {
   std::filesystem::remove_all(dir);
 }
 
+// A scripted fit or base preview shows its settings in the Fit panel's form (before, the form
+// kept its own scheme after `fit ... cubic`); what is typed there stays until a script asks again.
+TEST(ModelerFitTest, ScriptedFitSettingsShowInTheFitPanel) {
+  const testing::TempDir dir("sublift_modeler_fit_form");
+  const std::string path = dir.file("sphere.obj");
+  const GeodesicSphere g = geodesic_sphere(5);
+  std::vector<double> xyz;
+  for (const auto& d : g.directions) xyz.insert(xyz.end(), {d.x, d.y, d.z});
+  write_shape(path, g.fine, xyz);
+  ModelerController c{false};
+  c.sync_fit_form();
+  EXPECT_EQ(c.fields.fit.scheme, static_cast<int>(kDefaultFitScheme));  // nothing asked yet
+  ScriptRunner preview("preview", "open " + path + "\nfit-preview 60 45 loop\n");
+  EXPECT_EQ(preview.next(c.model).kind, ScriptStep::Kind::End);
+  c.sync_fit_form();
+  EXPECT_EQ(c.fields.fit.scheme, static_cast<int>(Scheme::Loop));
+  EXPECT_EQ(c.fields.fit.base_vertices, 60);
+  EXPECT_EQ(c.fields.fit.feature_angle_deg, 45.0f);
+  EXPECT_EQ(c.fields.fit.levels, 0);
+  c.fields.fit.scheme = static_cast<int>(Scheme::Sqrt2);  // typed in the panel
+  c.sync_fit_form();
+  EXPECT_EQ(c.fields.fit.scheme, static_cast<int>(Scheme::Sqrt2));
+  ScriptRunner fit("fit", "fit 100 1 cubic\n");
+  EXPECT_EQ(fit.next(c.model).kind, ScriptStep::Kind::End);
+  c.sync_fit_form();
+  EXPECT_EQ(c.fields.fit.scheme, static_cast<int>(Scheme::Cubic));
+  EXPECT_EQ(c.fields.fit.base_vertices, 100);
+  EXPECT_EQ(c.fields.fit.levels, 1);
+  EXPECT_EQ(c.fields.fit.feature_angle_deg, 60.0f);  // the script's default
+}
+
 // Issue 20: a glTF opens in the modeler as a welded surface; a PLY's colours open as channels
 // beside the session (tests/modeler/modeler_channels_test.cpp), so nothing is named as dropped.
 TEST(ModelerOpenTest, GltfOpensWeldedAndColoursAreKept) {

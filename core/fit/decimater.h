@@ -64,6 +64,11 @@ class Decimater : public OpenMesh::Decimater::BaseDecimaterT<Mesh> {
     HalfedgeHandle h;
   };
   std::vector<Candidate> candidates_;  // heap_vertex's, kept for its storage
+  // ModQuadricT's quadrics (private there): the mesh's one vertex property of their type, so a
+  // halfedge's error is asked without building its CollapseInfo (null: not found, ask the module).
+  using Quadrics = std::vector<OpenMesh::Geometry::QuadricT<double>>;
+  const Quadrics* quadrics_ = nullptr;
+  const Quadrics* find_quadrics() const;
 
   Mesh& mesh_;
   Quadric::Handle quadric_;
@@ -79,10 +84,23 @@ inline void Decimater::heap_vertex(Heap& heap, VertexHandle v) {
   // of equals; on average about one halfedge is checked.
   Quadric& q = quadric();
   candidates_.clear();
-  for (const HalfedgeHandle h : mesh_.voh_range(v)) {
-    const CollapseInfo ci(mesh_, h);
-    const float prio = q.collapse_priority(ci);
-    if (prio >= 0.0f && prio < FLT_MAX) candidates_.push_back({prio, static_cast<std::uint32_t>(candidates_.size()), h});
+  if (quadrics_) {
+    // ModQuadricT::collapse_priority's arithmetic: the two ends' quadrics summed, at the far end.
+    const double max_err = q.max_err();
+    for (const HalfedgeHandle h : mesh_.voh_range(v)) {
+      const VertexHandle v1 = mesh_.to_vertex_handle(h);
+      OpenMesh::Geometry::QuadricT<double> sum = (*quadrics_)[static_cast<std::size_t>(v.idx())];
+      sum += (*quadrics_)[static_cast<std::size_t>(v1.idx())];
+      const double err = sum(mesh_.point(v1));
+      const float prio = float((err < max_err) ? err : float(Quadric::ILLEGAL_COLLAPSE));
+      if (prio >= 0.0f && prio < FLT_MAX) candidates_.push_back({prio, static_cast<std::uint32_t>(candidates_.size()), h});
+    }
+  } else {
+    for (const HalfedgeHandle h : mesh_.voh_range(v)) {
+      const CollapseInfo ci(mesh_, h);
+      const float prio = q.collapse_priority(ci);
+      if (prio >= 0.0f && prio < FLT_MAX) candidates_.push_back({prio, static_cast<std::uint32_t>(candidates_.size()), h});
+    }
   }
   std::sort(candidates_.begin(), candidates_.end(),
             [](const Candidate& a, const Candidate& b) { return a.prio < b.prio || (a.prio == b.prio && a.walk < b.walk); });
@@ -107,8 +125,19 @@ inline void Decimater::heap_vertex(Heap& heap, VertexHandle v) {
   }
 }
 
+inline const Decimater::Quadrics* Decimater::find_quadrics() const {
+  const Quadrics* found = nullptr;
+  for (auto it = mesh_.vprops_begin(); it != mesh_.vprops_end(); ++it)
+    if (const auto* p = dynamic_cast<const OpenMesh::PropertyT<OpenMesh::Geometry::QuadricT<double>>*>(*it)) {
+      if (found) return nullptr;  // two: not knowing which is the module's, ask the module
+      found = &p->data_vector();
+    }
+  return found && found->size() == mesh_.n_vertices() ? found : nullptr;
+}
+
 inline std::size_t Decimater::decimate_to_faces(std::size_t target_nv, std::size_t target_nf) {
   if (!is_initialized()) return 0;
+  quadrics_ = find_quadrics();
   if (target_nv >= mesh_.n_vertices() || target_nf >= mesh_.n_faces()) return 0;
   std::size_t nv = mesh_.n_vertices(), nf = mesh_.n_faces(), collapses = 0;
   priority_.assign(nv, 0.0f);

@@ -211,38 +211,36 @@ void butterfly_edge_row(const TriTopo& t, const ButterflyTables& tables, std::ui
     row.add(a, scale * w[K]);
   };
 
-  {
-    const std::uint32_t a0 = c.edge_verts[2 * e], a1 = c.edge_verts[2 * e + 1];
-    if (t.feature_edge[e]) {
-      // 4-point rule along the boundary / crease curve (OpenMesh: boundary edges).
-      row.add(a0, 9.0 / 16), row.add(a1, 9.0 / 16);
-      curve_neighbour(row, e, a0, a1, -1.0 / 16);
-      curve_neighbour(row, e, a1, a0, -1.0 / 16);
-    } else {
-      const std::uint32_t K0 = c.vertex_edges.size(a0), K1 = c.vertex_edges.size(a1);
-      const bool o0 = open(a0), o1 = open(a1);
-      if ((K0 == 6 && K1 == 6) || (o0 && K1 == 6) || (o1 && K0 == 6) || (o0 && o1)) {
-        // 8-point rule (ZSS96 regular butterfly): 1/2, 1/8, -1/16.
-        row.add(a0, 0.5), row.add(a1, 0.5);
-        for (std::uint32_t f : c.edge_faces.row(e)) {
-          const std::uint32_t b = t.opposite(f, e);
-          row.add(b, 1.0 / 8);
-          for (std::uint32_t a : {a0, a1}) {
-            const std::uint32_t wing = t.other_edge_at(f, a, e);
-            if (t.feature_edge[wing]) {  // the missing vertex made by symmetry: a + b - a'
-              row.add(a, -1.0 / 16), row.add(b, -1.0 / 16), row.add(a == a0 ? a1 : a0, 1.0 / 16);
-            } else {
-              row.add(t.opposite(t.other_face(wing, f), wing), -1.0 / 16);
-            }
+  const std::uint32_t a0 = c.edge_verts[2 * e], a1 = c.edge_verts[2 * e + 1];
+  if (t.feature_edge[e]) {
+    // 4-point rule along the boundary / crease curve (OpenMesh: boundary edges).
+    row.add(a0, 9.0 / 16), row.add(a1, 9.0 / 16);
+    curve_neighbour(row, e, a0, a1, -1.0 / 16);
+    curve_neighbour(row, e, a1, a0, -1.0 / 16);
+  } else {
+    const std::uint32_t K0 = c.vertex_edges.size(a0), K1 = c.vertex_edges.size(a1);
+    const bool o0 = open(a0), o1 = open(a1);
+    if ((K0 == 6 && K1 == 6) || (o0 && K1 == 6) || (o1 && K0 == 6) || (o0 && o1)) {
+      // 8-point rule (ZSS96 regular butterfly): 1/2, 1/8, -1/16.
+      row.add(a0, 0.5), row.add(a1, 0.5);
+      for (std::uint32_t f : c.edge_faces.row(e)) {
+        const std::uint32_t b = t.opposite(f, e);
+        row.add(b, 1.0 / 8);
+        for (std::uint32_t a : {a0, a1}) {
+          const std::uint32_t wing = t.other_edge_at(f, a, e);
+          if (t.feature_edge[wing]) {  // the missing vertex made by symmetry: a + b - a'
+            row.add(a, -1.0 / 16), row.add(b, -1.0 / 16), row.add(a == a0 ? a1 : a0, 1.0 / 16);
+          } else {
+            row.add(t.opposite(t.other_face(wing, f), wing), -1.0 / 16);
           }
         }
-      } else {
-        // K-point rule at the extraordinary interior end(s), averaged when both are.
-        const bool k0 = K0 != 6 && !o0, k1 = K1 != 6 && !o1;
-        const double scale = k0 && k1 ? 0.5 : 1.0;
-        if (k0) k_point(row, e, a0, scale);
-        if (k1) k_point(row, e, a1, scale);
       }
+    } else {
+      // K-point rule at the extraordinary interior end(s), averaged when both are.
+      const bool k0 = K0 != 6 && !o0, k1 = K1 != 6 && !o1;
+      const double scale = k0 && k1 ? 0.5 : 1.0;
+      if (k0) k_point(row, e, a0, scale);
+      if (k1) k_point(row, e, a1, scale);
     }
   }
 }
@@ -262,29 +260,27 @@ void loop_edge_row(const TriTopo& t, std::uint32_t e, RowBuilder& row) {
 
 void loop_vertex_row(const TriTopo& t, std::uint32_t v, RowBuilder& row) {
   const Complex& c = t.c;
-  {
-    const auto edges = c.vertex_edges.row(v);
-    const std::uint32_t s = t.feature_count[v];
-    if (c.vertex_dim[v] == 0 || s > 2 || edges.empty() || !t.manifold(v)) {
-      row.add(v, 1.0);  // corner: fixed
-    } else if (s == 2) {
-      row.add(v, 0.75);  // crease vertex: 1/8, 3/4, 1/8 along the crease
-      for (std::uint32_t e : edges)
-        if (t.feature_edge[e]) row.add(edge_other_end(c, e, v), 0.125);
-    } else {
-      // Smooth or dart: Loop's original beta, computed as Sdc::Scheme<SCHEME_LOOP> does.
-      const std::uint32_t n = static_cast<std::uint32_t>(edges.size());
-      double e_weight = 0.0625, v_weight = 0.625;
-      if (n != 6) {
-        const double dn = static_cast<double>(n), inv = 1.0 / dn;
-        const double cos_theta = std::cos(std::numbers::pi * 2.0 * inv);
-        const double beta = 0.25 * cos_theta + 0.375;
-        e_weight = (0.625 - beta * beta) * inv;
-        v_weight = 1.0 - e_weight * dn;
-      }
-      row.add(v, v_weight);
-      for (std::uint32_t e : edges) row.add(edge_other_end(c, e, v), e_weight);
+  const auto edges = c.vertex_edges.row(v);
+  const std::uint32_t s = t.feature_count[v];
+  if (c.vertex_dim[v] == 0 || s > 2 || edges.empty() || !t.manifold(v)) {
+    row.add(v, 1.0);  // corner: fixed
+  } else if (s == 2) {
+    row.add(v, 0.75);  // crease vertex: 1/8, 3/4, 1/8 along the crease
+    for (std::uint32_t e : edges)
+      if (t.feature_edge[e]) row.add(edge_other_end(c, e, v), 0.125);
+  } else {
+    // Smooth or dart: Loop's original beta, computed as Sdc::Scheme<SCHEME_LOOP> does.
+    const std::uint32_t n = static_cast<std::uint32_t>(edges.size());
+    double e_weight = 0.0625, v_weight = 0.625;
+    if (n != 6) {
+      const double dn = static_cast<double>(n), inv = 1.0 / dn;
+      const double cos_theta = std::cos(std::numbers::pi * 2.0 * inv);
+      const double beta = 0.25 * cos_theta + 0.375;
+      e_weight = (0.625 - beta * beta) * inv;
+      v_weight = 1.0 - e_weight * dn;
     }
+    row.add(v, v_weight);
+    for (std::uint32_t e : edges) row.add(edge_other_end(c, e, v), e_weight);
   }
 }
 
@@ -302,8 +298,7 @@ struct TriRowRules::Impl {
 
 TriRowRules::TriRowRules(const Complex& coarse, Scheme s, bool every_row) {
   check_surface(coarse);
-  if (s != Scheme::LinearTri && s != Scheme::Butterfly && s != Scheme::Loop)
-    throw Error(scheme_name(s) + " is not a triangle scheme");
+  if (!scheme_is_tri(s)) throw Error(scheme_name(s) + " is not a triangle scheme");
   impl_ = std::make_unique<const Impl>(coarse, s, every_row);
 }
 

@@ -145,13 +145,12 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
   }
   // Each node's and each triangle's place under its parent (index << 1 | side), for searches
   // that start at a leaf.
-  parent_.assign(nodes_.size(), kNoParent);
   up_.assign(tris.size(), kNoParent);
   for (std::uint32_t i = 0; i < nodes_.size(); ++i)
     for (std::uint32_t k = 0; k < 2; ++k) {
       const std::uint32_t ref = nodes_[i].child[k];
       if (!is_leaf(ref)) {
-        parent_[ref] = i << 1 | k;
+        nodes_[ref].parent = i << 1 | k;
         continue;
       }
       for (std::uint32_t t = leaf_first(ref); t < leaf_first(ref) + leaf_count(ref); ++t) up_[t] = i << 1 | k;
@@ -319,11 +318,12 @@ void TriangleBvh::walk_ray(const glm::dvec3& origin, const glm::dvec3& dir, Limi
   if (std::uint32_t up = hint_up(hint); up != kNoParent) {
     // From the hint's leaf up (as closest does): each sibling subtree the ray meets within the limit.
     descend(nodes_[up >> 1].child[up & 1]);
-    for (; up != kNoParent; up = parent_[up >> 1]) {
+    while (up != kNoParent) {
       const Node& n = nodes_[up >> 1];
       const std::uint32_t other = 1 - (up & 1);
       const auto [t0, t1] = limit();
       if (ray_meets_box(n.lo[other], n.hi[other], origin, inv, t0, t1)) descend(n.child[other]);
+      up = n.parent;
     }
     return;
   }
@@ -460,11 +460,12 @@ TriangleBvh::Closest TriangleBvh::closest(const glm::dvec3& p, const glm::dvec3*
     // each node on the way the other child's subtree unless its box lies beyond the best (every
     // triangle is searched or pruned once, as from the root; the walk down to the hint is saved).
     descend({nodes_[up >> 1].child[up & 1], 0.0});
-    for (; up != kNoParent; up = parent_[up >> 1]) {
+    while (up != kNoParent) {
       const Node& n = nodes_[up >> 1];
       const std::uint32_t other = 1 - (up & 1);
       const double d2 = box_distance2(n.lo[other], n.hi[other], p);
       if (d2 <= best2) descend({n.child[other], d2});
+      up = n.parent;
     }
   } else {
     descend({root_.ref, box_distance2(root_.lo, root_.hi, p)});

@@ -83,9 +83,12 @@ class TriangleBvh {
   // holds its triangles and its distance is still a lower bound) and references: opening a node
   // reads one cache line. A reference is a node index, or, with kLeaf set, a leaf: up to 4
   // triangles tris_[first, first + count), count in bits 28-30.
+  // `parent`: where the node hangs (see kNoParent), in the same cache line as the boxes, so a
+  // search climbing from a leaf reads one line per level.
   struct alignas(64) Node {
     std::array<float, 3> lo[2], hi[2];
     std::uint32_t child[2] = {0, 0};
+    std::uint32_t parent = UINT32_MAX;
   };
   static constexpr std::uint32_t kLeaf = 1u << 31;
   static constexpr std::uint32_t kMaxLeafFirst = (1u << 28) - 1;
@@ -124,10 +127,10 @@ class TriangleBvh {
   std::vector<Tri> tris_;
   std::vector<Node> nodes_;
   Built root_;  // the whole tree (unused when tris_ is empty)
-  // Node -> its parent, triangle -> the node holding its leaf: index << 1 | side (1: right),
-  // kNoParent for the root (and for every triangle when the root is a leaf).
+  // Node -> its parent (Node::parent), triangle -> the node holding its leaf (up_): index << 1 |
+  // side (1: right), kNoParent for the root (and for every triangle when the root is a leaf).
   static constexpr std::uint32_t kNoParent = UINT32_MAX;
-  std::vector<std::uint32_t> parent_, up_;
+  std::vector<std::uint32_t> up_;
   std::vector<std::uint32_t> corners_;  // per triangle (tris_ order) its three vertices, for refit
   std::size_t num_vertices_ = 0;
   Csr face_tris_;  // the triangles (indices into tris_) of each polygon

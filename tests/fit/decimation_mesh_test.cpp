@@ -169,6 +169,76 @@ TEST(DecimationMesh, CollapseCheckEqualsOpenMeshs) {
   if (const auto f = fandisk()) check(*f, "fandisk");
 }
 
+// Every element of two meshes alike: each halfedge's next, previous, tip and face, each vertex's
+// and face's halfedge, and every status bit.
+void expect_same_connectivity(const Mesh& a, const Mesh& b, const std::string& what) {
+  ASSERT_EQ(a.n_halfedges(), b.n_halfedges()) << what;
+  for (auto h : a.halfedges()) {
+    const auto hb = OpenMesh::HalfedgeHandle(h.idx());
+    ASSERT_EQ(a.next_halfedge_handle(h), b.next_halfedge_handle(hb)) << what << ", halfedge " << h.idx();
+    ASSERT_EQ(a.prev_halfedge_handle(h), b.prev_halfedge_handle(hb)) << what << ", halfedge " << h.idx();
+    ASSERT_EQ(a.to_vertex_handle(h), b.to_vertex_handle(hb)) << what << ", halfedge " << h.idx();
+    ASSERT_EQ(a.face_handle(h), b.face_handle(hb)) << what << ", halfedge " << h.idx();
+    if (a.has_halfedge_status()) {
+      ASSERT_EQ(a.status(h).bits(), b.status(hb).bits()) << what << ", halfedge " << h.idx();
+    }
+  }
+  for (auto v : a.vertices()) {
+    ASSERT_EQ(a.halfedge_handle(v), b.halfedge_handle(OpenMesh::VertexHandle(v.idx()))) << what << ", vertex " << v.idx();
+    ASSERT_EQ(a.status(v).bits(), b.status(OpenMesh::VertexHandle(v.idx())).bits()) << what << ", vertex " << v.idx();
+  }
+  for (auto e : a.edges()) ASSERT_EQ(a.status(e).bits(), b.status(OpenMesh::EdgeHandle(e.idx())).bits()) << what << ", edge " << e.idx();
+  for (auto f : a.faces()) {
+    ASSERT_EQ(a.halfedge_handle(f), b.halfedge_handle(OpenMesh::FaceHandle(f.idx()))) << what << ", face " << f.idx();
+    ASSERT_EQ(a.status(f).bits(), b.status(OpenMesh::FaceHandle(f.idx())).bits()) << what << ", face " << f.idx();
+  }
+}
+
+// Collapses legal halfedges, chosen in a scattered order, with the base's collapse on one copy
+// and the library's PolyConnectivity::collapse on the other, comparing every element after each;
+// until no more than a few vertices are left or nothing may collapse (compared after every
+// `every` collapses and at the end). Returns the collapses.
+std::size_t collapse_side_by_side(const fixtures::Polygons& p, bool halfedge_status, const std::string& what, std::size_t every = 1) {
+  Mesh ours = om_mesh(p);
+  if (halfedge_status) ours.request_halfedge_status();
+  Mesh theirs = ours;
+  std::size_t collapses = 0, alive = ours.n_vertices();
+  for (std::uint64_t step = 0; alive > 4; ++step) {
+    const std::size_t n = ours.n_halfedges();
+    std::size_t pick = n;
+    for (std::size_t k = 0; k < n && pick == n; ++k) {
+      const OpenMesh::HalfedgeHandle h(static_cast<int>((step * 7919 + k * 104729) % n));
+      // Both copies asked alike: the check tags the rings of long-ringed vertices.
+      const bool ok = ours.is_collapse_ok(h);
+      EXPECT_EQ(theirs.is_collapse_ok(h), ok) << what;
+      if (ok) pick = static_cast<std::size_t>(h.idx());
+    }
+    if (pick == n) break;
+    const OpenMesh::HalfedgeHandle h(static_cast<int>(pick));
+    ours.collapse(h);
+    theirs.PolyConnectivity::collapse(h);
+    ++collapses, --alive;
+    if (collapses % every == 0) expect_same_connectivity(ours, theirs, what + ", collapse " + std::to_string(collapses));
+    if (::testing::Test::HasFatalFailure()) break;
+  }
+  expect_same_connectivity(ours, theirs, what + ", at the end");
+  return collapses;
+}
+
+TEST(DecimationMesh, CollapseEqualsOpenMeshsElementForElement) {
+  for (const bool halfedge_status : {false, true}) {
+    const std::string tag = halfedge_status ? " (halfedge status)" : "";
+    // Closed, open with corners, one strip wide at the rim, a handle, long rings.
+    EXPECT_GT(collapse_side_by_side(fixtures::torus(16, 8), halfedge_status, "torus 16 x 8" + tag), 100u);
+    EXPECT_GT(collapse_side_by_side(bumpy_sheet(12), halfedge_status, "bumpy sheet" + tag), 100u);
+    EXPECT_GT(collapse_side_by_side(fixtures::triangle_cone(40), halfedge_status, "open cone of 40" + tag), 20u);
+    EXPECT_GT(collapse_side_by_side(uv_sphere(24, 12), halfedge_status, "UV sphere 24 x 12" + tag), 100u);
+  }
+  if (const auto f = fandisk()) {
+    EXPECT_GT(collapse_side_by_side(*f, false, "fandisk", 97), 1000u);
+  }
+}
+
 // The shape guards as the fitting base sets them (base_mesh.cpp): aspect ratio 10, binary.
 constexpr float kAspect = 10.0f;
 

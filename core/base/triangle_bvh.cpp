@@ -224,8 +224,9 @@ bool TriangleBvh::split(std::vector<std::uint32_t>& order, const std::vector<glm
   }
   const glm::dvec3 extent = chi - clo;
   const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
-  if (end - begin <= 4 || extent[axis] <= 0.0) return false;
+  if (end - begin <= kLeafSize) return false;
   mid = begin + (end - begin) / 2;
+  if (extent[axis] <= 0.0) return true;  // centres all alike: any halves (a leaf holds at most 7)
   std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
                    [&](std::uint32_t a, std::uint32_t b) { return centers[a][axis] < centers[b][axis]; });
   return true;

@@ -236,6 +236,35 @@ TEST(TriangleBvh, EquallyNearFacesNameTheLowest) {
     }
 }
 
+// Triangles whose centres coincide (here twelve copies of one, more than a leaf's count field
+// holds) are all still found: by a ray, by a closest-point query from the root and from each hint.
+TEST(TriangleBvh, TrianglesWithOneCentreAreAllKept) {
+  Soup s;
+  s.xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  for (std::uint32_t f = 0; f < 12; ++f) {
+    s.faces.items.insert(s.faces.items.end(), {0, 1, 2});
+    s.faces.offsets.push_back(static_cast<std::uint32_t>(s.faces.items.size()));
+  }
+  // Beside them a few others, so the copies are a subtree, not the whole tree.
+  for (int k = 0; k < 5; ++k) {
+    const std::uint32_t v = static_cast<std::uint32_t>(s.xyz.size() / 3);
+    s.xyz.insert(s.xyz.end(), {3.0 + k, 0, 0, 4.0 + k, 0, 0, 3.0 + k, 1, 0});
+    s.faces.items.insert(s.faces.items.end(), {v, v + 1, v + 2});
+    s.faces.offsets.push_back(static_cast<std::uint32_t>(s.faces.items.size()));
+  }
+  const TriangleBvh bvh(s.xyz, s.faces);
+  std::vector<double> hits;
+  std::vector<std::uint32_t> faces;
+  bvh.all_hits({0.25, 0.25, 1.0}, {0, 0, -1}, hits, &faces);
+  std::sort(faces.begin(), faces.end());
+  std::vector<std::uint32_t> copies(12);
+  for (std::uint32_t f = 0; f < 12; ++f) copies[f] = f;
+  EXPECT_EQ(faces, copies);
+  const glm::dvec3 p(0.25, 0.25, 0.5);
+  EXPECT_EQ(bvh.closest(p).face, 0u);
+  for (std::uint32_t hint = 0; hint < s.faces.rows(); ++hint) EXPECT_EQ(bvh.closest(p, nullptr, hint).face, 0u) << hint;
+}
+
 // A refitted hierarchy answers closest-point queries exactly as one built on the moved points
 // (any side and one side, from the root and from hints), and a ray meets the same triangles:
 // small moves (a fitting round's) and large ones (every vertex anywhere, so the kept tree fits

@@ -85,10 +85,12 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
   for (std::uint32_t f = 0; f < nf; ++f) first[f + 1] = first[f] + (faces.size(f) >= 3 ? faces.size(f) - 2 : 0);
   if (first[nf] == 0) return;
   if (first[nf] > kMaxLeafFirst) throw Error("too many triangles for the triangle hierarchy");  // leaf references
-  std::vector<Tri> tris(first[nf]);
-  std::vector<std::uint32_t> corners(3 * first[nf]);
+  const std::uint32_t n = static_cast<std::uint32_t>(first[nf]);
+  // Per triangle in polygon order: its corners, polygon and centre. Sized unzeroed: the loops
+  // below touch them first, on both threads.
+  UninitVector<std::uint32_t> corners(3 * std::size_t(n)), polygon(n);
+  UninitVector<glm::dvec3> centers(n);
   num_vertices_ = p.size() / 3;
-  std::vector<glm::dvec3> centers(tris.size());
   // The bounds: each chunk's own, joined under a lock (min and max are exact in any order).
   glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo;
   std::mutex bounds;
@@ -98,10 +100,11 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
       const auto c = faces.row(f);
       for (std::size_t i = 1; i + 1 < c.size(); ++i) {
         const std::size_t t = first[f] + i - 1;
-        tris[t] = make_tri(at(p, c[0]), at(p, c[i]), at(p, c[i + 1]), f);
+        const Tri tri = make_tri(at(p, c[0]), at(p, c[i]), at(p, c[i + 1]), f);
         corners[3 * t] = c[0], corners[3 * t + 1] = c[i], corners[3 * t + 2] = c[i + 1];
-        centers[t] = tris[t].p0 + (tris[t].e1 + tris[t].e2) / 3.0;
-        grow(tris[t], clo, chi);
+        polygon[t] = f;
+        centers[t] = tri.p0 + (tri.e1 + tri.e2) / 3.0;
+        grow(tri, clo, chi);
       }
     }
     const std::lock_guard<std::mutex> g(bounds);
@@ -111,13 +114,12 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
   // Boxes grow by this much on every side, so that a ray grazing a box face (a triangle in an
   // axis plane) is not lost to rounding in the slab test.
   pad_ = 1e-9 * std::max(diagonal_, 1e-300);
-  std::vector<std::uint32_t> order(tris.size());
-  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-  nodes_.reserve(tris.size() / 2 + 1);
-  const std::uint32_t n = static_cast<std::uint32_t>(order.size());
+  std::vector<std::uint32_t> order(n);
+  for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
+  nodes_.reserve(n / 2 + 1);
   std::uint32_t mid = 0;
   if (n < kSideBySide || parallel_threads() < 2 || !split(order, centers, 0, n, mid)) {
-    root_ = build(nodes_, order, centers, tris, 0, n);
+    root_ = build(nodes_, order, centers, p, corners, 0, n);
   } else {
     // The root's two halves built side by side, then laid out as one depth-first build would:
     // root, left subtree, right subtree (each half's node references moved to its place).
@@ -125,8 +127,8 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
     Built half[2];
     parallel_for(2, 1, [&](std::uint32_t b, std::uint32_t e) {
       for (std::uint32_t k = b; k < e; ++k) {
-        halves[k].reserve(tris.size() / 4 + 1);
-        half[k] = build(halves[k], order, centers, tris, k ? mid : 0, k ? n : mid);
+        halves[k].reserve(n / 4 + 1);
+        half[k] = build(halves[k], order, centers, p, corners, k ? mid : 0, k ? n : mid);
       }
     });
     nodes_.emplace_back();
@@ -145,7 +147,7 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
   }
   // Each node's and each triangle's place under its parent (index << 1 | side), for searches
   // that start at a leaf.
-  up_.assign(tris.size(), kNoParent);
+  up_.assign(n, kNoParent);
   for (std::uint32_t i = 0; i < nodes_.size(); ++i)
     for (std::uint32_t k = 0; k < 2; ++k) {
       const std::uint32_t ref = nodes_[i].child[k];
@@ -155,20 +157,23 @@ TriangleBvh::TriangleBvh(std::span<const double> p, const Csr& faces) {
       }
       for (std::uint32_t t = leaf_first(ref); t < leaf_first(ref) + leaf_count(ref); ++t) up_[t] = i << 1 | k;
     }
-  tris_.resize(tris.size());
-  corners_.resize(corners.size());
+  // The triangles in tree order, made again from their corners (the same arithmetic, the same
+  // bits), and each one's polygon.
+  tris_.resize(n);
+  corners_.resize(3 * std::size_t(n));
+  Csr tri_face;  // triangle -> its polygon
+  tri_face.offsets.resize(std::size_t(n) + 1);
+  tri_face.items.resize(n);
   parallel_for(n, 1u << 14, [&](std::uint32_t b, std::uint32_t e) {
     for (std::uint32_t i = b; i < e; ++i) {
-      tris_[i] = tris[order[i]];
-      for (int k = 0; k < 3; ++k) corners_[3 * std::size_t(i) + k] = corners[3 * std::size_t(order[i]) + k];
+      const std::uint32_t* c = corners.data() + 3 * std::size_t(order[i]);
+      tris_[i] = make_tri(at(p, c[0]), at(p, c[1]), at(p, c[2]), polygon[order[i]]);
+      for (int k = 0; k < 3; ++k) corners_[3 * std::size_t(i) + k] = c[k];
+      tri_face.items[i] = polygon[order[i]];
+      tri_face.offsets[i + 1] = i + 1;
     }
   });
-  Csr tri_face;  // triangle -> its polygon
-  for (const Tri& t : tris_) {
-    tri_face.items.push_back(t.face);
-    tri_face.offsets.push_back(static_cast<std::uint32_t>(tri_face.items.size()));
-  }
-  face_tris_ = transpose(tri_face, tris.back().face + 1);  // tris is in polygon order
+  face_tris_ = transpose(tri_face, polygon[n - 1] + 1);  // polygon is in polygon order
 }
 
 void TriangleBvh::refit(std::span<const double> p) {
@@ -215,7 +220,7 @@ void TriangleBvh::refit(std::span<const double> p) {
   root_ = is_leaf(root_.ref) ? leaf_box(root_.ref) : node_box(root_.ref);
 }
 
-bool TriangleBvh::split(std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers, std::uint32_t begin,
+bool TriangleBvh::split(std::vector<std::uint32_t>& order, std::span<const glm::dvec3> centers, std::uint32_t begin,
                         std::uint32_t end, std::uint32_t& mid) {
   glm::dvec3 clo(std::numeric_limits<double>::infinity()), chi = -clo;
   for (std::uint32_t i = begin; i < end; ++i) {
@@ -254,23 +259,26 @@ void TriangleBvh::set_child(Node& n, int k, const Built& b) {
 }
 
 TriangleBvh::Built TriangleBvh::build(std::vector<Node>& nodes, std::vector<std::uint32_t>& order,
-                                      const std::vector<glm::dvec3>& centers, const std::vector<Tri>& tris,
-                                      std::uint32_t begin, std::uint32_t end) const {
+                                      std::span<const glm::dvec3> centers, std::span<const double> p,
+                                      std::span<const std::uint32_t> corners, std::uint32_t begin, std::uint32_t end) const {
   std::uint32_t mid = 0;
   if (!split(order, centers, begin, end, mid)) {
     Built leaf;
     leaf.ref = kLeaf | (end - begin) << 28 | begin;
     leaf.lo = glm::dvec3(std::numeric_limits<double>::infinity());
     leaf.hi = -leaf.lo;
-    for (std::uint32_t i = begin; i < end; ++i) grow(tris[order[i]], leaf.lo, leaf.hi);
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const std::uint32_t* c = corners.data() + 3 * std::size_t(order[i]);
+      grow(make_tri(at(p, c[0]), at(p, c[1]), at(p, c[2]), 0), leaf.lo, leaf.hi);
+    }
     leaf.lo -= glm::dvec3(pad_);
     leaf.hi += glm::dvec3(pad_);
     return leaf;
   }
   const std::uint32_t index = static_cast<std::uint32_t>(nodes.size());
   nodes.emplace_back();
-  const Built left = build(nodes, order, centers, tris, begin, mid);
-  const Built right = build(nodes, order, centers, tris, mid, end);
+  const Built left = build(nodes, order, centers, p, corners, begin, mid);
+  const Built right = build(nodes, order, centers, p, corners, mid, end);
   set_child(nodes[index], 0, left);
   set_child(nodes[index], 1, right);
   // The children's padded boxes joined: the box of the triangles, padded (x - pad rounds

@@ -15,6 +15,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/base/csr.h"
+#include "core/base/default_init.h"
 #include "core/base/surface_mesh.h"
 
 namespace sublift {
@@ -77,7 +78,7 @@ class TriangleBvh {
   // triangles two cache lines longer, and the queries wait on memory, not on arithmetic.
   struct Tri {
     glm::dvec3 p0, e1, e2;
-    std::uint32_t face = 0;
+    std::uint32_t face;  // (no initialiser: an array of them is sized unzeroed, UninitVector)
   };
   // An inner node holds its two children's boxes (floats rounded outwards, so a box still
   // holds its triangles and its distance is still a lower bound) and references: opening a node
@@ -109,14 +110,15 @@ class TriangleBvh {
   void walk_ray(const glm::dvec3& origin, const glm::dvec3& dir, Limit limit, Visit visit, std::uint32_t hint = UINT32_MAX) const;
   // Appends the inner nodes of the subtree of order[begin, end) to `nodes` (depth first, left
   // subtree first) and returns it; `split` is the median split it makes at every inner node.
-  Built build(std::vector<Node>& nodes, std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers,
-              const std::vector<Tri>& tris, std::uint32_t begin, std::uint32_t end) const;
+  // Leaves' boxes from the triangles' corners (3 per triangle, as built) over positions p.
+  Built build(std::vector<Node>& nodes, std::vector<std::uint32_t>& order, std::span<const glm::dvec3> centers,
+              std::span<const double> p, std::span<const std::uint32_t> corners, std::uint32_t begin, std::uint32_t end) const;
   // Splits order[begin, end) at its middle along the centres' longest axis (centres all alike:
   // as it lies); false (nothing moved) when the range is a leaf: kLeafSize triangles or fewer.
   // (Leaves of 2 took a hinted query from a 2 M-triangle torus's own faces 15 % less time, but
   // queries from farther points no less, cold ones and builds more: kept at 4.)
   static constexpr std::uint32_t kLeafSize = 4;
-  static bool split(std::vector<std::uint32_t>& order, const std::vector<glm::dvec3>& centers, std::uint32_t begin,
+  static bool split(std::vector<std::uint32_t>& order, std::span<const glm::dvec3> centers, std::uint32_t begin,
                     std::uint32_t end, std::uint32_t& mid);
   static void set_child(Node& n, int k, const Built& b);
   // Triangle (a, b, c) of polygon `face`, as every build and refit makes it.
@@ -127,14 +129,14 @@ class TriangleBvh {
   // hint is no polygon, has no triangle, or the whole tree is one leaf.
   std::uint32_t hint_up(std::uint32_t hint) const;
 
-  std::vector<Tri> tris_;
+  UninitVector<Tri> tris_;
   std::vector<Node> nodes_;
   Built root_;  // the whole tree (unused when tris_ is empty)
   // Node -> its parent (Node::parent), triangle -> the node holding its leaf (up_): index << 1 |
   // side (1: right), kNoParent for the root (and for every triangle when the root is a leaf).
   static constexpr std::uint32_t kNoParent = UINT32_MAX;
   std::vector<std::uint32_t> up_;
-  std::vector<std::uint32_t> corners_;  // per triangle (tris_ order) its three vertices, for refit
+  UninitVector<std::uint32_t> corners_;  // per triangle (tris_ order) its three vertices, for refit
   std::size_t num_vertices_ = 0;
   Csr face_tris_;  // the triangles (indices into tris_) of each polygon
   double diagonal_ = 0.0;

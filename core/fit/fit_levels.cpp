@@ -109,14 +109,20 @@ class Facings {
     const auto unmoved = [&](const Kept& k, std::size_t v) {
       return k.points.size() == x.size() && std::equal(&x[3 * v], &x[3 * v] + 3, &k.points[3 * v]);
     };
+    std::array<std::vector<std::uint8_t>, 2> unmoved_at;
+    for (std::size_t k = 0; k < kept_.size(); ++k) {
+      unmoved_at[k].assign(x.size() / 3, 0);
+      if (kept_[k].points.size() != x.size()) continue;
+      parallel_for(static_cast<std::uint32_t>(x.size() / 3), 8192, [&](std::uint32_t b, std::uint32_t e) {
+        for (std::uint32_t v = b; v < e; ++v) unmoved_at[k][v] = unmoved(kept_[k], v);
+      });
+    }
     std::size_t best = kept_[0].asked <= kept_[1].asked ? 0 : 1, best_count = 0;
     for (std::size_t k = 0; k < kept_.size(); ++k) {
-      std::size_t count = 0;
-      for (std::size_t v = 0; v < x.size() / 3; ++v) count += unmoved(kept_[k], v);
+      const std::size_t count = static_cast<std::size_t>(std::count(unmoved_at[k].begin(), unmoved_at[k].end(), std::uint8_t(1)));
       if (count > best_count) best = k, best_count = count;
     }
-    std::vector<std::uint8_t> same(x.size() / 3, 0);
-    for (std::size_t v = 0; v < same.size() && best_count; ++v) same[v] = unmoved(kept_[best], v);
+    const std::vector<std::uint8_t>& same = unmoved_at[best];
     Kept& kept = kept_[best];
     std::vector<glm::dvec3> out(faces.rows());
     parallel_for(static_cast<std::uint32_t>(faces.rows()), 2048, [&](std::uint32_t b, std::uint32_t e) {
@@ -145,10 +151,7 @@ class Facings {
 
   /// The faces of the net over x that are folded over: turned away from the way the input faces.
   std::uint32_t folded(std::span<const double> x) {
-    const std::vector<glm::dvec3> facing = (*this)(x);
-    std::uint32_t n = 0;
-    for (std::size_t f = 0; f < faces_->rows(); ++f) n += turned(*faces_, f, x, facing[f]);
-    return n;
+    return static_cast<std::uint32_t>(count_turned(*faces_, x, (*this)(x)));
   }
 
  private:

@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 #include <glm/geometric.hpp>
 
+#include "core/base/parallel.h"
 #include "core/base/points.h"
 #include "core/complex/polygon_normal.h"
 
@@ -94,9 +95,28 @@ bool turned(const Csr& faces, std::size_t f, std::span<const double> x, const gl
   return a[0] * facing.x + a[1] * facing.y + a[2] * facing.z <= 0.0;
 }
 
+std::vector<std::uint8_t> turned_faces(const Csr& faces, std::span<const double> x, const std::vector<glm::dvec3>& facing) {
+  std::vector<std::uint8_t> out(faces.rows());
+  parallel_for(static_cast<std::uint32_t>(faces.rows()), 4096, [&](std::uint32_t b, std::uint32_t e) {
+    for (std::uint32_t f = b; f < e; ++f) out[f] = turned(faces, f, x, facing[f]);
+  });
+  return out;
+}
+
+std::size_t count_turned(const Csr& faces, std::span<const double> x, const std::vector<glm::dvec3>& facing) {
+  const std::vector<std::uint8_t> t = turned_faces(faces, x, facing);
+  return static_cast<std::size_t>(std::count(t.begin(), t.end(), std::uint8_t(1)));
+}
+
 void keep_unfolded(const Csr& faces, const std::vector<glm::dvec3>& facing, std::span<const double> before, std::vector<double>& after) {
-  std::vector<std::uint8_t> was_folded(faces.rows());
-  for (std::size_t f = 0; f < faces.rows(); ++f) was_folded[f] = turned(faces, f, before, facing[f]);
+  const std::vector<std::uint8_t> was_folded = turned_faces(faces, before, facing);
+  // Most calls fold nothing new: then the walk below would change nothing (checked in parallel).
+  {
+    const std::vector<std::uint8_t> now = turned_faces(faces, after, facing);
+    bool any = false;
+    for (std::size_t f = 0; f < faces.rows() && !any; ++f) any = now[f] && !was_folded[f];
+    if (!any) return;
+  }
   for (int round = 0;; ++round) {
     bool again = false;
     for (std::size_t f = 0; f < faces.rows(); ++f) {
@@ -117,8 +137,9 @@ void untangle(const Complex& c, const ProjectFn& project, const FeatureLines& li
               std::vector<double>& x, int rounds) {
   for (int round = 0; round < rounds; ++round) {
     std::vector<std::uint32_t> moving;
+    const std::vector<std::uint8_t> folded = turned_faces(c.faces, x, facing);
     for (std::size_t f = 0; f < c.faces.rows(); ++f)
-      if (turned(c.faces, f, x, facing[f]))
+      if (folded[f])
         for (std::uint32_t v : c.faces.row(f))
           if (c.vertex_dim.empty() || c.vertex_dim[v] > 0) moving.push_back(v);
     if (moving.empty()) return;
@@ -189,11 +210,7 @@ void untangle_limit(const Complex& c, const LimitStencils& ls, const ProjectFn& 
                     std::vector<double>& x, std::vector<glm::dvec3>* net_facing, int rounds) {
   // Each fold count also gives the input's way at the limit surface's faces, for the next round:
   // finding it is a closest-point query per face, most of an untangling's time.
-  const auto folds = [&](std::span<const double> p, const std::vector<glm::dvec3>& facing) {
-    std::size_t n = 0;
-    for (std::size_t f = 0; f < c.faces.rows(); ++f) n += turned(c.faces, f, p, facing[f]);
-    return n;
-  };
+  const auto folds = [&](std::span<const double> p, const std::vector<glm::dvec3>& facing) { return count_turned(c.faces, p, facing); };
   // Folds of the limit surface L net and of the net; lim = L net, and the facings of both.
   const auto both = [&](const std::vector<double>& net, std::vector<double>& lim, std::vector<glm::dvec3>& lim_facing,
                         std::vector<glm::dvec3>& facing) {

@@ -25,6 +25,11 @@ using ProjectFn = std::function<glm::dvec3(const glm::dvec3& p, const glm::dvec3
 /// Whether face f over x turns away from `facing` (its area vector has no positive part along it).
 bool turned(const Csr& faces, std::size_t f, std::span<const double> x, const glm::dvec3& facing);
 
+/// Per face of `faces` over x, whether it is turned (1) or not (0); computed in parallel.
+std::vector<std::uint8_t> turned_faces(const Csr& faces, std::span<const double> x, const std::vector<glm::dvec3>& facing);
+/// How many faces are turned.
+std::size_t count_turned(const Csr& faces, std::span<const double> x, const std::vector<glm::dvec3>& facing);
+
 /// Takes back the moves (from `before` to `after`) that fold a face: each such face's corners
 /// move half as far, up to four times, then not at all. A face folded before may move: it can
 /// only come right.

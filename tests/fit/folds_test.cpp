@@ -51,6 +51,25 @@ TEST(Folds, GuardTakesBackMovesThatFold) {
   EXPECT_GT(after[3 * 12], 2.0);  // part of the move stays
 }
 
+// The parallel per-face verdicts (chunks on both threads: more faces than a chunk) are the
+// serial ones, face for face, and their count.
+TEST(Folds, TurnedFacesInParallelAreEachFacesVerdict) {
+  std::vector<double> x;
+  const Complex c = grid(60, x);
+  for (std::uint32_t v = 0; v < c.num_vertices; v += 97) x[3 * v] += 1.5;  // scattered folds
+  const std::vector<glm::dvec3> facing = up(x);
+  const std::vector<std::uint8_t> t = turned_faces(c.faces, x, facing);
+  ASSERT_EQ(t.size(), c.faces.rows());
+  std::size_t n = 0;
+  for (std::size_t f = 0; f < c.faces.rows(); ++f) {
+    EXPECT_EQ(t[f] != 0, turned(c.faces, f, x, facing[f])) << f;
+    n += t[f];
+  }
+  EXPECT_GT(n, 50u);
+  EXPECT_EQ(count_turned(c.faces, x, facing), n);
+  EXPECT_EQ(folds(c.faces, x), n);
+}
+
 TEST(Folds, UntangleUnfoldsTheNet) {
   std::vector<double> x;
   const Complex c = grid(6, x);

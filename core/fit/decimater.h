@@ -13,12 +13,14 @@
 #include <cfloat>
 #include <cstdint>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include <OpenMesh/Tools/Decimater/BaseDecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 #include <OpenMesh/Tools/Utils/HeapT.hh>
 
+#include "core/base/parallel.h"
 #include "core/fit/decimation_mesh.h"
 #include "core/fit/decimation_shape.h"
 
@@ -56,13 +58,19 @@ class Decimater : public OpenMesh::Decimater::BaseDecimaterT<Mesh> {
   };
   using Heap = OpenMesh::Utils::HeapT<VertexHandle, Keys>;
 
-  // DecimaterT::heap_vertex with the quadric asked first.
-  void heap_vertex(Heap& heap, VertexHandle v);
   struct Candidate {
     float prio;
     std::uint32_t walk;  // its place in the walk round the vertex
     HalfedgeHandle h;
   };
+  // v's collapse (DecimaterT::heap_vertex's choice, the quadric asked first): its halfedge
+  // (invalid: none) and priority. Reads the mesh only, so vertices may be asked concurrently,
+  // unless v has more neighbours than Mesh::is_collapse_ok keeps (it tags their status then).
+  std::pair<HalfedgeHandle, float> choose(VertexHandle v, std::vector<Candidate>& candidates);
+  // v's choice recorded and v placed in (or taken out of) the heap.
+  void place(Heap& heap, VertexHandle v, std::pair<HalfedgeHandle, float> choice);
+  // DecimaterT::heap_vertex.
+  void heap_vertex(Heap& heap, VertexHandle v) { place(heap, v, choose(v, candidates_)); }
   std::vector<Candidate> candidates_;  // heap_vertex's, kept for its storage
   // ModQuadricT's quadrics (private there): the mesh's one vertex property of their type, so a
   // halfedge's error is asked without building its CollapseInfo (null: not found, ask the module).
@@ -78,12 +86,12 @@ class Decimater : public OpenMesh::Decimater::BaseDecimaterT<Mesh> {
   std::vector<HalfedgeHandle> target_;
 };
 
-inline void Decimater::heap_vertex(Heap& heap, VertexHandle v) {
+inline std::pair<Decimater::HalfedgeHandle, float> Decimater::choose(VertexHandle v, std::vector<Candidate>& candidates) {
   // Every outgoing halfedge's quadric error, then the checks in order of error (ties in the order
   // of the walk): the first that passes is DecimaterT's choice, the least legal error, the first
   // of equals; on average about one halfedge is checked.
   Quadric& q = quadric();
-  candidates_.clear();
+  candidates.clear();
   if (quadrics_) {
     // ModQuadricT::collapse_priority's arithmetic: the two ends' quadrics summed, at the far end.
     const double max_err = q.max_err();
@@ -93,27 +101,32 @@ inline void Decimater::heap_vertex(Heap& heap, VertexHandle v) {
       sum += (*quadrics_)[static_cast<std::size_t>(v1.idx())];
       const double err = sum(mesh_.point(v1));
       const float prio = float((err < max_err) ? err : float(Quadric::ILLEGAL_COLLAPSE));
-      if (prio >= 0.0f && prio < FLT_MAX) candidates_.push_back({prio, static_cast<std::uint32_t>(candidates_.size()), h});
+      if (prio >= 0.0f && prio < FLT_MAX) candidates.push_back({prio, static_cast<std::uint32_t>(candidates.size()), h});
     }
   } else {
     for (const HalfedgeHandle h : mesh_.voh_range(v)) {
       const CollapseInfo ci(mesh_, h);
       const float prio = q.collapse_priority(ci);
-      if (prio >= 0.0f && prio < FLT_MAX) candidates_.push_back({prio, static_cast<std::uint32_t>(candidates_.size()), h});
+      if (prio >= 0.0f && prio < FLT_MAX) candidates.push_back({prio, static_cast<std::uint32_t>(candidates.size()), h});
     }
   }
-  std::sort(candidates_.begin(), candidates_.end(),
+  std::sort(candidates.begin(), candidates.end(),
             [](const Candidate& a, const Candidate& b) { return a.prio < b.prio || (a.prio == b.prio && a.walk < b.walk); });
   ModFaceShape& s = shape();
   HalfedgeHandle target;
   float best = -1;
-  for (const Candidate& k : candidates_) {
+  for (const Candidate& k : candidates) {
     const CollapseInfo ci(mesh_, k.h);
     if (!is_collapse_legal(ci) || s.collapse_priority(ci) < 0.0f) continue;
     target = k.h;
     best = k.prio;
     break;
   }
+  return {target, best};
+}
+
+inline void Decimater::place(Heap& heap, VertexHandle v, std::pair<HalfedgeHandle, float> choice) {
+  const auto [target, best] = choice;
   target_[v.idx()] = target;
   if (target.is_valid()) {
     priority_[v.idx()] = best;
@@ -145,9 +158,24 @@ inline std::size_t Decimater::decimate_to_faces(std::size_t target_nv, std::size
   target_.assign(nv, HalfedgeHandle());
   Heap heap(Keys{this});
   heap.reserve(nv);
+  // Every vertex's first choice, in parallel (a long-ringed vertex's after, alone), then each
+  // placed in the heap in vertex order, as DecimaterT's loop does.
+  std::vector<std::pair<HalfedgeHandle, float>> first(nv, {HalfedgeHandle(), -1.0f});
+  std::vector<std::uint8_t> alone(nv, 0);
+  parallel_for(static_cast<std::uint32_t>(nv), 4096, [&](std::uint32_t b, std::uint32_t e) {
+    std::vector<Candidate> candidates;
+    for (std::uint32_t i = b; i < e; ++i) {
+      const VertexHandle v(static_cast<int>(i));
+      if (mesh_.status(v).deleted()) continue;
+      if (mesh_.valence(v) > Mesh::kKeptRing) alone[i] = 1;
+      else first[i] = choose(v, candidates);
+    }
+  });
   for (const VertexHandle v : mesh_.vertices()) {
     heap.reset_heap_position(v);
-    if (!mesh_.status(v).deleted()) heap_vertex(heap, v);
+    if (mesh_.status(v).deleted()) continue;
+    const std::size_t i = static_cast<std::size_t>(v.idx());
+    place(heap, v, alone[i] ? choose(v, candidates_) : first[i]);
   }
   const bool update_normals = mesh_.has_face_normals();
   std::vector<VertexHandle> support;

@@ -20,6 +20,10 @@ struct Traits : OpenMesh::DefaultTraits {
 /// the bases are byte-identical on the shared scans and the benchmark torus. find_halfedge, which
 /// the decimater's legality test calls for every candidate, likewise.
 struct Mesh : OpenMesh::TriMesh_ArrayKernelT<Traits> {
+  /// is_collapse_ok keeps a ring this long in an array; a vertex with more neighbours is
+  /// checked by tagging (status writes: not to be asked on two threads).
+  static constexpr std::size_t kKeptRing = 32;
+
   /// The halfedge from `from` to `to`, or an invalid handle.
   HalfedgeHandle find_halfedge(VertexHandle from, VertexHandle to) const {
     for (const HalfedgeHandle h : voh_range(from))
@@ -45,7 +49,7 @@ struct Mesh : OpenMesh::TriMesh_ArrayKernelT<Traits> {
     // Link condition: the one-rings of v0 and v1 share the two apexes only. v0's ring is kept
     // in a small array (rings are short) and v1's checked against it: two walks, no status
     // writes (OpenMesh's version tags the rings: three walks and scattered writes).
-    constexpr std::size_t kKept = 32;
+    constexpr std::size_t kKept = kKeptRing;
     VertexHandle ring[kKept];
     std::size_t n = 0;
     bool long_ring = false;

@@ -453,6 +453,9 @@ TEST(Decimater, CollapsesAsOpenMeshsDecimaterT) {
   check_decimater(fixtures::triangle_cone(40), "open cone of 40");
   check_decimater(bumpy_sheet(24), "bumpy sheet");
   check_decimater(uv_sphere(64, 32), "UV sphere 64 x 32");
+  // Vertices enough for the first choices to be made on both threads (chunks of 4096), poles
+  // of valence 128 (made alone: their collapse check tags).
+  check_decimater(uv_sphere(128, 40), "UV sphere 128 x 40");
   if (const auto f = fandisk()) check_decimater(*f, "fandisk");
 }
 

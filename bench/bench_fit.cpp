@@ -36,12 +36,12 @@ void BM_Fit(benchmark::State& st) {
     const auto t0 = bench::Clock::now();
     BaseMeshOptions bo;
     bo.quads = fit_base_quads(scheme);
-    const BaseMesh base = decimate_to_base(in.n, in.faces, in.xyz, bo);
-    bench::note(key("base", nu, scheme), bench::since_ms(t0));
     FitOptions o;
     o.scheme = scheme;
-    o.levels = default_fit_levels(in.n, base.num_vertices, scheme);
-    const Fitted f = fit_levels(base, in.faces, in.xyz, o);
+    o.levels = -1;  // default_fit_levels
+    const MeshFit m = fit_mesh(in.n, in.faces, in.xyz, bo, o);
+    const Fitted& f = m.fitted;
+    bench::note(key("base", nu, scheme), m.base_ms);
     bench::note(key("fit", nu, scheme), bench::since_ms(t0));
     for (const auto& [stage, ms] : f.stage_ms) bench::note(key(stage.c_str(), nu, scheme), ms);
     bench::note(key("limit_max_ppm", nu, scheme), 1e6 * std::max(f.limit_max, f.limit_back_max));

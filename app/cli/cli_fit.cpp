@@ -91,19 +91,17 @@ int run_fit(int argc, char** argv) {
   faces.items = lm.mesh.face_indices;
   const auto n = static_cast<std::uint32_t>(lm.mesh.num_vertices());
   const auto t0 = std::chrono::steady_clock::now();
-  BaseMesh base;
-  Fitted f;
-  double base_ms = 0;
+  // By default, the levels that bring the finest level to about the mesh's vertex count.
+  if (!a.value("--levels") && !a.value("--tolerance")) fo.levels = -1;
+  MeshFit fitted;
   try {
-    base = decimate_to_base(n, faces, xyz, bo);
-    base_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    // By default, the levels that bring the finest level to about the mesh's vertex count.
-    if (!a.value("--levels") && !a.value("--tolerance"))
-      fo.levels = default_fit_levels(n, base.num_vertices, fo.scheme);
-    f = fit_levels(base, faces, xyz, fo);
+    fitted = fit_mesh(n, faces, xyz, bo, fo);
   } catch (const TopologyError& e) {
     throw InputError(in, 0, e.what());
   }
+  const BaseMesh& base = fitted.base;
+  const Fitted& f = fitted.fitted;
+  const double base_ms = fitted.base_ms;
   const double fit_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const double back = f.levels.empty() ? f.limit_back_max : f.levels.back().back_max;
   if (project) {

@@ -259,13 +259,14 @@ ModelerState::PreparedFit ModelerState::prepare_fit(const std::string& file, con
   if (progress && !progress("the base mesh", 0.0)) throw Cancelled("fitting cancelled");
   BaseMeshOptions bo = base_options(settings);
   if (progress) bo.progress = [&](double f) { return progress("the base mesh", f); };  // Cancel stops the decimation too
-  const BaseMesh base = decimate_to_base(shape.base.num_vertices, shape.base.faces, shape.positions, bo);
   FitOptions fo;
   fo.scheme = settings.scheme;
-  fo.levels = settings.levels > 0 ? settings.levels : default_fit_levels(shape.base.num_vertices, base.num_vertices, settings.scheme);
+  fo.levels = settings.levels > 0 ? settings.levels : -1;  // -1: the default for the base made
   fo.progress = progress;
-  return {fit_levels(base, shape.base.faces, shape.positions, fo), base.num_vertices, derive_feature_tags(shape.base),
-          FitSource{std::filesystem::absolute(file).lexically_normal().string(), shape.base.num_vertices, base.input_vertex}};
+  MeshFit m = fit_mesh(shape.base.num_vertices, shape.base.faces, shape.positions, bo, fo);
+  const std::uint32_t base_vertices = m.base.num_vertices;
+  return {std::move(m.fitted), base_vertices, derive_feature_tags(shape.base),
+          FitSource{std::filesystem::absolute(file).lexically_normal().string(), shape.base.num_vertices, std::move(m.base.input_vertex)}};
 }
 
 std::string ModelerState::install_fit(PreparedFit p) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <future>
 #include <cmath>
 #include <optional>
 #include <tuple>
@@ -232,7 +233,42 @@ int default_fit_levels(std::uint32_t input_vertices, std::uint32_t base_vertices
 
 bool fit_base_quads(Scheme scheme) { return !scheme_info(scheme).triangles_only; }
 
+FitInputIndex index_fit_input(const Csr& faces, std::span<const double> positions) {
+  return {TriangleBvh(positions, faces), area_weighted_normals(faces, positions), bbox_diagonal(positions)};
+}
+
 Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double> positions, const FitOptions& o) {
+  if (o.progress && !o.progress("indexing the mesh", 0.0)) throw Cancelled("fitting cancelled");
+  const auto t0 = std::chrono::steady_clock::now();
+  const FitInputIndex index = index_fit_input(faces, positions);
+  const double index_ms = ms_since(t0);
+  Fitted out = fit_levels(base, faces, positions, o, index);
+  for (auto& [stage, ms] : out.stage_ms)
+    if (stage == "indexing") ms += index_ms;
+  return out;
+}
+
+MeshFit fit_mesh(std::uint32_t num_vertices, const Csr& faces, std::span<const double> positions, const BaseMeshOptions& base_options,
+                 FitOptions fit) {
+  // The index on its own thread (its parallel loops take the pool in turn with the decimation's).
+  std::future<FitInputIndex> index = std::async(std::launch::async, [&] { return index_fit_input(faces, positions); });
+  MeshFit out;
+  const auto t0 = std::chrono::steady_clock::now();
+  out.base = decimate_to_base(num_vertices, faces, positions, base_options);  // (on a throw, ~future waits for the index)
+  out.base_ms = ms_since(t0);
+  if (fit.levels < 0) fit.levels = default_fit_levels(num_vertices, out.base.num_vertices, fit.scheme);
+  if (fit.progress && !fit.progress("indexing the mesh", 0.0)) throw Cancelled("fitting cancelled");
+  const auto t1 = std::chrono::steady_clock::now();
+  const FitInputIndex ready = index.get();
+  const double wait_ms = ms_since(t1);
+  out.fitted = fit_levels(out.base, faces, positions, fit, ready);
+  for (auto& [stage, ms] : out.fitted.stage_ms)
+    if (stage == "indexing") ms += wait_ms;
+  return out;
+}
+
+Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double> positions, const FitOptions& o,
+                  const FitInputIndex& index) {
   if (scheme_info(o.scheme).triangles_only)
     for (std::size_t f = 0; f < base.faces.rows(); ++f)
       if (base.faces.size(f) != 3) throw Error("the " + scheme_name(o.scheme) + " scheme needs a triangle base (BaseMeshOptions::quads off)");
@@ -252,12 +288,11 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
     const Complex c = complex_from_polygons(base.num_vertices, base.faces, base.tags);
     check_memory(predicted_hierarchy_bytes(c, o.levels, o.scheme), "fitting " + std::to_string(o.levels) + " levels");
   }
-  report("indexing the mesh", 0.0);
-  const TriangleBvh input(positions, faces);
+  const TriangleBvh& input = index.surface;
   const FeatureLines lines(positions, base.input_feature_edges);
   const Projector project{input};
-  const std::vector<double> input_normals = area_weighted_normals(faces, positions);
-  const double diag = bbox_diagonal(positions);
+  const std::vector<double>& input_normals = index.normals;
+  const double diag = index.diagonal;
   stage_done("indexing");
   // Levels are appended one by one (their setup is the costly part), so a tolerance stops early.
   out.hierarchy = make_hierarchy(complex_from_polygons(base.num_vertices, base.faces, base.tags), 0, o.scheme, 3);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/base/csr.h"
+#include "core/base/triangle_bvh.h"
 #include "core/fit/base_mesh.h"
 #include "core/fit/net_solve.h"
 #include "core/multires/hierarchy.h"
@@ -76,8 +77,33 @@ int default_fit_levels(std::uint32_t input_vertices, std::uint32_t base_vertices
 /// any polygon do; the triangle schemes take triangles.
 bool fit_base_quads(Scheme scheme);
 
-/// Fits `base` (from decimate_to_base of this input) to the input (`faces`, `positions`).
-/// Throws Error for schemes other than the triangle schemes.
+/// What fitting asks of the input apart from its base: the closest-point index of its surface,
+/// its area-weighted vertex normals (3 per vertex) and its bounding-box diagonal. Independent of
+/// the base, so fit_mesh builds it while the base is decimated.
+struct FitInputIndex {
+  TriangleBvh surface;
+  std::vector<double> normals;
+  double diagonal = 0;
+};
+FitInputIndex index_fit_input(const Csr& faces, std::span<const double> positions);
+
+/// Fits `base` (from decimate_to_base of this input) to the input (`faces`, `positions`),
+/// indexing the input first (the "indexing" stage). A triangle scheme needs a triangle base
+/// (Error otherwise).
 Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double> positions, const FitOptions& options = {});
+/// The same with the input's index made already (index_fit_input of this input).
+Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double> positions, const FitOptions& options,
+                  const FitInputIndex& index);
+
+struct MeshFit {
+  BaseMesh base;
+  Fitted fitted;
+  double base_ms = 0;  // the decimation (Fitted::stage_ms has the rest; its "indexing" is what
+                       // the input's index took beyond the decimation, and the feature lines)
+};
+/// decimate_to_base, then fit_levels, the input indexed on another thread while the base is
+/// decimated (the decimation is serial). `fit.levels` < 0: default_fit_levels for the base made.
+MeshFit fit_mesh(std::uint32_t num_vertices, const Csr& faces, std::span<const double> positions, const BaseMeshOptions& base,
+                 FitOptions fit);
 
 }  // namespace sublift

@@ -13,6 +13,7 @@
 
 #include "core/analysis/sphere_resample.h"
 #include "core/base/bounds.h"
+#include "core/base/errors.h"
 #include "core/base/parallel.h"
 #include "core/base/triangle_bvh.h"
 #include "core/io/mesh/mesh_import.h"
@@ -277,6 +278,36 @@ TEST(FitLevels, SameBitsOnOneThreadAndTwo) {
     EXPECT_EQ(fits[0].limit_max, fits[1].limit_max);
     EXPECT_EQ(fits[0].limit_back_max, fits[1].limit_back_max);
   }
+}
+
+// fit_mesh, which indexes the input on another thread while the base is decimated, fits as the
+// two steps in turn do, to the bit, and takes the default levels for the base it made; a cancel
+// during the decimation comes out as Cancelled (the index thread joined), nothing returned.
+TEST(FitLevels, FitMeshIsTheBaseThenTheLevels) {
+  const Input in = torus();
+  BaseMeshOptions bo;
+  bo.quads = fit_base_quads(Scheme::Loop);
+  FitOptions o;
+  o.scheme = Scheme::Loop;
+  o.levels = -1;
+  const MeshFit m = fit_mesh(in.n, in.faces, in.xyz, bo, o);
+  const BaseMesh base = decimate_to_base(in.n, in.faces, in.xyz, bo);
+  EXPECT_EQ(m.base.positions, base.positions);
+  EXPECT_EQ(m.base.input_vertex, base.input_vertex);
+  o.levels = default_fit_levels(in.n, base.num_vertices, Scheme::Loop);
+  EXPECT_GE(o.levels, 2);
+  EXPECT_EQ(m.fitted.hierarchy.finest_level(), o.levels);
+  const Fitted f = fit_levels(base, in.faces, in.xyz, o);
+  ASSERT_EQ(m.fitted.finest.size(), f.finest.size());
+  EXPECT_EQ(std::memcmp(m.fitted.finest.data(), f.finest.data(), f.finest.size() * sizeof(double)), 0);
+  EXPECT_EQ(m.fitted.limit_max, f.limit_max);
+  EXPECT_GT(m.base_ms, 0.0);
+  std::vector<std::string> stages;
+  for (const auto& [stage, ms] : m.fitted.stage_ms) stages.push_back(stage);
+  EXPECT_EQ(stages, (std::vector<std::string>{"indexing", "hierarchy", "levels", "analysis", "report"}));
+
+  bo.progress = [](double done) { return done < 0.3; };
+  EXPECT_THROW(fit_mesh(in.n, in.faces, in.xyz, bo, o), Cancelled);
 }
 
 // A shared scan (../shared/data/scans), or none when the data is absent.

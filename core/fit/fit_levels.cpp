@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <future>
 #include <cmath>
+#include <future>
 #include <optional>
 #include <tuple>
 
@@ -282,7 +282,7 @@ Fitted fit_levels(const BaseMesh& base, const Csr& faces, std::span<const double
     out.stage_ms.emplace_back(name, std::chrono::duration<double, std::milli>(now - t_stage).count());
     t_stage = now;
   };
-  // Up front, before the costly indexing: all the levels asked for must fit (a tolerance may stop
+  // Up front, before the costly levels: all the levels asked for must fit (a tolerance may stop
   // earlier; append_level checks each level again).
   {
     const Complex c = complex_from_polygons(base.num_vertices, base.faces, base.tags);

@@ -2,7 +2,13 @@
 // Internal to core/fit: the OpenMesh mesh a fitting base is decimated on (base_mesh.cpp).
 #include <cstddef>
 
+// GCC 12 reports the default-constructed prototype that OpenMesh's add_property copies (every
+// mesh's points property) as maybe used uninitialised, depending on what is inlined around it:
+// the library's value is never read, so the warning is silenced for its headers alone.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#pragma GCC diagnostic pop
 
 namespace sublift::fit_detail {
 

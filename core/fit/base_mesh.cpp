@@ -1,5 +1,6 @@
 #include "core/fit/base_mesh.h"
 
+#include "core/fit/openmesh_kernel.h"  // before any other OpenMesh header
 #include <OpenMesh/Tools/Decimater/Observer.hh>
 
 #include <algorithm>

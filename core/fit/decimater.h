@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/fit/openmesh_kernel.h"  // before any other OpenMesh header
 #include <OpenMesh/Tools/Decimater/BaseDecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 #include <OpenMesh/Tools/Utils/HeapT.hh>

@@ -2,17 +2,7 @@
 // Internal to core/fit: the OpenMesh mesh a fitting base is decimated on (base_mesh.cpp).
 #include <cstddef>
 
-// GCC 12 reports the default-constructed prototype that OpenMesh's add_property copies (every
-// mesh's points property) as maybe used uninitialised, depending on what is inlined around it:
-// the library's value is never read, so the warning is silenced for its headers alone.
-#if defined(__GNUC__) && !defined(__clang__)  // (clang has no such warning)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
+#include "core/fit/openmesh_kernel.h"
 
 namespace sublift::fit_detail {
 

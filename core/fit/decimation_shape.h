@@ -8,6 +8,7 @@
 // asks both on every halfedge through decimations; the bases are byte-identical).
 #include <cmath>
 
+#include "core/fit/openmesh_kernel.h"  // before any other OpenMesh header
 #include <OpenMesh/Tools/Decimater/ModBaseT.hh>
 
 #include "core/fit/decimation_mesh.h"

@@ -10,16 +10,8 @@
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
-// (OpenMesh's headers: GCC 12's false maybe-uninitialized, as in core/fit/decimation_mesh.h.)
-#if defined(__GNUC__) && !defined(__clang__)  // (clang has no such warning)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include "core/fit/openmesh_kernel.h"  // before any other OpenMesh header
 #include <OpenMesh/Tools/Subdivider/Uniform/CatmullClarkT.hh>
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
 
 #include <algorithm>
 #include <cmath>

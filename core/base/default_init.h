@@ -2,8 +2,10 @@
 // A std::vector allocator whose value-less construction default-initialises: a vector of
 // trivial elements is sized without being zeroed. A large array filled by a parallel loop then
 // takes its first-touch page faults on every thread, where the loop writes, instead of in one
-// serial memset when it is sized (a 2 M-triangle TriangleBvh: about a second of one thread).
+// serial memset when it is sized (a 2 M-triangle TriangleBvh: about a second of one thread;
+// also the triangle schemes' update-row discs, core/schemes/tri/tri_transform.cpp).
 #include <memory>
+#include <type_traits>
 #include <utility>
 #include <vector>
 

@@ -10,6 +10,7 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "core/base/default_init.h"
 #include "core/base/epoch_table.h"
 #include "core/base/parallel.h"
 #include "core/schemes/tri/new_signatures.h"
@@ -176,7 +177,7 @@ bool update_rows(const Complex& coarse, const TriRings& rings, const EdgeWavelet
     const std::uint32_t e = edges[k];
     offset[k + 1] = offset[k] + (w.regular[e] ? regular_size : static_cast<std::uint32_t>(w.discs[w.irregular_at[e]].size()));
   }
-  std::unique_ptr<std::uint32_t[]> disc_of(new std::uint32_t[offset[m]]);  // every entry is written
+  UninitVector<std::uint32_t> disc_of(offset[m]);  // every entry is written (in parallel, below)
   std::atomic<bool> mismatch{false};
   parallel_for(m, 1024, [&](std::uint32_t begin, std::uint32_t end) {
     thread_local LocalOrder o;
@@ -184,7 +185,7 @@ bool update_rows(const Complex& coarse, const TriRings& rings, const EdgeWavelet
       const std::uint32_t e = edges[k];
       if (!w.regular[e]) {
         const auto& d = w.discs[w.irregular_at[e]];
-        std::copy(d.begin(), d.end(), disc_of.get() + offset[k]);
+        std::copy(d.begin(), d.end(), disc_of.data() + offset[k]);
         continue;
       }
       edge_disc(coarse, rings, e, disc, o);
@@ -192,7 +193,7 @@ bool update_rows(const Complex& coarse, const TriRings& rings, const EdgeWavelet
         mismatch = true;
         continue;
       }
-      std::copy(o.vertex.begin(), o.vertex.end(), disc_of.get() + offset[k]);
+      std::copy(o.vertex.begin(), o.vertex.end(), disc_of.data() + offset[k]);
     }
   });
   if (mismatch) throw std::logic_error("tri_transform: a regular edge's disc has an unexpected size");
